@@ -1,0 +1,126 @@
+#include "sim/output.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/atomic_file.h"
+#include "sim/hidden_effects.h"
+#include "sim/sha256.h"
+
+namespace gyrotherm::sim {
+namespace {
+
+nlohmann::json file_entry(const std::filesystem::path& file) {
+  if (file.empty()) return nullptr;
+  return {{"file", file.string()}, {"sha256", sha256_file_hex(file)}};
+}
+
+}  // namespace
+
+std::filesystem::path truth_path_for(const std::filesystem::path& csv) {
+  std::filesystem::path out = csv;
+  out.replace_extension(".truth.json");
+  return out;
+}
+
+std::string simulation_csv(const Simulator& simulator, const SimulationResult& r) {
+  fmt::memory_buffer out;
+  const Scenario& sc = simulator.scenario();
+  fmt::format_to(std::back_inserter(out), "# gyrotherm simulate: scenario {}, seed {}\n",
+                 sc.name, r.seed);
+  fmt::format_to(std::back_inserter(out),
+                 "# truth (noise-free bias, true coefficients) in the .truth.json beside this file\n");
+  fmt::format_to(std::back_inserter(out),
+                 "time_s,chamber_c,case_c,temp_c,temp2_c,gyro_dph,bias_true_dph\n");
+  for (std::size_t k = 0; k < r.rows(); ++k)
+    fmt::format_to(std::back_inserter(out), "{:.10g},{:.5f},{:.5f},{:.5f},{:.5f},{:.6f},{:.9f}\n",
+                   r.time_s[k], r.chamber_c[k], r.case_c[k], r.temp_c[k], r.temp2_c[k],
+                   r.gyro_dph[k], r.bias_true_dph[k]);
+  return fmt::to_string(out);
+}
+
+std::string truth_json(const Simulator& simulator, const SimulationResult& r) {
+  const Scenario& sc = simulator.scenario();
+  const GyroConfig& gyro = simulator.gyro();
+  const NoiseConfig& nz = gyro.noise;
+  nlohmann::ordered_json j;
+  j["generator"] = "gyrotherm simulate";
+  j["seed"] = r.seed;
+  j["scenario"] = {{"name", sc.name}};
+  if (!sc.file.empty()) {
+    j["scenario"]["file"] = sc.file.string();
+    j["scenario"]["sha256"] = sha256_file_hex(sc.file);
+  }
+  j["rig"] = file_entry(sc.rig_file);
+  j["gyro"] = file_entry(sc.gyro_file);
+  j["sample_rate_hz"] = sc.sample_rate_hz;
+  j["rows"] = r.rows();
+  j["duration_s"] = r.rows() > 0 ? r.time_s.back() : 0.0;
+  j["temperature"] =
+      "T is the true anode-side block temperature (the sensor location), degC; dT in degC/s";
+
+  nlohmann::ordered_json coefficients;
+  coefficients["1"] = gyro.truth.b0_dph;
+  coefficients["T"] = gyro.truth.b1_dph_per_c;
+  coefficients["T^2"] = gyro.truth.b2_dph_per_c2;
+  coefficients["dT"] = gyro.truth.b3_dph_per_c_per_s;
+  nlohmann::ordered_json hidden = nlohmann::ordered_json::object();
+  for (const HiddenTerm& term : kHiddenTerms) {
+    const auto it = gyro.hidden.coefficient.find(std::string(term.name));
+    if (it == gyro.hidden.coefficient.end() || it->second == 0.0) continue;
+    coefficients[std::string(term.name)] = it->second;
+    nlohmann::ordered_json h = {{"coefficient", it->second},
+                                {"unit", std::string(term.coefficient_unit)},
+                                {"meaning", std::string(term.meaning)}};
+    if (term.name == "hyst") h["dead_band_c_per_s"] = gyro.hidden.hyst_dead_band_c_per_s;
+    if (term.name == "warmup") h["time_constant_s"] = gyro.hidden.warmup_time_constant_s;
+    hidden[std::string(term.name)] = h;
+  }
+  j["coefficients"] = coefficients;
+  j["hidden"] = hidden;
+  j["noise"] = {{"arw_deg_per_sqrt_h", nz.arw_deg_per_sqrt_h},
+                {"bias_instability_dph", nz.bias_instability_dph},
+                {"flicker_tau_min_s", nz.flicker_tau_min_s},
+                {"flicker_tau_max_s", nz.flicker_tau_max_s},
+                {"flicker_processes", nz.flicker_processes},
+                {"rrw_dph_per_sqrt_h", nz.rrw_dph_per_sqrt_h},
+                {"quantization_arcsec", nz.quantization_arcsec},
+                {"glitch_rate_per_h", nz.glitch_rate_per_h},
+                {"glitch_size_dph", nz.glitch_size_dph},
+                {"arw_temp_ref_c", nz.arw_temp_ref_c},
+                {"arw_temp_coeff_per_c2", nz.arw_temp_coeff_per_c2},
+                {"temp_sensor_noise_c", simulator.rig().sensor.noise_c},
+                {"temp_sensor_resolution_c", simulator.rig().sensor.resolution_c}};
+  const SolverStatistics& st = r.solver;
+  j["solver"] = {{"integrator", "CVODE BDF, dense direct linear solver"},
+                 {"steps", st.steps},
+                 {"rhs_evaluations", st.rhs_evaluations},
+                 {"jacobian_evaluations", st.jacobian_evaluations},
+                 {"linear_setups", st.linear_setups},
+                 {"nonlinear_iterations", st.nonlinear_iterations},
+                 {"nonlinear_failures", st.nonlinear_failures},
+                 {"error_test_failures", st.error_test_failures},
+                 {"restarts", st.restarts}};
+  j["energy_j"] = {{"stored_change", r.energy.stored_change_j},
+                   {"heater", r.energy.heater_j},
+                   {"self_heating", r.energy.self_heating_j},
+                   {"lost", r.energy.lost_j},
+                   {"residual", r.energy.residual_j()}};
+  return j.dump(2) + "\n";
+}
+
+void write_simulation(const std::filesystem::path& csv, const Simulator& simulator,
+                      const SimulationResult& result) {
+  // Render both first (this reads and hashes the input files), then write.
+  const std::string csv_text = simulation_csv(simulator, result);
+  const std::string json_text = truth_json(simulator, result);
+  AtomicFile csv_file(csv);
+  AtomicFile json_file(truth_path_for(csv));
+  csv_file.stream() << csv_text;
+  json_file.stream() << json_text;
+  json_file.commit();
+  csv_file.commit();
+}
+
+}  // namespace gyrotherm::sim

@@ -1,0 +1,31 @@
+#pragma once
+// The simulator's files (DESIGN.md, "Simulator output"):
+//
+//   OUT.csv         time_s, chamber_c, case_c, temp_c, temp2_c, gyro_dph, bias_true_dph
+//                   (a few '#' comment lines first; no time stamps, so the same
+//                   seed gives the same bytes)
+//   OUT.truth.json  seed; scenario, rig and gyro files with their SHA-256; the
+//                   true coefficients by term name ("1" is the intercept); noise
+//                   parameters; hidden effects; solver statistics; energy balance.
+//
+// Both are written atomically (sim/atomic_file.h): first both temporaries, then
+// both renames, so a failure leaves neither a half-written file nor a CSV
+// without its truth.
+
+#include <filesystem>
+#include <string>
+
+#include "sim/simulator.h"
+
+namespace gyrotherm::sim {
+
+// run.csv → run.truth.json (the extension is replaced; none → appended).
+std::filesystem::path truth_path_for(const std::filesystem::path& csv);
+
+std::string simulation_csv(const Simulator& simulator, const SimulationResult& result);
+std::string truth_json(const Simulator& simulator, const SimulationResult& result);
+
+void write_simulation(const std::filesystem::path& csv, const Simulator& simulator,
+                      const SimulationResult& result);
+
+}  // namespace gyrotherm::sim

@@ -1,0 +1,101 @@
+#include "sim/rig_dynamics.h"
+
+#include <cassert>
+
+namespace gyrotherm::sim {
+
+RigDynamics::RigDynamics(const RigConfig& rig, const Profile& profile, double room_c,
+                         bool chamber_present)
+    : rig_(rig),
+      profile_(profile),
+      room_c_(room_c),
+      chamber_present_(chamber_present),
+      controller_(rig.chamber) {
+  // Node order must match the Node enum.
+  network_.add_boundary("room");
+  if (chamber_present_)
+    network_.add_node("chamber", rig.chamber.capacity_j_per_k);
+  else
+    network_.add_boundary("chamber");
+  network_.add_node("case", rig.case_.capacity_j_per_k);
+  network_.add_node("anode", rig.block.anode_capacity_j_per_k);
+  network_.add_node("far", rig.block.far_capacity_j_per_k);
+  network_.add_node("sensor", kSensorCapacityJPerK);
+  network_.add_node("sensor2", kSensorCapacityJPerK);
+
+  network_.conduct(chamber, room, rig.chamber.insulation_w_per_k);
+  network_.convect(case_, chamber, rig.case_.convection_w_per_k, rig.case_.natural_convection);
+  network_.radiate(case_, chamber, rig.case_.emissivity, rig.case_.area_m2);
+  network_.conduct(anode, case_, rig.block.anode_case_w_per_k);
+  network_.conduct(far, case_, rig.block.far_case_w_per_k);
+  network_.conduct(anode, far, rig.block.anode_far_w_per_k);
+  const double sensor_g = kSensorCapacityJPerK / rig.sensor.time_constant_s;
+  network_.conduct(sensor, anode, sensor_g);
+  network_.conduct(sensor2, far, sensor_g);
+}
+
+RigDynamics::Evaluation RigDynamics::evaluate(double t, std::span<const double> y) const {
+  Evaluation e{};
+  const std::span<const double> temps = y.first(node_count);
+  ChamberController::Output control{0.0, 0.0};
+  if (chamber_present_) {
+    const SetPoint sp = profile_.at(t);
+    control = controller_.evaluate(sp.temp_c, sp.rate_c_per_s, temps[chamber], y[kIntegral],
+                                   sp.chamber_on);
+  }
+  std::array<double, node_count> power{};
+  power[chamber] = control.power_w;
+  power[anode] = rig_.power.discharge_w + 0.5 * rig_.power.dither_w;
+  power[far] = 0.5 * rig_.power.dither_w;
+  power[case_] = rig_.power.electronics_w;
+  network_.rates(temps, power, e.rates);
+  e.power_w = control.power_w;
+  e.integral_rate = control.integral_rate_w_per_s;
+  e.loss_w = network_.flow_into_boundaries_w(temps);
+  return e;
+}
+
+int RigDynamics::rhs(double t, std::span<const double> y, std::span<double> ydot) {
+  const Evaluation e = evaluate(t, y);
+  for (std::size_t i = 0; i < node_count; ++i) ydot[i] = e.rates[i];
+  ydot[kIntegral] = e.integral_rate;
+  ydot[kHeaterEnergy] = e.power_w;
+  ydot[kLossEnergy] = e.loss_w;
+  return 0;
+}
+
+std::vector<double> RigDynamics::soaked_state(double temp_c) const {
+  std::vector<double> y(kStateSize, 0.0);
+  for (std::size_t i = 0; i < node_count; ++i) y[i] = temp_c;
+  y[room] = room_c_;
+  if (!chamber_present_) y[chamber] = room_c_;
+  // Hold the chamber at temp_c: the controller supplies what the insulation loses.
+  y[kIntegral] = chamber_present_
+                     ? controller_.integral_for(rig_.chamber.insulation_w_per_k * (temp_c - room_c_))
+                     : 0.0;
+  return y;
+}
+
+double RigDynamics::heater_power_w(double t, std::span<const double> y) const {
+  return evaluate(t, y).power_w;
+}
+
+void RigDynamics::node_rates(double t, std::span<const double> y,
+                             std::span<double> rates_k_per_s) const {
+  const Evaluation e = evaluate(t, y);
+  assert(rates_k_per_s.size() == node_count);
+  for (std::size_t i = 0; i < node_count; ++i) rates_k_per_s[i] = e.rates[i];
+}
+
+double RigDynamics::self_heating_w() const {
+  return rig_.power.discharge_w + rig_.power.dither_w + rig_.power.electronics_w;
+}
+
+double RigDynamics::stored_energy_j(std::span<const double> y) const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < node_count; ++i)
+    if (!network_.node(i).boundary) e += network_.node(i).capacity_j_per_k * y[i];
+  return e;
+}
+
+}  // namespace gyrotherm::sim

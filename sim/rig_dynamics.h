@@ -1,0 +1,84 @@
+#pragma once
+// The rig as one ODE system for CVODE: the thermal network of sim/rig_config.h
+// driven by the profile through the chamber controller.
+//
+// State y (all in SI units, temperatures in °C):
+//   y[room..sensor2]   node temperatures (room, and the chamber when there is
+//                      none, are boundary nodes with dT/dt = 0)
+//   y[kIntegral]       the controller's integral term I, W
+//   y[kHeaterEnergy]   ∫ u dt, energy put in by the chamber's heater/cooler, J
+//   y[kLossEnergy]     ∫ q_boundary dt, energy lost to boundary nodes, J
+//
+//   C_i dT_i/dt = P_i + Σ q_{j→i}           (sim/thermal_network.h)
+//   P_chamber = u(t)                        (sim/chamber_controller.h)
+//   P_anode = P_discharge + P_dither/2,  P_far = P_dither/2,  P_case = P_electronics
+//
+// The temperature sensors are first-order lags: a node of small capacity C_s
+// tied to its side of the block by G_s = C_s/τ_s, so dT_s/dt = (T_side − T_s)/τ_s.
+//
+// Energy conservation, checked by the tests:
+//   Σ C_i ΔT_i = E_heater + P_self·t − E_loss.
+
+#include <array>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "sim/chamber_controller.h"
+#include "sim/cvode_solver.h"
+#include "sim/profile.h"
+#include "sim/rig_config.h"
+#include "sim/thermal_network.h"
+
+namespace gyrotherm::sim {
+
+class RigDynamics : public OdeSystem {
+ public:
+  enum Node : std::size_t { room, chamber, case_, anode, far, sensor, sensor2, node_count };
+  static constexpr std::size_t kIntegral = node_count;
+  static constexpr std::size_t kHeaterEnergy = node_count + 1;
+  static constexpr std::size_t kLossEnergy = node_count + 2;
+  static constexpr std::size_t kStateSize = node_count + 3;
+  static constexpr double kSensorCapacityJPerK = 0.5;  // a bonded platinum resistor
+
+  // chamber_present = false: the chamber node is the room itself (a boundary).
+  RigDynamics(const RigConfig& rig, const Profile& profile, double room_c, bool chamber_present);
+
+  std::size_t size() const override { return kStateSize; }
+  int rhs(double t, std::span<const double> y, std::span<double> ydot) override;
+
+  // Every node at temp_c (the chamber and room at their own temperatures), the
+  // controller's integral set to hold the chamber there with no error.
+  std::vector<double> soaked_state(double temp_c) const;
+
+  // Heater/cooler power and node rates at (t, y), for outputs and tests.
+  double heater_power_w(double t, std::span<const double> y) const;
+  void node_rates(double t, std::span<const double> y, std::span<double> rates_k_per_s) const;
+
+  double self_heating_w() const;
+  // Σ C_i T_i over the dynamic nodes, J (relative to 0 °C).
+  double stored_energy_j(std::span<const double> y) const;
+
+  const ThermalNetwork& network() const { return network_; }
+  const Profile& profile() const { return profile_; }
+  bool chamber_present() const { return chamber_present_; }
+  double room_c() const { return room_c_; }
+
+ private:
+  struct Evaluation {
+    std::array<double, node_count> rates;
+    double power_w;
+    double integral_rate;
+    double loss_w;
+  };
+  Evaluation evaluate(double t, std::span<const double> y) const;
+
+  RigConfig rig_;
+  Profile profile_;
+  double room_c_;
+  bool chamber_present_;
+  ChamberController controller_;
+  ThermalNetwork network_;
+};
+
+}  // namespace gyrotherm::sim

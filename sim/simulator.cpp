@@ -1,0 +1,184 @@
+#include "sim/simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "sim/bias_model.h"
+#include "sim/input_error.h"
+#include "sim/noise.h"
+#include "sim/random.h"
+
+namespace gyrotherm::sim {
+namespace {
+
+using N = RigDynamics::Node;
+
+// Largest |dT/dt| over the dynamic nodes, K/s.
+double largest_rate(const RigDynamics& dynamics, double t, std::span<const double> y) {
+  std::array<double, RigDynamics::node_count> rates{};
+  dynamics.node_rates(t, y, rates);
+  double worst = 0.0;
+  for (double r : rates) worst = std::max(worst, std::abs(r));
+  return worst;
+}
+
+}  // namespace
+
+CvodeOptions SimulationOptions::default_solver_options() {
+  CvodeOptions o;
+  o.relative_tolerance = 1e-7;
+  o.absolute_tolerance.assign(RigDynamics::kStateSize, 1e-6);  // K
+  o.absolute_tolerance[RigDynamics::kIntegral] = 1e-3;           // W
+  o.absolute_tolerance[RigDynamics::kHeaterEnergy] = 1.0;        // J
+  o.absolute_tolerance[RigDynamics::kLossEnergy] = 1.0;          // J
+  return o;
+}
+
+Simulator::Simulator(Scenario scenario, RigConfig rig, GyroConfig gyro, SimulationOptions options)
+    : scenario_(std::move(scenario)),
+      rig_(rig),
+      gyro_(std::move(gyro)),
+      options_(std::move(options)) {}
+
+std::vector<double> Simulator::initial_state(const RigDynamics& dynamics) const {
+  std::vector<double> y = dynamics.soaked_state(scenario_.start_c);
+  if (scenario_.initial == InitialCondition::soaked) return y;
+
+  // Steady: hold the start temperature with the gyro running until every node
+  // has settled (|dT/dt| < 1e-9 K/s), checked once per simulated hour.
+  const Profile hold(scenario_.start_c, {Segment{SegmentKind::hold, scenario_.start_c, 0.0,
+                                                 1e9, 0}});
+  RigDynamics settling(rig_, hold, scenario_.room_c, scenario_.chamber);
+  CvodeSolver solver(settling, 0.0, y, options_.solver);
+  constexpr double kCheckS = 3600.0;
+  constexpr double kLimitS = 1000.0 * 3600.0;
+  for (double t_check = kCheckS; t_check <= kLimitS; t_check += kCheckS) {
+    while (solver.time() < t_check) solver.step_towards(t_check);
+    solver.state_at(t_check, y);
+    if (largest_rate(settling, t_check, y) < 1e-9) {
+      y[RigDynamics::kHeaterEnergy] = 0.0;
+      y[RigDynamics::kLossEnergy] = 0.0;
+      return y;
+    }
+  }
+  throw InputError(scenario_.file.string() +
+                   ": initial = \"steady\": the rig does not settle within 1000 h at start_c");
+}
+
+ThermalTrace Simulator::run_thermal(SolverStatistics* statistics, EnergyBalance* energy,
+                                    SimulationObserver* observer) const {
+  const Profile profile(scenario_.start_c, scenario_.segments);
+  RigDynamics dynamics(rig_, profile, scenario_.room_c, scenario_.chamber);
+  std::vector<double> y = initial_state(dynamics);
+  const double stored_at_start = dynamics.stored_energy_j(y);
+
+  const double dt = 1.0 / scenario_.sample_rate_hz;
+  const double total_s = profile.duration_s();
+  const auto samples = static_cast<std::size_t>(std::floor(total_s / dt + 1e-9)) + 1;
+
+  ThermalTrace trace;
+  trace.time_s.reserve(samples);
+  for (auto& column : trace.node_c) column.reserve(samples);
+  trace.anode_rate_c_per_s.reserve(samples);
+  trace.setpoint_c.reserve(samples);
+  trace.heater_w.reserve(samples);
+
+  std::array<double, RigDynamics::node_count> rates{};
+  auto record = [&](double t, std::span<const double> state) {
+    trace.time_s.push_back(t);
+    for (std::size_t i = 0; i < RigDynamics::node_count; ++i) trace.node_c[i].push_back(state[i]);
+    dynamics.node_rates(t, state, rates);
+    trace.anode_rate_c_per_s.push_back(rates[N::anode]);
+    trace.setpoint_c.push_back(profile.at(t).temp_c);
+    trace.heater_w.push_back(dynamics.heater_power_w(t, state));
+  };
+
+  CvodeSolver solver(dynamics, 0.0, y, options_.solver);
+  record(0.0, y);
+  std::size_t k = 1;
+  const std::size_t segments = profile.segments().size();
+  for (std::size_t s = 0; s < segments; ++s) {
+    const double breakpoint = profile.segment_end_s(s);
+    if (breakpoint <= solver.time()) continue;  // a segment of zero length
+    while (solver.time() < breakpoint) {
+      const double t = solver.step_towards(breakpoint);
+      for (; k < samples && static_cast<double>(k) * dt <= t; ++k) {
+        const double tk = static_cast<double>(k) * dt;
+        solver.state_at(tk, y);
+        record(tk, y);
+      }
+    }
+    if (observer != nullptr) observer->on_progress(breakpoint, total_s);
+    if (s + 1 < segments) {
+      // The right-hand side is discontinuous here (a ramp ends, the chamber
+      // switches off): restart so the BDF history never spans the break.
+      solver.state_at(breakpoint, y);
+      solver.restart(breakpoint, y);
+    }
+  }
+  solver.state_at(solver.time(), y);
+  if (statistics != nullptr) *statistics = solver.statistics();
+  if (energy != nullptr) {
+    energy->stored_change_j = dynamics.stored_energy_j(y) - stored_at_start;
+    energy->heater_j = y[RigDynamics::kHeaterEnergy];
+    energy->lost_j = y[RigDynamics::kLossEnergy];
+    energy->self_heating_j = dynamics.self_heating_w() * solver.time();
+  }
+  return trace;
+}
+
+SimulationResult Simulator::run(SimulationObserver* observer) const {
+  SimulationResult result;
+  result.seed = scenario_.seed;
+  result.truth = run_thermal(&result.solver, &result.energy, observer);
+  const ThermalTrace& tr = result.truth;
+  const std::size_t n = tr.time_s.size();
+  const double dt = 1.0 / scenario_.sample_rate_hz;
+
+  const BiasModel bias(gyro_);
+  GyroNoise noise(gyro_.noise, dt, scenario_.seed);
+  const SensorConfig& sensor = rig_.sensor;
+  ReadingNoise read_chamber(sensor.noise_c, sensor.resolution_c, scenario_.seed,
+                            streams::reading_base + 0);
+  ReadingNoise read_case(sensor.noise_c, sensor.resolution_c, scenario_.seed,
+                         streams::reading_base + 1);
+  ReadingNoise read_temp(sensor.noise_c, sensor.resolution_c, scenario_.seed,
+                         streams::reading_base + 2);
+  ReadingNoise read_temp2(sensor.noise_c, sensor.resolution_c, scenario_.seed,
+                          streams::reading_base + 3);
+
+  for (auto* column : {&result.time_s, &result.chamber_c, &result.case_c, &result.temp_c,
+                       &result.temp2_c, &result.gyro_dph, &result.bias_true_dph})
+    column->reserve(n);
+
+  const double switch_on_s = scenario_.initial == InitialCondition::soaked
+                                 ? 0.0
+                                 : -std::numeric_limits<double>::infinity();
+  const std::vector<double>& rate = tr.anode_rate_c_per_s;
+  for (std::size_t k = 0; k < n; ++k) {
+    TrueState s;
+    s.time_s = tr.time_s[k];
+    s.since_switch_on_s = s.time_s - switch_on_s;
+    s.temp_c = tr.node_c[N::anode][k];
+    s.far_c = tr.node_c[N::far][k];
+    s.rate_c_per_s = rate[k];
+    if (n > 1) {
+      // Central differences inside, one-sided at the ends.
+      const std::size_t lo = k == 0 ? 0 : k - 1;
+      const std::size_t hi = k + 1 == n ? k : k + 1;
+      s.accel_c_per_s2 = (rate[hi] - rate[lo]) / (static_cast<double>(hi - lo) * dt);
+    }
+    const double b = bias.bias_dph(s);
+    result.time_s.push_back(s.time_s);
+    result.bias_true_dph.push_back(b);
+    result.gyro_dph.push_back(noise.sample(b, s.temp_c));
+    result.chamber_c.push_back(read_chamber.read(tr.node_c[N::chamber][k]));
+    result.case_c.push_back(read_case.read(tr.node_c[N::case_][k]));
+    result.temp_c.push_back(read_temp.read(tr.node_c[N::sensor][k]));
+    result.temp2_c.push_back(read_temp2.read(tr.node_c[N::sensor2][k]));
+  }
+  return result;
+}
+
+}  // namespace gyrotherm::sim
