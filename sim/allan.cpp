@@ -20,8 +20,8 @@ constexpr double kUpperTail = 0.8413447460685429;
 double white_fm_edf(std::size_t rate_samples, std::size_t m) {
   const double n_phase = static_cast<double>(rate_samples) + 1.0;
   const double md = static_cast<double>(m);
-  return (3.0 * (n_phase - 1.0) / (2.0 * md) - 2.0 * (n_phase - 2.0) / n_phase) * 4.0 * md *
-         md / (4.0 * md * md + 5.0);
+  return (3.0 * (n_phase - 1.0) / (2.0 * md) - 2.0 * (n_phase - 2.0) / n_phase) * 4.0 * md * md /
+         (4.0 * md * md + 5.0);
 }
 
 }  // namespace

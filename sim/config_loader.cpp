@@ -394,7 +394,7 @@ void check_scenario_against_rig(const Scenario& scenario, const RigConfig& rig,
                                 const std::filesystem::path& rig_file) {
   if (!scenario.chamber) return;
   const ChamberConfig& ch = rig.chamber;
-  const std::string range = "the chamber's range is " + TableReader::format(ch.min_c) + ".." +
+  const std::string range = "the chamber's range, " + TableReader::format(ch.min_c) + ".." +
                             TableReader::format(ch.max_c) + " °C (chamber.min_c/max_c in " +
                             rig_file.string() + ")";
   const auto outside = [&](double t) { return t < ch.min_c || t > ch.max_c; };

@@ -93,12 +93,13 @@ GyroNoise::GyroNoise(const NoiseConfig& config, double sample_interval_s, std::u
     //    τ cannot be observed at this sampling interval).
     const double tau_lo_s = dt_s_;
     const double tau_hi_s = std::max(kPeakGridReach * config_.flicker_tau_max_s, tau_lo_s);
-    const auto steps = static_cast<int>(
-        std::ceil(kPeakGridPerDecade * std::log10(tau_hi_s / tau_lo_s)));
+    const auto steps =
+        static_cast<int>(std::ceil(kPeakGridPerDecade * std::log10(tau_hi_s / tau_lo_s)));
     double peak_avar = 0.0;
     for (int j = 0; j <= steps; ++j) {
       const double tau_s =
-          steps == 0 ? tau_lo_s : tau_lo_s * std::pow(tau_hi_s / tau_lo_s, double(j) / steps);
+          steps == 0 ? tau_lo_s
+                     : tau_lo_s * std::pow(tau_hi_s / tau_lo_s, static_cast<double>(j) / steps);
       double avar = 0.0;
       for (double t : flicker_tau_s_) avar += gauss_markov_allan_variance(1.0, t, tau_s);
       peak_avar = std::max(peak_avar, avar);

@@ -35,8 +35,9 @@
 //            → 2 s² x / 3 (τ ≪ T, random-walk-like),   → 2 s² / x (τ ≫ T, white-like).
 //
 // The simulation holds x_i constant over each sample, so at τ = mΔt its Allan
-// variance exceeds σ²_GM by a relative O(1/(2m²)) when T ≫ Δt (50 % at m = 1,
-// 0.5 % at m = 10); for τ ≥ 10 Δt the analytic form is the right reference.
+// variance exceeds σ²_GM by a relative O(1/(2m²)) + O((Δt/T)²): 50 % at m = 1,
+// under 1 % for m ≥ 10 with T ≥ 10 Δt. For τ ≥ 10 Δt the analytic form is the
+// right reference.
 //
 // A component whose parameter is 0 draws nothing, and the same seed gives
 // bit-identical output.
@@ -97,8 +98,8 @@ class GyroNoise {
   double rrw_step_dph_ = 0.0;  // K √(Δt/3600)
   double rrw_state_dph_ = 0.0;
 
-  double phase_arcsec_ = 0.0;   // θ mod q, in [0, q)
-  std::int64_t pulses_ = 0;     // ⌊θ / q⌋ since the start
+  double phase_arcsec_ = 0.0;  // θ mod q, in [0, q)
+  std::int64_t pulses_ = 0;    // ⌊θ / q⌋ since the start
 
   double glitch_rate_per_s_ = 0.0;
   double next_glitch_s_ = 0.0;  // time of the next glitch since the start

@@ -11,9 +11,9 @@
 // SplitMix64 (Steele, Lea & Flood 2014) is a bijective 64-bit finaliser with
 // full avalanche: for a fixed seed the map stream → key is one-to-one, and so
 // is seed → key for a fixed stream, while neighbouring seeds or streams give
-// unrelated keys ((seed, stream) = (1, 2) and (2, 1) are unrelated too). Because a component draws only
-// from its own stream, switching one component on or off never changes the
-// numbers another one sees.
+// unrelated keys ((seed, stream) = (1, 2) and (2, 1) are unrelated too).
+// Because a component draws only from its own stream, switching one component
+// on or off never changes the numbers another one sees.
 //
 // Draw with boost::random distributions (normal_distribution,
 // uniform_real_distribution, exponential_distribution, bernoulli_distribution):

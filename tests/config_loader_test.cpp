@@ -1,0 +1,199 @@
+// The shipped scenario files load and describe the paper's tests; bad files
+// are rejected with the file, line and key in the message.
+
+#include "sim/config_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "cli_runner.h"
+#include "sim/input_error.h"
+#include "sim/profile.h"
+
+namespace gyrotherm::sim {
+namespace {
+
+using gyrotherm::testing::ScratchDir;
+using gyrotherm::testing::source_path;
+using gyrotherm::testing::write_text;
+
+TEST(ConfigLoader, ShippedCycleIsThePapersTrainingTest) {
+  const Scenario s = load_scenario(source_path("scenarios/cycle.toml"));
+  EXPECT_TRUE(s.chamber);
+  const Profile p(s.start_c, s.segments);
+  double lo = 1e9, hi = -1e9;
+  int up = 0, down = 0;
+  for (std::size_t i = 0; i < s.segments.size(); ++i) {
+    const Segment& seg = s.segments[i];
+    if (seg.kind == SegmentKind::ramp) {
+      EXPECT_EQ(seg.rate_c_per_min, 5.0);
+      (seg.temp_c > p.segment_start_c(i) ? up : down)++;
+    } else {
+      EXPECT_EQ(seg.kind, SegmentKind::hold);
+      EXPECT_EQ(seg.duration_s, 7200.0);
+    }
+    lo = std::min(lo, seg.temp_c);
+    hi = std::max(hi, seg.temp_c);
+  }
+  EXPECT_EQ(lo, -40.0);
+  EXPECT_EQ(hi, 60.0);
+  EXPECT_GE(up, 2);  // up, down, up
+  EXPECT_GE(down, 1);
+  const RigConfig rig = load_rig(s.rig_file);
+  EXPECT_EQ(rig.chamber.min_c, -60.0);
+  EXPECT_EQ(rig.chamber.max_c, 130.0);
+  EXPECT_EQ(rig.power.electronics_w, 0.0);  // electronics outside the chamber
+  const GyroConfig gyro = load_gyro(s.gyro_file);
+  EXPECT_EQ(gyro.truth.b1_dph_per_c, -3.05e-4);
+  EXPECT_EQ(gyro.truth.b3_dph_per_c_per_s, 1.81);
+}
+
+TEST(ConfigLoader, ShippedRandomProfileIsTest1) {
+  const Scenario s = load_scenario(source_path("scenarios/random.toml"));
+  std::vector<double> holds;
+  for (const Segment& seg : s.segments) {
+    if (seg.kind == SegmentKind::ramp) {
+      EXPECT_EQ(seg.rate_c_per_min, 1.0);
+    }
+    if (seg.kind == SegmentKind::hold) {
+      holds.push_back(seg.temp_c);
+      EXPECT_EQ(seg.duration_s, 8.0 * 3600.0);
+    }
+  }
+  EXPECT_EQ(s.start_c, 15.0);
+  EXPECT_EQ(holds, (std::vector<double>{-20, 30, 0, 10, 50, -5, 60, 25}));
+  EXPECT_EQ(s.segments.back().kind, SegmentKind::free);
+}
+
+TEST(ConfigLoader, ShippedWarmUpHasNoChamber) {
+  const Scenario s = load_scenario(source_path("scenarios/warmup.toml"));
+  EXPECT_FALSE(s.chamber);
+  EXPECT_EQ(s.room_c, 23.0);
+  EXPECT_EQ(s.start_c, 23.0);
+  const RigConfig rig = load_rig(s.rig_file);
+  EXPECT_TRUE(rig.case_.natural_convection);
+}
+
+// Expects InputError whose message contains every fragment.
+void expect_error(const std::function<void()>& f, const std::vector<std::string>& fragments) {
+  try {
+    f();
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    for (const std::string& fragment : fragments)
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos)
+          << "message: " << e.what() << "\nmissing: " << fragment;
+  }
+}
+
+TEST(ConfigLoader, UnknownKeyNamesFileLineAndKey) {
+  ScratchDir dir;
+  write_text(dir / "rig.toml", "[chamber]\ncapacity_j_per_k = 1000.0\nheater_max = 5.0\n");
+  expect_error([&] { load_rig(dir / "rig.toml"); },
+               {"rig.toml:3", "unknown key 'chamber.heater_max'", "heater_max_w"});
+}
+
+TEST(ConfigLoader, NegativeCapacityIsRejected) {
+  ScratchDir dir;
+  write_text(dir / "rig.toml", "[case]\n\ncapacity_j_per_k = -5\n");
+  expect_error([&] { load_rig(dir / "rig.toml"); },
+               {"rig.toml:3", "case.capacity_j_per_k = -5", "must be > 0"});
+}
+
+TEST(ConfigLoader, WrongTypeIsRejected) {
+  ScratchDir dir;
+  write_text(dir / "gyro.toml", "[noise]\narw_deg_per_sqrt_h = \"low\"\n");
+  expect_error([&] { load_gyro(dir / "gyro.toml"); },
+               {"gyro.toml:2", "noise.arw_deg_per_sqrt_h", "expected a number"});
+}
+
+TEST(ConfigLoader, UnknownHiddenTermListsTheValidOnes) {
+  ScratchDir dir;
+  write_text(dir / "gyro.toml", "[hidden]\ngradient = 0.1\n");
+  expect_error([&] { load_gyro(dir / "gyro.toml"); },
+               {"gyro.toml:2", "hidden.gradient", "grad, T*dT, T^3, d2T, hyst, warmup, t"});
+}
+
+TEST(ConfigLoader, InvalidTomlReportsTheLine) {
+  ScratchDir dir;
+  write_text(dir / "s.toml", "name = \"x\"\nseed = = 3\n");
+  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:2", "not valid TOML"});
+}
+
+TEST(ConfigLoader, MissingFile) {
+  expect_error([&] { load_scenario("/nonexistent/scenario.toml"); },
+               {"/nonexistent/scenario.toml", "no such file"});
+}
+
+std::string scenario_with(const std::string& segment) {
+  return "name = \"t\"\nstart_c = 20.0\n\n[[segment]]\n" + segment;
+}
+
+TEST(ConfigLoader, NegativeDuration) {
+  ScratchDir dir;
+  write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = -1.0\n"));
+  expect_error([&] { load_scenario(dir / "s.toml"); },
+               {"s.toml:7", "segment 1.duration_h = -1", "must be > 0"});
+}
+
+TEST(ConfigLoader, ZeroOrNegativeRampRate) {
+  ScratchDir dir;
+  for (const std::string rate : {"0.0", "-5.0"}) {
+    write_text(dir / "s.toml",
+               scenario_with("kind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = " + rate + "\n"));
+    expect_error([&] { load_scenario(dir / "s.toml"); },
+                 {"s.toml:7", "segment 1.rate_c_per_min", "must be > 0"});
+  }
+}
+
+TEST(ConfigLoader, TwoDurationsAreAmbiguous) {
+  ScratchDir dir;
+  write_text(dir / "s.toml", scenario_with("kind = \"free\"\nduration_h = 1.0\nduration_s = 5.0\n"));
+  expect_error([&] { load_scenario(dir / "s.toml"); },
+               {"s.toml:4", "exactly one of duration_s, duration_min, duration_h"});
+}
+
+TEST(ConfigLoader, UnknownSegmentKind) {
+  ScratchDir dir;
+  write_text(dir / "s.toml", scenario_with("kind = \"soak\"\nduration_h = 1.0\n"));
+  expect_error([&] { load_scenario(dir / "s.toml"); },
+               {"s.toml:4", "kind = \"soak\"", "\"hold\", \"ramp\" or \"free\""});
+}
+
+TEST(ConfigLoader, KeyThatASegmentKindDoesNotUse) {
+  ScratchDir dir;
+  write_text(dir / "s.toml",
+             scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\nrate_c_per_min = 2\n"));
+  expect_error([&] { load_scenario(dir / "s.toml"); },
+               {"s.toml:8", "unknown key 'segment 1.rate_c_per_min'"});
+}
+
+TEST(ConfigLoader, SetPointOutsideTheChamberRange) {
+  ScratchDir dir;
+  write_text(dir / "s.toml", scenario_with("kind = \"ramp\"\ntarget_c = 150.0\nrate_c_per_min = 5\n"));
+  const Scenario s = load_scenario(dir / "s.toml");
+  expect_error([&] { check_scenario_against_rig(s, RigConfig{}, "rig.toml"); },
+               {"s.toml:4", "target_c = 150", "outside the chamber's range, -60..130", "rig.toml"});
+}
+
+TEST(ConfigLoader, NoChamberAllowsOnlyFreeSegments) {
+  ScratchDir dir;
+  write_text(dir / "s.toml",
+             "chamber = false\n[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_h = 1\n");
+  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:2", "chamber = false", "free"});
+}
+
+TEST(ConfigLoader, HiddenOption) {
+  GyroConfig g;
+  apply_hidden_option(g, "T*dT=2.5e-3");
+  EXPECT_EQ(g.hidden.coefficient["T*dT"], 2.5e-3);
+  expect_error([&] { apply_hidden_option(g, "gradient=1"); },
+               {"unknown term 'gradient'", "grad, T*dT, T^3, d2T, hyst, warmup, t"});
+  expect_error([&] { apply_hidden_option(g, "dT=1"); }, {"[truth]"});
+  expect_error([&] { apply_hidden_option(g, "grad=abc"); }, {"'abc' is not a finite number"});
+  expect_error([&] { apply_hidden_option(g, "grad"); }, {"expected TERM=COEF"});
+}
+
+}  // namespace
+}  // namespace gyrotherm::sim
