@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "app/gnuplot.h"
 #include "sim/config_loader.h"
 #include "sim/hidden_effects.h"
 #include "sim/output.h"
@@ -28,6 +29,7 @@ struct SimulateOptions {
   std::optional<std::uint64_t> seed;
   std::vector<std::string> hidden;
   std::string output;
+  std::string plot;
   bool json = false;
 };
 
@@ -47,6 +49,43 @@ double soak_control_error_c(const sim::Simulator& simulator, const sim::ThermalT
   return worst;
 }
 
+// Temperatures (top) and the gyro output as 100 s averages with the true bias
+// (bottom), against time in hours.
+void plot_simulation(const std::string& png, const sim::Simulator& simulator,
+                     const sim::SimulationResult& r) {
+  const std::size_t window = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::lround(100.0 * simulator.scenario().sample_rate_hz)));
+  std::vector<double> hours(r.rows());
+  for (std::size_t k = 0; k < r.rows(); ++k) hours[k] = r.time_s[k] / 3600.0;
+  const std::vector<double> t_avg = window_means(hours, window);
+  const std::vector<double> gyro_avg = window_means(r.gyro_dph, window);
+  const std::vector<double> bias_avg = window_means(r.bias_true_dph, window);
+  const std::vector<double> temp_avg = window_means(r.temp_c, window);
+  const std::vector<double> chamber_avg = window_means(r.chamber_c, window);
+  const std::vector<double> case_avg = window_means(r.case_c, window);
+  const std::vector<double> temp2_avg = window_means(r.temp2_c, window);
+
+  GnuplotFigure fig(png, 1400, 1000);
+  fig.data("t", {"time_h", "chamber_c", "case_c", "temp_c", "temp2_c"},
+           {t_avg, chamber_avg, case_avg, temp_avg, temp2_avg});
+  fig.data("g", {"time_h", "gyro_dph", "bias_true_dph"}, {t_avg, gyro_avg, bias_avg});
+  const std::string title = fmt::format("gyrotherm simulate: {} (seed {})",
+                                        simulator.scenario().name, r.seed);
+  fig.commands(fmt::format(
+      "set multiplot layout 2,1 title '{}'\n"
+      "set ylabel 'temperature (°C)'\nset key outside right\n"
+      "plot $t using 1:2 with lines lw 1.5 title 'chamber air', "
+      "$t using 1:3 with lines lw 1.5 title 'case / shield', "
+      "$t using 1:4 with lines lw 2 title 'gyro (Pt800)', "
+      "$t using 1:5 with lines lw 1 dt 2 title 'gyro far side'\n"
+      "set xlabel 'time (h)'\nset ylabel 'gyro output, 100 s averages (°/h)'\n"
+      "plot $g using 1:2 with points pt 7 ps 0.4 title 'measured', "
+      "$g using 1:3 with lines lw 2 title 'true bias'\n"
+      "unset multiplot",
+      title));
+  fig.render();
+}
+
 int run_simulate(const SimulateOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   sim::Scenario scenario = sim::load_scenario(o.scenario);
@@ -61,6 +100,7 @@ int run_simulate(const SimulateOptions& o) {
   const sim::Simulator simulator(scenario, rig, gyro);
   const sim::SimulationResult result = simulator.run();
   sim::write_simulation(o.output, simulator, result);
+  if (!o.plot.empty()) plot_simulation(o.plot, simulator, result);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
@@ -104,7 +144,8 @@ int run_simulate(const SimulateOptions& o) {
              "residual {:.2g} J\n",
              result.solver.steps, result.solver.rhs_evaluations, result.solver.restarts,
              result.energy.residual_j());
-  fmt::print("wrote {} and {} in {:.2f} s\n", o.output, truth_file, seconds);
+  fmt::print("wrote {} and {}{} in {:.2f} s\n", o.output, truth_file,
+             o.plot.empty() ? "" : " and " + o.plot, seconds);
   return 0;
 }
 
@@ -123,6 +164,8 @@ void add_simulate_command(CLI::App& app, Run* run) {
       ->take_all();
   cmd->add_option("-o,--output", options->output, "Output CSV (a .truth.json goes beside it)")
       ->required();
+  cmd->add_option("--plot", options->plot,
+                  "Also draw temperatures and 100 s averages of the output into this PNG");
   cmd->add_flag("--json", options->json, "Print one JSON object instead of text");
   cmd->callback([options, run] { *run = [options] { return run_simulate(*options); }; });
 }

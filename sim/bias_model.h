@@ -8,6 +8,8 @@
 // eq. (6) (../shared/PAPER.md) for the first four terms.
 
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "sim/gyro_config.h"
 
@@ -32,8 +34,13 @@ class BiasModel {
   double hidden_regressor(std::string_view term, const TrueState& s) const;
 
  private:
+  enum class Term { grad, t_dt, t3, d2t, hyst, warmup, drift };
+  static Term term_of(std::string_view name);
+  double regressor(Term term, const TrueState& s) const;
+
   TruthCoefficients truth_;
   HiddenEffects hidden_;
+  std::vector<std::pair<Term, double>> active_;  // hidden terms with a non-zero coefficient
 };
 
 }  // namespace gyrotherm::sim

@@ -152,6 +152,34 @@ void CvodeSolver::state_at(double t, std::span<double> y) const {
   std::copy(data, data + y.size(), y.begin());
 }
 
+void CvodeSolver::step_polynomial(StepPolynomial& out) const {
+  Impl& m = *impl_;
+  const std::size_t n = impl_->system.size();
+  out.t_n_ = t_;
+  out.size_ = n;
+  out.c_.resize(6 * n);  // BDF order q ≤ 5
+  out.terms_ = 0;
+  double factorial = 1.0;
+  for (int k = 0; k <= 5; ++k) {
+    // k beyond the current order is CV_BAD_K: that ends the polynomial.
+    if (CVodeGetDky(m.cvode, t_, k, m.dense_out) != CV_SUCCESS) break;
+    if (k > 1) factorial *= k;
+    const double* d = N_VGetArrayPointer(m.dense_out);
+    for (std::size_t i = 0; i < n; ++i) out.c_[static_cast<std::size_t>(k) * n + i] = d[i] / factorial;
+    out.terms_ = static_cast<std::size_t>(k) + 1;
+  }
+  if (out.terms_ == 0) throw SolverError("CVodeGetDky failed at the end of a step");
+}
+
+void CvodeSolver::StepPolynomial::evaluate(double t, std::span<double> y) const {
+  const double dt = t - t_n_;
+  for (std::size_t i = 0; i < size_; ++i) {
+    double v = c_[(terms_ - 1) * size_ + i];
+    for (std::size_t k = terms_ - 1; k-- > 0;) v = v * dt + c_[k * size_ + i];
+    y[i] = v;
+  }
+}
+
 void CvodeSolver::restart(double t, std::span<const double> y) {
   Impl& m = *impl_;
   SolverStatistics done = m.current();

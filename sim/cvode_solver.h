@@ -72,6 +72,24 @@ class CvodeSolver {
   double step_towards(double t_stop);
   // Dense output y(t) for t inside the last step (CVodeGetDky, k = 0).
   void state_at(double t, std::span<double> y) const;
+  // The interpolating polynomial of the last step, for cheap dense output at
+  // many points: y(t) = Σ_k c_k (t − t_n)^k with c_k = y^(k)(t_n)/k!, k ≤ q
+  // (CVODE's own Nordsieck polynomial, so identical to state_at up to
+  // rounding). Call after each step; valid for t inside that step.
+  class StepPolynomial {
+   public:
+    void evaluate(double t, std::span<double> y) const;
+    double t_n() const { return t_n_; }
+
+   private:
+    friend class CvodeSolver;
+    double t_n_ = 0.0;
+    std::size_t size_ = 0;
+    std::size_t terms_ = 0;
+    std::vector<double> c_;  // terms_ × size_, c_[k·size + i]
+  };
+  void step_polynomial(StepPolynomial& out) const;
+
   // Re-initialise at (t, y) after a discontinuity; counters are kept.
   void restart(double t, std::span<const double> y);
 

@@ -1,6 +1,5 @@
 #include "sim/rig_dynamics.h"
 
-#include <cassert>
 
 namespace gyrotherm::sim {
 
@@ -34,33 +33,33 @@ RigDynamics::RigDynamics(const RigConfig& rig, const Profile& profile, double ro
   network_.conduct(sensor2, far, sensor_g);
 }
 
-RigDynamics::Evaluation RigDynamics::evaluate(double t, std::span<const double> y) const {
-  Evaluation e{};
+RigDynamics::Observation RigDynamics::observe(double t, std::span<const double> y) const {
+  Observation o{};
   const std::span<const double> temps = y.first(node_count);
+  const SetPoint sp = profile_.at(t);
   ChamberController::Output control{0.0, 0.0};
-  if (chamber_present_) {
-    const SetPoint sp = profile_.at(t);
+  if (chamber_present_)
     control = controller_.evaluate(sp.temp_c, sp.rate_c_per_s, temps[chamber], y[kIntegral],
                                    sp.chamber_on);
-  }
   std::array<double, node_count> power{};
   power[chamber] = control.power_w;
   power[anode] = rig_.power.discharge_w + 0.5 * rig_.power.dither_w;
   power[far] = 0.5 * rig_.power.dither_w;
   power[case_] = rig_.power.electronics_w;
-  network_.rates(temps, power, e.rates);
-  e.power_w = control.power_w;
-  e.integral_rate = control.integral_rate_w_per_s;
-  e.loss_w = network_.flow_into_boundaries_w(temps);
-  return e;
+  network_.rates(temps, power, o.rates_k_per_s);
+  o.heater_w = control.power_w;
+  o.setpoint_c = sp.temp_c;
+  o.integral_rate = control.integral_rate_w_per_s;
+  o.loss_w = network_.flow_into_boundaries_w(temps);
+  return o;
 }
 
 int RigDynamics::rhs(double t, std::span<const double> y, std::span<double> ydot) {
-  const Evaluation e = evaluate(t, y);
-  for (std::size_t i = 0; i < node_count; ++i) ydot[i] = e.rates[i];
-  ydot[kIntegral] = e.integral_rate;
-  ydot[kHeaterEnergy] = e.power_w;
-  ydot[kLossEnergy] = e.loss_w;
+  const Observation o = observe(t, y);
+  for (std::size_t i = 0; i < node_count; ++i) ydot[i] = o.rates_k_per_s[i];
+  ydot[kIntegral] = o.integral_rate;
+  ydot[kHeaterEnergy] = o.heater_w;
+  ydot[kLossEnergy] = o.loss_w;
   return 0;
 }
 
@@ -74,17 +73,6 @@ std::vector<double> RigDynamics::soaked_state(double temp_c) const {
                      ? controller_.integral_for(rig_.chamber.insulation_w_per_k * (temp_c - room_c_))
                      : 0.0;
   return y;
-}
-
-double RigDynamics::heater_power_w(double t, std::span<const double> y) const {
-  return evaluate(t, y).power_w;
-}
-
-void RigDynamics::node_rates(double t, std::span<const double> y,
-                             std::span<double> rates_k_per_s) const {
-  const Evaluation e = evaluate(t, y);
-  assert(rates_k_per_s.size() == node_count);
-  for (std::size_t i = 0; i < node_count; ++i) rates_k_per_s[i] = e.rates[i];
 }
 
 double RigDynamics::self_heating_w() const {

@@ -51,9 +51,15 @@ class RigDynamics : public OdeSystem {
   // controller's integral set to hold the chamber there with no error.
   std::vector<double> soaked_state(double temp_c) const;
 
-  // Heater/cooler power and node rates at (t, y), for outputs and tests.
-  double heater_power_w(double t, std::span<const double> y) const;
-  void node_rates(double t, std::span<const double> y, std::span<double> rates_k_per_s) const;
+  // Everything the right-hand side knows at (t, y), for outputs and tests.
+  struct Observation {
+    std::array<double, node_count> rates_k_per_s;
+    double heater_w;        // controller output, + heating, − cooling
+    double setpoint_c;
+    double loss_w;          // heat flowing into boundary nodes
+    double integral_rate;   // dI/dt of the controller
+  };
+  Observation observe(double t, std::span<const double> y) const;
 
   double self_heating_w() const;
   // Σ C_i T_i over the dynamic nodes, J (relative to 0 °C).
@@ -65,14 +71,6 @@ class RigDynamics : public OdeSystem {
   double room_c() const { return room_c_; }
 
  private:
-  struct Evaluation {
-    std::array<double, node_count> rates;
-    double power_w;
-    double integral_rate;
-    double loss_w;
-  };
-  Evaluation evaluate(double t, std::span<const double> y) const;
-
   RigConfig rig_;
   Profile profile_;
   double room_c_;

@@ -16,10 +16,8 @@ using N = RigDynamics::Node;
 
 // Largest |dT/dt| over the dynamic nodes, K/s.
 double largest_rate(const RigDynamics& dynamics, double t, std::span<const double> y) {
-  std::array<double, RigDynamics::node_count> rates{};
-  dynamics.node_rates(t, y, rates);
   double worst = 0.0;
-  for (double r : rates) worst = std::max(worst, std::abs(r));
+  for (double r : dynamics.observe(t, y).rates_k_per_s) worst = std::max(worst, std::abs(r));
   return worst;
 }
 
@@ -85,17 +83,17 @@ ThermalTrace Simulator::run_thermal(SolverStatistics* statistics, EnergyBalance*
   trace.setpoint_c.reserve(samples);
   trace.heater_w.reserve(samples);
 
-  std::array<double, RigDynamics::node_count> rates{};
   auto record = [&](double t, std::span<const double> state) {
+    const RigDynamics::Observation o = dynamics.observe(t, state);
     trace.time_s.push_back(t);
     for (std::size_t i = 0; i < RigDynamics::node_count; ++i) trace.node_c[i].push_back(state[i]);
-    dynamics.node_rates(t, state, rates);
-    trace.anode_rate_c_per_s.push_back(rates[N::anode]);
-    trace.setpoint_c.push_back(profile.at(t).temp_c);
-    trace.heater_w.push_back(dynamics.heater_power_w(t, state));
+    trace.anode_rate_c_per_s.push_back(o.rates_k_per_s[N::anode]);
+    trace.setpoint_c.push_back(o.setpoint_c);
+    trace.heater_w.push_back(o.heater_w);
   };
 
   CvodeSolver solver(dynamics, 0.0, y, options_.solver);
+  CvodeSolver::StepPolynomial step;
   record(0.0, y);
   std::size_t k = 1;
   const std::size_t segments = profile.segments().size();
@@ -104,9 +102,10 @@ ThermalTrace Simulator::run_thermal(SolverStatistics* statistics, EnergyBalance*
     if (breakpoint <= solver.time()) continue;  // a segment of zero length
     while (solver.time() < breakpoint) {
       const double t = solver.step_towards(breakpoint);
+      if (k < samples && static_cast<double>(k) * dt <= t) solver.step_polynomial(step);
       for (; k < samples && static_cast<double>(k) * dt <= t; ++k) {
         const double tk = static_cast<double>(k) * dt;
-        solver.state_at(tk, y);
+        step.evaluate(tk, y);
         record(tk, y);
       }
     }

@@ -149,6 +149,34 @@ TEST(CvodeSolver, SteadyStateWithSelfHeatingMatchesAlgebraicSolution) {
   EXPECT_GT(states[0][a] - states[0][b], 0.5);
 }
 
+TEST(CvodeSolver, StepPolynomialEqualsCvodesDenseOutput) {
+  ThermalNetwork net;
+  const auto room = net.add_boundary("room");
+  const auto a = net.add_node("a", 500.0);
+  const auto b = net.add_node("b", 2000.0);
+  net.conduct(a, b, 0.5);
+  net.radiate(b, room, 0.8, 0.5);
+  NetworkOde ode(net, {0.0, 1.0, 0.0});
+  CvodeSolver solver(ode, 0.0, std::vector<double>{23.0, -40.0, 60.0});
+  CvodeSolver::StepPolynomial poly;
+  std::vector<double> y_poly(3), y_cvode(3);
+  double t_prev = 0.0;
+  int checked = 0;
+  while (solver.time() < 20000.0) {
+    const double t = solver.step_towards(20000.0);
+    solver.step_polynomial(poly);
+    for (double f : {0.0, 0.25, 0.5, 0.9, 1.0}) {
+      const double tq = t_prev + f * (t - t_prev);
+      poly.evaluate(tq, y_poly);
+      solver.state_at(tq, y_cvode);
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(y_poly[i], y_cvode[i], 1e-10) << tq;
+      ++checked;
+    }
+    t_prev = t;
+  }
+  EXPECT_GT(checked, 50);
+}
+
 class FailingOde : public OdeSystem {
  public:
   std::size_t size() const override { return 1; }

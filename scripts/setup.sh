@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages gyrotherm needs (DESIGN.md, "Dependencies"),
+# only those that are missing; safe to run again. Needs root (or sudo).
+set -euo pipefail
+
+packages=(
+  g++ cmake make                     # compiler and build
+  libeigen3-dev                      # linear algebra (QR, eigen-decompositions in tests)
+  libsundials-dev                    # CVODE (pulls in OpenMPI and PETSc)
+  libgtest-dev libgmock-dev          # tests
+  libbenchmark-dev                   # bench/
+  libcli11-dev                       # command line
+  nlohmann-json3-dev                 # JSON
+  libfmt-dev                         # formatting (g++ 12 has no <format>)
+  libboost-dev                       # Boost.Math distributions, Boost.Random
+  libtomlplusplus-dev                # TOML scenario files
+  libpagmo-dev                       # peer optimisers (pso, de, cmaes, abc)
+  gnuplot-nox                        # plots
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages are installed"
+  exit 0
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+echo "setup: installing ${missing[*]}"
+"${sudo_cmd[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
