@@ -18,6 +18,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   gyrotherm::app::Run run;
   gyrotherm::app::add_simulate_command(app, &run);
+  gyrotherm::app::add_fit_command(app, &run);
+  gyrotherm::app::add_compensate_command(app, &run);
+  gyrotherm::app::add_registry_commands(app, &run);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,198 @@
+// gyrotherm fit DATA.csv [--model F] [--engine E] [--seed N] [--avg SECONDS]
+//                        [--budget N] [--target SIGMA] [--option KEY=VALUE ...]
+//                        [-o FIT.json] [--json]
+// gyrotherm compensate DATA.csv --fit FIT.json [-o OUT.csv] [--causal] [--json]
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "app/commands.h"
+#include "app/pipeline_options.h"
+#include "fit/compensation.h"
+#include "fit/fit_file.h"
+#include "fit/formula.h"
+#include "sim/atomic_file.h"
+#include "sim/input_error.h"
+
+namespace gyrotherm::app {
+namespace {
+
+struct FitOptions {
+  std::string data;
+  std::string model = std::string(fit::kDefaultModel);
+  std::vector<std::string> add;
+  std::string engine = "ols";
+  std::uint64_t seed = 1;
+  long budget = 0;
+  double target = 0.0;
+  std::vector<std::string> engine_options;
+  std::string output;
+  bool json = false;
+  DataOptions data_options;
+};
+
+fit::EngineSettings engine_settings(const FitOptions& o) {
+  fit::EngineSettings s;
+  s.seed = o.seed;
+  if (o.budget < 0) throw InputError(fmt::format("--budget {}: must be >= 0", o.budget));
+  s.max_evaluations = o.budget;
+  if (!(o.target >= 0.0) || !std::isfinite(o.target))
+    throw InputError(fmt::format("--target {}: must be a finite sigma >= 0", o.target));
+  s.target_objective = o.target;
+  for (const std::string& kv : o.engine_options) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError(fmt::format("--option {}: expected KEY=VALUE (see 'gyrotherm engines')", kv));
+    s.options[kv.substr(0, eq)] = kv.substr(eq + 1);
+  }
+  return s;
+}
+
+std::string unit_of(const fit::Term* t) {
+  return t->unit == "1" ? "°/h" : "°/h per " + t->unit;
+}
+
+int run_fit(const FitOptions& o) {
+  std::string formula = o.model;
+  for (const std::string& a : o.add) formula += " + " + a;
+  const std::vector<const fit::Term*> terms = fit::parse_formula(formula);
+  const fit::EngineInfo& engine = fit::find_engine(o.engine);
+  const fit::EngineSettings settings = engine_settings(o);
+  engine.make(settings);  // validates the options before any work
+  const fit::PipelineOptions pipeline = o.data_options.resolved();
+  const fit::PreparedData data = fit::prepare_data(o.data, pipeline);
+  fit::check_columns(terms, data, pipeline.columns);
+  const fit::ModelFit result = fit::fit_model(data, terms, engine, settings);
+  const std::optional<fit::Truth> truth = fit::load_truth_beside(o.data);
+  const std::string json = fit::fit_json_text(result, data, pipeline, settings, truth);
+  if (!o.output.empty()) sim::write_file_atomically(o.output, json);
+  if (o.json) {
+    fmt::print("{}", json);
+    return 0;
+  }
+
+  fmt::print("data: {}: {} samples every {:g} s, {} glitches removed, {} gaps, {} windows of {:g} s\n",
+             data.file, data.raw_samples, data.averaging.sample_interval_s, data.outliers.removed,
+             data.averaging.gaps.size(), data.series.size(), pipeline.averaging.window_s);
+  if (!data.outliers.times_s.empty()) {
+    std::string times;
+    for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 8; ++k)
+      times += fmt::format("{}{:g}", k ? ", " : "", data.outliers.times_s[k]);
+    fmt::print("  glitches at t = {}{} s\n", times, data.outliers.times_s.size() > 8 ? ", ..." : "");
+  }
+  fmt::print("model: B = b0 + {}   engine: {}{}\n", fit::formula_text(terms), engine.name,
+             engine.stochastic ? fmt::format(" (seed {})", settings.seed) : "");
+  std::map<std::string, double> errors;
+  if (truth) errors = fit::coefficient_errors(result, *truth);
+  auto print_row = [&](const std::string& name, double value, const std::string& unit, std::size_t k) {
+    std::string extra;
+    if (k < result.engine.intervals.size())
+      extra += fmt::format("  95% [{:.6g}, {:.6g}]", result.engine.intervals[k].lower,
+                           result.engine.intervals[k].upper);
+    if (!result.engine.kept.empty() && k < result.engine.kept.size() && !result.engine.kept[k])
+      extra += "  (dropped by stepwise)";
+    if (truth) {
+      const auto it = truth->coefficients.find(name);
+      if (it != truth->coefficients.end())
+        extra += fmt::format("  truth {:.6g} ({:+.2f} %)", it->second,
+                             errors.count(name) ? 100.0 * errors[name] : 0.0);
+      else
+        extra += "  truth 0";
+    }
+    fmt::print("  {:<7} {:>13.6g} {:<14}{}\n", name, value, unit, extra);
+  };
+  print_row("1", result.coefficients.intercept, "°/h", std::size_t(-1));
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    print_row(terms[k]->name, result.coefficients.b[k], unit_of(terms[k]), k);
+    if (terms[k]->parameter)
+      fmt::print("          {} = {:.6g}\n", terms[k]->parameter->name, result.parameters[k]);
+  }
+  if (!result.engine.interval_method.empty())
+    fmt::print("  intervals: {}\n", result.engine.interval_method);
+  fmt::print("instability (std of {:g} s averages): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
+             pipeline.averaging.window_s, result.instability_before_dph,
+             result.instability_after_dph, result.ratio());
+  fmt::print("engine: {}\n", result.engine.brief_report());
+  fmt::print("gap to the least-squares optimum: {:.3g} (relative)\n",
+             result.instability_after_dph / result.optimum_dph - 1.0);
+  if (!o.output.empty()) fmt::print("wrote {}\n", o.output);
+  return 0;
+}
+
+struct CompensateOptions {
+  std::string data;
+  std::string fit_file;
+  std::string output;
+  bool causal = false;
+  bool json = false;
+};
+
+int run_compensate(const CompensateOptions& o) {
+  const fit::SavedFit saved = fit::load_fit(o.fit_file);
+  fit::PipelineOptions pipeline = saved.pipeline;
+  if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
+  const fit::Measurement m = fit::read_measurement_csv(o.data, pipeline.columns);
+  const fit::Compensation c = fit::compensate(m, saved, pipeline);
+  if (!o.output.empty()) fit::write_compensated_csv(o.output, c);
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["data"] = o.data;
+    j["fit"] = o.fit_file;
+    j["model"] = fit::formula_text(saved.terms);
+    j["engine"] = saved.engine;
+    j["derivative"] = pipeline.derivative == fit::DerivativeMode::causal ? "causal" : "central";
+    j["instability_before_dph"] = c.before_dph;
+    j["instability_after_dph"] = c.after_dph;
+    j["ratio"] = c.ratio();
+    j["windows"] = c.data.series.size();
+    j["outliers_removed"] = c.data.outliers.removed;
+    if (!o.output.empty()) j["output"] = o.output;
+    fmt::print("{}\n", j.dump());
+    return 0;
+  }
+  fmt::print("compensate {} with {} ({}: B = b0 + {}, {} derivatives)\n", o.data, o.fit_file,
+             saved.engine, fit::formula_text(saved.terms),
+             pipeline.derivative == fit::DerivativeMode::causal ? "causal" : "central");
+  fmt::print("instability (std of {:g} s averages): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
+             pipeline.averaging.window_s, c.before_dph, c.after_dph, c.ratio());
+  if (!o.output.empty()) fmt::print("wrote {}\n", o.output);
+  return 0;
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app, Run* run) {
+  auto o = std::make_shared<FitOptions>();
+  CLI::App* cmd = app.add_subcommand("fit", "Fit a bias model to measurements (CSV)");
+  cmd->add_option("data", o->data, "Measurement CSV (time_s, temp_c, gyro_dph[, temp2_c])")->required();
+  cmd->add_option("--model", o->model, "Model formula, terms joined by + (default 'T + T^2 + dT')");
+  cmd->add_option("--add", o->add, "Add a term to the model (repeatable)");
+  cmd->add_option("--engine", o->engine, "Fitting engine (default ols; see 'gyrotherm engines')");
+  cmd->add_option("--seed", o->seed, "Seed of a stochastic engine (default 1)");
+  cmd->add_option("--budget", o->budget, "Maximum objective evaluations (0: the engine's default)");
+  cmd->add_option("--target", o->target, "Stop when sigma <= this, °/h (0: none)");
+  cmd->add_option("--option", o->engine_options, "Engine option KEY=VALUE (repeatable)");
+  cmd->add_option("-o,--output", o->output, "Save the fit as JSON (for compensate)");
+  cmd->add_flag("--json", o->json, "Print the fit as one JSON object");
+  add_data_options(cmd, o->data_options);
+  cmd->callback([o, run] { *run = [o] { return run_fit(*o); }; });
+}
+
+void add_compensate_command(CLI::App& app, Run* run) {
+  auto o = std::make_shared<CompensateOptions>();
+  CLI::App* cmd = app.add_subcommand("compensate", "Apply a saved fit to other data");
+  cmd->add_option("data", o->data, "Measurement CSV")->required();
+  cmd->add_option("--fit", o->fit_file, "Fit saved by 'gyrotherm fit -o'")->required();
+  cmd->add_option("-o,--output", o->output,
+                  "Write time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier");
+  cmd->add_flag("--causal", o->causal,
+                "Real-time compensation: backward differences and only past windows");
+  cmd->add_flag("--json", o->json, "Print one JSON object");
+  cmd->callback([o, run] { *run = [o] { return run_compensate(*o); }; });
+}
+
+}  // namespace gyrotherm::app

@@ -1,0 +1,30 @@
+#include "app/pipeline_options.h"
+
+#include <CLI/CLI.hpp>
+
+namespace gyrotherm::app {
+
+fit::PipelineOptions DataOptions::resolved() const {
+  fit::PipelineOptions p = pipeline;
+  if (causal) p.derivative = fit::DerivativeMode::causal;
+  if (keep_outliers) p.remove_outliers = false;
+  return p;
+}
+
+void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
+  if (with_avg)
+    cmd->add_option("--avg", o.pipeline.averaging.window_s,
+                    "Averaging window in seconds (default 100, the paper's 100 s averages)");
+  cmd->add_flag("--causal", o.causal,
+                "Backward differences for dT/dt and d2T (a real-time compensator); default central");
+  cmd->add_flag("--keep-outliers", o.keep_outliers, "Do not remove counting glitches");
+  cmd->add_option("--outlier-threshold", o.pipeline.outliers.threshold,
+                  "Glitch rule: deviation from the moving median in robust sigmas (default 8)");
+  cmd->add_option("--time-col", o.pipeline.columns.time, "Name of the time column (s)");
+  cmd->add_option("--temp-col", o.pipeline.columns.temp, "Name of the gyro temperature column (°C)");
+  cmd->add_option("--gyro-col", o.pipeline.columns.gyro, "Name of the gyro output column (°/h)");
+  cmd->add_option("--temp2-col", o.pipeline.columns.temp2,
+                  "Name of the far-side temperature column (°C), for the grad term");
+}
+
+}  // namespace gyrotherm::app

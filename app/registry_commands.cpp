@@ -1,0 +1,79 @@
+// gyrotherm engines [--json]   the fitting engines and their options
+// gyrotherm effects [--json]   the model terms (physical effects)
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "fit/engine.h"
+#include "fit/terms.h"
+
+namespace gyrotherm::app {
+namespace {
+
+int run_engines(bool json) {
+  if (json) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    for (const fit::EngineInfo& e : fit::engine_registry()) {
+      nlohmann::ordered_json options = nlohmann::ordered_json::object();
+      for (const auto& [name, text] : e.options) options[name] = text;
+      j.push_back({{"name", e.name},
+                   {"description", e.description},
+                   {"stochastic", e.stochastic},
+                   {"default_evaluations", e.default_evaluations},
+                   {"options", options}});
+    }
+    fmt::print("{}\n", nlohmann::ordered_json{{"engines", j}}.dump());
+    return 0;
+  }
+  for (const fit::EngineInfo& e : fit::engine_registry()) {
+    fmt::print("{:<9} {}{}\n", e.name, e.description, e.stochastic ? " [seeded]" : "");
+    for (const auto& [name, text] : e.options) fmt::print("          --option {}=  {}\n", name, text);
+  }
+  return 0;
+}
+
+int run_effects(bool json) {
+  if (json) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    for (const fit::Term& t : fit::term_registry()) {
+      nlohmann::ordered_json e = {{"term", t.name},
+                                  {"meaning", t.meaning},
+                                  {"unit", t.unit},
+                                  {"needs", t.needs_temp2 ? "temp2_c" : "temp_c"}};
+      if (t.parameter)
+        e["parameter"] = {{"name", t.parameter->name},
+                          {"lower", t.parameter->lower},
+                          {"upper", t.parameter->upper}};
+      j.push_back(e);
+    }
+    fmt::print("{}\n", nlohmann::ordered_json{{"effects", j}}.dump());
+    return 0;
+  }
+  for (const fit::Term& t : fit::term_registry()) {
+    std::string extra = t.needs_temp2 ? "  (needs temp2_c)" : "";
+    if (t.parameter)
+      extra += fmt::format("  ({} fitted in [{:g}, {:g}])", t.parameter->name, t.parameter->lower,
+                           t.parameter->upper);
+    fmt::print("{:<7} {:<8} {}{}\n", t.name, t.unit, t.meaning, extra);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_registry_commands(CLI::App& app, Run* run) {
+  auto engines_json = std::make_shared<bool>(false);
+  CLI::App* engines = app.add_subcommand("engines", "List the fitting engines and their options");
+  engines->add_flag("--json", *engines_json, "Print one JSON object");
+  engines->callback([engines_json, run] { *run = [engines_json] { return run_engines(*engines_json); }; });
+
+  auto effects_json = std::make_shared<bool>(false);
+  CLI::App* effects = app.add_subcommand("effects", "List the model terms (physical effects)");
+  effects->add_flag("--json", *effects_json, "Print one JSON object");
+  effects->callback([effects_json, run] { *run = [effects_json] { return run_effects(*effects_json); }; });
+}
+
+}  // namespace gyrotherm::app

@@ -1,0 +1,88 @@
+#include "fit/compensation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/atomic_file.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+double std_dev(const std::vector<double>& v) {
+  double mean = 0.0;
+  for (double x : v) mean += x;
+  mean /= static_cast<double>(v.size());
+  double ss = 0.0;
+  for (double x : v) ss += (x - mean) * (x - mean);
+  return std::sqrt(ss / static_cast<double>(v.size() - 1));
+}
+
+}  // namespace
+
+Compensation compensate(const Measurement& m, const SavedFit& fit, const PipelineOptions& pipeline) {
+  Compensation c;
+  std::vector<unsigned char> valid(m.size(), 1);
+  c.data.file = m.file;
+  c.data.raw_samples = m.size();
+  if (pipeline.remove_outliers) c.data.outliers = flag_outliers(m, pipeline.outliers, valid);
+  c.data.series = average_windows(m, valid, pipeline.averaging, &c.data.averaging);
+  c.data.derived = derive(c.data.series, pipeline.derivative);
+  check_columns(fit.terms, c.data, pipeline.columns);
+
+  const AveragedSeries& s = c.data.series;
+  c.window_model_dph = model_values(design_matrix(c.data.derived, fit.terms, fit.parameters),
+                                    fit.coefficients);
+  for (std::size_t p = 0; p < s.size(); ++p)
+    c.window_compensated_dph.push_back(s.gyro_dph[p] - c.window_model_dph[p]);
+  if (s.size() >= 2) {
+    c.before_dph = std_dev(s.gyro_dph);
+    c.after_dph = std_dev(c.window_compensated_dph);
+  }
+
+  c.time_s = m.time_s;
+  c.temp_c = m.temp_c;
+  c.gyro_dph = m.gyro_dph;
+  c.outlier.resize(m.size());
+  for (std::size_t k = 0; k < m.size(); ++k) c.outlier[k] = valid[k] ? 0 : 1;
+  c.model_dph.resize(m.size());
+  const double half_window = 0.5 * pipeline.averaging.window_s;
+  std::size_t p = 0;  // windows are in time order
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    const double t = m.time_s[k];
+    if (pipeline.derivative == DerivativeMode::causal) {
+      // The latest window complete at t (its end ≈ centre + W/2).
+      while (p + 1 < s.size() && s.time_s[p + 1] + half_window <= t) ++p;
+      c.model_dph[k] = c.window_model_dph[p];
+    } else {
+      while (p + 1 < s.size() && s.time_s[p + 1] <= t) ++p;
+      const bool can_interpolate =
+          p + 1 < s.size() && s.run[p + 1] == s.run[p] && t >= s.time_s[p];
+      if (can_interpolate) {
+        const double f = (t - s.time_s[p]) / (s.time_s[p + 1] - s.time_s[p]);
+        c.model_dph[k] = c.window_model_dph[p] + f * (c.window_model_dph[p + 1] - c.window_model_dph[p]);
+      } else {
+        c.model_dph[k] = c.window_model_dph[p];
+      }
+    }
+  }
+  return c;
+}
+
+void write_compensated_csv(const std::filesystem::path& file, const Compensation& c) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out),
+                 "# gyrotherm compensate: compensated_dph = gyro_dph - model_dph; instability "
+                 "{:.6g} -> {:.6g} deg/h\n",
+                 c.before_dph, c.after_dph);
+  fmt::format_to(std::back_inserter(out),
+                 "time_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n");
+  for (std::size_t k = 0; k < c.time_s.size(); ++k)
+    fmt::format_to(std::back_inserter(out), "{:.10g},{:.6f},{:.6f},{:.9f},{:.9f},{}\n", c.time_s[k],
+                   c.temp_c[k], c.gyro_dph[k], c.model_dph[k], c.gyro_dph[k] - c.model_dph[k],
+                   static_cast<int>(c.outlier[k]));
+  sim::write_file_atomically(file, std::string_view(out.data(), out.size()));
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,42 @@
+#pragma once
+// Applying a saved fit to data (`gyrotherm compensate`).
+//
+// The model is evaluated where it was fitted, on the window averages:
+//   c_p = y_p − B(x_p),  B = b0 + Σ b_j x_pj,
+// and the instability before and after is the standard deviation of y_p and of
+// c_p (the paper's 100 s instability).
+//
+// For the full-rate output every sample gets the model of its time:
+//   central mode (offline): B interpolated linearly between window centres of
+//     the same gap-free run (held flat beyond the first and last centre);
+//   causal mode (real time): B of the latest window already complete at that
+//     time (the first window's value before any is complete), so nothing from
+//     the future is used.
+// compensated = gyro − B: the residual bias, centred near zero.
+
+#include <filesystem>
+#include <vector>
+
+#include "fit/fit_file.h"
+
+namespace gyrotherm::fit {
+
+struct Compensation {
+  PreparedData data;
+  std::vector<double> window_model_dph;        // B at each window
+  std::vector<double> window_compensated_dph;  // y − B at each window
+  double before_dph = 0.0;
+  double after_dph = 0.0;
+  // Full rate, one per raw sample.
+  std::vector<double> time_s, temp_c, gyro_dph, model_dph;
+  std::vector<unsigned char> outlier;  // 1 = flagged as a counting glitch
+  double ratio() const { return before_dph / after_dph; }
+};
+
+Compensation compensate(const Measurement& measurement, const SavedFit& fit,
+                        const PipelineOptions& pipeline);
+
+// time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier (atomically).
+void write_compensated_csv(const std::filesystem::path& file, const Compensation& c);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,174 @@
+#include "fit/fit_file.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "fit/formula.h"
+#include "sim/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+const char* mode_name(DerivativeMode m) { return m == DerivativeMode::causal ? "causal" : "central"; }
+
+}  // namespace
+
+std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
+                          const PipelineOptions& pipeline, const EngineSettings& settings,
+                          const std::optional<Truth>& truth) {
+  Json j;
+  j["engine"] = fit.engine.engine;
+  j["model"] = formula_text(fit.terms);
+  Json coefficients;
+  coefficients["1"] = fit.coefficients.intercept;
+  for (std::size_t k = 0; k < fit.terms.size(); ++k)
+    coefficients[fit.terms[k]->name] = fit.coefficients.b[k];
+  j["coefficients"] = coefficients;
+  Json parameters = Json::object();
+  for (std::size_t k = 0; k < fit.terms.size(); ++k)
+    if (fit.terms[k]->parameter)
+      parameters[fit.terms[k]->name] = {{fit.terms[k]->parameter->name, fit.parameters[k]}};
+  j["parameters"] = parameters;
+  j["instability_before_dph"] = fit.instability_before_dph;
+  j["instability_after_dph"] = fit.instability_after_dph;
+  j["ratio"] = fit.ratio();
+  j["objective"] = fit.engine.objective;
+  j["optimum_dph"] = fit.optimum_dph;
+  j["gap"] = fit.instability_after_dph / fit.optimum_dph - 1.0;
+  j["evaluations"] = fit.engine.evaluations;
+  j["iterations"] = fit.engine.iterations;
+  j["seconds"] = fit.engine.seconds;
+  j["termination"] = to_string(fit.engine.termination);
+  j["message"] = fit.engine.message;
+  j["seed"] = settings.seed;
+  Json history = Json::array();
+  for (const HistoryPoint& h : fit.engine.history) history.push_back({h.evaluations, h.best_objective});
+  j["history"] = history;
+  if (!fit.engine.intervals.empty()) {
+    Json intervals;
+    for (std::size_t k = 0; k < fit.terms.size(); ++k)
+      intervals[fit.terms[k]->name] = {fit.engine.intervals[k].lower, fit.engine.intervals[k].upper};
+    j["intervals_95"] = intervals;
+    j["interval_method"] = fit.engine.interval_method;
+  }
+  if (!fit.engine.p_values.empty()) {
+    Json p;
+    for (std::size_t k = 0; k < fit.terms.size(); ++k) p[fit.terms[k]->name] = fit.engine.p_values[k];
+    j["p_values"] = p;
+  }
+  if (!fit.engine.kept.empty()) {
+    Json kept = Json::array();
+    for (std::size_t k = 0; k < fit.terms.size(); ++k)
+      if (fit.engine.kept[k]) kept.push_back(fit.terms[k]->name);
+    j["kept"] = kept;
+  }
+  Json gaps = Json::array();
+  for (const Gap& g : data.averaging.gaps) gaps.push_back({g.from_s, g.to_s});
+  Json outlier_times = Json::array();
+  for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 100; ++k)
+    outlier_times.push_back(data.outliers.times_s[k]);
+  j["data"] = {{"file", data.file},
+               {"raw_samples", data.raw_samples},
+               {"sample_interval_s", data.averaging.sample_interval_s},
+               {"outliers_removed", data.outliers.removed},
+               {"outlier_times_s", outlier_times},
+               {"gaps", gaps},
+               {"windows", data.series.size()},
+               {"dropped_windows", data.averaging.dropped_windows}};
+  j["pipeline"] = {{"avg_s", pipeline.averaging.window_s},
+                   {"derivative", mode_name(pipeline.derivative)},
+                   {"remove_outliers", pipeline.remove_outliers},
+                   {"outlier_window_s", pipeline.outliers.window_s},
+                   {"outlier_threshold", pipeline.outliers.threshold},
+                   {"columns",
+                    {{"time", pipeline.columns.time},
+                     {"temp", pipeline.columns.temp},
+                     {"gyro", pipeline.columns.gyro},
+                     {"temp2", pipeline.columns.temp2}}}};
+  if (truth) {
+    Json t;
+    for (const auto& [k, v] : truth->coefficients) t[k] = v;
+    j["truth"] = t;
+    Json e;
+    for (const auto& [k, v] : coefficient_errors(fit, *truth)) e[k] = v;
+    j["coefficient_error"] = e;
+  }
+  return j.dump(2) + "\n";
+}
+
+namespace {
+SavedFit load_fit_unchecked(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string() + ": no such file (a fit saved with 'gyrotherm fit -o')");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not valid JSON ({})", file.string(), e.what()));
+  }
+  auto need = [&](const nlohmann::json& obj, const char* key, const char* what) -> const nlohmann::json& {
+    if (!obj.is_object() || !obj.contains(key))
+      throw InputError(fmt::format("{}: missing field '{}' ({}); is this a file written by "
+                                   "'gyrotherm fit -o'?",
+                                   file.string(), key, what));
+    return obj[key];
+  };
+  auto number = [&](const nlohmann::json& v, const std::string& field) {
+    if (!v.is_number() || !std::isfinite(v.get<double>()))
+      throw InputError(fmt::format("{}: field '{}' must be a finite number", file.string(), field));
+    return v.get<double>();
+  };
+  SavedFit s;
+  s.file = file;
+  s.engine = need(j, "engine", "the engine's name").get<std::string>();
+  const std::string model = need(j, "model", "the model formula").get<std::string>();
+  s.terms = parse_formula(model);
+  const nlohmann::json& coefficients = need(j, "coefficients", "term -> value");
+  s.coefficients.intercept = number(need(coefficients, "1", "the intercept"), "coefficients.1");
+  for (const Term* t : s.terms)
+    s.coefficients.b.push_back(
+        number(need(coefficients, t->name.c_str(), "a model term's coefficient"),
+               "coefficients." + t->name));
+  s.parameters = default_parameters(s.terms);
+  for (std::size_t k = 0; k < s.terms.size(); ++k) {
+    if (!s.terms[k]->parameter) continue;
+    const nlohmann::json& params = need(j, "parameters", "nonlinear term parameters");
+    const nlohmann::json& p = need(params, s.terms[k]->name.c_str(), "the term's parameter");
+    s.parameters[k] = number(need(p, s.terms[k]->parameter->name.c_str(), "the parameter value"),
+                             "parameters." + s.terms[k]->name + "." + s.terms[k]->parameter->name);
+  }
+  const nlohmann::json& pipeline = need(j, "pipeline", "how the data were prepared");
+  s.pipeline.averaging.window_s = number(need(pipeline, "avg_s", "the averaging window"), "pipeline.avg_s");
+  const std::string mode = need(pipeline, "derivative", "central or causal").get<std::string>();
+  if (mode != "central" && mode != "causal")
+    throw InputError(fmt::format("{}: pipeline.derivative = '{}': expected 'central' or 'causal'",
+                                 file.string(), mode));
+  s.pipeline.derivative = mode == "causal" ? DerivativeMode::causal : DerivativeMode::central;
+  s.pipeline.remove_outliers = need(pipeline, "remove_outliers", "bool").get<bool>();
+  s.pipeline.outliers.window_s = number(need(pipeline, "outlier_window_s", "s"), "pipeline.outlier_window_s");
+  s.pipeline.outliers.threshold = number(need(pipeline, "outlier_threshold", "MADs"), "pipeline.outlier_threshold");
+  const nlohmann::json& columns = need(pipeline, "columns", "column names");
+  s.pipeline.columns.time = need(columns, "time", "name").get<std::string>();
+  s.pipeline.columns.temp = need(columns, "temp", "name").get<std::string>();
+  s.pipeline.columns.gyro = need(columns, "gyro", "name").get<std::string>();
+  s.pipeline.columns.temp2 = need(columns, "temp2", "name").get<std::string>();
+  s.instability_after_dph = number(need(j, "instability_after_dph", "°/h"), "instability_after_dph");
+  return s;
+}
+}  // namespace
+
+SavedFit load_fit(const std::filesystem::path& file) {
+  try {
+    return load_fit_unchecked(file);
+  } catch (const nlohmann::json::exception& e) {
+    // A field of the wrong type (a number where a string belongs, say).
+    throw InputError(fmt::format("{}: a field has the wrong type ({})", file.string(), e.what()));
+  }
+}
+
+}  // namespace gyrotherm::fit

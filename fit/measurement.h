@@ -1,0 +1,59 @@
+#pragma once
+// Reading a measurement CSV (DESIGN.md, "Measurement CSV").
+//
+// Grammar, one physical line at a time (lines end in LF or CRLF; a UTF-8 byte
+// order mark at the start of the file is skipped):
+//
+//   file    = { comment | blank } header { row | blank }
+//   comment = "#" anything          (only before the header)
+//   blank   = only spaces, tabs      (anywhere)
+//   header  = name { "," name }      (names trimmed of spaces and tabs)
+//   row     = field { "," field }    (exactly as many fields as the header)
+//
+// The columns the pipeline needs — time (s), temperature (°C), gyro output (°/h)
+// and, if present, the second temperature (°C) — are found by name (ColumnMap,
+// the CLI's --time-col, --temp-col, --gyro-col, --temp2-col) and must hold
+// finite decimal numbers (std::from_chars, general format; surrounding spaces
+// and a leading '+' are accepted). Other columns may hold anything. Time must be
+// strictly increasing; at least two data rows are required.
+//
+// Every violation throws gyrotherm::InputError naming the file, the physical
+// line number (1-based, counting comments and blank lines) and the column, and
+// what was expected, e.g. "data.csv:57: column gyro_dph: 'abc' is not a number".
+//
+// The file is read in blocks of a fixed size and parsed line by line, so the
+// memory is that of the result, not of the text (RFC 4180 quoting is not
+// supported: a quoted field in a needed column is not a number).
+// Reference: Y. Shafranovich, "Common Format and MIME Type for CSV Files",
+// RFC 4180 (2005), for the comma-separated layout.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace gyrotherm::fit {
+
+// The names of the needed columns in the file's header.
+struct ColumnMap {
+  std::string time = "time_s";    // seconds, strictly increasing (--time-col)
+  std::string temp = "temp_c";    // gyro temperature sensor, °C (--temp-col)
+  std::string gyro = "gyro_dph";  // gyro output, °/h (--gyro-col)
+  std::string temp2 = "temp2_c";  // optional second sensor, °C (--temp2-col): the default
+                                  // name may be absent, another name must exist, and an
+                                  // empty name ignores the column
+};
+
+struct Measurement {
+  std::string file;  // as given to the reader, for messages
+  std::vector<double> time_s, temp_c, gyro_dph;
+  std::vector<double> temp2_c;       // empty when the file has no such column
+  std::vector<std::string> columns;  // the header as read (trimmed)
+  bool has_temp2() const { return !temp2_c.empty(); }
+  std::size_t size() const { return time_s.size(); }
+};
+
+// Reads and checks a measurement CSV; throws InputError (see above) on bad input.
+Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns = {});
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,198 @@
+#include "fit/pipeline.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "fit/formula.h"
+#include "fit/ols.h"
+#include "sim/input_error.h"
+#include "sim/output.h"
+
+namespace gyrotherm::fit {
+
+PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) {
+  PreparedData d;
+  d.file = m.file;
+  d.raw_samples = m.size();
+  std::vector<unsigned char> valid(m.size(), 1);
+  if (options.remove_outliers) d.outliers = flag_outliers(m, options.outliers, valid);
+  d.series = average_windows(m, valid, options.averaging, &d.averaging);
+  d.derived = derive(d.series, options.derivative);
+  return d;
+}
+
+PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options) {
+  return prepare_data(read_measurement_csv(csv, options.columns), options);
+}
+
+void check_columns(const std::vector<const Term*>& terms, const PreparedData& data,
+                   const ColumnMap& columns) {
+  for (const Term* t : terms)
+    if (t->needs_temp2 && !data.has_temp2())
+      throw InputError(fmt::format(
+          "{}: term '{}' ({}) needs the column '{}', a second temperature sensor on the far side "
+          "of the gyro block; the file has none (map another column with --temp2-col)",
+          data.file, t->name, t->meaning, columns.temp2));
+}
+
+Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<const Term*>& terms,
+                              const std::vector<double>& parameters) {
+  const auto l = static_cast<Eigen::Index>(derived.size());
+  Eigen::MatrixXd x(l, static_cast<Eigen::Index>(terms.size()));
+  for (std::size_t j = 0; j < terms.size(); ++j)
+    terms[j]->regressor(derived, parameters[j],
+                        std::span<double>(x.col(static_cast<Eigen::Index>(j)).data(),
+                                          static_cast<std::size_t>(l)));
+  return x;
+}
+
+std::vector<double> default_parameters(const std::vector<const Term*>& terms) {
+  std::vector<double> p(terms.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t j = 0; j < terms.size(); ++j)
+    if (terms[j]->parameter) p[j] = std::sqrt(terms[j]->parameter->lower * terms[j]->parameter->upper);
+  return p;
+}
+
+std::vector<double> model_values(const Eigen::MatrixXd& design, const Coefficients& c) {
+  std::vector<double> v(static_cast<std::size_t>(design.rows()), c.intercept);
+  for (Eigen::Index p = 0; p < design.rows(); ++p)
+    for (Eigen::Index j = 0; j < design.cols(); ++j)
+      v[static_cast<std::size_t>(p)] += c.b[static_cast<std::size_t>(j)] * design(p, j);
+  return v;
+}
+
+namespace {
+
+std::vector<std::string> names_of(const std::vector<const Term*>& terms) {
+  std::vector<std::string> n;
+  for (const Term* t : terms) n.push_back(t->name);
+  return n;
+}
+
+// Least-squares σ at given parameters; +inf when the design cannot be fitted
+// (a parameter that makes a regressor constant, say).
+double least_squares_sigma(const DerivedSeries& derived, const Eigen::VectorXd& y,
+                           const std::vector<const Term*>& terms,
+                           const std::vector<double>& parameters) {
+  try {
+    const LinearProblem problem(design_matrix(derived, terms, parameters), y, names_of(terms));
+    return problem.objective(least_squares_optimum(problem));
+  } catch (const InputError&) {
+    return std::numeric_limits<double>::infinity();
+  }
+}
+
+}  // namespace
+
+std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vector<double>& y_in,
+                                   const std::vector<const Term*>& terms) {
+  std::vector<double> params = default_parameters(terms);
+  const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(y_in.data(), static_cast<Eigen::Index>(y_in.size()));
+  std::vector<std::size_t> nonlinear;
+  for (std::size_t j = 0; j < terms.size(); ++j)
+    if (terms[j]->parameter) nonlinear.push_back(j);
+  if (nonlinear.empty()) return params;
+
+  // Coordinate search: each parameter in turn over its bounds (log scale),
+  // three rounds when there are several.
+  const int rounds = nonlinear.size() > 1 ? 3 : 1;
+  for (int round = 0; round < rounds; ++round) {
+    for (std::size_t j : nonlinear) {
+      const TermParameter& spec = *terms[j]->parameter;
+      const double lo = std::log(spec.lower), hi = std::log(spec.upper);
+      auto sigma_at = [&](double log_value) {
+        std::vector<double> p = params;
+        p[j] = std::exp(log_value);
+        return least_squares_sigma(derived, y, terms, p);
+      };
+      constexpr int kGrid = 41;
+      double best_x = lo, best_f = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < kGrid; ++i) {
+        const double x = lo + (hi - lo) * i / (kGrid - 1);
+        const double f = sigma_at(x);
+        if (f < best_f) {
+          best_f = f;
+          best_x = x;
+        }
+      }
+      // Golden section between the grid neighbours of the best point.
+      const double step = (hi - lo) / (kGrid - 1);
+      double a = std::max(lo, best_x - step), b = std::min(hi, best_x + step);
+      const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+      double c = b - g * (b - a), d = a + g * (b - a);
+      double fc = sigma_at(c), fd = sigma_at(d);
+      for (int it = 0; it < 40; ++it) {
+        if (fc < fd) {
+          b = d; d = c; fd = fc; c = b - g * (b - a); fc = sigma_at(c);
+        } else {
+          a = c; c = d; fc = fd; d = a + g * (b - a); fd = sigma_at(d);
+        }
+      }
+      const double refined = fc < fd ? c : d;
+      params[j] = std::exp(std::min(fc, fd) < best_f ? refined : best_x);
+    }
+  }
+  return params;
+}
+
+ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& terms,
+                   const EngineInfo& engine, const EngineSettings& settings,
+                   FitObserver* observer) {
+  ModelFit fit;
+  fit.terms = terms;
+  fit.parameters = fit_parameters(data.derived, data.series.gyro_dph, terms);
+  const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(
+      data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size()));
+  const LinearProblem problem(design_matrix(data.derived, terms, fit.parameters), y,
+                              names_of(terms));
+  const std::unique_ptr<Engine> e = engine.make(settings);
+  fit.engine = e->fit(problem, observer);
+  fit.coefficients = problem.physical(fit.engine.z);
+  fit.instability_before_dph = problem.sigma_y();
+  fit.instability_after_dph = problem.sigma_two_pass(fit.coefficients);
+  fit.optimum_dph = problem.sigma_two_pass(problem.physical(least_squares_optimum(problem)));
+  fit.points = problem.points();
+  return fit;
+}
+
+std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
+  const std::filesystem::path file = sim::truth_path_for(csv);
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  std::ifstream in(file);
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", file.string(), e.what()));
+  }
+  if (!j.contains("coefficients") || !j["coefficients"].is_object())
+    throw InputError(fmt::format("{}: expected an object 'coefficients' (term -> value)",
+                                 file.string()));
+  Truth t;
+  t.file = file;
+  for (const auto& [k, v] : j["coefficients"].items()) {
+    if (!v.is_number())
+      throw InputError(fmt::format("{}: coefficients.{} is not a number", file.string(), k));
+    t.coefficients[k] = v.get<double>();
+  }
+  return t;
+}
+
+std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Truth& truth) {
+  std::map<std::string, double> out;
+  auto add = [&](const std::string& name, double value) {
+    const auto it = truth.coefficients.find(name);
+    if (it == truth.coefficients.end() || it->second == 0.0) return;
+    out[name] = (value - it->second) / std::abs(it->second);
+  };
+  add("1", fit.coefficients.intercept);
+  for (std::size_t j = 0; j < fit.terms.size(); ++j) add(fit.terms[j]->name, fit.coefficients.b[j]);
+  return out;
+}
+
+}  // namespace gyrotherm::fit

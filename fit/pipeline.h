@@ -1,0 +1,105 @@
+#pragma once
+// The fitting pipeline (DESIGN.md, "Data flow"):
+//
+//   1. read the measurement CSV (fit/measurement.h);
+//   2. flag counting glitches with a moving-median rule (fit/outliers.h);
+//   3. average into windows that never span a gap (fit/averaging.h);
+//   4. build the model's regressors from the averaged series (fit/terms.h);
+//   5. fit with the chosen engine; b0 is the mean residual;
+//   6. report the instability (std of the window averages) before and after.
+//
+// Nonlinear term parameters (warmup's τ, hyst's dead band) are found by
+// variable projection: for a candidate parameter the linear coefficients are
+// the exact least-squares ones, so the parameter is chosen to minimise the
+// least-squares σ by a bounded 1-D search (a log-spaced grid, then golden
+// section around the best grid point; one parameter at a time, repeated);
+// the chosen engine then fits the linear coefficients at that parameter.
+//
+// Reference: Golub & Pereyra, "Separable nonlinear least squares: the
+// variable projection method and its applications", Inverse Problems 19 (2003).
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fit/averaging.h"
+#include "fit/engine.h"
+#include "fit/measurement.h"
+#include "fit/outliers.h"
+#include "fit/terms.h"
+
+namespace gyrotherm::fit {
+
+struct PipelineOptions {
+  ColumnMap columns;
+  bool remove_outliers = true;
+  OutlierOptions outliers;
+  AveragingOptions averaging;
+  DerivativeMode derivative = DerivativeMode::central;
+};
+
+struct PreparedData {
+  std::string file;
+  std::size_t raw_samples = 0;
+  OutlierReport outliers;
+  AveragingReport averaging;
+  AveragedSeries series;
+  DerivedSeries derived;
+  bool has_temp2() const { return !series.temp2_c.empty(); }
+};
+
+PreparedData prepare_data(const Measurement& measurement, const PipelineOptions& options);
+PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options);
+
+// Throws InputError if a term needs a column the data lacks (e.g. grad without temp2_c).
+void check_columns(const std::vector<const Term*>& terms, const PreparedData& data,
+                   const ColumnMap& columns);
+
+// Regressors of `terms` (parameters[i] used where the term has one), one column per term.
+Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<const Term*>& terms,
+                              const std::vector<double>& parameters);
+
+// Default parameters: the geometric mean of each parameter's bounds, NaN for
+// terms without one.
+std::vector<double> default_parameters(const std::vector<const Term*>& terms);
+
+struct ModelFit {
+  std::vector<const Term*> terms;
+  std::vector<double> parameters;  // per term, NaN where the term has none
+  Coefficients coefficients;       // physical units
+  FitResult engine;
+  double instability_before_dph = 0.0;
+  double instability_after_dph = 0.0;  // two-pass σ of the residual
+  double optimum_dph = 0.0;            // the exact least-squares σ for the same terms and parameters
+  std::size_t points = 0;
+  double ratio() const { return instability_before_dph / instability_after_dph; }
+};
+
+// Steps 4–6. Throws InputError for a design that cannot be fitted.
+ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& terms,
+                   const EngineInfo& engine, const EngineSettings& settings,
+                   FitObserver* observer = nullptr);
+
+// Variable projection only: the parameters minimising the least-squares σ.
+std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vector<double>& y,
+                                   const std::vector<const Term*>& terms);
+
+// The model's value B = b0 + Σ b_j x_j at every window.
+std::vector<double> model_values(const Eigen::MatrixXd& design, const Coefficients& c);
+
+// Ground truth written by `gyrotherm simulate` beside the data (run.csv →
+// run.truth.json), if there is one.
+struct Truth {
+  std::filesystem::path file;
+  std::map<std::string, double> coefficients;  // term → value, "1" = intercept
+};
+std::optional<Truth> load_truth_beside(const std::filesystem::path& csv);
+// Relative error (fit − true)/|true| per model term and "1"; terms whose true
+// value is 0 (absent from the truth) are left out.
+std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Truth& truth);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,173 @@
+// `gyrotherm fit`, `compensate`, `engines`, `effects` end to end, and the
+// bad-input catalogue of the fitting issue: clear message, exit code 2.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_runner.h"
+
+namespace gyrotherm {
+namespace {
+
+using testing::run_cli;
+using testing::ScratchDir;
+using testing::slurp;
+using testing::source_path;
+using testing::write_text;
+
+// A 3 h cycle segment (quick) simulated into dir/name.csv.
+void simulate_short(const ScratchDir& dir, const std::string& name, int seed,
+                    const std::string& extra = "") {
+  write_text(dir / "short.toml",
+             "name = \"short\"\nrig = \"" + source_path("scenarios/rig_shield.toml") +
+                 "\"\ngyro = \"" + source_path("scenarios/gyro.toml") +
+                 "\"\nstart_c = 20.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_min = 30\n"
+                 "[[segment]]\nkind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = 5.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = 60.0\nduration_min = 60\n"
+                 "[[segment]]\nkind = \"ramp\"\ntarget_c = -20.0\nrate_c_per_min = 5.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = -20.0\nduration_min = 60\n");
+  const auto r = run_cli(dir, "simulate short.toml --seed " + std::to_string(seed) + " " + extra +
+                                  " -o " + name + ".csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(CliFit, FitsSimulatedDataAndReportsAgainstTheTruth) {
+  ScratchDir dir;
+  simulate_short(dir, "run", 1);
+  const auto r = run_cli(dir, "fit run.csv --json -o fit.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"engine", "model", "coefficients", "instability_before_dph",
+                          "instability_after_dph", "ratio", "objective", "evaluations",
+                          "iterations", "seconds", "termination", "history", "truth",
+                          "coefficient_error"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["engine"], "ols");
+  EXPECT_EQ(j["model"], "T + T^2 + dT");
+  EXPECT_TRUE(j["coefficients"].contains("1"));
+  EXPECT_GT(j["ratio"].get<double>(), 2.0);
+  // dT/dt is the strongest effect here: recovered within a few percent.
+  EXPECT_LT(std::abs(j["coefficient_error"]["dT"].get<double>()), 0.05);
+  EXPECT_EQ(slurp(dir / "fit.json"), r.out);
+
+  const auto human = run_cli(dir, "fit run.csv --engine iafsa --seed 3");
+  ASSERT_EQ(human.exit_code, 0) << human.err;
+  EXPECT_NE(human.out.find("instability (std of 100 s averages)"), std::string::npos) << human.out;
+  EXPECT_NE(human.out.find("truth 1.81"), std::string::npos) << human.out;
+}
+
+TEST(CliFit, CompensateAppliesTheFitToOtherData) {
+  ScratchDir dir;
+  simulate_short(dir, "train", 1);
+  simulate_short(dir, "test", 2);
+  ASSERT_EQ(run_cli(dir, "fit train.csv -o fit.json").exit_code, 0);
+  const auto r = run_cli(dir, "compensate test.csv --fit fit.json -o comp.csv --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_GT(j["ratio"].get<double>(), 2.0);
+  const std::string csv = slurp(dir / "comp.csv");
+  EXPECT_NE(csv.find("time_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n"),
+            std::string::npos);
+  const auto causal = run_cli(dir, "compensate test.csv --fit fit.json --causal --json");
+  ASSERT_EQ(causal.exit_code, 0) << causal.err;
+  EXPECT_EQ(nlohmann::json::parse(causal.out)["derivative"], "causal");
+  EXPECT_GT(nlohmann::json::parse(causal.out)["ratio"].get<double>(), 1.5);
+}
+
+TEST(CliFit, EnginesAndEffectsList) {
+  ScratchDir dir;
+  const auto e = run_cli(dir, "engines --json");
+  ASSERT_EQ(e.exit_code, 0);
+  EXPECT_EQ(nlohmann::json::parse(e.out)["engines"].size(), 8u);
+  const auto f = run_cli(dir, "effects --json");
+  ASSERT_EQ(f.exit_code, 0);
+  const auto effects = nlohmann::json::parse(f.out)["effects"];
+  EXPECT_EQ(effects.size(), 10u);
+  EXPECT_EQ(effects[6]["term"], "grad");
+  EXPECT_EQ(effects[6]["needs"], "temp2_c");
+  EXPECT_NE(run_cli(dir, "effects").out.find("warmup"), std::string::npos);
+}
+
+struct BadFit {
+  std::string name;
+  std::string csv;   // written to d.csv ("" = none)
+  std::string args;  // after "fit"
+  std::vector<std::string> fragments;
+};
+void PrintTo(const BadFit& b, std::ostream* os) { *os << b.name; }
+
+std::string rows(int n, const std::string& header = "time_s,temp_c,gyro_dph\n") {
+  std::string s = header;
+  for (int k = 0; k < n; ++k)
+    s += std::to_string(k) + "," + std::to_string(20.0 + 0.01 * k) + ",-7.0\n";
+  return s;
+}
+
+class CliFitBadInput : public ::testing::TestWithParam<BadFit> {};
+
+TEST_P(CliFitBadInput, ClearMessageAndExitTwo) {
+  const BadFit& c = GetParam();
+  ScratchDir dir;
+  if (!c.csv.empty()) write_text(dir / "d.csv", c.csv);
+  const auto r = run_cli(dir, "fit " + c.args);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  for (const std::string& f : c.fragments)
+    EXPECT_NE(r.err.find(f), std::string::npos) << "stderr: " << r.err << "\nmissing: " << f;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Catalogue, CliFitBadInput,
+    ::testing::Values(
+        BadFit{"missing_file", "", "nope.csv", {"nope.csv", "no such file"}},
+        BadFit{"missing_column", "time_s,temp,gyro_dph\n0,1,2\n1,1,2\n", "d.csv",
+               {"d.csv", "temp_c", "--temp-col"}},
+        BadFit{"non_numeric_cell", "time_s,temp_c,gyro_dph\n0,20,-7\n1,abc,-7\n2,20,-7\n", "d.csv",
+               {"d.csv:3", "temp_c", "abc"}},
+        BadFit{"time_not_increasing", "time_s,temp_c,gyro_dph\n0,20,-7\n2,20,-7\n1,20,-7\n",
+               "d.csv", {"d.csv:4", "time"}},
+        BadFit{"nan_cell", "time_s,temp_c,gyro_dph\n0,20,-7\n1,20,nan\n2,20,-7\n", "d.csv",
+               {"d.csv:3", "gyro_dph", "finite"}},
+        BadFit{"too_few_points", rows(400), "d.csv", {"averaged points", "model"}},
+        BadFit{"constant_temperature",
+               [] {
+                 std::string s = "time_s,temp_c,gyro_dph\n";
+                 for (int k = 0; k < 3000; ++k) s += std::to_string(k) + ",25.0,-7.0\n";
+                 return s;
+               }(),
+               "d.csv", {"constant"}},
+        BadFit{"grad_without_temp2", rows(3000), "d.csv --model 'T + grad'",
+               {"grad", "temp2_c", "--temp2-col"}},
+        BadFit{"unknown_term", rows(3000), "d.csv --model 'T + T^5'",
+               {"unknown term 'T^5'", "known terms"}},
+        BadFit{"unknown_engine", rows(3000), "d.csv --engine ga", {"unknown engine 'ga'"}},
+        BadFit{"invalid_engine_option", rows(3000), "d.csv --engine iafsa --option fish=0",
+               {"iafsa option fish=0", "must be"}},
+        BadFit{"unknown_engine_option", rows(3000), "d.csv --engine pso --option colour=red",
+               {"pso has no option 'colour'"}},
+        BadFit{"negative_budget", rows(3000), "d.csv --budget -5", {"--budget -5"}},
+        BadFit{"bad_avg", rows(3000), "d.csv --avg 0", {"--avg"}}),
+    [](const auto& param_info) { return param_info.param.name; });
+
+TEST(CliFit, CompensateWithAMissingFitFile) {
+  ScratchDir dir;
+  write_text(dir / "d.csv", rows(3000));
+  const auto r = run_cli(dir, "compensate d.csv --fit nofit.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("nofit.json: no such file"), std::string::npos) << r.err;
+}
+
+TEST(CliFit, CompensateWithAMalformedFitFile) {
+  ScratchDir dir;
+  write_text(dir / "d.csv", rows(3000));
+  write_text(dir / "fit.json", "{\"engine\": \"ols\", \"model\": \"T\"}");
+  const auto r = run_cli(dir, "compensate d.csv --fit fit.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("fit.json: missing field 'coefficients'"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace gyrotherm

@@ -1,0 +1,328 @@
+// Tests for fit/measurement.h: every file is written by hand here and every
+// expected value is read off the text, never taken from the reader itself.
+
+#include "fit/measurement.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+#include "sim/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MeasurementTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           fmt::format("gyrotherm_{}_{}_{}", info->test_suite_name(), info->name(),
+                       ::testing::UnitTest::GetInstance()->random_seed());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Writes the bytes exactly as given (no newline translation).
+  fs::path write(const std::string& contents, const std::string& name = "data.csv") const {
+    const fs::path path = dir_ / name;
+    std::ofstream out(path, std::ios::binary);
+    out << contents;
+    return path;
+  }
+
+  // Reads a file that must be rejected; checks every fragment is in the message.
+  static std::string expect_error(const fs::path& path,
+                                  std::initializer_list<std::string> fragments,
+                                  const ColumnMap& columns = {}) {
+    try {
+      read_measurement_csv(path, columns);
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      for (const std::string& fragment : fragments)
+        EXPECT_NE(message.find(fragment), std::string::npos)
+            << "'" << fragment << "' not in: " << message;
+      return message;
+    }
+    ADD_FAILURE() << path << " was accepted";
+    return {};
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(MeasurementTest, ReadsTheNeededColumnsByNameAndIgnoresTheRest) {
+  const fs::path path = write(
+      "time_s,chamber_c,temp_c,gyro_dph,note\n"
+      "0,20,25.5,-7.25,start\n"
+      "1,20.1,25.75,-7.5,\n"
+      "2.5,20.2,26,-7.0,x y\n");
+  const Measurement m = read_measurement_csv(path);
+  EXPECT_EQ(m.file, path.string());
+  EXPECT_EQ(m.columns,
+            (std::vector<std::string>{"time_s", "chamber_c", "temp_c", "gyro_dph", "note"}));
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_EQ(m.time_s, (std::vector<double>{0.0, 1.0, 2.5}));
+  EXPECT_EQ(m.temp_c, (std::vector<double>{25.5, 25.75, 26.0}));
+  EXPECT_EQ(m.gyro_dph, (std::vector<double>{-7.25, -7.5, -7.0}));
+  EXPECT_FALSE(m.has_temp2());
+  EXPECT_TRUE(m.temp2_c.empty());
+}
+
+TEST_F(MeasurementTest, ReadsTheOptionalSecondTemperature) {
+  const Measurement m =
+      read_measurement_csv(write("time_s,temp_c,temp2_c,gyro_dph\n"
+                                 "0,25,24.5,1\n"
+                                 "1,26,25.25,2\n"));
+  ASSERT_TRUE(m.has_temp2());
+  EXPECT_EQ(m.temp2_c, (std::vector<double>{24.5, 25.25}));
+}
+
+TEST_F(MeasurementTest, SkipsCommentsBeforeTheHeaderAndBlankLinesAnywhere) {
+  const Measurement m =
+      read_measurement_csv(write("# gyrotherm simulate: scenario x, seed 1\n"
+                                 "#time_s,temp_c,gyro_dph (not the header)\n"
+                                 "\n"
+                                 "time_s,temp_c,gyro_dph\n"
+                                 "0,1,2\n"
+                                 "   \n"
+                                 "1,3,4\n"
+                                 "\n"));
+  EXPECT_EQ(m.columns, (std::vector<std::string>{"time_s", "temp_c", "gyro_dph"}));
+  EXPECT_EQ(m.time_s, (std::vector<double>{0.0, 1.0}));
+  EXPECT_EQ(m.gyro_dph, (std::vector<double>{2.0, 4.0}));
+}
+
+TEST_F(MeasurementTest, LineNumbersCountCommentsAndBlankLines) {
+  const fs::path path = write(
+      "# comment\n"               // 1
+      "\n"                        // 2
+      "time_s,temp_c,gyro_dph\n"  // 3
+      "0,1,2\n"                   // 4
+      "\n"                        // 5
+      "1,1,2\n"                   // 6
+      "2,1,abc\n");               // 7
+  expect_error(path, {path.string() + ":7: column gyro_dph: 'abc' is not a number"});
+}
+
+TEST_F(MeasurementTest, SkipsAUtf8ByteOrderMark) {
+  const Measurement m =
+      read_measurement_csv(write("\xEF\xBB\xBFtime_s,temp_c,gyro_dph\n0,1,2\n1,1,3\n"));
+  ASSERT_EQ(m.columns.size(), 3u);
+  EXPECT_EQ(m.columns[0], "time_s");
+  EXPECT_EQ(m.time_s, (std::vector<double>{0.0, 1.0}));
+
+  const Measurement commented = read_measurement_csv(
+      write("\xEF\xBB\xBF# comment\ntime_s,temp_c,gyro_dph\n0,1,2\n1,1,3\n", "c.csv"));
+  EXPECT_EQ(commented.columns[0], "time_s");
+}
+
+TEST_F(MeasurementTest, AcceptsCrlfLineEnds) {
+  const Measurement m =
+      read_measurement_csv(write("# c\r\ntime_s,temp_c,gyro_dph\r\n0,1,2\r\n\r\n1,1.5,3\r\n"));
+  EXPECT_EQ(m.columns, (std::vector<std::string>{"time_s", "temp_c", "gyro_dph"}));
+  EXPECT_EQ(m.gyro_dph, (std::vector<double>{2.0, 3.0}));  // no '\r' left on the last field
+  EXPECT_EQ(m.temp_c, (std::vector<double>{1.0, 1.5}));
+
+  const fs::path bad = write("time_s,temp_c,gyro_dph\r\n0,1,2\r\n1,1,x\r\n", "bad.csv");
+  expect_error(bad, {bad.string() + ":3: column gyro_dph: 'x' is not a number"});
+}
+
+TEST_F(MeasurementTest, AcceptsALastLineWithoutNewline) {
+  const Measurement m = read_measurement_csv(write("time_s,temp_c,gyro_dph\n0,1,2\n1,1,3"));
+  EXPECT_EQ(m.gyro_dph, (std::vector<double>{2.0, 3.0}));
+}
+
+TEST_F(MeasurementTest, MapsColumnNamesAndTrimsTheHeader) {
+  ColumnMap map;
+  map.time = "t";
+  map.temp = "T_gyro";
+  map.gyro = "omega";
+  map.temp2 = "T_far";
+  const Measurement m =
+      read_measurement_csv(write(" omega , t ,T_far,\tT_gyro \n5,0,30,20\n6,10,31,21\n"), map);
+  EXPECT_EQ(m.columns, (std::vector<std::string>{"omega", "t", "T_far", "T_gyro"}));
+  EXPECT_EQ(m.time_s, (std::vector<double>{0.0, 10.0}));
+  EXPECT_EQ(m.temp_c, (std::vector<double>{20.0, 21.0}));
+  EXPECT_EQ(m.gyro_dph, (std::vector<double>{5.0, 6.0}));
+  EXPECT_EQ(m.temp2_c, (std::vector<double>{30.0, 31.0}));
+}
+
+TEST_F(MeasurementTest, NumbersMayHaveSurroundingSpacesAPlusAndExponents) {
+  const Measurement m = read_measurement_csv(
+      write("time_s,temp_c,gyro_dph\n 1.5 , +2e-1 ,  -3 \n\t2\t,-1.25E+1,+0\n"));
+  EXPECT_EQ(m.time_s, (std::vector<double>{1.5, 2.0}));
+  EXPECT_EQ(m.temp_c, (std::vector<double>{0.2, -12.5}));
+  EXPECT_EQ(m.gyro_dph, (std::vector<double>{-3.0, 0.0}));
+}
+
+TEST_F(MeasurementTest, UnneededColumnsMayHoldAnything) {
+  const Measurement m = read_measurement_csv(
+      write("time_s,status,temp_c,gyro_dph,case_c\n0,nan,1,2,inf\n1,\"a b\",1,3,\n"));
+  EXPECT_EQ(m.size(), 2u);
+}
+
+TEST_F(MeasurementTest, ANonNumberNamesFileLineAndColumn) {
+  const fs::path path = write("time_s,temp_c,gyro_dph\n0,1,2\n1,abc,3\n");
+  expect_error(path, {path.string() + ":3:", "column temp_c", "'abc'", "not a number"});
+  const fs::path trailing = write("time_s,temp_c,gyro_dph\n0,1,2\n1,2.5x,3\n", "t.csv");
+  expect_error(trailing, {":3:", "column temp_c", "'2.5x'", "not a number"});
+}
+
+TEST_F(MeasurementTest, NanAndInfinityInANeededColumnAreRejected) {
+  for (const char* text : {"nan", "NaN", "inf", "-Inf", "infinity"}) {
+    const fs::path path =
+        write(fmt::format("time_s,temp_c,gyro_dph\n0,1,2\n1,1,2\n2,1,{}\n", text));
+    expect_error(path, {path.string() + ":4:", "column gyro_dph", "not a finite number"});
+  }
+  const fs::path huge = write("time_s,temp_c,gyro_dph\n0,1e999,2\n1,1,2\n", "huge.csv");
+  expect_error(huge, {":2:", "column temp_c", "'1e999'", "out of the range"});
+}
+
+TEST_F(MeasurementTest, AnEmptyNeededFieldIsRejected) {
+  const fs::path path = write("time_s,temp_c,gyro_dph\n0,1,2\n1, ,3\n");
+  expect_error(path, {":3:", "column temp_c", "empty field"});
+}
+
+TEST_F(MeasurementTest, EveryRowNeedsAsManyFieldsAsTheHeader) {
+  const fs::path fewer = write("# c\ntime_s,temp_c,gyro_dph\n0,1,2\n1,2\n");
+  expect_error(fewer, {fewer.string() + ":4:", "2 fields", "header (line 2) has 3"});
+  const fs::path more = write("time_s,temp_c,gyro_dph\n0,1,2,9\n1,2,3\n", "more.csv");
+  expect_error(more, {":2:", "4 fields", "has 3"});
+}
+
+TEST_F(MeasurementTest, TimeMustIncreaseStrictly) {
+  const fs::path same = write("time_s,temp_c,gyro_dph\n0,1,2\n1,1,2\n1,1,2\n");
+  expect_error(same, {same.string() + ":4:", "column time_s", "time 1 is not after 1 on line 3"});
+  const fs::path back = write("time_s,temp_c,gyro_dph\n0,1,2\n1.5,1,2\n\n0.5,1,2\n", "back.csv");
+  expect_error(back, {back.string() + ":5:", "time 0.5 is not after 1.5 on line 3"});
+}
+
+TEST_F(MeasurementTest, AMissingRequiredColumnListsTheHeaderAndTheOption) {
+  const fs::path path = write("time_s,temperature,gyro_dph\n0,1,2\n1,1,2\n");
+  expect_error(path, {path.string() + ":1:", "no column 'temp_c'", "time_s, temperature, gyro_dph",
+                      "--temp-col"});
+  const fs::path no_gyro = write("# c\ntime_s,temp_c,rate\n0,1,2\n1,1,2\n", "g.csv");
+  expect_error(no_gyro, {":2:", "no column 'gyro_dph'", "time_s, temp_c, rate", "--gyro-col"});
+  const fs::path no_time = write("t,temp_c,gyro_dph\n0,1,2\n1,1,2\n", "t.csv");
+  expect_error(no_time, {"no column 'time_s'", "--time-col"});
+  ColumnMap map;
+  map.gyro = "omega";
+  expect_error(no_gyro, {"no column 'omega'", "time_s, temp_c, rate", "--gyro-col"}, map);
+}
+
+TEST_F(MeasurementTest, AnExplicitlyMappedSecondTemperatureMustExist) {
+  const fs::path path = write("time_s,temp_c,gyro_dph\n0,1,2\n1,1,2\n");
+  ColumnMap map;
+  map.temp2 = "far_c";
+  expect_error(path, {path.string() + ":1:", "no column 'far_c'", "--temp2-col"}, map);
+  EXPECT_FALSE(read_measurement_csv(path).has_temp2());  // the default name may be absent
+}
+
+TEST_F(MeasurementTest, TheSecondTemperatureCanBeIgnoredOrUsedAsTheFirst) {
+  const fs::path path = write("time_s,temp_c,temp2_c,gyro_dph\n0,25,24,1\n1,26,23,2\n");
+  ColumnMap ignore;
+  ignore.temp2 = "";
+  EXPECT_FALSE(read_measurement_csv(path, ignore).has_temp2());
+  ColumnMap far_side;  // the far sensor as the main one; temp2 keeps its default name
+  far_side.temp = "temp2_c";
+  const Measurement m = read_measurement_csv(path, far_side);
+  EXPECT_EQ(m.temp_c, (std::vector<double>{24.0, 23.0}));
+  EXPECT_FALSE(m.has_temp2());
+}
+
+TEST_F(MeasurementTest, DuplicateColumnNamesAreRejected) {
+  const fs::path path = write("time_s,temp_c,gyro_dph,temp_c\n0,1,2,3\n1,1,2,3\n");
+  expect_error(path, {path.string() + ":1:", "'temp_c' appears twice", "columns 2 and 4"});
+}
+
+TEST_F(MeasurementTest, OneColumnCannotPlayTwoRoles) {
+  const fs::path path = write("time_s,temp_c,gyro_dph\n0,1,2\n1,1,2\n");
+  ColumnMap map;
+  map.temp = "gyro_dph";
+  expect_error(path, {":1:", "--temp-col and --gyro-col both name column 'gyro_dph'"}, map);
+}
+
+TEST_F(MeasurementTest, TheDelimiterMustBeAComma) {
+  const fs::path semicolon = write("time_s;temp_c;gyro_dph\n0;1;2\n1;1;2\n");
+  expect_error(semicolon, {semicolon.string() + ":1:", "semicolon", "delimiter must be a comma"});
+  const fs::path tab = write("# c\ntime_s\ttemp_c\tgyro_dph\n0\t1\t2\n1\t1\t2\n", "tab.csv");
+  expect_error(tab, {tab.string() + ":2:", "tab", "delimiter must be a comma"});
+}
+
+TEST_F(MeasurementTest, FilesWithoutEnoughDataAreRejected) {
+  const fs::path empty = write("", "empty.csv");
+  expect_error(empty, {empty.string() + ":", "empty file", "time_s, temp_c, gyro_dph"});
+  const fs::path blank = write("\n  \n", "blank.csv");
+  expect_error(blank, {"empty file"});
+  const fs::path comments = write("# only\n# comments\n", "comments.csv");
+  expect_error(comments, {"no header"});
+  const fs::path header = write("# c\ntime_s,temp_c,gyro_dph\n\n", "header.csv");
+  expect_error(header, {header.string() + ":2:", "not followed by any data row"});
+  const fs::path one = write("time_s,temp_c,gyro_dph\n0,1,2\n", "one.csv");
+  expect_error(one, {one.string() + ":2:", "only 1 data row", "at least 2"});
+}
+
+TEST_F(MeasurementTest, MissingAndUnreadableFilesAreNamed) {
+  const fs::path missing = dir_ / "nowhere.csv";
+  expect_error(missing, {missing.string() + ": no such file"});
+  expect_error(dir_, {dir_.string() + ": cannot read"});
+}
+
+TEST_F(MeasurementTest, ALineLongerThanTheReadBlockIsReadWhole) {
+  const std::string note(3u << 20, 'x');  // 3 MiB, longer than the 1 MiB block
+  const Measurement m = read_measurement_csv(
+      write("time_s,note,temp_c,gyro_dph\n0," + note + ",1,2\n1," + note + ",3,4\n2,y,5,6\n"));
+  EXPECT_EQ(m.time_s, (std::vector<double>{0.0, 1.0, 2.0}));
+  EXPECT_EQ(m.gyro_dph, (std::vector<double>{2.0, 4.0, 6.0}));
+}
+
+// A day-long 1 Hz record of 10⁵ rows, in the simulator's layout. The expected
+// values are parsed from the same text with std::strtod, a different parser.
+TEST_F(MeasurementTest, ReadsBackA100kRowRecord) {
+  constexpr std::size_t kRows = 100000;
+  std::string text =
+      "# gyrotherm simulate: scenario long, seed 7\n"
+      "time_s,chamber_c,case_c,temp_c,temp2_c,gyro_dph,bias_true_dph\n";
+  std::vector<std::string> temp_text(kRows), gyro_text(kRows);
+  for (std::size_t k = 0; k < kRows; ++k) {
+    const double t = static_cast<double>(k);
+    temp_text[k] = fmt::format("{:.5f}", 20.0 + 30.0 * std::sin(t / 8000.0));
+    gyro_text[k] = fmt::format("{:.6f}", -7.0 + 0.05 * static_cast<double>(k % 7) - 0.1);
+    text += fmt::format("{},{:.5f},{:.5f},{},{:.5f},{},{:.9f}\n", k, 1.0, 2.0, temp_text[k],
+                        3.0 + t * 1e-4, gyro_text[k], -7.0);
+  }
+  const fs::path path = write(text);
+
+  const auto start = std::chrono::steady_clock::now();
+  const Measurement m = read_measurement_csv(path);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  RecordProperty("megabytes_per_second",
+                 fmt::format("{:.0f}", static_cast<double>(text.size()) / 1e6 / seconds));
+
+  ASSERT_EQ(m.size(), kRows);
+  ASSERT_TRUE(m.has_temp2());
+  std::size_t mismatches = 0;
+  for (std::size_t k = 0; k < kRows; ++k) {
+    mismatches += m.time_s[k] != static_cast<double>(k);
+    mismatches += m.temp_c[k] != std::strtod(temp_text[k].c_str(), nullptr);
+    mismatches += m.gyro_dph[k] != std::strtod(gyro_text[k].c_str(), nullptr);
+  }
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_DOUBLE_EQ(m.temp2_c.back(), 3.0 + 99999e-4);
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
