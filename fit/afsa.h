@@ -24,11 +24,19 @@
 // (prey standing in for a move whose test fails; one prey serves both when
 // both fail) and takes the one with the smaller σ. The bulletin board is
 // refreshed at every evaluation. The run stops at the target σ, at the
-// evaluation budget or after max_iterations.
+// evaluation budget or after max_iterations. FitResult::iterations counts the
+// iterations begun (the last may be cut short by the target or the budget);
+// the observer hears after each completed one.
 //
-// With a fixed Visual and Step the swarm cannot settle finer than a fraction
-// of Step: AFSA finds the basin quickly but polishes slowly. IafsaEngine
-// (fit/iafsa.h) shrinks both as it goes.
+// With a fixed Visual and Step the swarm settles no finer than a fraction of
+// Step: a small Step polishes well but travels slowly, a large one the
+// reverse. IafsaEngine (fit/iafsa.h) shrinks both as it goes.
+//
+// Defaults (tuned on synthetic 3-term problems for the best σ after the
+// default 20000 evaluations): 20 fish, Visual 0.5, Step 0.01, one prey
+// attempt; σ ends a median ~1e-6 and at worst ~1e-4 (relative) above the
+// least-squares optimum. δ = 1 turns crowding off: σ has a single minimum, and
+// Li's δ = 0.618 left the swarm 10 % above it.
 //
 // References: Li Xiaolei, Shao Zhijiang, Qian Jixin, "An optimizing method
 // based on autonomous animats: fish-swarm algorithm", Systems Engineering —

@@ -121,6 +121,19 @@ void OptionReader::real(const std::string& key, double& value, double lo, double
   value = v;
 }
 
+void OptionReader::choice(const std::string& key, std::string& value,
+                          const std::vector<std::string>& allowed) {
+  known_.push_back(key);
+  const auto it = options_.find(key);
+  if (it == options_.end()) return;
+  if (std::find(allowed.begin(), allowed.end(), it->second) == allowed.end()) {
+    std::string list;
+    for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+    throw InputError(fmt::format("{} option {}={}: must be one of {}", engine_, key, it->second, list));
+  }
+  value = it->second;
+}
+
 void OptionReader::finish() const {
   for (const auto& [key, value] : options_) {
     if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;

@@ -146,6 +146,7 @@ class OptionReader {
   // Reads `key` into `value` if given; checks lo ≤ value ≤ hi.
   void integer(const std::string& key, int& value, int lo, int hi);
   void real(const std::string& key, double& value, double lo, double hi, bool lo_open = false);
+  void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed);
   void finish() const;  // throws for keys nobody asked for
 
  private:

@@ -8,41 +8,20 @@
 
 namespace gyrotherm::fit {
 
-std::vector<double> least_squares_optimum(const LinearProblem& problem) {
-  const Eigen::VectorXd beta =
-      problem.scaled_design().colPivHouseholderQr().solve(problem.centred_y());
-  std::vector<double> z(problem.dimension());
-  for (std::size_t j = 0; j < z.size(); ++j) {
-    const auto jj = static_cast<Eigen::Index>(j);
-    z[j] = beta[jj] / problem.half_width()[jj];
-  }
-  return z;
-}
+namespace {
 
-FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
-  const auto started = std::chrono::steady_clock::now();
-  const Eigen::MatrixXd& X = problem.scaled_design();
-  const Eigen::Index l = X.rows(), m = X.cols();
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
-  const Eigen::VectorXd beta = qr.solve(problem.centred_y());
-  const Eigen::VectorXd e = problem.centred_y() - X * beta;
+struct LongRunVariance {
+  Eigen::MatrixXd S;        // long-run covariance of the scores, Σ_p Σ_q E[u_p u_qᵀ]
+  double dof = 0.0;         // Student-t degrees of freedom (0: l − m − 1)
+  std::string description;
+};
 
-  FitResult r;
-  r.engine = "ols";
-  r.z.resize(static_cast<std::size_t>(m));
-  for (Eigen::Index j = 0; j < m; ++j)
-    r.z[static_cast<std::size_t>(j)] = beta[j] / problem.half_width()[j];
-  r.objective = problem.objective(r.z);
-  r.evaluations = 1;
-  r.iterations = 1;
-  r.termination = Termination::exact;
-  r.history = {{1, r.objective}};
-
+LongRunVariance prewhitened_newey_west(const Eigen::MatrixXd& u) {
+  const Eigen::Index l = u.rows(), m = u.cols();
   // Pre-whitened Newey–West HAC covariance (Andrews & Monahan 1992):
   // u_p = e_p x̃_p; a VAR(1) u_p = A u_{p−1} + w_p takes out most of the
   // persistence, the Bartlett-kernel sum runs on w with Andrews' bandwidth,
   // and S = (I − A)⁻¹ S_w (I − A)⁻ᵀ re-colours it.
-  const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
   const Eigen::MatrixXd u_now = u.bottomRows(l - 1), u_before = u.topRows(l - 1);
   Eigen::MatrixXd A = (u_now.transpose() * u_before) *
                       (u_before.transpose() * u_before).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
@@ -82,11 +61,75 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   const Eigen::MatrixXd recolour =
       (Eigen::MatrixXd::Identity(m, m) - A).fullPivLu().inverse();
   Eigen::MatrixXd S = recolour * S_w * recolour.transpose();
-  const double dof = static_cast<double>(l - m - 1);
-  S *= static_cast<double>(l) / dof;
+  S *= static_cast<double>(l) / static_cast<double>(l - m - 1);
+  return {S, 0.0, fmt::format("Newey-West HAC pre-whitened by a VAR(1) (Andrews-Monahan), Bartlett "
+                              "kernel with {} lags by Andrews' AR(1) rule", lags)};
+
+}
+
+// Equal-weighted cosine estimator: the scores projected on the B lowest
+// cosine frequencies, Λ_j = sqrt(2/l) Σ_p u_p cos(π j (p + ½)/l); each Λ_j has
+// the long-run covariance Ω of one score, so S = l·Ω̂ = (l/B) Σ_j Λ_j Λ_jᵀ.
+LongRunVariance equal_weighted_cosine(const Eigen::MatrixXd& u, int terms) {
+  const Eigen::Index l = u.rows(), m = u.cols();
+  const int b = terms > 0 ? terms
+                          : static_cast<int>(std::ceil(0.4 * std::pow(static_cast<double>(l), 2.0 / 3.0)));
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, m);
+  Eigen::VectorXd lambda(m);
+  for (int j = 1; j <= b; ++j) {
+    lambda.setZero();
+    for (Eigen::Index p = 0; p < l; ++p)
+      lambda += std::sqrt(2.0 / static_cast<double>(l)) *
+                std::cos(M_PI * j * (static_cast<double>(p) + 0.5) / static_cast<double>(l)) *
+                u.row(p).transpose();
+    S += lambda * lambda.transpose();
+  }
+  S *= static_cast<double>(l) / static_cast<double>(b);
+  return {S, static_cast<double>(b),
+          fmt::format("equal-weighted cosine long-run variance (Lazarus, Lewis, Stock & Watson "
+                      "2018) on the {} lowest frequencies", b)};
+}
+
+}  // namespace
+
+std::vector<double> least_squares_optimum(const LinearProblem& problem) {
+  const Eigen::VectorXd beta =
+      problem.scaled_design().colPivHouseholderQr().solve(problem.centred_y());
+  std::vector<double> z(problem.dimension());
+  for (std::size_t j = 0; j < z.size(); ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    z[j] = beta[jj] / problem.half_width()[jj];
+  }
+  return z;
+}
+
+FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
+  const auto started = std::chrono::steady_clock::now();
+  const Eigen::MatrixXd& X = problem.scaled_design();
+  const Eigen::Index l = X.rows(), m = X.cols();
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
+  const Eigen::VectorXd beta = qr.solve(problem.centred_y());
+  const Eigen::VectorXd e = problem.centred_y() - X * beta;
+
+  FitResult r;
+  r.engine = "ols";
+  r.z.resize(static_cast<std::size_t>(m));
+  for (Eigen::Index j = 0; j < m; ++j)
+    r.z[static_cast<std::size_t>(j)] = beta[j] / problem.half_width()[j];
+  r.objective = problem.objective(r.z);
+  r.evaluations = 1;
+  r.iterations = 1;
+  r.termination = Termination::exact;
+  r.history = {{1, r.objective}};
+
+  const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
+  const LongRunVariance lrv = options_.intervals == IntervalMethod::ewc
+                                  ? equal_weighted_cosine(u, options_.ewc_terms)
+                                  : prewhitened_newey_west(u);
   const Eigen::MatrixXd xtx_inv =
       (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
-  const Eigen::MatrixXd V = xtx_inv * S * xtx_inv;
+  const Eigen::MatrixXd V = xtx_inv * lrv.S * xtx_inv;
+  const double dof = lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1);
   double e_num = 0.0, e_den = 0.0;
   for (Eigen::Index p = 0; p < l; ++p) {
     e_den += e[p] * e[p];
@@ -106,10 +149,8 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
     r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t))
                                           : 0.0);
   }
-  r.interval_method = fmt::format(
-      "Newey-West HAC pre-whitened by a VAR(1) (Andrews-Monahan), Bartlett kernel with {} lags "
-      "by Andrews' AR(1) rule; residual lag-1 autocorrelation {:.2f}; Student t with {} dof",
-      lags, rho, l - m - 1);
+  r.interval_method = fmt::format("{}; residual lag-1 autocorrelation {:.2f}; Student t with {:g} dof",
+                                  lrv.description, rho, dof);
   r.message = "least squares by column-pivoting QR";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
@@ -118,12 +159,20 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
 EngineInfo ols_engine_info() {
   EngineInfo info;
   info.name = "ols";
-  info.description = "exact least squares (QR) with Newey-West 95 % intervals: the reference";
+  info.description = "exact least squares (QR) with autocorrelation-robust 95 % intervals: the reference";
   info.stochastic = false;
   info.default_evaluations = 1;
+  info.options = {{"intervals", "nw: nw (pre-whitened Newey-West) or ewc (equal-weighted cosine)"},
+                  {"ewc_terms", "0: cosine terms B for ewc (0: ceil(0.4 l^(2/3)))"}};
   info.make = [](const EngineSettings& s) -> std::unique_ptr<Engine> {
-    OptionReader(std::string("ols"), s.options).finish();
-    return std::make_unique<OlsEngine>();
+    OlsOptions o;
+    OptionReader reader("ols", s.options);
+    std::string method = "nw";
+    reader.choice("intervals", method, {"ewc", "nw"});
+    o.intervals = method == "nw" ? IntervalMethod::newey_west : IntervalMethod::ewc;
+    reader.integer("ewc_terms", o.ewc_terms, 0, 1000);
+    reader.finish();
+    return std::make_unique<OlsEngine>(o);
   };
   return info;
 }

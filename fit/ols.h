@@ -18,6 +18,16 @@
 // L = ⌈1.1447 (α l)^{1/3}⌉ (capped at l/2), a small-sample factor l/(l−m−1),
 // and Student-t quantiles with l − m − 1 degrees of freedom.
 //
+// Option intervals=ewc uses instead the equal-weighted cosine estimator
+// (the scores projected on the B = ⌈0.4 l^{2/3}⌉ lowest cosine frequencies,
+// Student t with B dof; Lazarus, Lewis, Stock & Watson, JBES 36 (2018)).
+//
+// Limits, measured in results/ols_coverage.md: neither estimator can see
+// noise whose memory is as long as the regressors' own time scale (the flicker
+// of a gyro over a 9 h cycle): the regression absorbs that drift, the
+// residuals look whiter than the noise was, and the intervals come out too
+// narrow. A model that omits a real effect (the sensor lag's d2T) adds bias.
+//
 // References: Newey & West, Econometrica 55 (1987) 703–708; Andrews,
 // Econometrica 59 (1991) 817–858; Golub & Van Loan, Matrix Computations §5.4.
 
@@ -25,9 +35,20 @@
 
 namespace gyrotherm::fit {
 
+enum class IntervalMethod { ewc, newey_west };
+
+struct OlsOptions {
+  IntervalMethod intervals = IntervalMethod::newey_west;  // long-run variance estimator
+  int ewc_terms = 0;  // cosine frequencies B for ewc; 0: ⌈0.4·l^{2/3}⌉ (LLSW's rule)
+};
+
 class OlsEngine : public Engine {
  public:
+  explicit OlsEngine(OlsOptions options = {}) : options_(options) {}
   FitResult fit(const LinearProblem& problem, FitObserver* observer = nullptr) const override;
+
+ private:
+  OlsOptions options_;
 };
 
 // The exact optimum in unit-box coordinates (used by scoring and tests).

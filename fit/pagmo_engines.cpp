@@ -12,6 +12,14 @@
 #include <pagmo/threading.hpp>
 #include <pagmo/types.hpp>
 
+// pagmo::cmaes holds Eigen matrices that libpagmo allocates and this file
+// frees (its destructor is inline), so Eigen must allocate here as it did
+// when libpagmo was built: plain malloc, 16-byte alignment. Otherwise the
+// first cmaes run corrupts the heap.
+#if !EIGEN_MALLOC_ALREADY_ALIGNED || EIGEN_DEFAULT_ALIGN_BYTES > 16
+#error "fit/pagmo_engines.cpp must use Eigen's malloc-aligned 16-byte storage, as libpagmo does: build it without -march=native/-mavx; under AddressSanitizer add -DEIGEN_MALLOC_ALREADY_ALIGNED=1"
+#endif
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -249,8 +257,8 @@ EngineInfo pso_info() {
       {"variant", fmt::format("{}: velocity update 1..6 (5 constriction, 6 fully informed)", d.variant)},
       {"topology", fmt::format("{}: 1 gbest, 2 lbest ring, 3 von Neumann, 4 adaptive random",
                                d.topology)},
-      {"neighbours", fmt::format("{}: lbest ring neighbours / adaptive informants (1..population-1; "
-                                 "1..{} with the automatic swarm)",
+      {"neighbours", fmt::format("{}: lbest ring neighbours / adaptive informants (2..population-1; "
+                                 "2..{} with the automatic swarm)",
                                  d.neighbours, kSmallestAutomaticSwarm - 1)},
   };
   info.make = [](const EngineSettings& settings) {
@@ -263,8 +271,9 @@ EngineInfo pso_info() {
     r.real("max_vel", o.max_vel, 0.0, 1.0, /*lo_open=*/true);
     r.integer("variant", o.variant, 1, 6);
     r.integer("topology", o.topology, 1, 4);
-    // pagmo indexes the ring modulo the swarm: more neighbours than other particles breaks it.
-    r.integer("neighbours", o.neighbours, 1,
+    // pagmo's ring takes neighbours/2 on each side (1 would leave none) and
+    // wraps once around the swarm (more than the other particles overruns it).
+    r.integer("neighbours", o.neighbours, 2,
               (o.population > 0 ? o.population : kSmallestAutomaticSwarm) - 1);
     r.finish();
     Recipe recipe{

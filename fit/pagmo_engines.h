@@ -36,7 +36,12 @@
 // evaluations — pso, de and cmaes spend exactly one evaluation per individual
 // per generation, bee_colony exactly two (employed + onlooker phases; a scout
 // replaces one employed evaluation) — which drives FitObserver::on_iteration
-// once per generation (returning false stops the run) and FitResult::iterations.
+// once per generation (returning false stops the run, Termination::stopped)
+// and FitResult::iterations (completed generations; a generation cut short by
+// the budget or the target is not counted). de and cmaes may also end by
+// themselves when their population collapses (xtol/ftol): Termination::converged.
+// A non-finite candidate (which σ's Gram form would score 0) also ends the run
+// as converged instead of being evaluated.
 //
 // Seeds. EngineSettings::seed (64-bit) is mixed by SplitMix64 into two 32-bit
 // seeds, one for the population's random start and one for the algorithm;

@@ -76,8 +76,8 @@ EngineSettings settings(std::uint64_t seed, long max_evaluations, double target_
   return s;
 }
 
-FitResult run(const std::string& engine, EngineSettings settings, FitObserver* observer = nullptr) {
-  return find_engine(engine).make(settings)->fit(synthetic().problem, observer);
+FitResult run(const std::string& engine, const EngineSettings& s, FitObserver* observer = nullptr) {
+  return find_engine(engine).make(s)->fit(synthetic().problem, observer);
 }
 
 class PagmoEngineTest : public ::testing::TestWithParam<std::string> {};
@@ -266,7 +266,8 @@ TEST_P(PagmoEngineTest, BadOptionsAreRejected) {
     expect_rejected(engine, "eta1", "-1", ">= 0");
     expect_rejected(engine, "max_vel", "0", "> 0");
     expect_rejected(engine, "variant", "7", "from 1 to 6");
-    expect_rejected(engine, "neighbours", "12", "from 1 to 11");  // automatic swarm >= 12
+    expect_rejected(engine, "neighbours", "12", "from 2 to 11");  // automatic swarm >= 12
+    expect_rejected(engine, "neighbours", "1", "from 2");
   } else if (engine == "de") {
     expect_rejected(engine, "F", "2", "<= 1");
     expect_rejected(engine, "CR", "-0.1", ">= 0");

@@ -1,0 +1,370 @@
+// Tests for fit/afsa.h. The known answers come from an Eigen least-squares
+// solution of the same data computed here, never from the engine itself: the
+// paper's bias model on a synthetic −40..60 °C cycle (3 terms), the same
+// without noise, and a 6-term model. Basic AFSA moves with a fixed Step, so it
+// polishes slowly: its tolerances are looser than IAFSA's (fit/iafsa_test.cpp)
+// and stated at each test. Then the engine contract: same seed, same run; bad
+// options named; defaults valid; target, budget and observer stops.
+
+#include "fit/afsa.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <boost/random/normal_distribution.hpp>
+#include <gtest/gtest.h>
+
+#include "fit/engine.h"
+#include "fit/linear_problem.h"
+#include "sim/input_error.h"
+#include "sim/random.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+// The paper's training test (section 3.2) in outline: the chamber soaks 2 h
+// at 20 °C, then ramps at 5 °C/min to 60, −40 and 60 °C with a 2 h soak at
+// each end. Piecewise linear in t.
+double chamber_c(double t_s) {
+  const double rate_c_per_s = 5.0 / 60.0;
+  std::vector<std::pair<double, double>> knots = {{0.0, 20.0}, {7200.0, 20.0}};
+  for (const double level_c : {60.0, -40.0, 60.0}) {
+    const auto [t0, c0] = knots.back();
+    const double t1 = t0 + std::abs(level_c - c0) / rate_c_per_s;
+    knots.push_back({t1, level_c});
+    knots.push_back({t1 + 7200.0, level_c});
+  }
+  for (std::size_t k = 1; k < knots.size(); ++k)
+    if (t_s <= knots[k].first) {
+      const auto [t0, c0] = knots[k - 1];
+      const auto [t1, c1] = knots[k];
+      return t1 > t0 ? c0 + (c1 - c0) * (t_s - t0) / (t1 - t0) : c1;
+    }
+  return knots.back().second;
+}
+
+// l = 300 points 100 s apart. The gyro sensor follows the chamber through a
+// first-order lag (τ = 20 min), a second sensor on the far side with τ = 30
+// min; dT/dt (°C/s) is the lag's own derivative (chamber − T)/τ, so T, T² and
+// dT/dt are correlated as on a real cycle.
+struct Cycle {
+  Eigen::MatrixXd design;
+  std::vector<std::string> names;
+};
+
+Cycle cycle_design(bool six_terms) {
+  const int l = 300;
+  const double spacing_s = 100.0, tau_s = 1200.0, tau2_s = 1800.0;
+  Eigen::VectorXd t_c(l), dt_c_per_s(l), t2_c(l);
+  double temp_c = 20.0, temp2_c = 20.0;
+  for (int p = 0; p < l; ++p) {
+    const double t_s = p * spacing_s;
+    if (p > 0)
+      for (double s = t_s - spacing_s; s < t_s; s += 1.0) {
+        temp_c += (1.0 - std::exp(-1.0 / tau_s)) * (chamber_c(s) - temp_c);
+        temp2_c += (1.0 - std::exp(-1.0 / tau2_s)) * (chamber_c(s) - temp2_c);
+      }
+    t_c[p] = temp_c;
+    dt_c_per_s[p] = (chamber_c(t_s) - temp_c) / tau_s;
+    t2_c[p] = temp2_c;
+  }
+  Cycle c;
+  const Eigen::VectorXd t_sq = t_c.array().square();
+  if (!six_terms) {
+    c.design.resize(l, 3);
+    c.design << t_c, t_sq, dt_c_per_s;
+    c.names = {"T", "T^2", "dT"};
+  } else {
+    c.design.resize(l, 6);
+    c.design << t_c, t_sq, t_c.array().cube().matrix(), dt_c_per_s,
+        (t_c.array() * dt_c_per_s.array()).matrix(), t2_c - t_c;
+    c.names = {"T", "T^2", "T^3", "dT", "T*dT", "grad"};
+  }
+  return c;
+}
+
+// The paper's model B = −7.07712 − 3.05e−4·T + 1.06e−6·T² + 1.81·dT/dt (°/h),
+// extended for the 6-term design, plus white noise of noise_dph on each
+// 100 s average.
+constexpr double kIntercept = -7.07712;
+const std::vector<double> kPaper = {-3.05e-4, 1.06e-6, 1.81};
+const std::vector<double> kSixTerm = {-3.05e-4, 1.06e-6, 2.0e-9, 1.81, -5.0e-3, 0.02};
+
+Eigen::VectorXd bias_dph(const Eigen::MatrixXd& design, const std::vector<double>& b,
+                         double noise_dph) {
+  sim::Rng rng = sim::make_rng(42, 1);
+  boost::random::normal_distribution<double> noise(0.0, noise_dph > 0.0 ? noise_dph : 1.0);
+  Eigen::VectorXd y(design.rows());
+  for (Eigen::Index p = 0; p < design.rows(); ++p) {
+    y[p] = kIntercept + (noise_dph > 0.0 ? noise(rng) : 0.0);
+    for (Eigen::Index j = 0; j < design.cols(); ++j)
+      y[p] += b[static_cast<std::size_t>(j)] * design(p, j);
+  }
+  return y;
+}
+
+// The exact least-squares optimum of y = b0 + X b: QR of the centred,
+// scaled design, then σ of the residuals (two-pass, l − 1).
+double least_squares_sigma(const Eigen::MatrixXd& design, const Eigen::VectorXd& y) {
+  const double dof = static_cast<double>(design.rows() - 1);
+  Eigen::MatrixXd x = design.rowwise() - design.colwise().mean();
+  for (Eigen::Index j = 0; j < x.cols(); ++j) x.col(j) /= std::sqrt(x.col(j).squaredNorm() / dof);
+  const Eigen::VectorXd yc = y.array() - y.mean();
+  const Eigen::VectorXd beta = x.colPivHouseholderQr().solve(yc);
+  const Eigen::VectorXd r = yc - x * beta;
+  return std::sqrt((r.array() - r.mean()).square().sum() / dof);
+}
+
+LinearProblem make_problem(const Cycle& c, const Eigen::VectorXd& y) {
+  return LinearProblem(c.design, y, c.names);
+}
+
+FitResult run(const LinearProblem& problem, EngineSettings settings,
+              FitObserver* observer = nullptr) {
+  return find_engine("afsa").make(settings)->fit(problem, observer);
+}
+
+// σ of the residuals at the engine's answer, recomputed from the data.
+double sigma_at(const LinearProblem& problem, const FitResult& r) {
+  return problem.sigma_two_pass(problem.physical(r.z));
+}
+
+TEST(Afsa, ComesCloseToTheLeastSquaresOptimumOnThePaperCycleAtDefaults) {
+  // At its default budget (20000 evaluations) AFSA lands within ~1e-5 of the
+  // optimum σ (worst of 20 seeds 1.4e-5); the test allows 1e-3.
+  const Cycle c = cycle_design(false);
+  const Eigen::VectorXd y = bias_dph(c.design, kPaper, 0.002);
+  const LinearProblem problem = make_problem(c, y);
+  const double optimum = least_squares_sigma(c.design, y);
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    EngineSettings settings;  // default budget, no target
+    settings.seed = seed;
+    const FitResult r = run(problem, settings);
+    EXPECT_LE(r.objective, optimum * (1.0 + 1e-3)) << "seed " << seed;
+    EXPECT_LE(sigma_at(problem, r), optimum * (1.0 + 1e-3)) << "seed " << seed;
+    EXPECT_GE(sigma_at(problem, r), optimum * (1.0 - 1e-12)) << "seed " << seed;
+    EXPECT_EQ(r.evaluations, 20000);
+    EXPECT_EQ(r.termination, Termination::budget_exhausted);
+  }
+}
+
+TEST(Afsa, RecoversTheCoefficientsOfNoiseFreeDataToAFewPercent) {
+  // The fixed Step limits how finely the swarm settles: the coefficients come
+  // back within 1 % (worst of 20 seeds 0.8 %); the test allows 5 %.
+  const Cycle c = cycle_design(false);
+  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.0));
+  const FitResult r = run(problem, EngineSettings{});
+  const Coefficients fitted = problem.physical(r.z);
+  for (std::size_t j = 0; j < kPaper.size(); ++j)
+    EXPECT_NEAR(fitted.b[j], kPaper[j], 5e-2 * std::abs(kPaper[j])) << c.names[j];
+  EXPECT_NEAR(fitted.intercept, kIntercept, 1e-4 * std::abs(kIntercept));
+}
+
+TEST(Afsa, ScalesToASixTermModelWithMoreFishAndEvaluations) {
+  // Six correlated terms (condition number ≈ 400): 40 fish and 100000
+  // evaluations bring σ within 3e-3 of the optimum (worst of 20 seeds); the
+  // test allows 1e-2.
+  const Cycle c = cycle_design(true);
+  const Eigen::VectorXd y = bias_dph(c.design, kSixTerm, 0.002);
+  const LinearProblem problem = make_problem(c, y);
+  ASSERT_GT(problem.condition_number(), 100.0);
+  const double optimum = least_squares_sigma(c.design, y);
+  EngineSettings settings;
+  settings.max_evaluations = 100000;
+  settings.options = {{"fish", "40"}};
+  const FitResult r = run(problem, settings);
+  EXPECT_LE(sigma_at(problem, r), optimum * (1.0 + 1e-2));
+  EXPECT_EQ(r.evaluations, 100000);
+}
+
+TEST(Afsa, SameSeedGivesTheSameRunAndHistory) {
+  const Cycle c = cycle_design(false);
+  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.002));
+  EngineSettings settings;
+  settings.seed = 7;
+  settings.max_evaluations = 3000;
+  const FitResult a = run(problem, settings);
+  const FitResult b = run(problem, settings);
+  EXPECT_EQ(a.z, b.z);
+  EXPECT_EQ(a.objective, b.objective);
+  EXPECT_EQ(a.evaluations, b.evaluations);
+  EXPECT_EQ(a.iterations, b.iterations);
+  ASSERT_EQ(a.history.size(), b.history.size());
+  for (std::size_t k = 0; k < a.history.size(); ++k) {
+    EXPECT_EQ(a.history[k].evaluations, b.history[k].evaluations);
+    EXPECT_EQ(a.history[k].best_objective, b.history[k].best_objective);
+  }
+}
+
+TEST(Afsa, DifferentSeedsGiveDifferentHistories) {
+  const Cycle c = cycle_design(false);
+  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.002));
+  EngineSettings settings;
+  settings.max_evaluations = 3000;
+  settings.seed = 1;
+  const FitResult a = run(problem, settings);
+  settings.seed = 2;
+  const FitResult b = run(problem, settings);
+  const auto same = [](const HistoryPoint& p, const HistoryPoint& q) {
+    return p.evaluations == q.evaluations && p.best_objective == q.best_objective;
+  };
+  EXPECT_FALSE(a.history.size() == b.history.size() &&
+               std::equal(a.history.begin(), a.history.end(), b.history.begin(), same));
+  EXPECT_NE(a.z, b.z);
+}
+
+TEST(Afsa, RejectsBadOptionsNamingOptionValueAndRule) {
+  // An unknown key is named with the keys the engine does know instead.
+  struct Case {
+    std::string key, value, rule;
+  };
+  const std::vector<Case> cases = {
+      {"fish", "1", "whole number from 2"},
+      {"fish", "ten", "expected a number"},
+      {"max_iterations", "0", "whole number from 1"},
+      {"visual", "0", "must be > 0"},
+      {"visual", "1.5", "<= 1"},
+      {"step", "-0.1", "must be > 0"},
+      {"crowding", "0", "must be > 0"},
+      {"crowding", "1.2", "<= 1"},
+      {"try_number", "0", "whole number from 1"},
+      {"visual_min", "0.1", "has no option 'visual_min'"},
+  };
+  for (const Case& k : cases) {
+    EngineSettings settings;
+    settings.options = {{k.key, k.value}};
+    try {
+      find_engine("afsa").make(settings);
+      ADD_FAILURE() << k.key << "=" << k.value << " was accepted";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("afsa"), std::string::npos) << message;
+      EXPECT_NE(message.find(k.key), std::string::npos) << message;
+      if (k.rule.find("has no option") == std::string::npos) {
+        EXPECT_NE(message.find(k.key + "=" + k.value), std::string::npos) << message;
+      }
+      EXPECT_NE(message.find(k.rule), std::string::npos) << message;
+    }
+  }
+  try {
+    AfsaEngine{AfsaEngine::Options{.step = 0.0}};
+    ADD_FAILURE() << "step = 0 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("step=0: must be > 0"), std::string::npos) << e.what();
+  }
+  EngineSettings negative_budget;
+  negative_budget.max_evaluations = -5;
+  try {
+    find_engine("afsa").make(negative_budget);
+    ADD_FAILURE() << "max_evaluations = -5 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_evaluations=-5: must be at least 1"),
+              std::string::npos)
+        << e.what();
+  }
+  EngineSettings negative_target;
+  negative_target.target_objective = -1.0;
+  EXPECT_THROW(find_engine("afsa").make(negative_target), InputError);
+}
+
+TEST(Afsa, DefaultOptionsAreValidAndListedInTheRegistry) {
+  EXPECT_NO_THROW(AfsaEngine::Options{}.validate());
+  const EngineInfo& info = find_engine("afsa");
+  EXPECT_TRUE(info.stochastic);
+  EXPECT_EQ(info.default_evaluations, AfsaEngine::Options{}.max_evaluations);
+  EXPECT_EQ(info.default_evaluations, 20000);
+  // Every listed option, given back its listed default, is accepted and
+  // leaves the engine at its defaults.
+  EngineSettings settings;
+  for (const auto& [name, text] : info.options)
+    settings.options[name] = text.substr(0, text.find(':'));
+  EXPECT_EQ(settings.options.size(), 6u);
+  const std::unique_ptr<Engine> engine = info.make(settings);
+  const auto* afsa = dynamic_cast<const AfsaEngine*>(engine.get());
+  ASSERT_NE(afsa, nullptr);
+  const AfsaEngine::Options d;
+  const AfsaEngine::Options& o = afsa->options();
+  EXPECT_EQ(o.fish, d.fish);
+  EXPECT_EQ(o.max_iterations, d.max_iterations);
+  EXPECT_EQ(o.visual, d.visual);
+  EXPECT_EQ(o.step, d.step);
+  EXPECT_EQ(o.crowding, d.crowding);
+  EXPECT_EQ(o.try_number, d.try_number);
+  EXPECT_EQ(o.max_evaluations, d.max_evaluations);
+}
+
+TEST(Afsa, StopsAtTheTarget) {
+  const Cycle c = cycle_design(false);
+  const Eigen::VectorXd y = bias_dph(c.design, kPaper, 0.002);
+  const LinearProblem problem = make_problem(c, y);
+  EngineSettings settings;
+  settings.target_objective = least_squares_sigma(c.design, y) * (1.0 + 1e-2);
+  const FitResult r = run(problem, settings);
+  EXPECT_EQ(r.termination, Termination::target_reached);
+  EXPECT_LE(r.objective, settings.target_objective);
+  ASSERT_FALSE(r.history.empty());
+  EXPECT_EQ(r.history.back().evaluations, r.evaluations);
+  EXPECT_LT(r.evaluations, 20000);
+}
+
+TEST(Afsa, NeverExceedsTheEvaluationBudget) {
+  const Cycle c = cycle_design(false);
+  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.002));
+  for (const long budget : {1L, 7L, 20L, 21L, 250L, 1234L}) {
+    EngineSettings settings;
+    settings.max_evaluations = budget;
+    const FitResult r = run(problem, settings);
+    EXPECT_EQ(r.evaluations, budget);
+    EXPECT_EQ(r.termination, Termination::budget_exhausted) << budget;
+    for (const HistoryPoint& h : r.history) EXPECT_LE(h.evaluations, budget);
+  }
+}
+
+class Recorder : public FitObserver {
+ public:
+  explicit Recorder(long stop_after) : stop_after_(stop_after) {}
+  bool on_iteration(long iteration, long evaluations, double best_objective) override {
+    iterations.push_back(iteration);
+    evaluations_seen.push_back(evaluations);
+    best.push_back(best_objective);
+    return iteration < stop_after_;
+  }
+  std::vector<long> iterations, evaluations_seen;
+  std::vector<double> best;
+
+ private:
+  long stop_after_;
+};
+
+TEST(Afsa, ObserverSeesEveryIterationAndCanStop) {
+  const Cycle c = cycle_design(false);
+  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.002));
+
+  Recorder stopper(5);
+  const FitResult stopped = run(problem, EngineSettings{}, &stopper);
+  EXPECT_EQ(stopped.termination, Termination::stopped);
+  EXPECT_EQ(stopped.iterations, 5);
+  EXPECT_EQ(stopper.iterations, (std::vector<long>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(stopper.evaluations_seen.back(), stopped.evaluations);
+
+  EngineSettings settings;
+  settings.options = {{"max_iterations", "30"}};
+  Recorder watcher(1000);
+  const FitResult r = run(problem, settings, &watcher);
+  EXPECT_EQ(r.termination, Termination::max_iterations);
+  EXPECT_EQ(r.iterations, 30);
+  ASSERT_EQ(watcher.iterations.size(), 30u);
+  for (std::size_t k = 1; k < watcher.iterations.size(); ++k) {
+    EXPECT_EQ(watcher.iterations[k], watcher.iterations[k - 1] + 1);
+    EXPECT_GT(watcher.evaluations_seen[k], watcher.evaluations_seen[k - 1]);
+    EXPECT_LE(watcher.best[k], watcher.best[k - 1]);
+  }
+  EXPECT_EQ(watcher.best.back(), r.objective);
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
