@@ -184,6 +184,12 @@ TEST_P(PagmoEngineTest, StopsAtTheTarget) {
   ASSERT_FALSE(r.history.empty());
   EXPECT_EQ(r.history.back().evaluations, r.evaluations);
   EXPECT_LT(r.evaluations, kPagmoDefaultEvaluations);
+
+  // A target any point meets stops inside the initial population.
+  const FitResult first = run(GetParam(), settings(11, 0, 10.0 * synthetic().problem.sigma_y()));
+  EXPECT_EQ(first.termination, Termination::target_reached) << first.brief_report();
+  EXPECT_EQ(first.evaluations, 1);
+  EXPECT_EQ(first.iterations, 0);
 }
 
 class CountingObserver final : public FitObserver {

@@ -1,0 +1,110 @@
+// Fitting benchmarks.
+//  BM_ObjectiveGram / BM_ObjectiveNaive: one σ evaluation at l points, the
+//    O(m²) Gram form engines use against forming every residual (O(l·m)).
+//  BM_EngineToTarget/<engine>: the paper's model on the simulated cycle
+//    (scenarios/cycle.toml, 100 s windows); each engine runs 10 seeds with the
+//    target σ = optimum·(1 + 1e-6) and a budget of 200 000 evaluations.
+//    Counters: median evaluations to the target, how many of the 10 reached
+//    it; the time is for the 10 fits.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <string>
+
+#include "fit/formula.h"
+#include "fit/ols.h"
+#include "fit/pipeline.h"
+#include "sim/config_loader.h"
+#include "sim/simulator.h"
+
+namespace {
+
+using namespace gyrotherm;
+
+fit::LinearProblem synthetic(std::size_t l) {
+  Eigen::MatrixXd x(static_cast<Eigen::Index>(l), 3);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(l));
+  for (Eigen::Index p = 0; p < x.rows(); ++p) {
+    const double t = 20.0 + 40.0 * std::sin(0.001 * static_cast<double>(p)) + 0.1 * std::sin(0.37 * static_cast<double>(p));
+    x(p, 0) = t;
+    x(p, 1) = t * t;
+    x(p, 2) = 0.04 * std::cos(0.001 * static_cast<double>(p));
+    y[p] = -7.0 - 3e-4 * t + 1e-6 * t * t + 1.8 * x(p, 2) + 1e-3 * std::sin(1.7 * static_cast<double>(p));
+  }
+  return fit::LinearProblem(x, y, {"T", "T^2", "dT"});
+}
+
+void BM_ObjectiveGram(benchmark::State& state) {
+  const fit::LinearProblem problem = synthetic(static_cast<std::size_t>(state.range(0)));
+  const std::vector<double> z = {0.1, -0.2, 0.3};
+  for (auto _ : state) benchmark::DoNotOptimize(problem.objective(z));
+  state.counters["points"] = static_cast<double>(state.range(0));
+}
+
+void BM_ObjectiveNaive(benchmark::State& state) {
+  const fit::LinearProblem problem = synthetic(static_cast<std::size_t>(state.range(0)));
+  const std::vector<double> z = {0.1, -0.2, 0.3};
+  for (auto _ : state) benchmark::DoNotOptimize(problem.objective_naive(z));
+  state.counters["points"] = static_cast<double>(state.range(0));
+}
+
+BENCHMARK(BM_ObjectiveGram)->Arg(1000)->Arg(10000)->Arg(100000);
+BENCHMARK(BM_ObjectiveNaive)->Arg(1000)->Arg(10000)->Arg(100000);
+
+const fit::LinearProblem& cycle_problem() {
+  static const fit::LinearProblem problem = [] {
+    const sim::Scenario sc = sim::load_scenario(std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/cycle.toml");
+    const sim::SimulationResult r =
+        sim::Simulator(sc, sim::load_rig(sc.rig_file), sim::load_gyro(sc.gyro_file)).run();
+    fit::Measurement m;
+    m.file = "cycle";
+    m.time_s = r.time_s;
+    m.temp_c = r.temp_c;
+    m.gyro_dph = r.gyro_dph;
+    const fit::PreparedData d = fit::prepare_data(m, {});
+    const auto terms = fit::parse_formula("T + T^2 + dT");
+    const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(d.series.gyro_dph.data(),
+                                                                static_cast<Eigen::Index>(d.series.size()));
+    return fit::LinearProblem(fit::design_matrix(d.derived, terms, fit::default_parameters(terms)), y,
+                              {"T", "T^2", "dT"});
+  }();
+  return problem;
+}
+
+void BM_EngineToTarget(benchmark::State& state, const std::string& name) {
+  const fit::LinearProblem& problem = cycle_problem();
+  const double optimum = problem.objective(fit::least_squares_optimum(problem));
+  const fit::EngineInfo& info = fit::find_engine(name);
+  std::vector<double> evaluations;
+  int reached = 0;
+  for (auto _ : state) {
+    evaluations.clear();
+    reached = 0;
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+      fit::EngineSettings s;
+      s.seed = seed;
+      s.max_evaluations = info.stochastic ? 200000 : 0;
+      s.target_objective = optimum * (1.0 + 1e-6);
+      const fit::FitResult r = info.make(s)->fit(problem);
+      const bool ok = r.objective <= optimum * (1.0 + 1e-6);
+      reached += ok;
+      evaluations.push_back(static_cast<double>(ok ? r.evaluations : s.max_evaluations));
+    }
+  }
+  std::sort(evaluations.begin(), evaluations.end());
+  state.counters["evals_median"] = 0.5 * (evaluations[4] + evaluations[5]);
+  state.counters["reached_of_10"] = reached;
+}
+
+BENCHMARK_CAPTURE(BM_EngineToTarget, ols, std::string("ols"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineToTarget, afsa, std::string("afsa"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineToTarget, iafsa, std::string("iafsa"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineToTarget, pso, std::string("pso"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineToTarget, de, std::string("de"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineToTarget, cmaes, std::string("cmaes"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_EngineToTarget, abc, std::string("abc"))->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
