@@ -35,7 +35,7 @@ void read_options(OptionReader& reader, IafsaEngine::Options& o) {
   reader.real("step_min", o.step_min, 0.0, 1.0);
   reader.real("crowding", o.crowding, 0.0, 1.0, true);
   reader.integer("try_number", o.try_number, 1, 1000);
-  reader.integer("schedule", o.schedule, 0, 1);
+  reader.choice("schedule", o.schedule, {"compound", "initial"});
 }
 
 struct Fish {
@@ -150,7 +150,7 @@ FitResult Run::go(FitObserver* observer) {
   for (long g = 1; g <= o_.max_iterations; ++g) {
     // (4) Eq. (5).
     const double alpha = std::exp(-3.0 * static_cast<double>(g) / g_max);
-    if (o_.schedule == 1) {
+    if (o_.schedule == "compound") {
       visual_ = visual_ * alpha + o_.visual_min * kBoxWidth;
       step_ = step_ * alpha + o_.step_min * kBoxWidth;
     } else {
@@ -216,7 +216,7 @@ void IafsaEngine::Options::validate() const {
       {"step_min", fmt::format("{}", step_min)},
       {"crowding", fmt::format("{}", crowding)},
       {"try_number", fmt::format("{}", try_number)},
-      {"schedule", fmt::format("{}", schedule)},
+      {"schedule", schedule},
   };
   OptionReader reader(kName, given);
   Options copy = *this;
@@ -257,7 +257,8 @@ EngineInfo iafsa_engine_info() {
       {"step_min", fmt::format("{}: Step_min of eq. (5), fraction of the box width", d.step_min)},
       {"crowding", fmt::format("{}: δ, crowded when n/N ≥ δ (1: never)", d.crowding)},
       {"try_number", fmt::format("{}: prey attempts before a random step", d.try_number)},
-      {"schedule", fmt::format("{}: eq. (5) as an update (1) or from Visual_0, Step_0 (0)",
+      {"schedule", fmt::format("{}: eq. (5) as an update (compound) or from Visual_0, Step_0 "
+                               "(initial)",
                                d.schedule)},
   };
   info.make = [](const EngineSettings& settings) -> std::unique_ptr<Engine> {
