@@ -18,5 +18,6 @@ void add_simulate_command(CLI::App& app, Run* run);
 void add_fit_command(CLI::App& app, Run* run);
 void add_compensate_command(CLI::App& app, Run* run);
 void add_registry_commands(CLI::App& app, Run* run);
+void add_diagnose_command(CLI::App& app, Run* run);
 
 }  // namespace gyrotherm::app

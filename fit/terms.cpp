@@ -91,7 +91,7 @@ const std::vector<Term>& term_registry() {
       {"hyst", "heating/cooling hysteresis", "1", false,
        TermParameter{"dead_band_c_per_s", 1e-6, 2e-3, true}, &reg_hyst},
       {"warmup", "turn-on transient", "1", false,
-       TermParameter{"time_constant_s", 60.0, 36000.0, true}, &reg_warmup},
+       TermParameter{"time_constant_s", 60.0, 7200.0, true}, &reg_warmup},
       {"t", "slow drift, ageing", "h", false, std::nullopt, &reg_time},
   };
   return terms;

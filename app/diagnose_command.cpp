@@ -1,0 +1,183 @@
+// gyrotherm diagnose DATA.csv [--model F] [--add TERM ...] [--engine E]
+//                            [--plots DIR] [--json]
+// The five steps of fit/diagnosis.h: compare with the noise floor, where the
+// model fails, which effect is missing, add it, watch the error fall.
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/diagnose_plots.h"
+#include "app/pipeline_options.h"
+#include "fit/diagnosis.h"
+#include "fit/formula.h"
+#include "sim/input_error.h"
+
+namespace gyrotherm::app {
+namespace {
+
+struct DiagnoseOptions {
+  std::string data;
+  std::string model = std::string(fit::kDefaultModel);
+  std::vector<std::string> add;
+  std::string engine = "ols";
+  std::uint64_t seed = 1;
+  std::string plots;
+  bool json = false;
+  DataOptions data_options;
+};
+
+std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
+
+nlohmann::ordered_json segment_json(const fit::SegmentReport& s) {
+  return {{"kind", s.kind},       {"start_s", s.start_s},         {"end_s", s.end_s},
+          {"temp_min_c", s.temp_min_c}, {"temp_max_c", s.temp_max_c}, {"windows", s.windows},
+          {"rms_dph", s.rms_dph}, {"ratio_to_floor", s.ratio_to_floor}};
+}
+
+std::string quoted(const std::string& s) { return "\"" + s + "\""; }
+
+int run_diagnose(const DiagnoseOptions& o) {
+  std::vector<const fit::Term*> base_terms = fit::parse_formula(o.model);
+  std::string formula = o.model;
+  for (const std::string& a : o.add) formula += " + " + a;
+  const std::vector<const fit::Term*> terms = fit::parse_formula(formula);
+  const fit::EngineInfo& engine = fit::find_engine(o.engine);
+  fit::EngineSettings settings;
+  settings.seed = o.seed;
+  engine.make(settings);
+  const fit::PipelineOptions pipeline = o.data_options.resolved();
+  const fit::Measurement measurement = fit::read_measurement_csv(o.data, pipeline.columns);
+  const fit::PreparedData data = fit::prepare_data(measurement, pipeline);
+  fit::check_columns(terms, data, pipeline.columns);
+  std::size_t available = 0;
+  for (const fit::Term& t : fit::term_registry()) available += !t.needs_temp2 || data.has_temp2();
+  if (terms.size() >= available)
+    throw InputError(fmt::format(
+        "model '{}' already contains every term that can be tried on this data{}: there is "
+        "nothing left to try (see 'gyrotherm effects'; drop terms with --model to test them)",
+        fit::formula_text(terms), data.has_temp2() ? "" : " (grad needs a temp2_c column)"));
+
+  const fit::Diagnosis d = fit::diagnose(data, terms, engine, settings);
+  // Step 5: with --add, the model without the added terms is the "before".
+  std::optional<fit::Diagnosis> before;
+  if (!o.add.empty()) before = fit::diagnose(data, base_terms, engine, settings);
+  const std::string next =
+      d.suggested_model.empty()
+          ? ""
+          : fmt::format("gyrotherm diagnose {} --model {}", o.data, quoted(d.suggested_model));
+
+  if (!o.plots.empty())
+    write_diagnosis_plots(o.plots, measurement, data, d, before ? &*before : nullptr, pipeline);
+
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["model"] = fit::formula_text(terms);
+    j["engine"] = engine.name;
+    j["instability_dph"] = d.fit.instability_after_dph;
+    j["instability_before_dph"] = d.fit.instability_before_dph;
+    j["noise_floor_dph"] = d.noise_floor_dph;
+    j["ratio_to_floor"] = d.excess_ratio();
+    nlohmann::ordered_json segments = nlohmann::ordered_json::array();
+    for (std::size_t i : d.worst_segments()) segments.push_back(segment_json(d.segments[i]));
+    j["segments"] = segments;
+    nlohmann::ordered_json bands = nlohmann::ordered_json::array();
+    for (const auto& b : d.bands) bands.push_back(segment_json(b));
+    j["bands"] = bands;
+    nlohmann::ordered_json effects = nlohmann::ordered_json::array();
+    for (const fit::CandidateReport& c : d.candidates) {
+      nlohmann::ordered_json e = {{"term", c.term->name},
+                                  {"meaning", c.term->meaning},
+                                  {"instability_after_dph", c.instability_after_dph},
+                                  {"reduction_pct", c.reduction_pct},
+                                  {"significant", c.significant},
+                                  {"p_value", c.p_value},
+                                  {"cv_gain_pct", c.cv_gain_pct}};
+      if (c.term->parameter) e[c.term->parameter->name] = c.parameter;
+      effects.push_back(e);
+    }
+    j["missing_effects"] = effects;
+    j["skipped"] = d.skipped;
+    j["significance"] =
+        "block cross-validation: blocks of 10 windows, one-sided sign-flip test of the per-block "
+        "SSE gains, Bonferroni over the candidates, and at least 10 % of the excess removed";
+    j["verdict"] = d.verdict;
+    j["next_command"] = next;
+    if (before) {
+      j["before_after"] = {{"model_before", fit::formula_text(base_terms)},
+                           {"instability_before_dph", before->fit.instability_after_dph},
+                           {"instability_after_dph", d.fit.instability_after_dph}};
+    }
+    fmt::print("{}\n", j.dump());
+    return 0;
+  }
+
+  fmt::print("diagnose {}: model B = b0 + {} ({}), {} windows of {:g} s, {} glitches removed\n",
+             o.data, fit::formula_text(terms), engine.name, data.series.size(),
+             pipeline.averaging.window_s, data.outliers.removed);
+  fmt::print("1. compare: instability {:.5f} -> {:.5f} °/h; noise floor {:.5f} °/h (robust Hadamard "
+             "deviation of the {:g} s means):\n   the model is {:.2f} times the floor\n",
+             d.fit.instability_before_dph, d.fit.instability_after_dph, d.noise_floor_dph,
+             pipeline.averaging.window_s, d.excess_ratio());
+  fmt::print("2. where it fails (residual RMS over the floor, worst first):\n");
+  const auto worst = d.worst_segments();
+  for (std::size_t k = 0; k < worst.size() && k < 6; ++k) {
+    const fit::SegmentReport& s = d.segments[worst[k]];
+    fmt::print("   {:<8} {:>8} – {:<8} {:6.1f} .. {:5.1f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
+               hours(s.end_s), s.temp_min_c, s.temp_max_c, s.ratio_to_floor);
+  }
+  std::string bands;
+  for (const auto& b : d.bands)
+    bands += fmt::format("{}{:.0f}..{:.0f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c,
+                         b.temp_max_c, b.ratio_to_floor);
+  fmt::print("   by temperature: {}\n", bands);
+  fmt::print("3. missing effects (share of the excess removed; block cross-validation p):\n");
+  for (std::size_t k = 0; k < d.candidates.size(); ++k) {
+    const fit::CandidateReport& c = d.candidates[k];
+    fmt::print("   {} {:<7} {:5.0f} %  p = {:<8.2g} {:<12} {}\n", c.significant ? "*" : " ",
+               c.term->name, c.reduction_pct, c.p_value, c.significant ? "significant" : "",
+               c.term->meaning);
+  }
+  if (!d.skipped.empty()) {
+    std::string skipped;
+    for (const auto& s : d.skipped) skipped += (skipped.empty() ? "" : "; ") + s;
+    fmt::print("   not tried: {}\n", skipped);
+  }
+  if (before) {
+    fmt::print("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",
+               fmt::join(o.add, ", "), before->fit.instability_after_dph,
+               d.fit.instability_after_dph, d.noise_floor_dph);
+    const auto rows = fit::segment_rms(*before, before->residual_dph);
+    for (std::size_t i = 0; i < rows.size() && i < d.segments.size(); ++i)
+      fmt::print("   {:<8} {:>8} – {:<8} {:5.2f}x -> {:5.2f}x\n", rows[i].kind, hours(rows[i].start_s),
+                 hours(rows[i].end_s), rows[i].ratio_to_floor, d.segments[i].ratio_to_floor);
+  }
+  fmt::print("verdict: {}\n", d.verdict);
+  if (!next.empty()) fmt::print("next: {}\n", next);
+  if (!o.plots.empty()) fmt::print("plots in {}/\n", o.plots);
+  return 0;
+}
+
+}  // namespace
+
+void add_diagnose_command(CLI::App& app, Run* run) {
+  auto o = std::make_shared<DiagnoseOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "diagnose", "Where a bias model fails on measurements, and which physical effect is missing");
+  cmd->add_option("data", o->data, "Measurement CSV")->required();
+  cmd->add_option("--model", o->model, "Model formula (default 'T + T^2 + dT')");
+  cmd->add_option("--add", o->add, "Add a term and compare before/after (repeatable)");
+  cmd->add_option("--engine", o->engine, "Fitting engine (default ols)");
+  cmd->add_option("--seed", o->seed, "Seed of a stochastic engine");
+  cmd->add_option("--plots", o->plots, "Write PNG figures into this folder");
+  cmd->add_flag("--json", o->json, "Print one JSON object");
+  add_data_options(cmd, o->data_options);
+  cmd->callback([o, run] { *run = [o] { return run_diagnose(*o); }; });
+}
+
+}  // namespace gyrotherm::app

@@ -1,0 +1,98 @@
+#pragma once
+// Diagnosis: where a bias model fails on measured data, and which physical
+// effect it is missing (`gyrotherm diagnose`).
+//
+//  1. Compare. Fit the model; the instability after is set against the noise
+//     floor, what a perfect model would leave, estimated from the data alone:
+//     a robust Hadamard deviation of the window means y_p,
+//        floor² = median_p (y_{p+1} − 2y_p + y_{p−1})² / (6 · 0.4549),
+//     (0.4549 = median of χ²₁). Second differences cancel the locally linear
+//     thermal trends of soaks; the median ignores the ramps' transients. For
+//     white noise it equals the standard deviation of the window means.
+//  2. Where it fails. The record is split by its own temperature: the first
+//     30 min (turn-on), heating (dT/dt > r), cooling (< −r), soak (|dT/dt| ≤ r),
+//     r = max(2e-4 °C/s, 5 % of the largest |dT/dt|), runs shorter than 3
+//     windows merged into their neighbour; and four equal temperature bands.
+//     Each is ranked by the RMS of the residual over the floor.
+//  3. Which effect is missing. Every registry term not in the model whose
+//     columns exist is added in turn (nonlinear parameters by variable
+//     projection) and ranked by the share of the excess variance
+//     (after² − floor²) it removes. Significance by block cross-validation,
+//     which autocorrelated residuals cannot fool: the windows are cut into
+//     contiguous blocks of 10; each block is predicted by both models fitted
+//     without it; the per-block gains d_k = SSE_base − SSE_with are tested by
+//     a one-sided sign-flip randomisation test (20 000 seeded draws), with a
+//     Bonferroni correction over the candidates. A candidate is significant
+//     when p < α/n, its cross-validated gain is positive, and it removes at
+//     least 10 % of the excess. Ranking is greedy (forward selection): a
+//     significant best term joins the model and the others are scored again,
+//     so a second hidden effect is judged on what the first leaves; the
+//     reductions are shares of the original excess.
+//
+// References: IEEE Std 952-1997 Annex C (Allan and Hadamard variances);
+// Arlot & Celisse, "A survey of cross-validation procedures for model
+// selection", Statistics Surveys 4 (2010) §8 (dependent data: block CV);
+// Good, Permutation, Parametric and Bootstrap Tests of Hypotheses (2005).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fit/pipeline.h"
+
+namespace gyrotherm::fit {
+
+struct DiagnosisOptions {
+  std::size_t block_windows = 10;  // windows per cross-validation block
+  double alpha = 0.05;             // family-wise significance over the candidates
+  double min_reduction_pct = 10.0; // a significant effect removes at least this share of the excess
+  int permutations = 20000;        // sign-flip draws
+  std::uint64_t seed = 1;          // of the sign flips
+};
+
+struct SegmentReport {
+  std::string kind;  // turn-on, heating, cooling, soak, band
+  double start_s = 0, end_s = 0;
+  double temp_min_c = 0, temp_max_c = 0;
+  std::size_t windows = 0;
+  double rms_dph = 0;
+  double ratio_to_floor = 0;
+};
+
+struct CandidateReport {
+  const Term* term = nullptr;
+  double parameter = 0;                // NaN when the term has none
+  double instability_after_dph = 0;    // in-sample, with the term added
+  double reduction_pct = 0;            // of the excess variance over the floor
+  double cv_gain_pct = 0;              // of the cross-validated SSE
+  double p_value = 1;                  // sign-flip test, before the correction
+  bool significant = false;
+};
+
+struct Diagnosis {
+  ModelFit fit;                           // the model as given
+  double noise_floor_dph = 0;
+  double excess_ratio() const { return fit.instability_after_dph / noise_floor_dph; }
+  std::vector<SegmentReport> segments;    // in time order
+  std::vector<SegmentReport> bands;       // by temperature
+  std::vector<std::size_t> window_segment;  // per window: index into segments
+  std::vector<double> residual_dph;       // per window
+  std::vector<double> model_dph;          // per window
+  std::vector<CandidateReport> candidates;  // best first
+  std::vector<std::string> skipped;       // terms that could not be tried, and why
+  std::string verdict;
+  std::string suggested_model;            // the model with the best significant term, or ""
+  // Segments and bands, worst first (indices into segments / bands).
+  std::vector<std::size_t> worst_segments() const;
+};
+
+double robust_noise_floor(const AveragedSeries& series);
+
+Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& terms,
+                   const EngineInfo& engine, const EngineSettings& settings,
+                   const DiagnosisOptions& options = {});
+
+// Per-segment RMS of a residual, for before/after tables.
+std::vector<SegmentReport> segment_rms(const Diagnosis& d, const std::vector<double>& residual);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,85 @@
+// `gyrotherm diagnose` end to end: the JSON contract, the walk-through of the
+// README (simulate with a hidden gradient, diagnose, add it), the plots, and
+// bad input.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+
+namespace gyrotherm {
+namespace {
+
+using testing::run_cli;
+using testing::ScratchDir;
+using testing::source_path;
+using testing::write_text;
+
+TEST(CliDiagnose, FindsAHiddenGradientAndWatchesTheErrorFall) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") +
+                             " --hidden grad=0.0254 -o grad.csv")
+                .exit_code,
+            0);
+  const auto r = run_cli(dir, "diagnose grad.csv --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"model", "instability_dph", "noise_floor_dph", "segments",
+                          "missing_effects", "verdict"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["missing_effects"][0]["term"], "grad");
+  EXPECT_TRUE(j["missing_effects"][0]["significant"].get<bool>());
+  EXPECT_FALSE(j["missing_effects"][0]["meaning"].get<std::string>().empty());
+  for (const char* key : {"kind", "start_s", "end_s", "rms_dph", "ratio_to_floor"})
+    EXPECT_TRUE(j["segments"][0].contains(key)) << key;
+  // Worst first.
+  EXPECT_GE(j["segments"][0]["ratio_to_floor"].get<double>(),
+            j["segments"][1]["ratio_to_floor"].get<double>());
+  EXPECT_NE(j["next_command"].get<std::string>().find("--model \"T + T^2 + dT + grad\""),
+            std::string::npos);
+
+  const auto human = run_cli(dir, "diagnose grad.csv --add grad --plots figs");
+  ASSERT_EQ(human.exit_code, 0) << human.err;
+  EXPECT_NE(human.out.find("5. before/after adding grad"), std::string::npos) << human.out;
+  EXPECT_NE(human.out.find("verdict:"), std::string::npos);
+  for (const char* png : {"bias_time.png", "residual_segments.png", "residual_vs.png",
+                          "before_after.png", "allan.png"})
+    EXPECT_GT(std::filesystem::file_size(dir / "figs" / png), 10000u) << png;
+}
+
+TEST(CliDiagnose, CleanDataSaysSo) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o clean.csv").exit_code, 0);
+  const auto r = run_cli(dir, "diagnose clean.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("no missing effect is significant"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("next:"), std::string::npos);
+}
+
+TEST(CliDiagnose, AModelWithEveryTermHasNothingLeftToTry) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  const auto r = run_cli(dir,
+                         "diagnose c.csv --model 'T + T^2 + T^3 + dT + T*dT + d2T + grad + hyst + "
+                         "warmup + t'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("nothing left to try"), std::string::npos) << r.err;
+}
+
+TEST(CliDiagnose, BadInputIsTheFittingCatalogue) {
+  ScratchDir dir;
+  write_text(dir / "d.csv", "time_s,temp_c,gyro_dph\n0,20,-7\n1,x,-7\n");
+  auto r = run_cli(dir, "diagnose d.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("d.csv:3"), std::string::npos) << r.err;
+  r = run_cli(dir, "diagnose missing.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("missing.csv"), std::string::npos);
+  r = run_cli(dir, "diagnose d.csv --model 'T + bogus'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown term 'bogus'"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gyrotherm
