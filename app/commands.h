@@ -19,5 +19,6 @@ void add_fit_command(CLI::App& app, Run* run);
 void add_compensate_command(CLI::App& app, Run* run);
 void add_registry_commands(CLI::App& app, Run* run);
 void add_diagnose_command(CLI::App& app, Run* run);
+void add_reproduce_command(CLI::App& app, Run* run);
 
 }  // namespace gyrotherm::app

@@ -1,0 +1,69 @@
+#pragma once
+// The paper's experiments on the simulated gyro (`gyrotherm reproduce`):
+//
+//  1. simulate the −40..60 °C cycle, Test 1's random profile and Test 2's
+//     natural warm-up (scenarios/cycle.toml, random.toml, warmup.toml), each
+//     with the seed its scenario names (or an override);
+//  2. on the cycle: the raw instability, and a fit of the paper's model
+//     T + T^2 + dT with every engine (instability after, ratio,
+//     coefficients, error against the truth, evaluations, time);
+//  3. each engine's cycle fit applied to Test 1 and Test 2 with the causal,
+//     real-time compensator (backward differences, only completed windows),
+//     as the paper did: instability before and after, and the ratio.
+//
+// Everything is computed in memory; the CLI writes the tables and figures.
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fit/compensation.h"
+#include "fit/pipeline.h"
+#include "sim/simulator.h"
+
+namespace gyrotherm::fit {
+
+struct ReproduceOptions {
+  std::filesystem::path cycle, test1, test2;  // scenario files
+  std::vector<std::string> engines;           // empty: every registered engine
+  std::uint64_t engine_seed = 1;
+  // Called with a short description of each step and its fraction done.
+  std::function<void(const std::string& step, double fraction)> progress;
+};
+
+struct EngineOnCycle {
+  std::string engine;
+  ModelFit fit;
+  std::map<std::string, double> coefficient_error;  // relative, against the truth
+};
+
+struct TestOutcome {
+  std::string name;               // "test1" or "test2"
+  std::uint64_t seed = 0;
+  double before_dph = 0.0;
+  std::map<std::string, Compensation> by_engine;  // causal compensation with each engine's cycle fit
+};
+
+struct ReproduceResult {
+  std::uint64_t cycle_seed = 0;
+  sim::SimulationResult cycle_run, test1_run, test2_run;
+  PreparedData cycle_data;
+  Truth truth;
+  double cycle_raw_dph = 0.0;
+  std::vector<EngineOnCycle> engines;
+  TestOutcome test1, test2;
+  double seconds = 0.0;
+};
+
+ReproduceResult reproduce(const ReproduceOptions& options);
+
+// The paper's Table 1 figures (°/h).
+struct PaperFigures {
+  double cycle_raw = 0.00953, cycle_stepwise = 0.00219, cycle_iafsa = 0.00185;
+  double test1_before = 0.0159, test1_after = 0.00201, test1_times = 7.91;
+  double test2_before = 0.0025, test2_after = 0.0016, test2_times = 1.56;
+};
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,104 @@
+// A reduced `gyrotherm reproduce` (shorter profiles, three engines): the
+// report's structure, and that compensation improves every test. The full
+// figures live in results/ and come from the README's main command.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+
+namespace gyrotherm {
+namespace {
+
+using testing::run_cli;
+using testing::ScratchDir;
+using testing::slurp;
+using testing::source_path;
+using testing::write_text;
+
+std::string files(const std::string& rig) {
+  return "rig = \"" + source_path("scenarios/" + rig) + "\"\ngyro = \"" +
+         source_path("scenarios/gyro.toml") + "\"\n";
+}
+
+void write_short_scenarios(const ScratchDir& dir) {
+  std::filesystem::create_directories(dir / "sc");
+  write_text(dir / "sc/cycle.toml",
+             "name = \"cycle\"\nseed = 11\nstart_c = 20.0\n" + files("rig_shield.toml") +
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_min = 40\n"
+                 "[[segment]]\nkind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = 5.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = 60.0\nduration_min = 60\n"
+                 "[[segment]]\nkind = \"ramp\"\ntarget_c = -40.0\nrate_c_per_min = 5.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = -40.0\nduration_min = 60\n"
+                 "[[segment]]\nkind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = 5.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = 60.0\nduration_min = 60\n");
+  write_text(dir / "sc/random.toml",
+             "name = \"random\"\nseed = 12\nstart_c = 15.0\ninitial = \"steady\"\n" + files("rig_ins.toml") +
+                 "[[segment]]\nkind = \"ramp\"\ntarget_c = -20.0\nrate_c_per_min = 1.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = -20.0\nduration_h = 2\n"
+                 "[[segment]]\nkind = \"ramp\"\ntarget_c = 30.0\nrate_c_per_min = 1.0\n"
+                 "[[segment]]\nkind = \"hold\"\ntemp_c = 30.0\nduration_h = 2\n"
+                 "[[segment]]\nkind = \"free\"\nduration_h = 1\n");
+  write_text(dir / "sc/warmup.toml",
+             "name = \"warmup\"\nseed = 13\nchamber = false\nroom_c = 23.0\n" + files("rig_room.toml") +
+                 "[[segment]]\nkind = \"free\"\nduration_h = 6\n");
+}
+
+TEST(CliReproduce, ReducedRunWritesTheReportAndCompensationHelps) {
+  ScratchDir dir;
+  write_short_scenarios(dir);
+  const auto r = run_cli(dir, "reproduce --scenarios sc --engines ols,stepwise,iafsa --out out");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("[100%]"), std::string::npos) << "progress is shown";
+  EXPECT_NE(r.out.find("Table 1, side by side"), std::string::npos) << r.out;
+
+  const auto j = nlohmann::json::parse(slurp(dir / "out/table1.json"));
+  ASSERT_TRUE(j["cycle"].contains("raw_dph"));
+  for (const char* e : {"ols", "stepwise", "iafsa"}) {
+    const auto& c = j["cycle"]["engines"][e];
+    for (const char* key : {"after_dph", "ratio", "coefficients", "coefficient_error", "evaluations", "seconds"})
+      EXPECT_TRUE(c.contains(key)) << e << " " << key;
+    EXPECT_LT(c["after_dph"].get<double>(), j["cycle"]["raw_dph"].get<double>()) << e;
+    for (const char* test : {"test1", "test2"}) {
+      const auto& t = j[test]["engines"][e];
+      EXPECT_LT(t["after_dph"].get<double>(), j[test]["before_dph"].get<double>()) << test << " " << e;
+      EXPECT_GT(t["times"].get<double>(), 1.0) << test << " " << e;
+    }
+  }
+  // Nothing beats least squares on the training data.
+  EXPECT_GE(j["cycle"]["engines"]["iafsa"]["after_dph"].get<double>(),
+            j["cycle"]["engines"]["ols"]["after_dph"].get<double>() * (1 - 1e-12));
+  EXPECT_EQ(j["paper"]["cycle"]["iafsa_dph"], 0.00185);
+  EXPECT_EQ(j["paper"]["test1"]["times"], 7.91);
+  EXPECT_EQ(j["seeds"]["cycle"], 11);
+  EXPECT_EQ(j["seeds"]["test2"], 13);
+  EXPECT_TRUE(j.contains("total_seconds"));
+
+  const std::string md = slurp(dir / "out/table1.md");
+  for (const char* text : {"| raw | 0.00953 |", "| IAFSA | 0.00185 (5.15×) |", "## Test 1", "## Test 2",
+                           "What the engines can and cannot do", "a term is dropped"})
+    EXPECT_NE(md.find(text), std::string::npos) << text;
+  for (const char* png : {"fig2_cycle_1s.png", "fig3_cycle_100s.png", "fig4_5_cycle_compensated.png",
+                          "fig6_7_test1.png", "fig8_9_test2.png"})
+    EXPECT_GT(std::filesystem::file_size(dir / "out" / png), 10000u) << png;
+}
+
+TEST(CliReproduce, UnknownEngineIsBadInput) {
+  ScratchDir dir;
+  write_short_scenarios(dir);
+  const auto r = run_cli(dir, "reproduce --scenarios sc --engines ols,ga --out out");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown engine 'ga'"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out/table1.json"));
+}
+
+TEST(CliReproduce, MissingScenarioFolder) {
+  ScratchDir dir;
+  const auto r = run_cli(dir, "reproduce --scenarios nowhere --out out");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("nowhere/cycle.toml: no such file"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace gyrotherm
