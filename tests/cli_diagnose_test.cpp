@@ -19,7 +19,7 @@ using testing::write_text;
 TEST(CliDiagnose, FindsAHiddenGradientAndWatchesTheErrorFall) {
   ScratchDir dir;
   ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") +
-                             " --hidden grad=0.0254 -o grad.csv")
+                             " --hidden grad=0.0533 -o grad.csv")
                 .exit_code,
             0);
   const auto r = run_cli(dir, "diagnose grad.csv --json");

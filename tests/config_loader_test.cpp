@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 
 #include "cli_runner.h"
@@ -182,6 +183,43 @@ TEST(ConfigLoader, NoChamberAllowsOnlyFreeSegments) {
   write_text(dir / "s.toml",
              "chamber = false\n[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_h = 1\n");
   expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:2", "chamber = false", "free"});
+}
+
+// [spread]: relative ranges of gyro parameters for `gyrotherm score`.
+TEST(ConfigLoader, SpreadTableIsRead) {
+  ScratchDir dir;
+  write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n") +
+                                 "\n[spread]\nb1_dph_per_c = 0.1\narw_deg_per_sqrt_h = 0.2\nglitch_rate_per_h = 0\n");
+  const Scenario s = load_scenario(dir / "s.toml");
+  EXPECT_EQ(s.spread, (std::map<std::string, double>{
+                          {"b1_dph_per_c", 0.1}, {"arw_deg_per_sqrt_h", 0.2}, {"glitch_rate_per_h", 0.0}}));
+}
+
+TEST(ConfigLoader, NoSpreadTableMeansNoSpread) {
+  EXPECT_TRUE(load_scenario(source_path("scenarios/warmup.toml")).spread.empty());
+}
+
+TEST(ConfigLoader, UnknownSpreadKeyNamesFileLineAndKey) {
+  ScratchDir dir;
+  write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n") +
+                                 "[spread]\nb1 = 0.1\n");
+  expect_error([&] { load_scenario(dir / "s.toml"); },
+               {"s.toml:9", "unknown key 'spread.b1' in [spread]", "b1_dph_per_c", "arw_deg_per_sqrt_h"});
+}
+
+TEST(ConfigLoader, SpreadOutOfRangeOrWrongType) {
+  ScratchDir dir;
+  for (const std::string value : {"1.0", "-0.1", "2"}) {
+    write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n") +
+                                   "[spread]\nb3_dph_per_c_per_s = " + value + "\n");
+    expect_error([&] { load_scenario(dir / "s.toml"); },
+                 {"s.toml:9", "spread.b3_dph_per_c_per_s = ", "must be >= 0 and < 1"});
+  }
+  write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n") +
+                                 "[spread]\nb0_dph = \"wide\"\n");
+  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:9", "spread.b0_dph", "expected a number"});
+  write_text(dir / "s.toml", "spread = 0.1\n" + scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n"));
+  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:1", "spread: expected a table [spread]"});
 }
 
 TEST(ConfigLoader, HiddenOption) {

@@ -73,10 +73,11 @@ TEST(Simulator, ChamberHoldsPointOneDegreeInTheCycleSoaks) {
   }
   EXPECT_GT(soak_samples, 4u * 7000u);
   EXPECT_LE(worst, 0.1) << "worst soak deviation " << worst << " °C";
-  // The gyro really travels the cycle (it lags the chamber by tens of minutes).
+  // The gyro really travels the cycle, lagging the chamber (the calibrated
+  // shield rig has a slowest time constant of about 1.5 h, results/calibration.md).
   const auto& gyro = tr.node(N::anode);
-  EXPECT_LT(*std::min_element(gyro.begin(), gyro.end()), -30.0);
-  EXPECT_GT(*std::max_element(gyro.begin(), gyro.end()), 55.0);
+  EXPECT_LT(*std::min_element(gyro.begin(), gyro.end()), 0.0);
+  EXPECT_GT(*std::max_element(gyro.begin(), gyro.end()), 45.0);
 }
 
 TEST(Simulator, ChamberLagsButFollowsTheRamps) {
