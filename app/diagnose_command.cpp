@@ -106,6 +106,7 @@ int run_diagnose(const DiagnoseOptions& o) {
     j["significance"] =
         "block cross-validation: blocks of 10 windows, one-sided sign-flip test of the per-block "
         "SSE gains, Bonferroni over the candidates, and at least 10 % of the excess removed";
+    j["warnings"] = d.fit.warnings;
     j["verdict"] = d.verdict;
     j["next_command"] = next;
     if (before) {
@@ -157,6 +158,7 @@ int run_diagnose(const DiagnoseOptions& o) {
       fmt::print("   {:<8} {:>8} – {:<8} {:5.2f}x -> {:5.2f}x\n", rows[i].kind, hours(rows[i].start_s),
                  hours(rows[i].end_s), rows[i].ratio_to_floor, d.segments[i].ratio_to_floor);
   }
+  for (const std::string& w : d.fit.warnings) fmt::print("warning: {}\n", w);
   fmt::print("verdict: {}\n", d.verdict);
   if (!next.empty()) fmt::print("next: {}\n", next);
   if (!o.plots.empty()) fmt::print("plots in {}/\n", o.plots);

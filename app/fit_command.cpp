@@ -117,6 +117,7 @@ int run_fit(const FitOptions& o) {
              pipeline.averaging.window_s, result.instability_before_dph,
              result.instability_after_dph, result.ratio());
   fmt::print("engine: {}\n", result.engine.brief_report());
+  for (const std::string& w : result.warnings) fmt::print("warning: {}\n", w);
   fmt::print("gap to the least-squares optimum: {:.3g} (relative)\n",
              result.instability_after_dph / result.optimum_dph - 1.0);
   if (!o.output.empty()) fmt::print("wrote {}\n", o.output);

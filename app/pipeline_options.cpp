@@ -1,11 +1,22 @@
 #include "app/pipeline_options.h"
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "sim/input_error.h"
 
 namespace gyrotherm::app {
 
 fit::PipelineOptions DataOptions::resolved() const {
   fit::PipelineOptions p = pipeline;
+  if (keep_outliers && outlier_threshold)
+    throw InputError("--keep-outliers and --outlier-threshold contradict each other: keep the "
+                     "glitches, or set the rule that removes them, not both");
+  if (outlier_threshold) {
+    if (!(*outlier_threshold > 0.0))
+      throw InputError(fmt::format("--outlier-threshold {}: must be > 0 (robust sigmas)", *outlier_threshold));
+    p.outliers.threshold = *outlier_threshold;
+  }
   if (causal) p.derivative = fit::DerivativeMode::causal;
   if (keep_outliers) p.remove_outliers = false;
   return p;
@@ -18,7 +29,7 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
   cmd->add_flag("--causal", o.causal,
                 "Backward differences for dT/dt and d2T (a real-time compensator); default central");
   cmd->add_flag("--keep-outliers", o.keep_outliers, "Do not remove counting glitches");
-  cmd->add_option("--outlier-threshold", o.pipeline.outliers.threshold,
+  cmd->add_option("--outlier-threshold", o.outlier_threshold,
                   "Glitch rule: deviation from the moving median in robust sigmas (default 8)");
   cmd->add_option("--time-col", o.pipeline.columns.time, "Name of the time column (s)");
   cmd->add_option("--temp-col", o.pipeline.columns.temp, "Name of the gyro temperature column (°C)");

@@ -3,6 +3,8 @@
 // compensate, diagnose): column mapping, averaging window, derivative mode,
 // outlier rule.
 
+#include <optional>
+
 #include "fit/pipeline.h"
 
 namespace CLI {
@@ -15,6 +17,7 @@ struct DataOptions {
   fit::PipelineOptions pipeline;
   bool causal = false;
   bool keep_outliers = false;
+  std::optional<double> outlier_threshold;
   // Applies the flags to pipeline (call after parsing).
   fit::PipelineOptions resolved() const;
 };

@@ -46,6 +46,7 @@ std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
   j["termination"] = to_string(fit.engine.termination);
   j["message"] = fit.engine.message;
   j["seed"] = settings.seed;
+  j["warnings"] = fit.warnings;
   Json history = Json::array();
   for (const HistoryPoint& h : fit.engine.history) history.push_back({h.evaluations, h.best_objective});
   j["history"] = history;

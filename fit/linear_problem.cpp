@@ -40,23 +40,34 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   gram_ = scaled_.transpose() * scaled_ / dof;
   cross_ = scaled_.transpose() * y_centred_ / dof;
 
-  // Conditioning of the correlation matrix; an (almost) singular one means
-  // some combination of terms is (almost) collinear.
+  if (!(s_yy_ > 0.0))
+    throw InputError("the gyro output is constant over the averaged data: there is nothing to "
+                     "compensate (is the right column mapped with --gyro-col?)");
+
+  // Conditioning of the correlation matrix: a large condition number means
+  // some combination of terms is (almost) collinear on this data.
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(gram_);
   const double lo = eig.eigenvalues().minCoeff();
   const double hi = eig.eigenvalues().maxCoeff();
   condition_ = lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity();
-  if (!(lo > 1e-12 * hi)) {
-    // Name the terms that make up the null direction.
+  if (condition_ > kPoorlyConditioned) {
+    // Name the terms that make up the nearly null direction.
     const Eigen::VectorXd v = eig.eigenvectors().col(0);
     std::string terms;
     for (Eigen::Index j = 0; j < m; ++j)
       if (std::abs(v[j]) > 0.1)
         terms += (terms.empty() ? "" : ", ") + names_[static_cast<std::size_t>(j)];
-    throw InputError(fmt::format(
-        "the model's terms are collinear on this data ({}; condition number {:.3g}): their "
-        "coefficients cannot be determined; remove one of them or use data with more varied "
-        "temperature",
+    if (condition_ > kIllConditioned)
+      throw InputError(fmt::format(
+          "the model's terms are collinear on this data ({}; condition number {:.3g} of the "
+          "scaled design, above {:.0e}): their coefficients would be set by the noise, not by "
+          "the data. Use data with a wider temperature range or more varied rates, or drop one "
+          "of these terms",
+          terms, condition_, kIllConditioned));
+    warnings_.push_back(fmt::format(
+        "{} are nearly collinear on this data (condition number {:.3g}): each coefficient "
+        "alone is poorly determined, their combination is not; a wider temperature range "
+        "separates them",
         terms, condition_));
   }
   const Eigen::MatrixXd inverse = gram_.ldlt().solve(Eigen::MatrixXd::Identity(m, m));

@@ -45,8 +45,11 @@ struct Coefficients {
 class LinearProblem {
  public:
   // design: l × m regressors in physical units; y: the l averaged outputs.
-  // Throws InputError if l ≤ m + 1, a regressor is constant, or the design is
-  // singular (the message names the terms involved).
+  // Throws InputError if l ≤ m + 1, y or a regressor is constant, or the
+  // design is ill-conditioned: the condition number of G above
+  // kIllConditioned means some terms are so nearly collinear on this data that
+  // their coefficients would be set by the noise (the message names the terms
+  // and what to do). Above kPoorlyConditioned a warning is kept instead.
   LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y, std::vector<std::string> term_names);
 
   std::size_t dimension() const { return static_cast<std::size_t>(design_.cols()); }
@@ -77,6 +80,10 @@ class LinearProblem {
   const Eigen::VectorXd& scale() const { return scale_; }             // s_j
   const Eigen::VectorXd& half_width() const { return half_width_; }   // h_j
   double condition_number() const { return condition_; }              // of G
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  static constexpr double kIllConditioned = 1e6;
+  static constexpr double kPoorlyConditioned = 1e3;
 
  private:
   Eigen::MatrixXd design_;
@@ -87,6 +94,7 @@ class LinearProblem {
   double y_mean_ = 0.0;
   double s_yy_ = 0.0;
   double condition_ = 1.0;
+  std::vector<std::string> warnings_;
 };
 
 }  // namespace gyrotherm::fit

@@ -131,6 +131,30 @@ std::string parse_number(std::string_view field, double& value) {
   return {};
 }
 
+// Values no instrument produces: a guard against a wrong column or unit, and
+// against numbers whose squares overflow in the fit.
+std::string out_of_range(Role role, double v) {
+  switch (role) {
+    case kTemp:
+    case kTemp2:
+      if (v < -273.15 || v > 1000.0)
+        return fmt::format("{:g} is not a temperature in °C (expected -273.15..1000)", v);
+      return {};
+    case kGyro:
+      if (std::abs(v) > 1e9)
+        return fmt::format("{:g} °/h is beyond any gyro's range (|value| <= 1e9 °/h expected; "
+                           "is the unit right?)",
+                           v);
+      return {};
+    case kTime:
+      if (std::abs(v) > 1e12)
+        return fmt::format("{:g} s is not a plausible time (|value| <= 1e12 s expected)", v);
+      return {};
+    default:
+      return {};
+  }
+}
+
 class CsvParser {
  public:
   CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {}
@@ -239,6 +263,8 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
           parse_number(std::string_view(p, static_cast<std::size_t>(field_end - p)), value[role]);
       if (!problem.empty())
         fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
+      const std::string range = out_of_range(static_cast<Role>(role), value[role]);
+      if (!range.empty()) fail(line_number, fmt::format("column {}: {}", m.columns[column], range));
     }
     if (comma == nullptr) break;
     p = comma + 1;

@@ -156,6 +156,7 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.instability_after_dph = problem.sigma_two_pass(fit.coefficients);
   fit.optimum_dph = problem.sigma_two_pass(problem.physical(least_squares_optimum(problem)));
   fit.points = problem.points();
+  fit.warnings = problem.warnings();
   return fit;
 }
 

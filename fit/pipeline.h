@@ -76,6 +76,7 @@ struct ModelFit {
   double instability_after_dph = 0.0;  // two-pass σ of the residual
   double optimum_dph = 0.0;            // the exact least-squares σ for the same terms and parameters
   std::size_t points = 0;
+  std::vector<std::string> warnings;   // e.g. poorly conditioned terms
   double ratio() const { return instability_before_dph / instability_after_dph; }
 };
 

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Runs the Google Benchmark programs in bench/ and writes their figures to
 # results/: one JSON per program (bench_<area>.json) and results/benchmarks.md
-# with the machine, the date and each program's table.
+# with the machine, the date, a table of the ratios that matter, and each
+# program's table. With the score area it also times 100-trial campaigns of
+# `gyrotherm score` on the cycle (results/bench_score_campaign*.json).
 #   scripts/bench.sh            all programs
 #   scripts/bench.sh sim        only bench_sim
+# Needs bash, awk and the build; no python.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
@@ -22,7 +25,66 @@ for area in "${areas[@]}"; do
   mv "results/bench_$area.txt.tmp" "results/bench_$area.txt"
 done
 
-# The summary page: machine, date, and every program's table.
+# The issue's campaign target: 100 trials of the cycle, every engine, in
+# under a minute; on 1 and on 2 threads (the scoreboards are identical).
+for area in "${areas[@]}"; do
+  [ "$area" = score ] || continue
+  for threads in 1 2; do
+    echo "bench: gyrotherm score, 100 trials of the cycle on $threads thread(s)"
+    build/app/gyrotherm score scenarios/cycle.toml --trials 100 --threads "$threads" --json \
+      2> /dev/null > "results/bench_score_campaign$threads.json.tmp"
+    mv "results/bench_score_campaign$threads.json.tmp" "results/bench_score_campaign$threads.json"
+  done
+done
+
+# bench_field FILE BENCHMARK FIELD: a number from Google Benchmark's JSON
+# (one key per line); empty when the file or the benchmark is missing.
+bench_field() {
+  [ -f "$1" ] || return 0
+  awk -v name="\"name\": \"$2\"," -v field="\"$3\":" '
+    index($0, name) { inside = 1; next }
+    inside && index($0, field) { sub(/^[^:]*: */, ""); sub(/,$/, ""); print; exit }
+    inside && /^ *}/ { inside = 0 }' "$1"
+}
+# run_seconds FILE: the wall time in the "run" object of a `score --json`.
+run_seconds() {
+  [ -f "$1" ] || return 0
+  awk '/"run": \{/ { inside = 1 } inside && /"seconds":/ { sub(/^[^:]*: */, ""); sub(/,$/, ""); print; exit }' "$1"
+}
+# ratio A B FORMAT: A/B, or – when either is missing.
+ratio() {
+  if [ -z "$1" ] || [ -z "$2" ]; then echo "–"; else awk -v a="$1" -v b="$2" -v f="$3" 'BEGIN { printf f, a / b }'; fi
+}
+show() {
+  if [ -z "$1" ]; then echo "–"; else awk -v a="$1" -v f="$2" 'BEGIN { printf f, a }'; fi
+}
+megabytes() {
+  if [ -z "$1" ]; then echo "–"; else awk -v a="$1" 'BEGIN { printf "%.0f MB/s", a / 1e6 }'; fi
+}
+
+fit=results/bench_fit.json
+score=results/bench_score.json
+io=results/bench_io.json
+gram4=$(bench_field $fit BM_ObjectiveGram/10000_median real_time)
+naive4=$(bench_field $fit BM_ObjectiveNaive/10000_median real_time)
+gram5=$(bench_field $fit BM_ObjectiveGram/100000_median real_time)
+naive5=$(bench_field $fit BM_ObjectiveNaive/100000_median real_time)
+declare -A evals ms reached
+for e in iafsa pso cmaes; do
+  evals[$e]=$(bench_field $fit "BM_EngineToTarget/${e}_median" evals_median)
+  ms[$e]=$(bench_field $fit "BM_EngineToTarget/${e}_median" real_time)
+  reached[$e]=$(bench_field $fit "BM_EngineToTarget/${e}_median" reached_of_10)
+done
+speedup=$(bench_field $score BM_CampaignSpeedup/real_time_median speedup)
+ceiling=$(bench_field $score BM_CampaignSpeedup/real_time_median ceiling)
+one_thread=$(bench_field $score BM_CampaignSpeedup/real_time_median seconds_1_thread)
+two_threads=$(bench_field $score BM_CampaignSpeedup/real_time_median seconds_2_threads)
+campaign1=$(run_seconds results/bench_score_campaign1.json)
+campaign2=$(run_seconds results/bench_score_campaign2.json)
+read_bps=$(bench_field $io BM_ReadMeasurementCsv/real_time_median bytes_per_second)
+write_bps=$(bench_field $io BM_WriteSimulationCsv/real_time_median bytes_per_second)
+
+# The summary page: machine, date, the ratios, and every program's table.
 {
   echo "# Benchmarks"
   echo
@@ -31,6 +93,21 @@ done
   echo "$(awk '/MemTotal/ {printf "%.0f GiB", $2/1048576}' /proc/meminfo) RAM, $(uname -sr)."
   echo "Shared, noisy machines: read ratios measured in one run, not absolute times."
   echo "Each figure is the median/mean of 5 repetitions; raw JSON beside this file."
+  echo
+  echo "## The ratios that matter"
+  echo
+  echo "| question | ratio | measured by |"
+  echo "|---|---|---|"
+  echo "| σ from the Gram matrix vs from every residual, 10⁴ points | $(ratio "$naive4" "$gram4" "%.0f×") faster | \`bench_fit\` BM_ObjectiveNaive / BM_ObjectiveGram |"
+  echo "| the same, 10⁵ points | $(ratio "$naive5" "$gram5" "%.0f×") faster | \`bench_fit\` |"
+  echo "| evaluations to 1e-6 of the optimum: pso / iafsa | $(ratio "${evals[pso]}" "${evals[iafsa]}" "%.2f") ($(show "${evals[pso]}" "%.0f") vs $(show "${evals[iafsa]}" "%.0f")) | \`bench_fit\` BM_EngineToTarget, median of 10 seeds |"
+  echo "| evaluations to 1e-6 of the optimum: cmaes / iafsa | $(ratio "${evals[cmaes]}" "${evals[iafsa]}" "%.2f") ($(show "${evals[cmaes]}" "%.0f") vs $(show "${evals[iafsa]}" "%.0f")) | \`bench_fit\` BM_EngineToTarget |"
+  echo "| seconds to 1e-6 of the optimum: pso / iafsa | $(ratio "${ms[pso]}" "${ms[iafsa]}" "%.2f") ($(show "${ms[pso]}" "%.2f") vs $(show "${ms[iafsa]}" "%.2f") ms for 10 fits) | \`bench_fit\` BM_EngineToTarget |"
+  echo "| seconds to 1e-6 of the optimum: cmaes / iafsa | $(ratio "${ms[cmaes]}" "${ms[iafsa]}" "%.2f") ($(show "${ms[cmaes]}" "%.2f") vs $(show "${ms[iafsa]}" "%.2f") ms) | \`bench_fit\` BM_EngineToTarget |"
+  echo "| seeds reaching the target (of 10): iafsa, pso, cmaes | $(show "${reached[iafsa]}" "%.0f"), $(show "${reached[pso]}" "%.0f"), $(show "${reached[cmaes]}" "%.0f") | \`bench_fit\` BM_EngineToTarget |"
+  echo "| campaign speed-up, 1 → 2 threads (10 trials, every engine; aim ≥ 1.8) | $(show "$speedup" "%.2f×") ($(show "$one_thread" "%.2f") s vs $(show "$two_threads" "%.2f") s; the machine's ceiling then, a pure arithmetic loop: $(show "$ceiling" "%.2f×")) | \`bench_score\` BM_CampaignSpeedup |"
+  echo "| 100-trial campaign of the cycle, every engine (aim < 60 s) | $(show "$campaign2" "%.1f") s on 2 threads, $(show "$campaign1" "%.1f") s on 1 ($(ratio "$campaign1" "$campaign2" "%.2f×")) | \`gyrotherm score scenarios/cycle.toml --trials 100 --threads N\` |"
+  echo "| CSV of a 72 h run: reading, writing | $(megabytes "$read_bps"), $(megabytes "$write_bps") | \`bench_io\` |"
   for txt in results/bench_*.txt; do
     area=${txt#results/bench_}; area=${area%.txt}
     echo

@@ -14,7 +14,7 @@
 namespace gyrotherm::sim {
 namespace {
 
-enum class Rule { any, positive, non_negative, unit_interval };
+enum class Rule { any, positive, non_negative, unit_interval, relative_spread };
 
 const char* describe(Rule rule) {
   switch (rule) {
@@ -22,6 +22,8 @@ const char* describe(Rule rule) {
     case Rule::positive: return "must be > 0";
     case Rule::non_negative: return "must be >= 0";
     case Rule::unit_interval: return "must be between 0 and 1";
+    case Rule::relative_spread:
+      return "must be >= 0 and < 1 (a relative half-width: 0.1 means ±10 %)";
   }
   return "";
 }
@@ -32,6 +34,7 @@ bool satisfies(double v, Rule rule) {
     case Rule::positive: return v > 0.0;
     case Rule::non_negative: return v >= 0.0;
     case Rule::unit_interval: return v >= 0.0 && v <= 1.0;
+    case Rule::relative_spread: return v >= 0.0 && v < 1.0;
   }
   return true;
 }
@@ -276,6 +279,22 @@ Scenario load_scenario(const std::filesystem::path& file) {
                     (segment.kind == SegmentKind::hold ? "hold" : "ramp") +
                     "; use kind = \"free\"");
     s.segments.push_back(segment);
+  }
+  // [spread]: per-trial relative ranges for `gyrotherm score` (sim/scenario.h).
+  if (const toml::table* t = r.table("spread")) {
+    TableReader c(*t, file.string(), "spread");
+    for (const std::string_view key : kSpreadKeys) {
+      double relative = 0.0;
+      if (!c.has(key)) {
+        c.find(key);  // known, absent
+        continue;
+      }
+      c.number(key, relative, Rule::relative_spread);
+      s.spread[std::string(key)] = relative;
+    }
+    std::string known;
+    for (const std::string_view key : kSpreadKeys) known += (known.empty() ? "" : ", ") + std::string(key);
+    c.finish(known);
   }
   r.finish();
   if (!s.chamber) s.start_c = s.room_c;

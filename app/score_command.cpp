@@ -1,0 +1,308 @@
+// gyrotherm score SCENARIO.toml [--engines LIST] [--trials N] [--threads N] [--seed S]
+//                [--model F] [--budget N | ENGINE=N ...] [--option ENGINE:KEY=VALUE ...]
+//                [--baseline B.json] [--json] [--out DIR]
+// A Monte Carlo campaign scoring the fitting engines (fit/score.h); under
+// mpirun the trials are spread over the ranks (app/score_mpi.h).
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <sstream>
+#include <thread>
+
+#include "app/commands.h"
+#include "app/gnuplot.h"
+#include "app/score_mpi.h"
+#include "fit/score.h"
+#include "sim/atomic_file.h"
+#include "sim/input_error.h"
+
+namespace gyrotherm::app {
+namespace {
+
+struct ScoreCli {
+  std::string scenario;
+  std::string engines;
+  long trials = 100;
+  int threads = 0;
+  std::uint64_t seed = 0;
+  const CLI::Option* seed_option = nullptr;  // given?
+  std::string model = std::string(fit::kDefaultModel);
+  std::vector<std::string> budgets;
+  std::vector<std::string> engine_options;
+  std::string baseline;
+  std::string out;
+  bool json = false;
+};
+
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream s(list);
+  std::string item;
+  while (std::getline(s, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+long parse_count(const std::string& text, const std::string& what) {
+  std::size_t used = 0;
+  long v = -1;
+  try {
+    v = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || v < 0)
+    throw InputError(fmt::format("{}: '{}' is not a whole number >= 0", what, text));
+  return v;
+}
+
+fit::ScoreOptions score_options(const ScoreCli& o) {
+  fit::ScoreOptions s;
+  s.scenario = o.scenario;
+  s.engines = split(o.engines);
+  s.model = o.model;
+  s.trials = o.trials;
+  if (o.seed_option != nullptr && o.seed_option->count() > 0) s.seed = o.seed;
+  for (const std::string& b : o.budgets) {
+    const auto eq = b.find('=');
+    if (eq == std::string::npos)
+      s.budget = parse_count(b, "--budget " + b);
+    else if (eq == 0)
+      throw InputError(fmt::format("--budget {}: expected N or ENGINE=N", b));
+    else
+      s.engine_budget[b.substr(0, eq)] = parse_count(b.substr(eq + 1), "--budget " + b);
+  }
+  for (const std::string& kv : o.engine_options) {
+    const auto colon = kv.find(':');
+    const auto eq = kv.find('=');
+    if (colon == std::string::npos || colon == 0 || eq == std::string::npos || eq < colon + 2)
+      throw InputError(fmt::format("--option {}: expected ENGINE:KEY=VALUE (see 'gyrotherm engines')", kv));
+    s.engine_options[kv.substr(0, colon)][kv.substr(colon + 1, eq - colon - 1)] = kv.substr(eq + 1);
+  }
+  return s;
+}
+
+// A bar with an ETA on a terminal; a plain line every 10 % otherwise.
+class Progress final : public fit::ScoreObserver {
+ public:
+  explicit Progress(std::string label) : label_(std::move(label)), tty_(::isatty(2) != 0) {}
+
+  void on_trial_done(std::size_t done, std::size_t total) override {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    const double eta = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
+    if (tty_) {
+      if (done != total && elapsed - last_draw_s_ < 0.1) return;  // at most ten redraws a second
+      last_draw_s_ = elapsed;
+      constexpr int kWidth = 30;
+      const auto filled = static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total));
+      fmt::print(stderr, "\r{} [{}{}] {}/{} trials, {:.1f} s, ETA {:.1f} s   ", label_, std::string(filled, '#'),
+                 std::string(kWidth - filled, '.'), done, total, elapsed, eta);
+      if (done == total) fmt::print(stderr, "\n");
+      return;
+    }
+    const std::size_t decile = 10 * done / total;
+    if (decile == last_decile_ && done != total) return;
+    last_decile_ = decile;
+    fmt::print(stderr, "{}: {}/{} trials, {:.1f} s, ETA {:.1f} s\n", label_, done, total, elapsed, eta);
+  }
+
+ private:
+  std::string label_;
+  bool tty_;
+  std::size_t last_decile_ = 0;
+  double last_draw_s_ = -1.0;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+};
+
+void plot_convergence(const std::filesystem::path& png, const fit::Scoreboard& b) {
+  constexpr double kFloor = 1e-12;  // the log axis cannot show a gap of 0
+  GnuplotFigure fig(png, 1400, 900);
+  std::string plot = "plot ";
+  const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  for (std::size_t e = 0; e < b.engines.size(); ++e) {
+    const fit::EngineScore& s = b.engines[e];
+    std::vector<double> x, q25, median, q75;
+    for (const fit::CurvePoint& p : s.curve) {
+      x.push_back(static_cast<double>(p.evaluations));
+      auto floor = [&](double v) { return std::isfinite(v) ? std::max(v, kFloor) : NAN; };
+      q25.push_back(floor(p.q25));
+      median.push_back(floor(p.median));
+      q75.push_back(floor(p.q75));
+    }
+    const std::string name = "e" + std::to_string(e);
+    const char* colour = colours[e % std::size(colours)];
+    fig.data(name, {"evaluations", "q25", "median", "q75"}, {x, q25, median, q75});
+    plot += fmt::format("{}${} using 1:2:4 with filledcurves lc rgb '{}' notitle, "
+                        "${} using 1:3 with linespoints pt 7 ps 0.5 lw 2 lc rgb '{}' title '{}'",
+                        e ? ", " : "", name, colour, name, colour, s.engine);
+  }
+  fig.commands(fmt::format(
+      "set title 'Convergence on {}: gap of the best sigma so far to the least-squares optimum, "
+      "median and quartiles of {} trials'\n"
+      "set xlabel 'objective evaluations'\nset ylabel 'sigma / optimum - 1 (gaps below {:g} drawn at {:g})'\n"
+      "set logscale xy\nset format y '%.0e'\nset key outside right\n"
+      "set style fill transparent solid 0.15 noborder\n"
+      "set arrow from graph 0, first {:g} to graph 1, first {:g} nohead dt 2 lc rgb '#555555'\n"
+      "set label 'target' at graph 0.01, first {:g} offset 0, 0.7 tc rgb '#555555'\n{}\n",
+      b.scenario, b.trials, kFloor, kFloor, b.target_relative, b.target_relative, b.target_relative, plot));
+  fig.render();
+}
+
+std::string text_table(const fit::Scoreboard& b) {
+  std::string t = fmt::format("{:<9} {:>8} {:>22} {:>11} {:>19} {:>7}", "engine", "success",
+                              "evals to target [CI]", "s to target", "gap median / p90", "ratio");
+  for (const std::string& term : b.error_terms) t += fmt::format(" {:>9}", "err " + (term == "1" ? "b0" : term));
+  t += "\n";
+  auto v = [](double x, const char* spec) {
+    return std::isfinite(x) ? fmt::format(fmt::runtime(spec), x) : std::string("not reached");
+  };
+  for (const fit::EngineScore& e : b.engines) {
+    const auto& ett = e.evaluations_to_target;
+    t += fmt::format("{:<9} {:>7.0f}% {:>22} {:>11} {:>19} {:>7.3f}", e.engine, 100.0 * e.success_rate,
+                     std::isfinite(ett.median)
+                         ? fmt::format("{:.0f} [{:.0f}, {}]", ett.median, ett.median_ci.low, v(ett.median_ci.high, "{:.0f}"))
+                         : std::string("not reached"),
+                     v(e.seconds_to_target.median, "{:.2g}"), fmt::format("{:.1e} / {:.1e}", e.gap.median, e.gap.p90),
+                     e.ratio.median);
+    for (const fit::Summary& s : e.coefficient_error) t += fmt::format(" {:>8.3g}%", 100.0 * s.median);
+    t += "\n";
+  }
+  return t;
+}
+
+// Rank 0's part after the trials: files, the baseline check, the report.
+int report(const fit::Scoreboard& board, const std::optional<fit::Baseline>& baseline, const ScoreCli& o) {
+  const std::string json = fit::scoreboard_json(board);
+  std::vector<std::string> written;
+  if (!o.out.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(o.out, ec);
+    if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));
+    const std::filesystem::path dir(o.out);
+    sim::write_file_atomically(dir / "scoreboard.json", json);
+    sim::write_file_atomically(dir / "scoreboard.md", fit::scoreboard_markdown(board));
+    sim::write_file_atomically(dir / "convergence.csv", fit::convergence_csv(board));
+    plot_convergence(dir / "convergence.png", board);
+    for (const char* f : {"scoreboard.json", "scoreboard.md", "convergence.csv", "convergence.png"})
+      written.push_back((dir / f).string());
+  }
+  fit::BaselineComparison check;
+  if (baseline) check = fit::compare_to_baseline(board, *baseline);
+
+  if (o.json) {
+    fmt::print("{}", json);
+  } else {
+    fmt::print("score: {}, {} trials (seeds {}..{}), model B = b0 + {}, target sigma <= optimum*(1 + {:g})\n",
+               board.scenario, board.trials, board.seed, board.seed + (board.trials - 1), board.model,
+               board.target_relative);
+    fmt::print("median raw instability {:.6g} °/h, median least-squares optimum {:.6g} °/h; "
+               "medians over the trials, coefficient errors |fit - truth|/|truth|\n",
+               board.before_median_dph, board.optimum_median_dph);
+    fmt::print("{}", text_table(board));
+    fmt::print("{:.2f} s on {} thread(s) x {} process(es)\n", board.seconds, board.threads, board.processes);
+    for (const std::string& f : written) fmt::print("wrote {}\n", f);
+  }
+  for (const std::string& note : check.notes) fmt::print(stderr, "gyrotherm: score: note: {}\n", note);
+  if (!baseline) return 0;
+  if (check.passed()) {
+    if (!o.json) fmt::print("baseline {}: no engine is worse beyond Monte Carlo noise\n", o.baseline);
+    return 0;
+  }
+  for (const fit::Regression& r : check.regressions)
+    fmt::print(stderr, "gyrotherm: score: worse than the baseline {}: {}\n", o.baseline, r.message);
+  return 1;
+}
+
+int run_score(const ScoreCli& o) {
+  std::optional<ScoreMpi> mpi_holder;
+  try {
+    mpi_holder.emplace();
+  } catch (const InputError&) {
+    if (ScoreMpi::launcher_rank() != 0) return 2;  // one rank reports it
+    throw;
+  }
+  const ScoreMpi& mpi = *mpi_holder;
+
+  // Set-up, identical on every rank: a bad input fails everywhere at once.
+  std::optional<fit::Campaign> campaign;
+  std::optional<fit::Baseline> baseline;
+  int threads = o.threads;
+  try {
+    if (o.threads < 0 || o.threads > 1024)
+      throw InputError(fmt::format("--threads {}: must be from 1 to 1024 (0: one per core)", o.threads));
+    campaign.emplace(score_options(o));
+    if (!o.baseline.empty()) baseline = fit::load_baseline(o.baseline);
+    if (threads == 0)
+      threads = mpi.size() > 1 ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  } catch (...) {
+    if (!mpi.root()) return 2;
+    throw;
+  }
+
+  // The trials of this rank: k ≡ rank (mod size).
+  std::vector<std::size_t> mine;
+  for (auto k = static_cast<std::size_t>(mpi.rank()); k < campaign->trials(); k += static_cast<std::size_t>(mpi.size()))
+    mine.push_back(k);
+  Progress progress(mpi.size() > 1 ? fmt::format("score (rank 0 of {})", mpi.size()) : std::string("score"));
+  const auto started = std::chrono::steady_clock::now();
+  const std::vector<fit::TrialOutcome> outcomes = campaign->run(mine, threads, mpi.root() ? &progress : nullptr);
+  const std::vector<std::string> parts = mpi.gather(fit::pack_outcomes(outcomes));
+
+  int code = 0;
+  std::exception_ptr failure;
+  if (mpi.root()) {
+    try {
+      std::vector<fit::TrialOutcome> all;
+      for (const std::string& part : parts)
+        for (fit::TrialOutcome& t : fit::unpack_outcomes(part)) all.push_back(std::move(t));
+      fit::Scoreboard board = campaign->summarize(std::move(all));
+      board.threads = threads;
+      board.processes = mpi.size();
+      board.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      code = report(board, baseline, o);
+    } catch (...) {
+      failure = std::current_exception();
+      code = 2;
+    }
+  }
+  code = mpi.broadcast(code);  // every rank exits alike
+  if (failure) std::rethrow_exception(failure);
+  return code;
+}
+
+}  // namespace
+
+void add_score_command(CLI::App& app, Run* run) {
+  auto o = std::make_shared<ScoreCli>();
+  CLI::App* cmd = app.add_subcommand(
+      "score", "Monte Carlo campaign scoring the fitting engines on a scenario (also under mpirun)");
+  cmd->add_option("scenario", o->scenario, "Scenario TOML (its [spread] table, if any, varies the gyro per trial)")
+      ->required();
+  cmd->add_option("--engines", o->engines, "Comma-separated engines (default: all)");
+  cmd->add_option("--trials", o->trials, "Number of trials N (default 100)");
+  cmd->add_option("--threads", o->threads, "Threads per process (default: one per core; 1 under mpirun)");
+  o->seed_option = cmd->add_option("--seed", o->seed, "Campaign seed S; trial k uses S + k (default: the scenario's seed)");
+  cmd->add_option("--model", o->model, "Model formula (default 'T + T^2 + dT')");
+  cmd->add_option("--budget", o->budgets,
+                  "Evaluation budget: N for every seeded engine, or ENGINE=N (repeatable; 0: the engine's default)")
+      ->allow_extra_args(false);  // one value per --budget, so the scenario is never taken for one
+  cmd->add_option("--option", o->engine_options, "Engine option ENGINE:KEY=VALUE (repeatable)")
+      ->allow_extra_args(false);
+  cmd->add_option("--baseline", o->baseline,
+                  "A saved 'score --json': exit 1 naming engine and metric where an engine is worse beyond "
+                  "Monte Carlo noise");
+  cmd->add_option("--out", o->out,
+                  "Write scoreboard.json, scoreboard.md, convergence.csv and convergence.png here "
+                  "(default: no files)");
+  cmd->add_flag("--json", o->json, "Print the scoreboard as one JSON object");
+  cmd->callback([o, run] { *run = [o] { return run_score(*o); }; });
+}
+
+}  // namespace gyrotherm::app

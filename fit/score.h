@@ -1,0 +1,279 @@
+#pragma once
+// Monte Carlo scoring of fitting engines (`gyrotherm score`).
+//
+// A campaign is N trials of one scenario. Trial k = 0 … N−1:
+//
+//  1. its seed is s_k = S + k (S: the campaign seed, by default the
+//     scenario's), so trial k's record is `gyrotherm simulate SCENARIO
+//     --seed s_k` when the scenario has no [spread];
+//  2. the gyro's parameters are drawn from the scenario's [spread] table,
+//     p = p₀·(1 + r·u), u ~ U(−1, 1) from make_rng(s_k, kSpreadStream), one
+//     draw per key of sim::kSpreadKeys in that order (so a key's draw never
+//     depends on which other keys are spread);
+//  3. the scenario is simulated once with seed s_k, the record prepared once
+//     (glitches, 100 s windows, regressors), and the exact least-squares
+//     optimum σ* of the model computed (fit/ols.h);
+//  4. every engine fits the same problem with seed s_k, its budget, and the
+//     target σ* (1 + ε), ε = 1e-6, at which it stops; recorded: whether and
+//     after how many evaluations and seconds it reached the target, the final
+//     gap σ/σ* − 1 (two-pass σ), the instability ratio σ_before/σ, the
+//     absolute relative error of each coefficient against the trial's truth,
+//     and the gap of the best σ so far at fixed evaluation counts (the
+//     convergence curve).
+//
+// Trials are independent and carry their index, so they can run in any order
+// on any thread or process; the scoreboard is built from the trials in index
+// order, and is bit-identical for any thread or MPI rank count (only the
+// fields named seconds* measure time).
+//
+// Statistics per engine over the N trials: medians and 90th percentiles
+// (linear interpolation between order statistics; a trial that did not reach
+// the target counts as +∞ evaluations and seconds, so a median of +∞ means
+// "not reached"), and 95 % intervals that need no distributional assumption:
+//
+//  * a median: the order statistics [x_(j), x_(n+1−j)], j the largest with
+//    P(Bin(n, ½) < j) ≤ 0.025 (coverage ≥ 95 %; [min, max] when n < 6);
+//  * the success rate: Wilson's score interval for x successes in n.
+//
+// Baseline check (compare_to_baseline): an engine is worse than a saved
+// scoreboard in a metric when the two 95 % intervals do not overlap in the
+// worse direction (current low > baseline high for a cost, current high <
+// baseline low for a benefit). Two non-overlapping 95 % intervals correspond
+// to a test at about the 0.5 % level, so Monte Carlo noise alone rarely
+// trips it, while a real loss (an engine that stops reaching the target,
+// needs twice the evaluations, or loses accuracy) does. Gaps at or below ε
+// count as equal (every one of them is "at the optimum"). Times are not
+// checked: they belong to the machine.
+//
+// References: H. A. David, H. N. Nagaraja, "Order Statistics", 3rd ed.,
+// Wiley 2003, §7.1 (distribution-free intervals for quantiles); E. B. Wilson,
+// "Probable inference, the law of succession, and statistical inference",
+// JASA 22 (1927) 209–212; Hyndman & Fan, "Sample quantiles in statistical
+// packages", Am. Stat. 50 (1996) (definition 7).
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fit/engine.h"
+#include "fit/formula.h"
+#include "fit/pipeline.h"
+#include "sim/gyro_config.h"
+#include "sim/rig_config.h"
+#include "sim/scenario.h"
+
+namespace gyrotherm::fit {
+
+// The generator stream of the [spread] draws (sim/random.h): apart from the
+// simulator's noise streams and the engines' own.
+inline constexpr std::uint64_t kSpreadStream = 0x5C0E;
+
+struct ScoreOptions {
+  std::filesystem::path scenario;             // SCENARIO.toml (its rig and gyro files)
+  std::vector<std::string> engines;           // empty: every registered engine
+  std::string model = std::string(kDefaultModel);  // formula of the fitted model
+  long trials = 100;                          // N, at least 1
+  std::optional<std::uint64_t> seed;          // S; absent: the scenario's seed
+  long budget = 0;                            // evaluations of every seeded engine (0: its default)
+  std::map<std::string, long> engine_budget;  // per engine, overrides `budget`
+  std::map<std::string, std::map<std::string, std::string>> engine_options;  // engine → KEY=VALUE
+  double target_relative = 1e-6;              // ε: the target is σ*·(1 + ε)
+  PipelineOptions pipeline;                   // preparation of the simulated record
+  int curve_points_per_decade = 10;           // density of the convergence curves' grid
+  // Throws InputError naming the field, the value and the rule.
+  void validate() const;
+};
+
+// One engine on one trial.
+struct EngineTrial {
+  bool reached = false;               // σ ≤ σ*·(1 + ε) at some evaluation
+  long evaluations = 0;               // spent in all
+  long evaluations_to_target = 0;     // the first evaluation at the target (0: not reached)
+  double seconds = 0.0;               // the engine's run time (it stops at the target)
+  double gap = 0.0;                   // σ/σ* − 1 at the end, two-pass σ
+  double ratio = 0.0;                 // instability before / after
+  Termination termination = Termination::budget_exhausted;
+  std::vector<double> coefficient_error;  // |relative error| per Campaign::error_terms()
+  std::vector<double> curve_gap;          // best-so-far gap at Campaign::curve_evaluations(); +∞ before the first
+};
+
+struct TrialOutcome {
+  std::size_t index = 0;
+  std::uint64_t seed = 0;
+  std::string error;                  // non-empty: the trial failed with this message
+  double before_dph = 0.0;            // instability of the raw 100 s means
+  double optimum_dph = 0.0;           // σ*, two-pass
+  std::vector<EngineTrial> engines;   // in Campaign::engines() order
+  bool ok() const { return error.empty(); }
+};
+
+// Serialisation of outcomes for gathering them across processes; doubles
+// travel as their bytes, so unpack(pack(x)) == x exactly.
+std::string pack_outcomes(std::span<const TrialOutcome> outcomes);
+std::vector<TrialOutcome> unpack_outcomes(std::string_view bytes);
+
+// Per-trial spread of the gyro's parameters (step 2 above).
+sim::GyroConfig apply_spread(const sim::GyroConfig& gyro, const std::map<std::string, double>& spread,
+                             std::uint64_t trial_seed);
+
+// Statistics (exposed for tests).
+struct Range {
+  double low = 0.0;
+  double high = 0.0;
+};
+// Hyndman–Fan definition 7 on sorted values; +∞ values allowed (the result is
+// +∞ when an infinite value takes part).
+double quantile(std::span<const double> sorted, double p);
+// Distribution-free 95 % interval of the median of sorted values.
+Range median_interval(std::span<const double> sorted);
+// Wilson's 95 % score interval of a proportion.
+Range wilson_interval(std::size_t successes, std::size_t n);
+
+struct Summary {
+  double median = 0.0;
+  double p10 = 0.0;
+  double p90 = 0.0;
+  Range median_ci;  // 95 %
+};
+
+struct CurvePoint {
+  long evaluations = 0;
+  double q25 = 0.0, median = 0.0, q75 = 0.0;  // of the best-so-far gap; +∞: not every trial has started
+};
+
+struct EngineScore {
+  std::string engine;
+  bool stochastic = false;
+  long budget = 0;                     // evaluations allowed (0: none, a closed form)
+  std::size_t reached = 0;             // trials that reached the target
+  double success_rate = 0.0;
+  Range success_ci;
+  Summary evaluations_to_target;       // +∞ where not reached
+  Summary seconds_to_target;           // +∞ where not reached
+  Summary seconds;                     // run time, reached or not
+  Summary evaluations;                 // spent
+  Summary gap;                         // final σ/σ* − 1
+  Summary ratio;                       // instability before / after
+  std::vector<Summary> coefficient_error;  // per Scoreboard::error_terms
+  std::map<std::string, std::size_t> terminations;  // to_string(Termination) → trials
+  std::vector<CurvePoint> curve;       // up to the first grid point at or past the last evaluation of any trial
+};
+
+struct Scoreboard {
+  std::string scenario;                // its name
+  std::string scenario_file;
+  std::map<std::string, std::string> file_sha256;  // "scenario", "rig", "gyro"
+  std::string model;
+  std::size_t trials = 0;
+  std::uint64_t seed = 0;              // S; trial k used S + k
+  double target_relative = 0.0;
+  std::map<std::string, double> spread;
+  std::vector<std::string> error_terms;  // "1" and the model terms with a true value
+  double before_median_dph = 0.0;
+  double optimum_median_dph = 0.0;
+  std::vector<EngineScore> engines;
+  // How it ran (not part of the result): set by the caller.
+  int threads = 1;
+  int processes = 1;
+  double seconds = 0.0;                // wall time of the campaign
+};
+
+// Progress, called once per finished trial, serialised (never concurrently).
+class ScoreObserver {
+ public:
+  virtual ~ScoreObserver() = default;
+  virtual void on_trial_done(std::size_t done, std::size_t total) = 0;
+};
+
+class Campaign {
+ public:
+  // Loads and checks the scenario, rig, gyro, model, engines and their
+  // settings; throws InputError before any trial runs.
+  explicit Campaign(ScoreOptions options);
+
+  std::size_t trials() const { return static_cast<std::size_t>(options_.trials); }
+  std::uint64_t seed() const { return seed_; }
+  std::uint64_t trial_seed(std::size_t k) const { return seed_ + k; }
+  const std::vector<std::string>& engines() const { return engine_names_; }
+  const std::vector<std::string>& error_terms() const { return error_terms_; }
+  const std::vector<long>& curve_evaluations() const { return curve_grid_; }
+  const ScoreOptions& options() const { return options_; }
+  // The settings engine e gets in trial k.
+  EngineSettings settings(std::size_t e, std::size_t k, double target_objective) const;
+
+  // Steps 1–4 for trial k. A failure is reported in TrialOutcome::error.
+  TrialOutcome run_trial(std::size_t k) const;
+  // The trials `indices` on `threads` threads (each takes the next
+  // unstarted trial); the outcomes come back in the order of `indices`.
+  std::vector<TrialOutcome> run(std::span<const std::size_t> indices, int threads,
+                                ScoreObserver* observer = nullptr) const;
+  // The scoreboard of all N outcomes, in any order. Throws InputError if
+  // one is missing or failed (naming the trial and its seed).
+  Scoreboard summarize(std::vector<TrialOutcome> outcomes) const;
+
+ private:
+  ScoreOptions options_;
+  sim::Scenario scenario_;
+  sim::RigConfig rig_;
+  sim::GyroConfig gyro_;
+  std::vector<const Term*> terms_;
+  std::vector<const EngineInfo*> infos_;
+  std::vector<std::string> engine_names_;
+  std::vector<long> budgets_;
+  std::vector<std::string> error_terms_;
+  std::vector<long> curve_grid_;
+  std::uint64_t seed_ = 0;
+};
+
+// The scoreboard as one JSON object (the `score --json` contract of
+// DESIGN.md, and more); +∞ ("not reached") is written as null.
+std::string scoreboard_json(const Scoreboard& board);
+// A Markdown page: the campaign and one table row per engine.
+std::string scoreboard_markdown(const Scoreboard& board);
+// engine, evaluations, gap_q25, gap_median, gap_q75 (empty cell: +∞).
+std::string convergence_csv(const Scoreboard& board);
+
+// A saved scoreboard (`score --json`) as the baseline check needs it: per
+// engine, each checked metric's value and 95 % interval.
+struct BaselineMetric {
+  double value = 0.0;
+  Range ci;
+};
+struct Baseline {
+  std::string file;
+  std::string scenario, model;
+  double target_relative = 0.0;
+  std::size_t trials = 0;
+  std::map<std::string, std::string> file_sha256;
+  std::map<std::string, std::map<std::string, BaselineMetric>> engines;  // engine → metric → value
+};
+// Throws InputError naming the file and the field for a missing or malformed file.
+Baseline load_baseline(const std::filesystem::path& file);
+Baseline parse_baseline(std::string_view json, const std::string& where);
+
+// The checked metrics of one engine, by the names of the JSON fields:
+// success_rate, evals_to_target_median, gap_median, ratio_median and
+// coefficient_error_median.<term>.
+std::map<std::string, BaselineMetric> checked_metrics(const Scoreboard& board, const EngineScore& e);
+
+// Where an engine is worse than the baseline beyond Monte Carlo noise.
+struct Regression {
+  std::string engine;
+  std::string metric;   // e.g. "success_rate", "coefficient_error_median.T"
+  std::string message;  // one line with both values and intervals
+};
+struct BaselineComparison {
+  std::vector<Regression> regressions;
+  std::vector<std::string> notes;  // engines without a baseline, other scenario files, ...
+  bool passed() const { return regressions.empty(); }
+};
+// The rule of the header comment. Throws InputError if the baseline was made
+// for another model or target (its numbers would not be comparable).
+BaselineComparison compare_to_baseline(const Scoreboard& current, const Baseline& baseline);
+
+}  // namespace gyrotherm::fit
