@@ -1,5 +1,6 @@
 #include "sim/config_loader.h"
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include <charconv>
@@ -428,6 +429,41 @@ void check_scenario_against_rig(const Scenario& scenario, const RigConfig& rig,
                                "segment " + std::to_string(index) + ": " +
                                    (s.kind == SegmentKind::hold ? "temp_c" : "target_c") + " = " +
                                    TableReader::format(s.temp_c) + " °C is outside " + range));
+  }
+  // A lower bound on the power each segment needs: the chamber's own capacity
+  // at the ramp rate plus what its walls exchange with the room (the load only
+  // adds to it). Beyond the heater or cooler the chamber cannot follow.
+  const Profile profile(scenario.start_c, scenario.segments);
+  for (std::size_t i = 0; i < profile.segments().size(); ++i) {
+    const Segment& s = profile.segments()[i];
+    if (s.kind == SegmentKind::free) continue;
+    const double from = s.kind == SegmentKind::ramp ? profile.segment_start_c(i) : s.temp_c;
+    const double rate_c_per_s = s.kind == SegmentKind::ramp ? s.rate_c_per_min / 60.0 : 0.0;
+    const bool heating = s.kind == SegmentKind::ramp ? s.temp_c > from : s.temp_c > scenario.room_c;
+    const double hottest = std::max(from, s.temp_c), coldest = std::min(from, s.temp_c);
+    const double wall_w = heating ? ch.insulation_w_per_k * (hottest - scenario.room_c)
+                                  : ch.insulation_w_per_k * (scenario.room_c - coldest);
+    const double need_w = ch.capacity_j_per_k * rate_c_per_s + std::max(0.0, wall_w);
+    const double have_w = heating ? ch.heater_max_w : ch.cooler_max_w;
+    if (need_w <= have_w) continue;
+    const std::string what = s.kind == SegmentKind::ramp
+                                 ? fmt::format("a {:g} °C/min ramp {} to {:g} °C", s.rate_c_per_min,
+                                               heating ? "up" : "down", s.temp_c)
+                                 : fmt::format("holding {:g} °C", s.temp_c);
+    std::string advice;
+    const double spare_w = have_w - std::max(0.0, wall_w);
+    if (s.kind == SegmentKind::ramp && spare_w > 0.0)
+      advice = fmt::format("; slow it to at most {:.1f} °C/min", spare_w / ch.capacity_j_per_k * 60.0);
+    else
+      advice = "; the chamber cannot hold that temperature against its wall losses";
+    throw InputError(located(
+        scenario.file.string(), s.source_line,
+        fmt::format("segment {}: {} needs at least {:.1f} kW of {} (chamber capacity {:g} J/K at "
+                    "{:.3g} °C/s, plus {:.2f} kW through the walls), but chamber.{} is {:g} W in "
+                    "{}: the chamber cannot follow the profile{}",
+                    i + 1, what, need_w / 1000.0, heating ? "heating" : "cooling",
+                    ch.capacity_j_per_k, rate_c_per_s, std::max(0.0, wall_w) / 1000.0,
+                    heating ? "heater_max_w" : "cooler_max_w", have_w, rig_file.string(), advice)));
   }
 }
 
