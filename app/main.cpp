@@ -9,6 +9,7 @@
 #include <exception>
 
 #include "app/commands.h"
+#include "sim/atomic_file.h"
 #include "sim/cvode_solver.h"
 #include "sim/input_error.h"
 
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  gyrotherm::sim::install_interrupt_cleanup();
   try {
     return run();
   } catch (const gyrotherm::InputError& e) {

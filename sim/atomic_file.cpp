@@ -1,19 +1,73 @@
 #include "sim/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cstring>
 #include <system_error>
 
 #include "sim/input_error.h"
 
 namespace gyrotherm::sim {
+namespace {
+
+// Temporaries in flight, readable from a signal handler (no allocation, no
+// locks): a slot is claimed with an atomic flag, its path copied in before the
+// flag is published.
+constexpr int kSlots = 64;
+constexpr std::size_t kPathBytes = 4096;
+struct Slot {
+  std::atomic<int> state{0};  // 0 free, 1 being filled, 2 live
+  char path[kPathBytes];
+};
+Slot slots[kSlots];
+
+int claim_slot(const std::filesystem::path& p) {
+  const std::string text = p.string();
+  if (text.size() + 1 > kPathBytes) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = 0;
+    if (!slots[i].state.compare_exchange_strong(expected, 1)) continue;
+    std::memcpy(slots[i].path, text.c_str(), text.size() + 1);
+    slots[i].state.store(2);
+    return i;
+  }
+  return -1;
+}
+
+void release_slot(int i) {
+  if (i >= 0) slots[i].state.store(0);
+}
+
+extern "C" void remove_temporaries_and_reraise(int signal_number) {
+  for (Slot& slot : slots)
+    if (slot.state.load() == 2) ::unlink(slot.path);
+  ::signal(signal_number, SIG_DFL);
+  ::raise(signal_number);
+}
+
+}  // namespace
+
+void install_interrupt_cleanup() {
+  struct sigaction action {};
+  action.sa_handler = &remove_temporaries_and_reraise;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(signal_number, &action, nullptr);
+}
 
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
   // Same directory as the target so that the rename stays within one file
   // system; the process id keeps concurrent writers apart.
   temporary_ = target_;
   temporary_ += ".tmp." + std::to_string(::getpid());
+  slot_ = claim_slot(temporary_);
   out_.open(temporary_, std::ios::binary | std::ios::trunc);
+  if (!out_) {
+    release_slot(slot_);
+    slot_ = -1;
+  }
   if (!out_)
     throw InputError(target_.string() + ": cannot create the output file (is the folder there "
                      "and writable?)");
@@ -25,6 +79,7 @@ AtomicFile::~AtomicFile() {
     std::error_code ignored;
     std::filesystem::remove(temporary_, ignored);
   }
+  release_slot(slot_);
 }
 
 void AtomicFile::commit() {
@@ -37,6 +92,8 @@ void AtomicFile::commit() {
   std::filesystem::rename(temporary_, target_, error);
   if (error) throw InputError(target_.string() + ": cannot rename into place: " + error.message());
   committed_ = true;
+  release_slot(slot_);
+  slot_ = -1;
 }
 
 void write_file_atomically(const std::filesystem::path& target, std::string_view contents) {

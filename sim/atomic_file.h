@@ -35,7 +35,16 @@ class AtomicFile {
   std::filesystem::path temporary_;
   std::ofstream out_;
   bool committed_ = false;
+  int slot_ = -1;  // in the interrupt-cleanup table, -1 if it was full
 };
+
+// Installs SIGINT/SIGTERM/SIGHUP handlers that remove every AtomicFile
+// temporary still open, then let the signal end the process as it would have
+// (so an interrupted run leaves the previous results and no litter). The
+// temporaries are kept in a fixed table of slots that the handler can read
+// without allocating: the one piece of process-wide state, because a signal
+// handler can reach nothing else. Call once from main().
+void install_interrupt_cleanup();
 
 // Writes a whole string atomically.
 void write_file_atomically(const std::filesystem::path& target, std::string_view contents);
