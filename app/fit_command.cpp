@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include "fit/compensation.h"
 #include "fit/fit_file.h"
 #include "fit/formula.h"
+#include "fit/streaming.h"
 #include "sim/atomic_file.h"
 #include "sim/input_error.h"
 
@@ -64,7 +66,12 @@ int run_fit(const FitOptions& o) {
   const fit::EngineSettings settings = engine_settings(o);
   engine.make(settings);  // validates the options before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
-  const fit::PreparedData data = fit::prepare_data(o.data, pipeline);
+  // Large logs are streamed: read twice, never held (fit/streaming.h).
+  std::error_code size_error;
+  const auto bytes = std::filesystem::file_size(o.data, size_error);
+  const bool streamed = !size_error && bytes > fit::kStreamingThresholdBytes;
+  const fit::PreparedData data =
+      streamed ? fit::prepare_data_streaming(o.data, pipeline) : fit::prepare_data(o.data, pipeline);
   fit::check_columns(terms, data, pipeline.columns);
   const fit::ModelFit result = fit::fit_model(data, terms, engine, settings);
   const std::optional<fit::Truth> truth = fit::load_truth_beside(o.data);
@@ -75,8 +82,8 @@ int run_fit(const FitOptions& o) {
     return 0;
   }
 
-  fmt::print("data: {}: {} samples every {:g} s, {} glitches removed, {} gaps, {} windows of {:g} s\n",
-             data.file, data.raw_samples, data.averaging.sample_interval_s, data.outliers.removed,
+  fmt::print("data: {}: {} samples{} every {:g} s, {} glitches removed, {} gaps, {} windows of {:g} s\n",
+             data.file, data.raw_samples, streamed ? " (streamed)" : "", data.averaging.sample_interval_s, data.outliers.removed,
              data.averaging.gaps.size(), data.series.size(), pipeline.averaging.window_s);
   if (!data.outliers.times_s.empty()) {
     std::string times;

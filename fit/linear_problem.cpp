@@ -25,6 +25,9 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   y_mean_ = y_.mean();
   y_centred_ = y_.array() - y_mean_;
   s_yy_ = y_centred_.squaredNorm() / dof;
+  if (!(s_yy_ > 0.0))
+    throw InputError("the gyro output is constant over the averaged data: there is nothing to "
+                     "compensate (is the right column mapped with --gyro-col?)");
   mean_ = design_.colwise().mean().transpose();
   scaled_ = design_.rowwise() - mean_.transpose();
   scale_ = (scaled_.colwise().squaredNorm().transpose() / dof).cwiseSqrt();
@@ -40,9 +43,6 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   gram_ = scaled_.transpose() * scaled_ / dof;
   cross_ = scaled_.transpose() * y_centred_ / dof;
 
-  if (!(s_yy_ > 0.0))
-    throw InputError("the gyro output is constant over the averaged data: there is nothing to "
-                     "compensate (is the right column mapped with --gyro-col?)");
 
   // Conditioning of the correlation matrix: a large condition number means
   // some combination of terms is (almost) collinear on this data.

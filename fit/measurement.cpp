@@ -160,6 +160,10 @@ class CsvParser {
   CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {}
 
   Measurement read(const fs::path& file);
+  // Streaming: every row goes to `sink` instead of being stored.
+  void set_sink(RowSink sink) { sink_ = std::move(sink); }
+  bool has_temp2() const { return has_temp2_; }
+  std::size_t rows() const { return rows_; }
 
  private:
   [[noreturn]] void fail(std::size_t line, const std::string& message) const {
@@ -175,6 +179,8 @@ class CsvParser {
   std::array<std::size_t, kRoles> column_of_{};  // header column of each role
   bool has_temp2_ = false;
   std::size_t rows_ = 0;
+  double last_time_ = 0.0;
+  RowSink sink_;
   std::size_t header_line_ = 0, first_row_line_ = 0, previous_line_ = 0;
   std::uintmax_t file_bytes_ = 0, header_end_bytes_ = 0;
 };
@@ -269,15 +275,20 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
     if (comma == nullptr) break;
     p = comma + 1;
   }
-  if (rows_ > 0 && !(value[kTime] > m.time_s.back()))
+  if (rows_ > 0 && !(value[kTime] > last_time_))
     fail(line_number,
          fmt::format("column {}: time {} is not after {} on line {} (time must be strictly "
                      "increasing)",
-                     m.columns[column_of_[kTime]], value[kTime], m.time_s.back(), previous_line_));
-  m.time_s.push_back(value[kTime]);
-  m.temp_c.push_back(value[kTemp]);
-  m.gyro_dph.push_back(value[kGyro]);
-  if (has_temp2_) m.temp2_c.push_back(value[kTemp2]);
+                     m.columns[column_of_[kTime]], value[kTime], last_time_, previous_line_));
+  last_time_ = value[kTime];
+  if (sink_) {
+    sink_(value[kTime], value[kTemp], value[kGyro], has_temp2_ ? value[kTemp2] : 0.0);
+  } else {
+    m.time_s.push_back(value[kTime]);
+    m.temp_c.push_back(value[kTemp]);
+    m.gyro_dph.push_back(value[kGyro]);
+    if (has_temp2_) m.temp2_c.push_back(value[kTemp2]);
+  }
   if (rows_ == 0) first_row_line_ = line_number;
   previous_line_ = line_number;
   ++rows_;
@@ -315,7 +326,7 @@ Measurement CsvParser::read(const fs::path& file) {
       header_end_bytes_ = reader.consumed_bytes();
       continue;
     }
-    if (rows_ == 0) reserve(m, line.size());
+    if (rows_ == 0 && !sink_) reserve(m, line.size());
     parse_row(line, line_number, m);
   }
   if (reader.failed()) throw InputError(located(name_, line_number, "cannot read (read error)"));
@@ -337,6 +348,19 @@ Measurement CsvParser::read(const fs::path& file) {
 
 Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns) {
   return CsvParser(file, columns).read(file);
+}
+
+CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
+                       const RowSink& sink) {
+  CsvParser parser(file, columns);
+  parser.set_sink(sink);
+  const Measurement header_only = parser.read(file);
+  CsvHeader h;
+  h.file = header_only.file;
+  h.columns = header_only.columns;
+  h.has_temp2 = parser.has_temp2();
+  h.rows = parser.rows();
+  return h;
 }
 
 }  // namespace gyrotherm::fit

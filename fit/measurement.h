@@ -29,6 +29,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -55,5 +56,17 @@ struct Measurement {
 
 // Reads and checks a measurement CSV; throws InputError (see above) on bad input.
 Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns = {});
+
+// Streaming: the same reading and checks, but every row is handed to `sink`
+// (temp2_c is 0 when the file has no such column) and nothing is stored.
+using RowSink = std::function<void(double time_s, double temp_c, double gyro_dph, double temp2_c)>;
+struct CsvHeader {
+  std::string file;
+  std::vector<std::string> columns;
+  bool has_temp2 = false;
+  std::size_t rows = 0;
+};
+CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
+                       const RowSink& sink);
 
 }  // namespace gyrotherm::fit

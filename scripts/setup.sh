@@ -16,6 +16,8 @@ packages=(
   libtomlplusplus-dev                # TOML scenario files
   libpagmo-dev                       # peer optimisers (pso, de, cmaes, abc)
   gnuplot-nox                        # plots
+  clang libclang-rt-14-dev           # libFuzzer targets (scripts/fuzz.sh) and their sanitizer runtimes
+  time                               # /usr/bin/time for peak memory (scripts/large_input.sh)
 )
 
 missing=()
