@@ -44,8 +44,10 @@ void GnuplotFigure::commands(const std::string& text) {
 }
 
 void GnuplotFigure::render() const {
-  std::filesystem::path temporary = png_;
-  temporary += ".tmp." + std::to_string(::getpid());
+  std::filesystem::path temporary_path = png_;
+  temporary_path += ".tmp." + std::to_string(::getpid());
+  sim::TemporaryPath guard(temporary_path);  // removed on failure or interruption
+  const std::filesystem::path& temporary = guard.path();
   std::filesystem::path script = png_;
   script += ".gp.tmp." + std::to_string(::getpid());
   const std::string text =
@@ -80,6 +82,7 @@ void GnuplotFigure::render() const {
                               : "gnuplot failed: " + error_text));
   }
   std::filesystem::rename(temporary, png_);
+  guard.release();
 }
 
 std::vector<double> window_means(std::span<const double> values, std::size_t window) {

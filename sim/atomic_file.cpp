@@ -57,30 +57,42 @@ void install_interrupt_cleanup() {
   for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(signal_number, &action, nullptr);
 }
 
-AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)) {
-  // Same directory as the target so that the rename stays within one file
-  // system; the process id keeps concurrent writers apart.
-  temporary_ = target_;
-  temporary_ += ".tmp." + std::to_string(::getpid());
-  slot_ = claim_slot(temporary_);
-  out_.open(temporary_, std::ios::binary | std::ios::trunc);
-  if (!out_) {
-    release_slot(slot_);
-    slot_ = -1;
+TemporaryPath::TemporaryPath(std::filesystem::path path)
+    : path_(std::move(path)), slot_(claim_slot(path_)) {}
+
+TemporaryPath::~TemporaryPath() {
+  if (!released_) {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
   }
+  release_slot(slot_);
+}
+
+void TemporaryPath::release() {
+  released_ = true;
+  release_slot(slot_);
+  slot_ = -1;
+}
+
+namespace {
+// Same directory as the target so that the rename stays within one file
+// system; the process id keeps concurrent writers apart.
+std::filesystem::path temporary_for(const std::filesystem::path& target) {
+  std::filesystem::path t = target;
+  t += ".tmp." + std::to_string(::getpid());
+  return t;
+}
+}  // namespace
+
+AtomicFile::AtomicFile(std::filesystem::path target)
+    : target_(std::move(target)), temporary_(temporary_for(target_)) {
+  out_.open(temporary_.path(), std::ios::binary | std::ios::trunc);
   if (!out_)
     throw InputError(target_.string() + ": cannot create the output file (is the folder there "
                      "and writable?)");
 }
 
-AtomicFile::~AtomicFile() {
-  if (!committed_) {
-    out_.close();
-    std::error_code ignored;
-    std::filesystem::remove(temporary_, ignored);
-  }
-  release_slot(slot_);
-}
+AtomicFile::~AtomicFile() { out_.close(); }
 
 void AtomicFile::commit() {
   out_.flush();
@@ -89,11 +101,9 @@ void AtomicFile::commit() {
   if (!ok || out_.fail())
     throw InputError(target_.string() + ": writing the output failed (disk full?)");
   std::error_code error;
-  std::filesystem::rename(temporary_, target_, error);
+  std::filesystem::rename(temporary_.path(), target_, error);
   if (error) throw InputError(target_.string() + ": cannot rename into place: " + error.message());
-  committed_ = true;
-  release_slot(slot_);
-  slot_ = -1;
+  temporary_.release();
 }
 
 void write_file_atomically(const std::filesystem::path& target, std::string_view contents) {

@@ -16,6 +16,24 @@
 
 namespace gyrotherm::sim {
 
+// A temporary file that an interrupting signal removes (see
+// install_interrupt_cleanup); removed on destruction unless released.
+class TemporaryPath {
+ public:
+  explicit TemporaryPath(std::filesystem::path path);
+  ~TemporaryPath();
+  TemporaryPath(const TemporaryPath&) = delete;
+  TemporaryPath& operator=(const TemporaryPath&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  // The file has been renamed into place (or is wanted): keep it.
+  void release();
+
+ private:
+  std::filesystem::path path_;
+  int slot_ = -1;  // in the interrupt-cleanup table, -1 if it was full
+  bool released_ = false;
+};
+
 class AtomicFile {
  public:
   explicit AtomicFile(std::filesystem::path target);
@@ -32,10 +50,8 @@ class AtomicFile {
 
  private:
   std::filesystem::path target_;
-  std::filesystem::path temporary_;
+  TemporaryPath temporary_;
   std::ofstream out_;
-  bool committed_ = false;
-  int slot_ = -1;  // in the interrupt-cleanup table, -1 if it was full
 };
 
 // Installs SIGINT/SIGTERM/SIGHUP handlers that remove every AtomicFile
