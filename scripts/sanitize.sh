@@ -11,4 +11,5 @@ cmake --build build-asan -j "$(nproc)" >> build-asan.log 2>&1 || { tail -50 buil
 rm -f build-asan.log
 cd build-asan
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions="$(cd .. && pwd)/tests/lsan.supp":print_suppressions=0 \
   ctest --output-on-failure -j "$(nproc)" --timeout 900

@@ -7,6 +7,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 
 namespace gyrotherm::sim {
@@ -16,7 +17,10 @@ namespace {
 // name and the last message CVODE's error handler captured.
 void check(int flag, const char* function, const std::string& last_message) {
   if (flag >= 0) return;
-  std::string message = std::string(function) + " failed: " + CVodeGetReturnFlagName(flag);
+  // CVodeGetReturnFlagName returns a malloc'd string the caller frees.
+  char* name = CVodeGetReturnFlagName(flag);
+  std::string message = std::string(function) + " failed: " + (name != nullptr ? name : "?");
+  std::free(name);
   if (!last_message.empty()) message += " (" + last_message + ")";
   throw SolverError(message);
 }
