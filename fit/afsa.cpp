@@ -4,16 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <boost/random/uniform_real_distribution.hpp>
-
-#include "sim/input_error.h"
-#include "sim/random.h"
+#include "fit/fish_swarm.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -34,155 +30,75 @@ void read_options(OptionReader& reader, AfsaEngine::Options& o) {
   reader.integer("try_number", o.try_number, 1, 1000);
 }
 
-struct Fish {
-  std::vector<double> x;
-  double f = 0.0;
-};
+using fish_swarm::Fish;
 
-// One run: the swarm, the generator and the evaluator (whose best point is
-// the bulletin board). evaluate() refuses once the budget is spent or the
-// target reached; a behaviour that meets a refusal returns nullopt and the
-// run unwinds.
-class Run {
- public:
-  Run(const AfsaEngine::Options& o, const LinearProblem& problem)
-      : o_(o),
-        eval_(problem, o.max_evaluations, o.target_objective),
-        rng_(sim::make_rng(o.seed, kStream)),
-        m_(problem.dimension()),
-        visual_(o.visual * kBoxWidth),
-        step_(o.step * kBoxWidth) {}
-
-  FitResult go(FitObserver* observer);
-
- private:
-  std::optional<double> evaluate(std::vector<double>& x) {
-    if (eval_.done()) return std::nullopt;
-    for (double& v : x) v = std::clamp(v, -1.0, 1.0);
-    return eval_(x);
-  }
-
-  // X_i + Rand()·Step·(target − X_i)/‖target − X_i‖, eqs. (1), (3), (4).
-  std::optional<Fish> move_towards(const Fish& fish, const std::vector<double>& target,
-                                   double distance) {
-    Fish next{fish.x, 0.0};
-    const double length = rand01_(rng_) * step_;
-    for (std::size_t k = 0; k < m_; ++k)
-      next.x[k] += length * (target[k] - fish.x[k]) / distance;
-    const std::optional<double> f = evaluate(next.x);
-    if (!f) return std::nullopt;
-    next.f = *f;
-    return next;
-  }
-
-  // (1) Prey.
-  std::optional<Fish> prey(const Fish& fish) {
-    std::vector<double> probe(m_);
-    for (int t = 0; t < o_.try_number; ++t) {
-      for (std::size_t k = 0; k < m_; ++k) probe[k] = fish.x[k] + visual_ * unit_(rng_);
-      const std::optional<double> f = evaluate(probe);
-      if (!f) return std::nullopt;
-      const double d = distance(probe, fish.x);
-      if (*f < fish.f && d > 0.0) return move_towards(fish, probe, d);
-    }
-    Fish next{fish.x, 0.0};
-    for (std::size_t k = 0; k < m_; ++k) next.x[k] += step_ * unit_(rng_);
-    const std::optional<double> f = evaluate(next.x);
-    if (!f) return std::nullopt;
-    next.f = *f;
-    return next;
-  }
-
-  double distance(const std::vector<double>& a, const std::vector<double>& b) const {
-    double s = 0.0;
-    for (std::size_t k = 0; k < m_; ++k) s += (a[k] - b[k]) * (a[k] - b[k]);
-    return std::sqrt(s);
-  }
-
-  const AfsaEngine::Options& o_;
-  Evaluator eval_;
-  sim::Rng rng_;
-  boost::random::uniform_real_distribution<double> unit_{-1.0, 1.0};
-  boost::random::uniform_real_distribution<double> rand01_{0.0, 1.0};
-  std::size_t m_;
-  double visual_;  // in box coordinates (the width is 2)
-  double step_;
-  std::vector<Fish> swarm_;
-};
-
-FitResult Run::go(FitObserver* observer) {
-  const std::size_t n = static_cast<std::size_t>(o_.fish);
+// One run: Li's choice of mates and targets on top of the shared school
+// (fit/fish_swarm.h), whose evaluator's best point is the bulletin board.
+FitResult run(const AfsaEngine::Options& o, const LinearProblem& problem,
+              FitObserver* observer) {
+  fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, kStream,
+                            fish_swarm::PreyMove::step_towards, o.try_number);
+  school.visual = o.visual * kBoxWidth;
+  school.step = o.step * kBoxWidth;
+  const std::size_t n = static_cast<std::size_t>(o.fish);
+  const std::size_t m = school.dimension();
   const auto finish = [&](long iterations, Termination fallback) {
-    return eval_.result(kName, iterations, fallback,
-                        fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} "
-                                    "(box widths)",
-                                    n, iterations, o_.max_iterations, o_.visual, o_.step));
+    return school.evaluator().result(
+        kName, iterations, fallback,
+        fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
+                    iterations, o.max_iterations, o.visual, o.step));
   };
 
   // Scatter the swarm over the box; the evaluator's best point is the
   // bulletin board from the first evaluation on.
-  swarm_.assign(n, Fish{std::vector<double>(m_, 0.0), 0.0});
-  for (Fish& fish : swarm_) {
-    for (double& v : fish.x) v = unit_(rng_);
-    const std::optional<double> f = evaluate(fish.x);
-    if (!f) return finish(0, Termination::max_iterations);
-    fish.f = *f;
-  }
+  if (!school.scatter(n)) return finish(0, Termination::max_iterations);
+  std::vector<Fish>& swarm = school.fish();
 
-  std::vector<double> centre(m_);
-  for (long g = 1; g <= o_.max_iterations; ++g) {
+  std::vector<double> centre(m);
+  for (long g = 1; g <= o.max_iterations; ++g) {
     for (std::size_t i = 0; i < n; ++i) {
-      const Fish& fish = swarm_[i];
+      const Fish& fish = swarm[i];
       // The mates within Visual: their number, centre and best.
       int n_f = 0;
       std::size_t best = i;
       std::fill(centre.begin(), centre.end(), 0.0);
       for (std::size_t j = 0; j < n; ++j) {
-        if (j == i || distance(swarm_[j].x, fish.x) >= visual_) continue;
+        if (j == i || school.distance(swarm[j].x, fish.x) >= school.visual) continue;
         ++n_f;
-        for (std::size_t k = 0; k < m_; ++k) centre[k] += swarm_[j].x[k];
-        if (best == i || swarm_[j].f < swarm_[best].f) best = j;
+        for (std::size_t k = 0; k < m; ++k) centre[k] += swarm[j].x[k];
+        if (best == i || swarm[j].f < swarm[best].f) best = j;
       }
       const bool uncrowded =
-          n_f >= 1 && static_cast<double>(n_f) / static_cast<double>(n) < o_.crowding;
+          n_f >= 1 && static_cast<double>(n_f) / static_cast<double>(n) < o.crowding;
 
-      // (2) Swarm.
+      // (2) Swarm, towards the mates' centre.
       std::optional<Fish> swarmed;
-      bool swarm_moved = false;
       if (uncrowded) {
         for (double& c : centre) c /= static_cast<double>(n_f);
-        const std::optional<double> f_centre = evaluate(centre);
+        const std::optional<double> f_centre = school.evaluate(centre);
         if (!f_centre) return finish(g, Termination::max_iterations);
-        const double to_centre = distance(fish.x, centre);
+        const double to_centre = school.distance(fish.x, centre);
         if (*f_centre < fish.f && to_centre > 0.0) {
-          swarmed = move_towards(fish, centre, to_centre);
+          swarmed = school.move_towards(fish, centre, to_centre);
           if (!swarmed) return finish(g, Termination::max_iterations);
-          swarm_moved = true;
         }
       }
-      // (3) Follow.
+      // (3) Follow, towards the best mate.
       std::optional<Fish> followed;
-      bool follow_moved = false;
-      if (uncrowded && swarm_[best].f < fish.f) {
-        const std::vector<double> leader = swarm_[best].x;
-        followed = move_towards(fish, leader, distance(fish.x, leader));
+      if (uncrowded && swarm[best].f < fish.f) {
+        const std::vector<double> leader = swarm[best].x;
+        followed = school.move_towards(fish, leader, school.distance(fish.x, leader));
         if (!followed) return finish(g, Termination::max_iterations);
-        follow_moved = true;
       }
-      // (1) Prey stands in for a move whose test failed; once serves both.
-      if (!swarm_moved || !follow_moved) {
-        std::optional<Fish> preyed = prey(fish);
-        if (!preyed) return finish(g, Termination::max_iterations);
-        (swarm_moved ? followed : swarmed) = std::move(preyed);
-      }
-      // Take the better of the two moves.
-      Fish& chosen = (followed && (!swarmed || followed->f < swarmed->f)) ? *followed : *swarmed;
-      swarm_[i] = std::move(chosen);
+      // (1) Prey stands in for a move whose test failed; the better move wins.
+      if (!school.settle(i, std::move(swarmed), std::move(followed)))
+        return finish(g, Termination::max_iterations);
     }
-    if (observer && !observer->on_iteration(g, eval_.evaluations(), eval_.best()))
+    if (observer && !observer->on_iteration(g, school.evaluator().evaluations(),
+                                            school.evaluator().best()))
       return finish(g, Termination::stopped);
   }
-  return finish(o_.max_iterations, Termination::max_iterations);
+  return finish(o.max_iterations, Termination::max_iterations);
 }
 
 }  // namespace
@@ -200,19 +116,13 @@ void AfsaEngine::Options::validate() const {
   Options copy = *this;
   read_options(reader, copy);
   reader.finish();
-  if (max_evaluations < 1)
-    throw InputError(
-        fmt::format("{} max_evaluations={}: must be at least 1", kName, max_evaluations));
-  if (!(target_objective >= 0.0) || !std::isfinite(target_objective))
-    throw InputError(fmt::format("{} target_objective={}: must be a finite number >= 0", kName,
-                                 target_objective));
+  check_stopping_rules(kName, max_evaluations, target_objective);
 }
 
 AfsaEngine::AfsaEngine(Options options) : options_(std::move(options)) { options_.validate(); }
 
 FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
-  Run run(options_, problem);
-  return run.go(observer);
+  return run(options_, problem, observer);
 }
 
 EngineInfo afsa_engine_info() {

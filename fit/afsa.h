@@ -30,7 +30,8 @@
 //
 // With a fixed Visual and Step the swarm settles no finer than a fraction of
 // Step: a small Step polishes well but travels slowly, a large one the
-// reverse. IafsaEngine (fit/iafsa.h) shrinks both as it goes.
+// reverse. IafsaEngine (fit/iafsa.h) shrinks both as it goes. The moves
+// themselves are shared with it in fit/fish_swarm.h.
 //
 // Defaults (tuned on synthetic 3-term problems for the best σ after the
 // default 20000 evaluations): 20 fish, Visual 0.5, Step 0.01, one prey

@@ -144,4 +144,13 @@ void OptionReader::finish() const {
   }
 }
 
+void check_stopping_rules(std::string_view engine, long max_evaluations, double target_objective) {
+  if (max_evaluations < 1)
+    throw InputError(
+        fmt::format("{} max_evaluations={}: must be at least 1", engine, max_evaluations));
+  if (!(target_objective >= 0.0) || !std::isfinite(target_objective))
+    throw InputError(fmt::format("{} target_objective={}: must be a finite number >= 0", engine,
+                                 target_objective));
+}
+
 }  // namespace gyrotherm::fit

@@ -155,6 +155,10 @@ class OptionReader {
   std::vector<std::string> known_;
 };
 
+// The stopping rules every engine's Options share: throws InputError unless
+// max_evaluations ≥ 1 and target_objective is finite and ≥ 0.
+void check_stopping_rules(std::string_view engine, long max_evaluations, double target_objective);
+
 // The registry entries, one function per engine file.
 EngineInfo ols_engine_info();
 EngineInfo stepwise_engine_info();

@@ -30,6 +30,7 @@
 //     pairs of fish (and none at all while δ = 1).
 // (5) Refresh the bulletin board (here after every evaluation).
 // (6) Stop at the target σ, at the evaluation budget or after G_max; else (4).
+// The moves are shared with AFSA in fit/fish_swarm.h.
 // FitResult::iterations counts the iterations begun (the last may be cut short
 // by the target or the budget); the observer hears after each completed one.
 //
