@@ -335,6 +335,14 @@ EngineSettings Campaign::settings(std::size_t e, std::size_t k, double target_ob
   return s;
 }
 
+const sim::ThermalTrace& Campaign::thermal_trace() const {
+  // A throw leaves the flag unset: the next trial tries again and reports
+  // the same error as its own.
+  std::call_once(trace_once_,
+                 [this] { trace_ = sim::Simulator(scenario_, rig_, gyro_).run_thermal(); });
+  return trace_;
+}
+
 TrialOutcome Campaign::run_trial(std::size_t k) const {
   TrialOutcome out;
   out.index = k;
@@ -344,8 +352,10 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
     sim::Scenario scenario = scenario_;
     scenario.seed = out.seed;
     const sim::GyroConfig gyro = apply_spread(gyro_, scenario_.spread, out.seed);
-    // 3. Simulate once, prepare once, the optimum once.
-    sim::SimulationResult record = sim::Simulator(std::move(scenario), rig_, gyro).run();
+    // 3. Simulate once (on the campaign's thermal trace), prepare once, the
+    // optimum once.
+    sim::SimulationResult record =
+        sim::Simulator(std::move(scenario), rig_, gyro).record(thermal_trace());
     Measurement m;
     m.file = fmt::format("{} (trial {}, seed {})", scenario_.name, k, out.seed);
     m.time_s = std::move(record.time_s);

@@ -10,7 +10,10 @@
 //     p = p₀·(1 + r·u), u ~ U(−1, 1) from make_rng(s_k, kSpreadStream), one
 //     draw per key of sim::kSpreadKeys in that order (so a key's draw never
 //     depends on which other keys are spread);
-//  3. the scenario is simulated once with seed s_k, the record prepared once
+//  3. the scenario is simulated once with seed s_k (its thermal trace, which
+//     depends on neither the seed nor [spread], is integrated once per
+//     campaign and shared by all trials: sim::Simulator::record), the record
+//     prepared once
 //     (glitches, 100 s windows, regressors), and the exact least-squares
 //     optimum σ* of the model computed (fit/ols.h);
 //  4. every engine fits the same problem with seed s_k, its budget, and the
@@ -54,6 +57,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -66,6 +70,7 @@
 #include "sim/gyro_config.h"
 #include "sim/rig_config.h"
 #include "sim/scenario.h"
+#include "sim/simulator.h"
 
 namespace gyrotherm::fit {
 
@@ -228,6 +233,12 @@ class Campaign {
   std::vector<std::string> error_terms_;
   std::vector<long> curve_grid_;
   std::uint64_t seed_ = 0;
+
+  // The campaign's thermal trace, integrated on first use by whichever trial
+  // comes first; the others wait for it and share it.
+  const sim::ThermalTrace& thermal_trace() const;
+  mutable std::once_flag trace_once_;
+  mutable sim::ThermalTrace trace_;
 };
 
 // The scoreboard as one JSON object (the `score --json` contract of

@@ -129,9 +129,19 @@ ThermalTrace Simulator::run_thermal(SolverStatistics* statistics, EnergyBalance*
 }
 
 SimulationResult Simulator::run(SimulationObserver* observer) const {
+  SolverStatistics solver;
+  EnergyBalance energy;
+  ThermalTrace trace = run_thermal(&solver, &energy, observer);
+  SimulationResult result = record(std::move(trace));
+  result.solver = solver;
+  result.energy = energy;
+  return result;
+}
+
+SimulationResult Simulator::record(ThermalTrace trace) const {
   SimulationResult result;
   result.seed = scenario_.seed;
-  result.truth = run_thermal(&result.solver, &result.energy, observer);
+  result.truth = std::move(trace);
   const ThermalTrace& tr = result.truth;
   const std::size_t n = tr.time_s.size();
   const double dt = 1.0 / scenario_.sample_rate_hz;

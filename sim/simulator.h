@@ -75,6 +75,11 @@ class Simulator {
                            SimulationObserver* observer = nullptr) const;
   // Steps 1–3.
   SimulationResult run(SimulationObserver* observer = nullptr) const;
+  // Steps 2–3 on a trace that run_thermal() gave for this scenario's profile
+  // and rig: the trace depends on neither the seed nor the gyro's [truth] and
+  // [noise], so a campaign over seeds (fit/score.h) integrates it once. The
+  // result is bit-identical to run()'s; its solver and energy fields are empty.
+  SimulationResult record(ThermalTrace trace) const;
 
   const Scenario& scenario() const { return scenario_; }
   const RigConfig& rig() const { return rig_; }

@@ -300,6 +300,27 @@ TEST(Simulator, SameSeedSameRecordOtherSeedDifferent) {
   EXPECT_NE(text_a, simulation_csv(c, c.run()));
 }
 
+// What `score` relies on: one thermal trace serves every seed and every
+// [truth]/[noise] variant, and record() on it is run() to the bit.
+TEST(Simulator, RecordOnASharedTraceIsRunForEverySeedAndGyro) {
+  Scenario s = load_scenario(scenario_path("cycle"));
+  const RigConfig rig = load_rig(s.rig_file);
+  const GyroConfig gyro = load_gyro(s.gyro_file);
+  const ThermalTrace trace = Simulator(s, rig, gyro).run_thermal();
+  GyroConfig other = gyro;
+  other.truth.b1_dph_per_c *= 1.1;
+  other.noise.arw_deg_per_sqrt_h *= 0.9;
+  for (const GyroConfig& g : {gyro, other})
+    for (const std::uint64_t seed : {s.seed, s.seed + 5}) {
+      Scenario sk = s;
+      sk.seed = seed;
+      const Simulator sim(sk, rig, g);
+      const SimulationResult shared = sim.record(trace);
+      EXPECT_EQ(simulation_csv(sim, shared), simulation_csv(sim, sim.run())) << "seed " << seed;
+      EXPECT_EQ(shared.seed, seed);
+    }
+}
+
 TEST(Simulator, HiddenEffectsAddExactlyTheirTerm) {
   Scenario s = load_scenario(scenario_path("cycle"));
   const RigConfig rig = load_rig(s.rig_file);
