@@ -321,6 +321,10 @@ Campaign::Campaign(ScoreOptions options) : options_(std::move(options)) {
     }
     if (curve_grid_.empty() || g > curve_grid_.back()) curve_grid_.push_back(g);
   }
+
+  // The temperatures every trial shares, integrated once, last: only after
+  // every input has been checked.
+  trace_ = sim::Simulator(scenario_, rig_, gyro_).run_thermal();
 }
 
 EngineSettings Campaign::settings(std::size_t e, std::size_t k, double target_objective) const {
@@ -335,14 +339,6 @@ EngineSettings Campaign::settings(std::size_t e, std::size_t k, double target_ob
   return s;
 }
 
-const sim::ThermalTrace& Campaign::thermal_trace() const {
-  // A throw leaves the flag unset: the next trial tries again and reports
-  // the same error as its own.
-  std::call_once(trace_once_,
-                 [this] { trace_ = sim::Simulator(scenario_, rig_, gyro_).run_thermal(); });
-  return trace_;
-}
-
 TrialOutcome Campaign::run_trial(std::size_t k) const {
   TrialOutcome out;
   out.index = k;
@@ -355,7 +351,7 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
     // 3. Simulate once (on the campaign's thermal trace), prepare once, the
     // optimum once.
     sim::SimulationResult record =
-        sim::Simulator(std::move(scenario), rig_, gyro).record(thermal_trace());
+        sim::Simulator(std::move(scenario), rig_, gyro).record(trace_);
     Measurement m;
     m.file = fmt::format("{} (trial {}, seed {})", scenario_.name, k, out.seed);
     m.time_s = std::move(record.time_s);

@@ -11,9 +11,9 @@
 //     draw per key of sim::kSpreadKeys in that order (so a key's draw never
 //     depends on which other keys are spread);
 //  3. the scenario is simulated once with seed s_k (its thermal trace, which
-//     depends on neither the seed nor [spread], is integrated once per
-//     campaign and shared by all trials: sim::Simulator::record), the record
-//     prepared once
+//     depends on neither the seed nor [spread], is integrated once when the
+//     campaign is set up and shared by all trials: sim::Simulator::record),
+//     the record prepared once
 //     (glitches, 100 s windows, regressors), and the exact least-squares
 //     optimum σ* of the model computed (fit/ols.h);
 //  4. every engine fits the same problem with seed s_k, its budget, and the
@@ -57,7 +57,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
-#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -198,7 +197,8 @@ class ScoreObserver {
 class Campaign {
  public:
   // Loads and checks the scenario, rig, gyro, model, engines and their
-  // settings; throws InputError before any trial runs.
+  // settings (throws InputError before any trial runs), then integrates the
+  // thermal trace (sim::SolverError if CVODE fails).
   explicit Campaign(ScoreOptions options);
 
   std::size_t trials() const { return static_cast<std::size_t>(options_.trials); }
@@ -233,12 +233,7 @@ class Campaign {
   std::vector<std::string> error_terms_;
   std::vector<long> curve_grid_;
   std::uint64_t seed_ = 0;
-
-  // The campaign's thermal trace, integrated on first use by whichever trial
-  // comes first; the others wait for it and share it.
-  const sim::ThermalTrace& thermal_trace() const;
-  mutable std::once_flag trace_once_;
-  mutable sim::ThermalTrace trace_;
+  sim::ThermalTrace trace_;  // the temperatures every trial shares
 };
 
 // The scoreboard as one JSON object (the `score --json` contract of
