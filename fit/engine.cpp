@@ -109,6 +109,20 @@ void OptionReader::integer(const std::string& key, int& value, int lo, int hi) {
   value = static_cast<int>(v);
 }
 
+void OptionReader::integer_or_auto(const std::string& key, int& value, int lo, int hi) {
+  const auto it = options_.find(key);
+  if (it != options_.end() && it->second == "auto") {
+    known_.push_back(key);
+    value = 0;
+    return;
+  }
+  try {
+    integer(key, value, lo, hi);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{} (or auto)", e.what()));
+  }
+}
+
 void OptionReader::real(const std::string& key, double& value, double lo, double hi,
                         bool lo_open) {
   known_.push_back(key);

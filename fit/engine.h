@@ -145,6 +145,8 @@ class OptionReader {
   OptionReader(std::string engine, const std::map<std::string, std::string>& options);
   // Reads `key` into `value` if given; checks lo ≤ value ≤ hi.
   void integer(const std::string& key, int& value, int lo, int hi);
+  // The same, or the word "auto", read as 0 (the engine then chooses).
+  void integer_or_auto(const std::string& key, int& value, int lo, int hi);
   void real(const std::string& key, double& value, double lo, double hi, bool lo_open = false);
   void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed);
   void finish() const;  // throws for keys nobody asked for

@@ -19,12 +19,15 @@ constexpr char kName[] = "iafsa";
 // other components draw from the same seed.
 constexpr std::uint64_t kStream = 0x1AF5A;
 constexpr double kBoxWidth = 2.0;
+constexpr int kMaxIterations = 100000000;
+
+std::string auto_or(int value) { return value == IafsaEngine::kAuto ? "auto" : fmt::format("{}", value); }
 
 // The one place the option rules live: make() reads KEY=VALUE strings with
 // them and validate() checks an Options aggregate with the same reader.
 void read_options(OptionReader& reader, IafsaEngine::Options& o) {
-  reader.integer("fish", o.fish, 2, 100000);
-  reader.integer("max_iterations", o.max_iterations, 1, 100000000);
+  reader.integer_or_auto("fish", o.fish, 2, 100000);
+  reader.integer_or_auto("max_iterations", o.max_iterations, 1, kMaxIterations);
   reader.real("visual", o.visual, 0.0, 1.0, true);
   reader.real("step", o.step, 0.0, 1.0, true);
   reader.real("visual_min", o.visual_min, 0.0, 1.0);
@@ -54,13 +57,16 @@ FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
   fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, kStream,
                             fish_swarm::PreyMove::jump_to, o.try_number);
   Evaluator& eval = school.evaluator();
-  const std::size_t n = static_cast<std::size_t>(o.fish);
   const std::size_t m = school.dimension();
+  const std::size_t n = static_cast<std::size_t>(
+      o.fish == IafsaEngine::kAuto ? IafsaEngine::auto_fish(m) : o.fish);
+  const long g_last =
+      o.max_iterations == IafsaEngine::kAuto ? IafsaEngine::auto_iterations(m) : o.max_iterations;
   const auto finish = [&](long iterations, Termination fallback) {
     return eval.result(
         kName, iterations, fallback,
         fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
-                    iterations, o.max_iterations, school.visual / kBoxWidth,
+                    iterations, g_last, school.visual / kBoxWidth,
                     school.step / kBoxWidth));
   };
 
@@ -72,8 +78,8 @@ FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
   std::vector<Fish>& swarm = school.fish();
 
   std::vector<double> centre(m);
-  const double g_max = static_cast<double>(o.max_iterations);
-  for (long g = 1; g <= o.max_iterations; ++g) {
+  const double g_max = static_cast<double>(g_last);
+  for (long g = 1; g <= g_last; ++g) {
     // (4) Eq. (5).
     const double alpha = std::exp(-3.0 * static_cast<double>(g) / g_max);
     if (o.schedule == "compound") {
@@ -121,15 +127,15 @@ FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
     if (observer && !observer->on_iteration(g, eval.evaluations(), eval.best()))
       return finish(g, Termination::stopped);
   }
-  return finish(o.max_iterations, Termination::max_iterations);
+  return finish(g_last, Termination::max_iterations);
 }
 
 }  // namespace
 
 void IafsaEngine::Options::validate() const {
   std::map<std::string, std::string> given = {
-      {"fish", fmt::format("{}", fish)},
-      {"max_iterations", fmt::format("{}", max_iterations)},
+      {"fish", auto_or(fish)},
+      {"max_iterations", auto_or(max_iterations)},
       {"visual", fmt::format("{}", visual)},
       {"step", fmt::format("{}", step)},
       {"visual_min", fmt::format("{}", visual_min)},
@@ -143,6 +149,15 @@ void IafsaEngine::Options::validate() const {
   read_options(reader, copy);
   reader.finish();
   check_stopping_rules(kName, max_evaluations, target_objective);
+}
+
+int IafsaEngine::auto_fish(std::size_t terms) {
+  return 8 + 4 * static_cast<int>(std::min<std::size_t>(terms > 3 ? terms - 3 : 0, 20000));
+}
+
+int IafsaEngine::auto_iterations(std::size_t terms) {
+  const double extra = static_cast<double>(terms > 3 ? terms - 3 : 0);
+  return static_cast<int>(std::min(700.0 * std::pow(2.5, extra), double{kMaxIterations}));
 }
 
 IafsaEngine::IafsaEngine(Options options) : options_(std::move(options)) { options_.validate(); }
@@ -161,9 +176,9 @@ EngineInfo iafsa_engine_info() {
   info.stochastic = true;
   info.default_evaluations = d.max_evaluations;
   info.options = {
-      {"fish", fmt::format("{}: N, the swarm size", d.fish)},
-      {"max_iterations", fmt::format("{}: G_max of eq. (5), also a stopping rule",
-                                     d.max_iterations)},
+      {"fish", "auto: N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms"},
+      {"max_iterations", "auto: G_max of eq. (5), also a stopping rule; auto is 700 up to 3 "
+                         "terms, 700·2.5^(m − 3) for m terms"},
       {"visual", fmt::format("{}: Visual_0, fraction of the box width", d.visual)},
       {"step", fmt::format("{}: Step_0, fraction of the box width", d.step)},
       {"visual_min", fmt::format("{}: Visual_min of eq. (5), fraction of the box width",

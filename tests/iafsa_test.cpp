@@ -66,8 +66,8 @@ TEST(Iafsa, ScalesToASixTermModelWithMoreFishAndASlowerSchedule) {
   // Six correlated terms (condition number ≈ 400): the range must shrink more
   // slowly (it collapses after ≈ 3·√G_max iterations), so G_max = 20000 and
   // 20 fish; they reach 1e-6 in a median of 19000 evaluations (at worst 23000
-  // of 20 seeds) and the test gives them 40000. At the defaults the range
-  // collapses too early and σ stays well above the optimum.
+  // of 20 seeds) and the test gives them 40000. At 8 fish and G_max = 700 the
+  // range collapses too early and σ stays well above the optimum.
   const Cycle c = cycle_design(true);
   const Eigen::VectorXd y = bias_dph(c.design, kSixTerm, 0.002);
   const LinearProblem problem = make_problem(c, y);
@@ -79,6 +79,35 @@ TEST(Iafsa, ScalesToASixTermModelWithMoreFishAndASlowerSchedule) {
   const FitResult r = run(problem, settings);
   EXPECT_LE(sigma_at(problem, r), optimum * (1.0 + 1e-6));
   EXPECT_LE(r.evaluations, 40000);
+}
+
+TEST(Iafsa, AutoSizesTheSwarmAndTheScheduleByTheNumberOfTerms) {
+  EXPECT_EQ(IafsaEngine::auto_fish(1), 8);
+  EXPECT_EQ(IafsaEngine::auto_fish(3), 8);
+  EXPECT_EQ(IafsaEngine::auto_fish(6), 20);
+  EXPECT_EQ(IafsaEngine::auto_iterations(3), 700);
+  EXPECT_EQ(IafsaEngine::auto_iterations(4), 1750);
+  EXPECT_EQ(IafsaEngine::auto_iterations(6), 10937);
+  EXPECT_EQ(IafsaEngine::auto_iterations(40), 100000000);  // capped
+
+  // This problem was not used to choose the rule (fit/iafsa.h): at the
+  // default options and budget every seed reaches the target on the six
+  // correlated terms, where the fixed 8 fish and G_max = 700 fall short.
+  const Cycle c = cycle_design(true);
+  const Eigen::VectorXd y = bias_dph(c.design, kSixTerm, 0.002);
+  const LinearProblem problem = make_problem(c, y);
+  const double optimum = least_squares_sigma(c.design, y);
+  int fixed_short = 0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    EngineSettings settings;  // default budget (20000), auto fish and G_max
+    settings.seed = seed;
+    const FitResult r = run(problem, settings);
+    EXPECT_LE(sigma_at(problem, r), optimum * (1.0 + 1e-6)) << "seed " << seed;
+    EXPECT_NE(r.message.find("20 fish"), std::string::npos) << r.message;
+    settings.options = {{"fish", "8"}, {"max_iterations", "700"}};
+    if (sigma_at(problem, run(problem, settings)) > optimum * (1.0 + 1e-6)) ++fixed_short;
+  }
+  EXPECT_GE(fixed_short, 3);
 }
 
 TEST(Iafsa, SameSeedGivesTheSameRunAndHistory) {
