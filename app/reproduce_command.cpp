@@ -8,8 +8,8 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
+#include "app/comma_list.h"
 #include "app/commands.h"
 #include "app/gnuplot.h"
 #include "fit/reproduce.h"
@@ -30,15 +30,6 @@ struct ReproduceCli {
 std::string default_scenarios_dir() {
   if (std::filesystem::exists("scenarios/cycle.toml")) return "scenarios";
   return std::string(GYROTHERM_SOURCE_DIR) + "/scenarios";
-}
-
-std::vector<std::string> split(const std::string& list) {
-  std::vector<std::string> out;
-  std::stringstream s(list);
-  std::string item;
-  while (std::getline(s, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
 }
 
 using Json = nlohmann::ordered_json;
@@ -258,7 +249,7 @@ int run_reproduce(const ReproduceCli& o) {
   options.cycle = dir + "/cycle.toml";
   options.test1 = dir + "/random.toml";
   options.test2 = dir + "/warmup.toml";
-  options.engines = split(o.engines);
+  options.engines = split_commas(o.engines);
   options.engine_seed = o.seed;
   const bool tty = ::isatty(2) != 0;
   options.progress = [tty](const std::string& step, double f) {

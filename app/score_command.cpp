@@ -12,9 +12,9 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
-#include <sstream>
 #include <thread>
 
+#include "app/comma_list.h"
 #include "app/commands.h"
 #include "app/gnuplot.h"
 #include "app/score_mpi.h"
@@ -40,15 +40,6 @@ struct ScoreCli {
   bool json = false;
 };
 
-std::vector<std::string> split(const std::string& list) {
-  std::vector<std::string> out;
-  std::stringstream s(list);
-  std::string item;
-  while (std::getline(s, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 long parse_count(const std::string& text, const std::string& what) {
   std::size_t used = 0;
   long v = -1;
@@ -65,7 +56,7 @@ long parse_count(const std::string& text, const std::string& what) {
 fit::ScoreOptions score_options(const ScoreCli& o) {
   fit::ScoreOptions s;
   s.scenario = o.scenario;
-  s.engines = split(o.engines);
+  s.engines = split_commas(o.engines);
   s.model = o.model;
   s.trials = o.trials;
   if (o.seed_option != nullptr && o.seed_option->count() > 0) s.seed = o.seed;

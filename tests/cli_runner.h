@@ -55,12 +55,12 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
-// args are passed to the shell as written (quote them yourself).
-inline CliResult run_cli(const ScratchDir& dir, const std::string& args) {
+// Runs `command` with the shell in dir, capturing exit code, stdout and stderr.
+inline CliResult run_shell(const ScratchDir& dir, const std::string& command) {
   const auto out = dir / ".stdout", err = dir / ".stderr";
-  const std::string command = "cd '" + dir.path().string() + "' && '" + GYROTHERM_CLI + "' " +
-                              args + " > '" + out.string() + "' 2> '" + err.string() + "'";
-  const int status = std::system(command.c_str());
+  const std::string full = "cd '" + dir.path().string() + "' && " + command + " > '" +
+                           out.string() + "' 2> '" + err.string() + "'";
+  const int status = std::system(full.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out);
@@ -70,8 +70,28 @@ inline CliResult run_cli(const ScratchDir& dir, const std::string& args) {
   return r;
 }
 
+// args are passed to the shell as written (quote them yourself).
+inline CliResult run_cli(const ScratchDir& dir, const std::string& args) {
+  return run_shell(dir, std::string("'") + GYROTHERM_CLI + "' " + args);
+}
+
 inline std::string source_path(const std::string& relative) {
   return std::string(GYROTHERM_SOURCE_DIR) + "/" + relative;
+}
+
+// A 2.3 h profile (20 → 60 → −20 °C with 30 min holds) on the shipped shield
+// rig: enough 100 s windows to fit, a few ms to simulate. `extra` is appended
+// (e.g. a [spread] table).
+inline std::string short_scenario_text(int seed, const std::string& gyro_file,
+                                       const std::string& extra = "") {
+  return "name = \"short\"\nseed = " + std::to_string(seed) + "\nstart_c = 20.0\nrig = \"" +
+         source_path("scenarios/rig_shield.toml") + "\"\ngyro = \"" + gyro_file + "\"\n" +
+         "[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_min = 30\n"
+         "[[segment]]\nkind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = 5.0\n"
+         "[[segment]]\nkind = \"hold\"\ntemp_c = 60.0\nduration_min = 30\n"
+         "[[segment]]\nkind = \"ramp\"\ntarget_c = -20.0\nrate_c_per_min = 5.0\n"
+         "[[segment]]\nkind = \"hold\"\ntemp_c = -20.0\nduration_min = 30\n" +
+         extra;
 }
 
 }  // namespace gyrotherm::testing

@@ -17,6 +17,8 @@ using testing::CliResult;
 using testing::run_cli;
 using testing::ScratchDir;
 using testing::slurp;
+using testing::run_shell;
+using testing::short_scenario_text;
 using testing::source_path;
 using testing::write_text;
 using Json = nlohmann::json;
@@ -25,15 +27,7 @@ using Json = nlohmann::json;
 const std::string kBaselineCampaign = "score '" + source_path("scenarios/cycle.toml") + "' --trials 20 --seed 1";
 
 void write_short_scenario(const ScratchDir& dir, const std::string& extra = "") {
-  write_text(dir / "short.toml",
-             "name = \"short\"\nseed = 3\nstart_c = 20.0\nrig = \"" + source_path("scenarios/rig_shield.toml") +
-                 "\"\ngyro = \"" + source_path("scenarios/gyro.toml") + "\"\n" +
-                 "[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_min = 30\n"
-                 "[[segment]]\nkind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = 5.0\n"
-                 "[[segment]]\nkind = \"hold\"\ntemp_c = 60.0\nduration_min = 30\n"
-                 "[[segment]]\nkind = \"ramp\"\ntarget_c = -20.0\nrate_c_per_min = 5.0\n"
-                 "[[segment]]\nkind = \"hold\"\ntemp_c = -20.0\nduration_min = 30\n" +
-                 extra);
+  write_text(dir / "short.toml", short_scenario_text(3, source_path("scenarios/gyro.toml"), extra));
 }
 
 // The scoreboard without what measures time or how it ran.
@@ -46,20 +40,6 @@ Json without_timing(Json j) {
     for (const std::string& key : timing) e.erase(key);
   }
   return j;
-}
-
-CliResult run_shell(const ScratchDir& dir, const std::string& command) {
-  const auto out = dir / ".stdout", err = dir / ".stderr";
-  const std::string full = "cd '" + dir.path().string() + "' && " + command + " > '" + out.string() + "' 2> '" +
-                           err.string() + "'";
-  const int status = std::system(full.c_str());
-  CliResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  std::filesystem::remove(out);
-  std::filesystem::remove(err);
-  return r;
 }
 
 TEST(CliScore, JsonHasTheContractFields) {

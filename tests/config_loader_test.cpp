@@ -9,11 +9,14 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "expect_input_error.h"
 #include "sim/input_error.h"
 #include "sim/profile.h"
 
 namespace gyrotherm::sim {
 namespace {
+
+using gyrotherm::testing::expect_input_error;
 
 using gyrotherm::testing::ScratchDir;
 using gyrotherm::testing::source_path;
@@ -76,54 +79,42 @@ TEST(ConfigLoader, ShippedWarmUpHasNoChamber) {
   EXPECT_TRUE(rig.case_.natural_convection);
 }
 
-// Expects InputError whose message contains every fragment.
-void expect_error(const std::function<void()>& f, const std::vector<std::string>& fragments) {
-  try {
-    f();
-    ADD_FAILURE() << "expected an InputError";
-  } catch (const InputError& e) {
-    for (const std::string& fragment : fragments)
-      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos)
-          << "message: " << e.what() << "\nmissing: " << fragment;
-  }
-}
-
 TEST(ConfigLoader, UnknownKeyNamesFileLineAndKey) {
   ScratchDir dir;
   write_text(dir / "rig.toml", "[chamber]\ncapacity_j_per_k = 1000.0\nheater_max = 5.0\n");
-  expect_error([&] { load_rig(dir / "rig.toml"); },
+  expect_input_error([&] { load_rig(dir / "rig.toml"); },
                {"rig.toml:3", "unknown key 'chamber.heater_max'", "heater_max_w"});
 }
 
 TEST(ConfigLoader, NegativeCapacityIsRejected) {
   ScratchDir dir;
   write_text(dir / "rig.toml", "[case]\n\ncapacity_j_per_k = -5\n");
-  expect_error([&] { load_rig(dir / "rig.toml"); },
+  expect_input_error([&] { load_rig(dir / "rig.toml"); },
                {"rig.toml:3", "case.capacity_j_per_k = -5", "must be > 0"});
 }
 
 TEST(ConfigLoader, WrongTypeIsRejected) {
   ScratchDir dir;
   write_text(dir / "gyro.toml", "[noise]\narw_deg_per_sqrt_h = \"low\"\n");
-  expect_error([&] { load_gyro(dir / "gyro.toml"); },
+  expect_input_error([&] { load_gyro(dir / "gyro.toml"); },
                {"gyro.toml:2", "noise.arw_deg_per_sqrt_h", "expected a number"});
 }
 
 TEST(ConfigLoader, UnknownHiddenTermListsTheValidOnes) {
   ScratchDir dir;
   write_text(dir / "gyro.toml", "[hidden]\ngradient = 0.1\n");
-  expect_error([&] { load_gyro(dir / "gyro.toml"); },
+  expect_input_error([&] { load_gyro(dir / "gyro.toml"); },
                {"gyro.toml:2", "hidden.gradient", "grad, T*dT, T^3, d2T, hyst, warmup, t"});
 }
 
 TEST(ConfigLoader, InvalidTomlReportsTheLine) {
   ScratchDir dir;
   write_text(dir / "s.toml", "name = \"x\"\nseed = = 3\n");
-  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:2", "not valid TOML"});
+  expect_input_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:2", "not valid TOML"});
 }
 
 TEST(ConfigLoader, MissingFile) {
-  expect_error([&] { load_scenario("/nonexistent/scenario.toml"); },
+  expect_input_error([&] { load_scenario("/nonexistent/scenario.toml"); },
                {"/nonexistent/scenario.toml", "no such file"});
 }
 
@@ -134,7 +125,7 @@ std::string scenario_with(const std::string& segment) {
 TEST(ConfigLoader, NegativeDuration) {
   ScratchDir dir;
   write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = -1.0\n"));
-  expect_error([&] { load_scenario(dir / "s.toml"); },
+  expect_input_error([&] { load_scenario(dir / "s.toml"); },
                {"s.toml:7", "segment 1.duration_h = -1", "must be > 0"});
 }
 
@@ -143,7 +134,7 @@ TEST(ConfigLoader, ZeroOrNegativeRampRate) {
   for (const std::string rate : {"0.0", "-5.0"}) {
     write_text(dir / "s.toml",
                scenario_with("kind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = " + rate + "\n"));
-    expect_error([&] { load_scenario(dir / "s.toml"); },
+    expect_input_error([&] { load_scenario(dir / "s.toml"); },
                  {"s.toml:7", "segment 1.rate_c_per_min", "must be > 0"});
   }
 }
@@ -151,14 +142,14 @@ TEST(ConfigLoader, ZeroOrNegativeRampRate) {
 TEST(ConfigLoader, TwoDurationsAreAmbiguous) {
   ScratchDir dir;
   write_text(dir / "s.toml", scenario_with("kind = \"free\"\nduration_h = 1.0\nduration_s = 5.0\n"));
-  expect_error([&] { load_scenario(dir / "s.toml"); },
+  expect_input_error([&] { load_scenario(dir / "s.toml"); },
                {"s.toml:4", "exactly one of duration_s, duration_min, duration_h"});
 }
 
 TEST(ConfigLoader, UnknownSegmentKind) {
   ScratchDir dir;
   write_text(dir / "s.toml", scenario_with("kind = \"soak\"\nduration_h = 1.0\n"));
-  expect_error([&] { load_scenario(dir / "s.toml"); },
+  expect_input_error([&] { load_scenario(dir / "s.toml"); },
                {"s.toml:4", "kind = \"soak\"", "\"hold\", \"ramp\" or \"free\""});
 }
 
@@ -166,7 +157,7 @@ TEST(ConfigLoader, KeyThatASegmentKindDoesNotUse) {
   ScratchDir dir;
   write_text(dir / "s.toml",
              scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\nrate_c_per_min = 2\n"));
-  expect_error([&] { load_scenario(dir / "s.toml"); },
+  expect_input_error([&] { load_scenario(dir / "s.toml"); },
                {"s.toml:8", "unknown key 'segment 1.rate_c_per_min'"});
 }
 
@@ -174,7 +165,7 @@ TEST(ConfigLoader, SetPointOutsideTheChamberRange) {
   ScratchDir dir;
   write_text(dir / "s.toml", scenario_with("kind = \"ramp\"\ntarget_c = 150.0\nrate_c_per_min = 5\n"));
   const Scenario s = load_scenario(dir / "s.toml");
-  expect_error([&] { check_scenario_against_rig(s, RigConfig{}, "rig.toml"); },
+  expect_input_error([&] { check_scenario_against_rig(s, RigConfig{}, "rig.toml"); },
                {"s.toml:4", "target_c = 150", "outside the chamber's range, -60..130", "rig.toml"});
 }
 
@@ -182,7 +173,7 @@ TEST(ConfigLoader, NoChamberAllowsOnlyFreeSegments) {
   ScratchDir dir;
   write_text(dir / "s.toml",
              "chamber = false\n[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_h = 1\n");
-  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:2", "chamber = false", "free"});
+  expect_input_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:2", "chamber = false", "free"});
 }
 
 // [spread]: relative ranges of gyro parameters for `gyrotherm score`.
@@ -203,7 +194,7 @@ TEST(ConfigLoader, UnknownSpreadKeyNamesFileLineAndKey) {
   ScratchDir dir;
   write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n") +
                                  "[spread]\nb1 = 0.1\n");
-  expect_error([&] { load_scenario(dir / "s.toml"); },
+  expect_input_error([&] { load_scenario(dir / "s.toml"); },
                {"s.toml:9", "unknown key 'spread.b1' in [spread]", "b1_dph_per_c", "arw_deg_per_sqrt_h"});
 }
 
@@ -212,25 +203,25 @@ TEST(ConfigLoader, SpreadOutOfRangeOrWrongType) {
   for (const std::string value : {"1.0", "-0.1", "2"}) {
     write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n") +
                                    "[spread]\nb3_dph_per_c_per_s = " + value + "\n");
-    expect_error([&] { load_scenario(dir / "s.toml"); },
+    expect_input_error([&] { load_scenario(dir / "s.toml"); },
                  {"s.toml:9", "spread.b3_dph_per_c_per_s = ", "must be >= 0 and < 1"});
   }
   write_text(dir / "s.toml", scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n") +
                                  "[spread]\nb0_dph = \"wide\"\n");
-  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:9", "spread.b0_dph", "expected a number"});
+  expect_input_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:9", "spread.b0_dph", "expected a number"});
   write_text(dir / "s.toml", "spread = 0.1\n" + scenario_with("kind = \"hold\"\ntemp_c = 20.0\nduration_h = 1.0\n"));
-  expect_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:1", "spread: expected a table [spread]"});
+  expect_input_error([&] { load_scenario(dir / "s.toml"); }, {"s.toml:1", "spread: expected a table [spread]"});
 }
 
 TEST(ConfigLoader, HiddenOption) {
   GyroConfig g;
   apply_hidden_option(g, "T*dT=2.5e-3");
   EXPECT_EQ(g.hidden.coefficient["T*dT"], 2.5e-3);
-  expect_error([&] { apply_hidden_option(g, "gradient=1"); },
+  expect_input_error([&] { apply_hidden_option(g, "gradient=1"); },
                {"unknown term 'gradient'", "grad, T*dT, T^3, d2T, hyst, warmup, t"});
-  expect_error([&] { apply_hidden_option(g, "dT=1"); }, {"[truth]"});
-  expect_error([&] { apply_hidden_option(g, "grad=abc"); }, {"'abc' is not a finite number"});
-  expect_error([&] { apply_hidden_option(g, "grad"); }, {"expected TERM=COEF"});
+  expect_input_error([&] { apply_hidden_option(g, "dT=1"); }, {"[truth]"});
+  expect_input_error([&] { apply_hidden_option(g, "grad=abc"); }, {"'abc' is not a finite number"});
+  expect_input_error([&] { apply_hidden_option(g, "grad"); }, {"expected TERM=COEF"});
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "cli_runner.h"
+#include "expect_input_error.h"
 #include "fit/formula.h"
 #include "fit/ols.h"
 #include "sim/config_loader.h"
@@ -25,25 +26,19 @@
 namespace gyrotherm::fit {
 namespace {
 
+using gyrotherm::testing::expect_input_error;
+
 using gyrotherm::testing::ScratchDir;
 using gyrotherm::testing::source_path;
 using gyrotherm::testing::write_text;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A 2.3 h profile (20 → 60 → −20 °C): enough windows, a few ms to simulate.
+// The short profile of cli_runner.h with seed 7.
 std::filesystem::path short_scenario(const std::filesystem::path& dir, const std::string& extra = "",
                                      const std::string& gyro = "") {
   const std::string gyro_file = gyro.empty() ? source_path("scenarios/gyro.toml") : gyro;
-  write_text(dir / "short.toml",
-             "name = \"short\"\nseed = 7\nstart_c = 20.0\nrig = \"" + source_path("scenarios/rig_shield.toml") +
-                 "\"\ngyro = \"" + gyro_file + "\"\n" +
-                 "[[segment]]\nkind = \"hold\"\ntemp_c = 20.0\nduration_min = 30\n"
-                 "[[segment]]\nkind = \"ramp\"\ntarget_c = 60.0\nrate_c_per_min = 5.0\n"
-                 "[[segment]]\nkind = \"hold\"\ntemp_c = 60.0\nduration_min = 30\n"
-                 "[[segment]]\nkind = \"ramp\"\ntarget_c = -20.0\nrate_c_per_min = 5.0\n"
-                 "[[segment]]\nkind = \"hold\"\ntemp_c = -20.0\nduration_min = 30\n" +
-                 extra);
+  write_text(dir / "short.toml", gyrotherm::testing::short_scenario_text(7, gyro_file, extra));
   return dir / "short.toml";
 }
 
@@ -66,17 +61,6 @@ std::vector<TrialOutcome> without_times(std::vector<TrialOutcome> v) {
   for (TrialOutcome& o : v)
     for (EngineTrial& e : o.engines) e.seconds = 0.0;
   return v;
-}
-
-void expect_input_error(const std::function<void()>& f, const std::vector<std::string>& fragments) {
-  try {
-    f();
-    ADD_FAILURE() << "expected an InputError";
-  } catch (const InputError& e) {
-    for (const std::string& fragment : fragments)
-      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos)
-          << "message: " << e.what() << "\nmissing: " << fragment;
-  }
 }
 
 // ---- Statistics ------------------------------------------------------------------

@@ -1,0 +1,19 @@
+#pragma once
+// "a,b,,c" → {"a", "b", "c"}: the comma-separated lists of --engines.
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace gyrotherm::app {
+
+inline std::vector<std::string> split_commas(const std::string& list) {
+  std::vector<std::string> out;
+  std::stringstream s(list);
+  std::string item;
+  while (std::getline(s, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+}  // namespace gyrotherm::app
