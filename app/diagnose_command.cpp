@@ -1,6 +1,6 @@
 // gyrotherm diagnose DATA.csv [--model F] [--add TERM ...] [--engine E]
 //                            [--plots DIR] [--json]
-// The five steps of fit/diagnosis.h: compare with the noise floor, where the
+// The five steps of studies/diagnose/diagnosis.h: compare with the noise floor, where the
 // model fails, which effect is missing, add it, watch the error fall.
 
 #include <CLI/CLI.hpp>
@@ -12,11 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
-#include "app/diagnose_plots.h"
+#include "studies/diagnose/diagnose_plots.h"
 #include "app/pipeline_options.h"
-#include "fit/diagnosis.h"
-#include "fit/formula.h"
-#include "sim/input_error.h"
+#include "studies/diagnose/diagnosis.h"
+#include "fit/model/formula.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
 namespace {

@@ -15,10 +15,10 @@
 #include "app/pipeline_options.h"
 #include "fit/compensation.h"
 #include "fit/fit_file.h"
-#include "fit/formula.h"
-#include "fit/streaming.h"
-#include "sim/atomic_file.h"
-#include "sim/input_error.h"
+#include "fit/model/formula.h"
+#include "fit/data/streaming.h"
+#include "sim/util/atomic_file.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
 namespace {
@@ -66,7 +66,7 @@ int run_fit(const FitOptions& o) {
   const fit::EngineSettings settings = engine_settings(o);
   engine.make(settings);  // validates the options before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
-  // Large logs are streamed: read twice, never held (fit/streaming.h).
+  // Large logs are streamed: read twice, never held (fit/data/streaming.h).
   std::error_code size_error;
   const auto bytes = std::filesystem::file_size(o.data, size_error);
   const bool streamed = !size_error && bytes > fit::kStreamingThresholdBytes;
@@ -76,7 +76,7 @@ int run_fit(const FitOptions& o) {
   const fit::ModelFit result = fit::fit_model(data, terms, engine, settings);
   const std::optional<fit::Truth> truth = fit::load_truth_beside(o.data);
   const std::string json = fit::fit_json_text(result, data, pipeline, settings, truth);
-  if (!o.output.empty()) sim::write_file_atomically(o.output, json);
+  if (!o.output.empty()) write_file_atomically(o.output, json);
   if (o.json) {
     fmt::print("{}", json);
     return 0;

@@ -9,9 +9,9 @@
 #include <exception>
 
 #include "app/commands.h"
-#include "sim/atomic_file.h"
+#include "sim/util/atomic_file.h"
 #include "sim/cvode_solver.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"gyrotherm: thermal-test simulator and fitting benchmark for RLG bias "
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  gyrotherm::sim::install_interrupt_cleanup();
+  gyrotherm::install_interrupt_cleanup();
   try {
     return run();
   } catch (const gyrotherm::InputError& e) {

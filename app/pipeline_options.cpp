@@ -3,7 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
 

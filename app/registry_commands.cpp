@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
-#include "fit/engine.h"
-#include "fit/terms.h"
+#include "fit/engines/engine.h"
+#include "fit/model/terms.h"
 
 namespace gyrotherm::app {
 namespace {

@@ -1,6 +1,6 @@
 // gyrotherm reproduce [--out DIR] [--scenarios DIR] [--engines LIST] [--seed N] [--json]
 // The main job: the paper's Table 1 scenarios on the default simulated gyro,
-// side by side with the paper's figures (fit/reproduce.h).
+// side by side with the paper's figures (studies/reproduce/reproduce.h).
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -11,10 +11,10 @@
 
 #include "app/comma_list.h"
 #include "app/commands.h"
-#include "app/gnuplot.h"
-#include "fit/reproduce.h"
-#include "sim/atomic_file.h"
-#include "sim/input_error.h"
+#include "sim/util/gnuplot.h"
+#include "studies/reproduce/reproduce.h"
+#include "sim/util/atomic_file.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
 namespace {
@@ -270,8 +270,8 @@ int run_reproduce(const ReproduceCli& o) {
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   Json j = table_json(r);
   j["total_seconds"] = total;
-  sim::write_file_atomically(o.out + "/table1.json", j.dump(2) + "\n");
-  sim::write_file_atomically(o.out + "/table1.md", table_markdown(r, total));
+  write_file_atomically(o.out + "/table1.json", j.dump(2) + "\n");
+  write_file_atomically(o.out + "/table1.md", table_markdown(r, total));
 
   if (o.json) {
     fmt::print("{}\n", j.dump());

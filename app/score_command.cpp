@@ -1,7 +1,7 @@
 // gyrotherm score SCENARIO.toml [--engines LIST] [--trials N] [--threads N] [--seed S]
 //                [--model F] [--budget N | ENGINE=N ...] [--option ENGINE:KEY=VALUE ...]
 //                [--baseline B.json] [--json] [--out DIR]
-// A Monte Carlo campaign scoring the fitting engines (fit/score.h); under
+// A Monte Carlo campaign scoring the fitting engines (studies/score/campaign.h); under
 // mpirun the trials are spread over the ranks (app/score_mpi.h).
 
 #include <CLI/CLI.hpp>
@@ -16,11 +16,15 @@
 
 #include "app/comma_list.h"
 #include "app/commands.h"
-#include "app/gnuplot.h"
+#include "sim/util/gnuplot.h"
 #include "app/score_mpi.h"
-#include "fit/score.h"
-#include "sim/atomic_file.h"
-#include "sim/input_error.h"
+#include "studies/score/baseline.h"
+#include "studies/score/campaign.h"
+#include "studies/score/outcome_packing.h"
+#include "studies/score/report.h"
+#include "studies/score/spread.h"
+#include "sim/util/atomic_file.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
 namespace {
@@ -177,9 +181,9 @@ int report(const fit::Scoreboard& board, const std::optional<fit::Baseline>& bas
     std::filesystem::create_directories(o.out, ec);
     if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));
     const std::filesystem::path dir(o.out);
-    sim::write_file_atomically(dir / "scoreboard.json", json);
-    sim::write_file_atomically(dir / "scoreboard.md", fit::scoreboard_markdown(board));
-    sim::write_file_atomically(dir / "convergence.csv", fit::convergence_csv(board));
+    write_file_atomically(dir / "scoreboard.json", json);
+    write_file_atomically(dir / "scoreboard.md", fit::scoreboard_markdown(board));
+    write_file_atomically(dir / "convergence.csv", fit::convergence_csv(board));
     plot_convergence(dir / "convergence.png", board);
     for (const char* f : {"scoreboard.json", "scoreboard.md", "convergence.csv", "convergence.png"})
       written.push_back((dir / f).string());

@@ -8,7 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 #ifdef GYROTHERM_WITH_MPI
 #include <mpi.h>

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "app/commands.h"
-#include "app/gnuplot.h"
+#include "sim/util/gnuplot.h"
 #include "sim/config_loader.h"
 #include "sim/hidden_effects.h"
 #include "sim/output.h"

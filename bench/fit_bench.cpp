@@ -12,8 +12,8 @@
 #include <algorithm>
 #include <string>
 
-#include "fit/formula.h"
-#include "fit/ols.h"
+#include "fit/model/formula.h"
+#include "fit/engines/ols.h"
 #include "fit/pipeline.h"
 #include "sim/config_loader.h"
 #include "sim/simulator.h"

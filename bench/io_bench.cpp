@@ -14,7 +14,7 @@
 #include <fstream>
 #include <string>
 
-#include "fit/measurement.h"
+#include "fit/data/measurement.h"
 #include "sim/config_loader.h"
 #include "sim/output.h"
 #include "sim/simulator.h"

@@ -11,9 +11,9 @@
 #include <cmath>
 #include <string>
 
-#include "fit/formula.h"
+#include "fit/model/formula.h"
 #include "fit/pipeline.h"
-#include "sim/atomic_file.h"
+#include "sim/util/atomic_file.h"
 #include "sim/config_loader.h"
 #include "sim/simulator.h"
 
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
       "(tests/ols_test.cpp); the equal-weighted cosine (ewc) does not there, but does better "
       "than nw on the simulated flicker, which is why both are offered (`--option "
       "intervals=ewc`).\n";
-  sim::write_file_atomically(out, md);
+  write_file_atomically(out, md);
   fmt::print("wrote {}\n", out);
   return 0;
 }

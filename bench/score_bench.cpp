@@ -1,6 +1,6 @@
 // `gyrotherm score` campaigns: 10 trials of the simulated cycle
 // (scenarios/cycle.toml) with every engine, each trial simulated once,
-// prepared once and fitted by all engines (fit/score.h). Wall-clock time,
+// prepared once and fitted by all engines (studies/score/campaign.h). Wall-clock time,
 // since threads are the point.
 //  BM_Campaign/<threads>: the campaign on 1 and 2 threads.
 //  BM_CampaignSpeedup: both in each iteration; counters seconds_1_thread,
@@ -18,7 +18,11 @@
 #include <thread>
 #include <vector>
 
-#include "fit/score.h"
+#include "studies/score/baseline.h"
+#include "studies/score/campaign.h"
+#include "studies/score/outcome_packing.h"
+#include "studies/score/report.h"
+#include "studies/score/spread.h"
 
 namespace {
 

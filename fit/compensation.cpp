@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/atomic_file.h"
+#include "sim/util/atomic_file.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -82,7 +82,7 @@ void write_compensated_csv(const std::filesystem::path& file, const Compensation
     fmt::format_to(std::back_inserter(out), "{:.10g},{:.6f},{:.6f},{:.9f},{:.9f},{}\n", c.time_s[k],
                    c.temp_c[k], c.gyro_dph[k], c.model_dph[k], c.gyro_dph[k] - c.model_dph[k],
                    static_cast<int>(c.outlier[k]));
-  sim::write_file_atomically(file, std::string_view(out.data(), out.size()));
+  write_file_atomically(file, std::string_view(out.data(), out.size()));
 }
 
 }  // namespace gyrotherm::fit

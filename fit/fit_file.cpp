@@ -6,8 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "fit/formula.h"
-#include "sim/input_error.h"
+#include "fit/model/formula.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

@@ -7,27 +7,12 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "fit/formula.h"
-#include "fit/ols.h"
-#include "sim/input_error.h"
+#include "fit/model/formula.h"
+#include "fit/engines/ols.h"
+#include "sim/util/input_error.h"
 #include "sim/output.h"
 
 namespace gyrotherm::fit {
-
-PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) {
-  PreparedData d;
-  d.file = m.file;
-  d.raw_samples = m.size();
-  std::vector<unsigned char> valid(m.size(), 1);
-  if (options.remove_outliers) d.outliers = flag_outliers(m, options.outliers, valid);
-  d.series = average_windows(m, valid, options.averaging, &d.averaging);
-  d.derived = derive(d.series, options.derivative);
-  return d;
-}
-
-PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options) {
-  return prepare_data(read_measurement_csv(csv, options.columns), options);
-}
 
 void check_columns(const std::vector<const Term*>& terms, const PreparedData& data,
                    const ColumnMap& columns) {
@@ -37,24 +22,6 @@ void check_columns(const std::vector<const Term*>& terms, const PreparedData& da
           "{}: term '{}' ({}) needs the column '{}', a second temperature sensor on the far side "
           "of the gyro block; the file has none (map another column with --temp2-col)",
           data.file, t->name, t->meaning, columns.temp2));
-}
-
-Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<const Term*>& terms,
-                              const std::vector<double>& parameters) {
-  const auto l = static_cast<Eigen::Index>(derived.size());
-  Eigen::MatrixXd x(l, static_cast<Eigen::Index>(terms.size()));
-  for (std::size_t j = 0; j < terms.size(); ++j)
-    terms[j]->regressor(derived, parameters[j],
-                        std::span<double>(x.col(static_cast<Eigen::Index>(j)).data(),
-                                          static_cast<std::size_t>(l)));
-  return x;
-}
-
-std::vector<double> default_parameters(const std::vector<const Term*>& terms) {
-  std::vector<double> p(terms.size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t j = 0; j < terms.size(); ++j)
-    if (terms[j]->parameter) p[j] = std::sqrt(terms[j]->parameter->lower * terms[j]->parameter->upper);
-  return p;
 }
 
 std::vector<double> model_values(const Eigen::MatrixXd& design, const Coefficients& c) {

@@ -1,11 +1,9 @@
 #pragma once
 // The fitting pipeline (DESIGN.md, "Data flow"):
 //
-//   1. read the measurement CSV (fit/measurement.h);
-//   2. flag counting glitches with a moving-median rule (fit/outliers.h);
-//   3. average into windows that never span a gap (fit/averaging.h);
-//   4. build the model's regressors from the averaged series (fit/terms.h);
-//   5. fit with the chosen engine; b0 is the mean residual;
+//   1–3. read, clean and average the record (fit/data/prepare.h);
+//   4. build the model's regressors from the averaged series (fit/model/terms.h);
+//   5. fit with the chosen engine (fit/engines/); b0 is the mean residual;
 //   6. report the instability (std of the window averages) before and after.
 //
 // Nonlinear term parameters (warmup's τ, hyst's dead band) are found by
@@ -26,46 +24,15 @@
 
 #include <Eigen/Core>
 
-#include "fit/averaging.h"
-#include "fit/engine.h"
-#include "fit/measurement.h"
-#include "fit/outliers.h"
-#include "fit/terms.h"
+#include "fit/engines/engine.h"
+#include "fit/data/prepare.h"
+#include "fit/model/terms.h"
 
 namespace gyrotherm::fit {
-
-struct PipelineOptions {
-  ColumnMap columns;
-  bool remove_outliers = true;
-  OutlierOptions outliers;
-  AveragingOptions averaging;
-  DerivativeMode derivative = DerivativeMode::central;
-};
-
-struct PreparedData {
-  std::string file;
-  std::size_t raw_samples = 0;
-  OutlierReport outliers;
-  AveragingReport averaging;
-  AveragedSeries series;
-  DerivedSeries derived;
-  bool has_temp2() const { return !series.temp2_c.empty(); }
-};
-
-PreparedData prepare_data(const Measurement& measurement, const PipelineOptions& options);
-PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options);
 
 // Throws InputError if a term needs a column the data lacks (e.g. grad without temp2_c).
 void check_columns(const std::vector<const Term*>& terms, const PreparedData& data,
                    const ColumnMap& columns);
-
-// Regressors of `terms` (parameters[i] used where the term has one), one column per term.
-Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<const Term*>& terms,
-                              const std::vector<double>& parameters);
-
-// Default parameters: the geometric mean of each parameter's bounds, NaN for
-// terms without one.
-std::vector<double> default_parameters(const std::vector<const Term*>& terms);
 
 struct ModelFit {
   std::vector<const Term*> terms;

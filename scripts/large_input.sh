@@ -37,7 +37,7 @@ windows=$(grep -o '[0-9]* windows of' build/large/fit.txt | cut -d' ' -f1)
   echo
   echo "Made by \`scripts/large_input.sh\` on $(date -u +%Y-%m-%d): \`gyrotherm fit\` on a simulated"
   echo "240 h record at 10 Hz ($rows rows, $size MB of CSV; Test 1's INS rig, three holds a day)."
-  echo "Files above 64 MB are streamed (fit/streaming.h): read twice, never held."
+  echo "Files above 64 MB are streamed (fit/data/streaming.h): read twice, never held."
   echo
   echo "| rows | CSV | windows of 100 s | wall time | peak resident memory |"
   echo "|---|---|---|---|---|"

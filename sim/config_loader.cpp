@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "sim/hidden_effects.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::sim {
 namespace {

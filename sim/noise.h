@@ -4,7 +4,7 @@
 //
 // Every sample interval Δt (s) the gyro outputs the mean rate over the interval
 // (°/h), built from the noise-free bias B (°/h) and five noise terms, each with
-// its own generator (sim/random.h):
+// its own generator (sim/util/random.h):
 //
 //   ARW, angle random walk N (°/√h): white rate noise w_k ~ N(0, 1),
 //       n_k = a(T) · 60 N / √Δt · w_k,   a(T) = 1 + k_T (T − T_ref)²,
@@ -52,7 +52,7 @@
 #include <vector>
 
 #include "sim/gyro_config.h"
-#include "sim/random.h"
+#include "sim/util/random.h"
 
 namespace gyrotherm::sim {
 

@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/atomic_file.h"
+#include "sim/util/atomic_file.h"
 #include "sim/hidden_effects.h"
-#include "sim/sha256.h"
+#include "sim/util/sha256.h"
 
 namespace gyrotherm::sim {
 namespace {

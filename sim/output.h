@@ -8,7 +8,7 @@
 //                   true coefficients by term name ("1" is the intercept); noise
 //                   parameters; hidden effects; solver statistics; energy balance.
 //
-// Both are written atomically (sim/atomic_file.h): first both temporaries, then
+// Both are written atomically (sim/util/atomic_file.h): first both temporaries, then
 // both renames, so a failure leaves neither a half-written file nor a CSV
 // without its truth.
 

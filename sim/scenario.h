@@ -3,7 +3,7 @@
 // room, the initial condition, the seed, and which rig and gyro files to use.
 //
 // The optional [spread] table is for Monte Carlo campaigns (`gyrotherm score`,
-// fit/score.h): relative half-widths r of gyro parameters, 0 <= r < 1. Each
+// studies/score/campaign.h): relative half-widths r of gyro parameters, 0 <= r < 1. Each
 // trial draws the parameter p = p0·(1 + r·u), u uniform in [−1, 1], from the
 // trial's seed; `gyrotherm simulate` ignores the table.
 

@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "sim/bias_model.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 #include "sim/noise.h"
-#include "sim/random.h"
+#include "sim/util/random.h"
 
 namespace gyrotherm::sim {
 namespace {

@@ -77,7 +77,7 @@ class Simulator {
   SimulationResult run(SimulationObserver* observer = nullptr) const;
   // Steps 2–3 on a trace that run_thermal() gave for this scenario's profile
   // and rig: the trace depends on neither the seed nor the gyro's [truth] and
-  // [noise], so a campaign over seeds (fit/score.h) integrates it once. The
+  // [noise], so a campaign over seeds (studies/score/campaign.h) integrates it once. The
   // result is bit-identical to run()'s; its solver and energy fields are empty.
   SimulationResult record(ThermalTrace trace) const;
 

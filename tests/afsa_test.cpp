@@ -1,4 +1,4 @@
-// Tests for fit/afsa.h. The known answers come from an Eigen least-squares
+// Tests for fit/engines/afsa.h. The known answers come from an Eigen least-squares
 // solution of the same data (tests/lagged_cycle_problem.h), never from the engine itself: the
 // paper's bias model on a synthetic −40..60 °C cycle (3 terms), the same
 // without noise, and a 6-term model. Basic AFSA moves with a fixed Step, so it
@@ -6,7 +6,7 @@
 // and stated at each test. Then the engine contract: same seed, same run; bad
 // options named; defaults valid; target, budget and observer stops.
 
-#include "fit/afsa.h"
+#include "fit/engines/afsa.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,9 +17,9 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "fit/engine.h"
-#include "fit/linear_problem.h"
-#include "sim/input_error.h"
+#include "fit/engines/engine.h"
+#include "fit/model/linear_problem.h"
+#include "sim/util/input_error.h"
 #include "lagged_cycle_problem.h"
 
 namespace gyrotherm::fit {

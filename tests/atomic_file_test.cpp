@@ -1,4 +1,4 @@
-#include "sim/atomic_file.h"
+#include "sim/util/atomic_file.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::sim {
 namespace {

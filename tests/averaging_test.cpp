@@ -1,7 +1,7 @@
-// Tests for fit/averaging.h. Every expected mean, window and gap is worked out
+// Tests for fit/data/averaging.h. Every expected mean, window and gap is worked out
 // by hand from the listed samples.
 
-#include "fit/averaging.h"
+#include "fit/data/averaging.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "cli_runner.h"
 #include "expect_input_error.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 #include "sim/profile.h"
 
 namespace gyrotherm::sim {

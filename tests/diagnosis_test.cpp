@@ -7,7 +7,7 @@
 // cycle's own seed (with the calibrated rig of results/calibration.md), and are
 // used here unchanged.
 
-#include "fit/diagnosis.h"
+#include "studies/diagnose/diagnosis.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@
 #include <set>
 
 #include "cli_runner.h"
-#include "fit/formula.h"
+#include "fit/model/formula.h"
 #include "sim/config_loader.h"
 #include "sim/simulator.h"
 

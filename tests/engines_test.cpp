@@ -4,14 +4,14 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
-#include "fit/engine.h"
-#include "fit/formula.h"
-#include "fit/ols.h"
+#include "fit/engines/engine.h"
+#include "fit/model/formula.h"
+#include "fit/engines/ols.h"
 #include "fit/pipeline.h"
 #include "fit_test_data.h"
 #include "sim/config_loader.h"
 #include "sim/output.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 #include "sim/simulator.h"
 
 namespace gyrotherm::fit {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::testing {
 

@@ -1,10 +1,10 @@
-// Tests for fit/fish_swarm.h, the moves AFSA and IAFSA share, on the lagged
+// Tests for fit/engines/fish_swarm.h, the moves AFSA and IAFSA share, on the lagged
 // cycle problem: every move's geometry (on the segment to the target, no
 // farther than Step; a probe within Visual in every coordinate), σ of each
 // new point recomputed from the data, prey's two variants, settle keeping the
 // better move, refusals once the budget is spent, and the seed.
 
-#include "fit/fish_swarm.h"
+#include "fit/engines/fish_swarm.h"
 
 #include <cmath>
 #include <optional>

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "fit/averaging.h"
-#include "fit/formula.h"
-#include "fit/linear_problem.h"
+#include "fit/data/averaging.h"
+#include "fit/model/formula.h"
+#include "fit/model/linear_problem.h"
 #include "fit/pipeline.h"
 
 namespace gyrotherm::testing {

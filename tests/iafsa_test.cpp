@@ -1,11 +1,11 @@
-// Tests for fit/iafsa.h. The known answers come from an Eigen least-squares
+// Tests for fit/engines/iafsa.h. The known answers come from an Eigen least-squares
 // solution of the same data (tests/lagged_cycle_problem.h), never from the engine itself: the
 // paper's bias model on a synthetic −40..60 °C cycle (3 terms), the same
 // without noise (the coefficients themselves must come back), and a 6-term
 // model. Then the engine contract: same seed, same run; bad options named;
 // defaults valid; target, budget and observer stops; eq. (5).
 
-#include "fit/iafsa.h"
+#include "fit/engines/iafsa.h"
 
 #include <fmt/format.h>
 
@@ -18,9 +18,9 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
-#include "fit/engine.h"
-#include "fit/linear_problem.h"
-#include "sim/input_error.h"
+#include "fit/engines/engine.h"
+#include "fit/model/linear_problem.h"
+#include "sim/util/input_error.h"
 #include "lagged_cycle_problem.h"
 
 namespace gyrotherm::fit {
@@ -90,7 +90,7 @@ TEST(Iafsa, AutoSizesTheSwarmAndTheScheduleByTheNumberOfTerms) {
   EXPECT_EQ(IafsaEngine::auto_iterations(6), 10937);
   EXPECT_EQ(IafsaEngine::auto_iterations(40), 100000000);  // capped
 
-  // This problem was not used to choose the rule (fit/iafsa.h): at the
+  // This problem was not used to choose the rule (fit/engines/iafsa.h): at the
   // default options and budget every seed reaches the target on the six
   // correlated terms, where the fixed 8 fish and G_max = 700 fall short.
   const Cycle c = cycle_design(true);

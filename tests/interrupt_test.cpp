@@ -1,5 +1,5 @@
 // Nothing lost on interruption: a process killed while writing leaves the
-// previous result intact and no temporary files (sim/atomic_file.h), and a
+// previous result intact and no temporary files (sim/util/atomic_file.h), and a
 // long `gyrotherm score` run killed with SIGINT leaves its previous outputs.
 
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "cli_runner.h"
-#include "sim/atomic_file.h"
+#include "sim/util/atomic_file.h"
 
 namespace gyrotherm {
 namespace {
@@ -33,13 +33,13 @@ std::vector<std::string> names_in(const std::filesystem::path& dir) {
 TEST(Interrupt, SignalWhileWritingKeepsThePreviousFileAndRemovesTheTemporary) {
   ScratchDir dir;
   const auto target = dir / "result.json";
-  sim::write_file_atomically(target, "previous result\n");
+  write_file_atomically(target, "previous result\n");
   for (int signal_number : {SIGINT, SIGTERM}) {
     const pid_t child = ::fork();
     ASSERT_GE(child, 0);
     if (child == 0) {
-      sim::install_interrupt_cleanup();
-      sim::AtomicFile file(target);
+      install_interrupt_cleanup();
+      AtomicFile file(target);
       file.stream() << "half of a new res" << std::flush;
       ::raise(signal_number);
       ::_exit(0);  // not reached: the signal ends the process

@@ -12,9 +12,9 @@
 #include <Eigen/Dense>
 #include <boost/random/normal_distribution.hpp>
 
-#include "fit/engine.h"
-#include "fit/linear_problem.h"
-#include "sim/random.h"
+#include "fit/engines/engine.h"
+#include "fit/model/linear_problem.h"
+#include "sim/util/random.h"
 
 namespace gyrotherm::testing::lagged_cycle {
 
@@ -91,7 +91,7 @@ inline const std::vector<double> kSixTerm = {-3.05e-4, 1.06e-6, 2.0e-9, 1.81, -5
 
 inline Eigen::VectorXd bias_dph(const Eigen::MatrixXd& design, const std::vector<double>& b,
                          double noise_dph) {
-  sim::Rng rng = sim::make_rng(42, 1);
+  Rng rng = make_rng(42, 1);
   boost::random::normal_distribution<double> noise(0.0, noise_dph > 0.0 ? noise_dph : 1.0);
   Eigen::VectorXd y(design.rows());
   for (Eigen::Index p = 0; p < design.rows(); ++p) {

@@ -1,15 +1,15 @@
 // The objective in the Gram form against the residuals themselves, the
 // coordinate maps, the search box, and the checks on unfittable designs.
 
-#include "fit/linear_problem.h"
+#include "fit/model/linear_problem.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 
-#include "fit/ols.h"
+#include "fit/engines/ols.h"
 #include "fit_test_data.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

@@ -1,7 +1,7 @@
-// Tests for fit/measurement.h: every file is written by hand here and every
+// Tests for fit/data/measurement.h: every file is written by hand here and every
 // expected value is read off the text, never taken from the reader itself.
 
-#include "fit/measurement.h"
+#include "fit/data/measurement.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

@@ -1,4 +1,4 @@
-// Tests for sim/random.h and sim/noise.h. Every noise term is checked against
+// Tests for sim/util/random.h and sim/noise.h. Every noise term is checked against
 // its analytic Allan deviation (or another closed form), with a tolerance
 // derived from the estimator's statistics, never against the generator's own
 // output.
@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "sim/allan.h"
-#include "sim/random.h"
+#include "sim/util/random.h"
 
 namespace gyrotherm::sim {
 namespace {

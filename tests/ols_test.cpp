@@ -1,11 +1,11 @@
 // ols: exact recovery, agreement with an independent solver, honest intervals.
 
-#include "fit/ols.h"
+#include "fit/engines/ols.h"
 
 #include <gtest/gtest.h>
 
 #include "fit_test_data.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

@@ -1,8 +1,8 @@
-// Tests for fit/outliers.h. Glitches are injected at known places into data of
+// Tests for fit/data/outliers.h. Glitches are injected at known places into data of
 // known noise; small cases are checked against medians and MADs worked out by
 // hand in the comments.
 
-#include "fit/outliers.h"
+#include "fit/data/outliers.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include <set>
 #include <vector>
 
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

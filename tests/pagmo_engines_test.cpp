@@ -22,10 +22,10 @@
 #include <utility>
 #include <vector>
 
-#include "fit/engine.h"
-#include "fit/linear_problem.h"
-#include "fit/pagmo_engines.h"
-#include "sim/input_error.h"
+#include "fit/engines/engine.h"
+#include "fit/model/linear_problem.h"
+#include "fit/engines/pagmo_engines.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
-#include "fit/formula.h"
-#include "fit/ols.h"
+#include "fit/model/formula.h"
+#include "fit/engines/ols.h"
 #include "sim/config_loader.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 #include "sim/simulator.h"
 
 namespace gyrotherm::fit {

@@ -1,8 +1,12 @@
-// The Monte Carlo campaign (fit/score.h): statistics against known answers,
+// The Monte Carlo campaign (studies/score/campaign.h): statistics against known answers,
 // the spread, one trial against the simulator and pipeline run by hand,
 // determinism across threads and packing, and the baseline rule.
 
-#include "fit/score.h"
+#include "studies/score/baseline.h"
+#include "studies/score/campaign.h"
+#include "studies/score/outcome_packing.h"
+#include "studies/score/report.h"
+#include "studies/score/spread.h"
 
 #include <gtest/gtest.h>
 
@@ -17,10 +21,10 @@
 
 #include "cli_runner.h"
 #include "expect_input_error.h"
-#include "fit/formula.h"
-#include "fit/ols.h"
+#include "fit/model/formula.h"
+#include "fit/engines/ols.h"
 #include "sim/config_loader.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 #include "sim/simulator.h"
 
 namespace gyrotherm::fit {

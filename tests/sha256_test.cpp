@@ -1,5 +1,5 @@
 // FIPS 180-4 / NIST CAVP example vectors.
-#include "sim/sha256.h"
+#include "sim/util/sha256.h"
 
 #include <gtest/gtest.h>
 

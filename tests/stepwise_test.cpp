@@ -1,12 +1,12 @@
 // stepwise: keeps the true terms, drops a term whose true coefficient is zero.
 
-#include "fit/stepwise.h"
+#include "fit/engines/stepwise.h"
 
 #include <gtest/gtest.h>
 
-#include "fit/ols.h"
+#include "fit/engines/ols.h"
 #include "fit_test_data.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

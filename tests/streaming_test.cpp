@@ -1,6 +1,6 @@
 // The streaming preparation of large records against the in-memory one.
 
-#include "fit/streaming.h"
+#include "fit/data/streaming.h"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
 // Regressors against values computed by hand.
 
-#include "fit/terms.h"
+#include "fit/model/terms.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "fit/formula.h"
-#include "sim/input_error.h"
+#include "fit/model/formula.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {

@@ -3,10 +3,10 @@
 
 #include <cstdint>
 
-#include "fit/measurement.h"
+#include "fit/data/measurement.h"
 #include "fit/pipeline.h"
 #include "fuzz_support.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const auto file = gyrotherm::fuzz::scratch_file("data.csv");

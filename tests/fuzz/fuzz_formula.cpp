@@ -3,9 +3,9 @@
 #include <cstdint>
 #include <string>
 
-#include "fit/formula.h"
+#include "fit/model/formula.h"
 #include "sim/config_loader.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -5,7 +5,7 @@
 
 #include "fuzz_support.h"
 #include "sim/config_loader.h"
-#include "sim/input_error.h"
+#include "sim/util/input_error.h"
 #include "sim/profile.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,0 +1,154 @@
+#include "fit/data/averaging.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+
+void AveragingOptions::validate() const {
+  if (!(window_s > 0.0) || !std::isfinite(window_s))
+    throw InputError(
+        fmt::format("--avg {}: the averaging window must be a finite number of "
+                    "seconds > 0",
+                    window_s));
+  if (!(gap_factor > 1.0) || !std::isfinite(gap_factor))
+    throw InputError(
+        fmt::format("gap_factor = {}: must be a finite number > 1 (a gap is a time "
+                    "step longer than gap_factor sample intervals)",
+                    gap_factor));
+  if (!(min_fill > 0.0 && min_fill <= 1.0))
+    throw InputError(
+        fmt::format("min_fill = {}: must be in (0, 1] (the share of a window's "
+                    "samples that must be valid)",
+                    min_fill));
+}
+
+WindowAverager::WindowAverager(const AveragingOptions& options, double sample_interval_s,
+                               bool has_temp2)
+    : options_(options), has_temp2_(has_temp2) {
+  options_.validate();
+  assert(sample_interval_s > 0.0);
+  if (options_.window_s < sample_interval_s)
+    throw InputError(
+        fmt::format("--avg {}: the averaging window is shorter than the sample "
+                    "interval ({} s)",
+                    options_.window_s, sample_interval_s));
+  min_valid_samples_ = options_.min_fill * options_.window_s / sample_interval_s;
+  report_.sample_interval_s = sample_interval_s;
+}
+
+void WindowAverager::start_window(double time_s) {
+  // The window [r + jW, r + (j+1)W) that holds time_s; j from a division, then
+  // nudged so that rounding can never put time_s outside it.
+  const double w = options_.window_s;
+  double j = std::floor((time_s - run_start_s_) / w);
+  while (run_start_s_ + (j + 1.0) * w <= time_s) j += 1.0;
+  while (j > 0.0 && run_start_s_ + j * w > time_s) j -= 1.0;
+  window_end_s_ = run_start_s_ + (j + 1.0) * w;
+}
+
+void WindowAverager::close_window() {
+  if (window_samples_ == 0) return;
+  if (window_valid_ > 0 && static_cast<double>(window_valid_) >= min_valid_samples_) {
+    const auto n = static_cast<double>(window_valid_);
+    series_.time_s.push_back(run_start_s_ + sum_time_s_ / n);
+    series_.temp_c.push_back(sum_temp_c_ / n);
+    series_.gyro_dph.push_back(sum_gyro_dph_ / n);
+    if (has_temp2_) series_.temp2_c.push_back(sum_temp2_c_ / n);
+    series_.samples.push_back(window_valid_);
+    series_.run.push_back(run_);
+  } else {
+    ++report_.dropped_windows;
+  }
+  window_samples_ = window_valid_ = 0;
+  sum_time_s_ = sum_temp_c_ = sum_gyro_dph_ = sum_temp2_c_ = 0.0;
+}
+
+void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double temp2_c,
+                         bool valid) {
+  if (!started_) {
+    started_ = true;
+    series_.start_time_s = run_start_s_ = time_s;
+    start_window(time_s);
+  } else {
+    assert(time_s > last_time_s_);
+    const double step_s = time_s - last_time_s_;
+    if (step_s > options_.gap_factor * report_.sample_interval_s || step_s > options_.window_s) {
+      close_window();
+      longest_run_s_ = std::max(longest_run_s_, last_time_s_ - run_start_s_);
+      report_.gaps.push_back({last_time_s_, time_s});
+      ++run_;
+      run_start_s_ = time_s;
+      start_window(time_s);
+    } else if (time_s >= window_end_s_) {
+      close_window();
+      start_window(time_s);
+    }
+  }
+  last_time_s_ = time_s;
+  ++window_samples_;
+  if (!valid) return;
+  ++window_valid_;
+  sum_time_s_ += time_s - run_start_s_;  // relative: epoch times keep their digits
+  sum_temp_c_ += temp_c;
+  sum_gyro_dph_ += gyro_dph;
+  if (has_temp2_) sum_temp2_c_ += temp2_c;
+}
+
+AveragedSeries WindowAverager::finish() {
+  close_window();
+  if (started_) longest_run_s_ = std::max(longest_run_s_, last_time_s_ - run_start_s_);
+  return std::move(series_);
+}
+
+double median_sample_interval_s(const std::vector<double>& time_s) {
+  assert(time_s.size() >= 2);
+  std::vector<double> steps(time_s.size() - 1);
+  for (std::size_t k = 1; k < time_s.size(); ++k) steps[k - 1] = time_s[k] - time_s[k - 1];
+  const std::size_t half = steps.size() / 2;
+  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(half);
+  std::nth_element(steps.begin(), middle, steps.end());
+  if (steps.size() % 2 == 1) return *middle;
+  return 0.5 * (*std::max_element(steps.begin(), middle) + *middle);
+}
+
+AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned char>& valid,
+                               const AveragingOptions& options, AveragingReport* report) {
+  options.validate();
+  assert(valid.size() == m.size());
+  if (m.size() < 2)
+    throw InputError(located(m.file, 0,
+                             fmt::format("{} sample{}: averaging needs at least 2", m.size(),
+                                         m.size() == 1 ? "" : "s")));
+  const double interval_s = median_sample_interval_s(m.time_s);
+  std::optional<WindowAverager> averager;
+  try {
+    averager.emplace(options, interval_s, m.has_temp2());
+  } catch (const InputError& e) {
+    throw InputError(located(m.file, 0, e.what()));
+  }
+  for (std::size_t k = 0; k < m.size(); ++k)
+    averager->add(m.time_s[k], m.temp_c[k], m.gyro_dph[k], m.has_temp2() ? m.temp2_c[k] : 0.0,
+                  valid[k] != 0);
+  AveragedSeries series = averager->finish();
+  if (report != nullptr) *report = averager->report();
+  if (series.size() == 0)
+    throw InputError(located(
+        m.file, 0,
+        fmt::format("no averaging window survives: the record is {} s long (longest gap-free run "
+                    "{} s, {} gap{}) and the window (--avg) is {} s, of which at least {} % must "
+                    "be valid samples",
+                    averager->record_s(), averager->longest_run_s(), averager->report().gaps.size(),
+                    averager->report().gaps.size() == 1 ? "" : "s", options.window_s,
+                    100.0 * options.min_fill)));
+  return series;
+}
+
+}  // namespace gyrotherm::fit

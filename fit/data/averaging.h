@@ -1,0 +1,104 @@
+#pragma once
+// Averaging the samples into windows of W seconds that never span a gap (the
+// paper's 100 s averages; DESIGN.md, "Numerical rules").
+//
+// With Δ the sample interval (the median time step of the record):
+//
+//   1. A step t_k − t_{k−1} larger than gap_factor · Δ, or larger than W, is a
+//      gap: it ends a gap-free run, and sample k starts the next run at r = t_k.
+//   2. Within a run the windows are [r + jW, r + (j+1)W), j = 0, 1, …
+//   3. A window's time, temperatures and gyro output are the plain means of its
+//      valid samples (valid[k] ≠ 0; invalid samples are never averaged).
+//   4. A window with fewer valid samples than min_fill · W/Δ is dropped; this
+//      drops the partial last window of every run (and windows mostly made of
+//      rejected glitches).
+//
+// The work is done by WindowAverager, which sees one sample at a time and keeps
+// only the current window, so a streaming reader can feed it a record of any
+// length (it needs Δ up front: from a first pass, a prefix, or the file's
+// nominal rate). average_windows is the in-memory driver.
+//
+// Reference: Yu, Xu, Wei, Long, Infrared and Laser Engineering 43(1):81-87
+// (2014) (1 s samples averaged over 100 s; ../shared/PAPER.md, "Data
+// handling"); IEEE Std 952-1997, Annex C (averages of rate data over clusters
+// of length τ).
+
+#include <cstddef>
+#include <vector>
+
+#include "fit/data/measurement.h"
+
+namespace gyrotherm::fit {
+
+struct AveragingOptions {
+  double window_s = 100.0;  // W, the averaging window, s (--avg)
+  double gap_factor = 3.0;  // a step longer than gap_factor sample intervals is a gap (> 1)
+  double min_fill = 0.5;    // a window needs at least min_fill · W/Δ valid samples (0, 1]
+
+  // Throws InputError naming the option, the value and the rule.
+  void validate() const;
+};
+
+struct AveragedSeries {
+  std::vector<double> time_s;                     // mean time of the samples in each window
+  std::vector<double> temp_c, gyro_dph, temp2_c;  // window means (temp2_c empty if absent)
+  std::vector<std::size_t> samples;               // valid samples in each window
+  std::vector<std::size_t> run;                   // index of the gap-free run the window belongs to
+  double start_time_s = 0;                        // time of the first sample of the record
+  std::size_t size() const { return time_s.size(); }
+};
+
+struct Gap {
+  double from_s, to_s;  // times of the last sample before and the first sample after the gap
+};
+
+struct AveragingReport {
+  std::vector<Gap> gaps;
+  double sample_interval_s = 0;     // Δ, the median time step
+  std::size_t dropped_windows = 0;  // windows with some samples but too few valid ones
+};
+
+// One window at a time. Feed samples in increasing time with add(), then call
+// finish() once to close the last window and take the series.
+class WindowAverager {
+ public:
+  // sample_interval_s is Δ. Throws InputError if the options are invalid or
+  // the window is shorter than Δ.
+  WindowAverager(const AveragingOptions& options, double sample_interval_s, bool has_temp2);
+
+  // temp2_c is ignored when has_temp2 is false.
+  void add(double time_s, double temp_c, double gyro_dph, double temp2_c, bool valid);
+  AveragedSeries finish();
+
+  const AveragingReport& report() const { return report_; }
+  double record_s() const { return started_ ? last_time_s_ - series_.start_time_s : 0.0; }
+  double longest_run_s() const { return longest_run_s_; }
+
+ private:
+  void close_window();
+  void start_window(double time_s);
+
+  AveragingOptions options_;
+  double min_valid_samples_;  // min_fill · W/Δ
+  bool has_temp2_;
+  AveragedSeries series_;
+  AveragingReport report_;
+
+  bool started_ = false;
+  double last_time_s_ = 0, run_start_s_ = 0, window_end_s_ = 0, longest_run_s_ = 0;
+  std::size_t run_ = 0;
+  // The current window: sums of the valid samples (time relative to the run start).
+  std::size_t window_samples_ = 0, window_valid_ = 0;
+  double sum_time_s_ = 0, sum_temp_c_ = 0, sum_gyro_dph_ = 0, sum_temp2_c_ = 0;
+};
+
+// The median time step of the record, s (Δ above). Needs at least 2 samples.
+double median_sample_interval_s(const std::vector<double>& time_s);
+
+// Averages m (samples with valid[k] = 0 excluded; valid.size() == m.size()).
+// Throws InputError naming m.file if no window survives, saying how long the
+// record and its longest gap-free run are and what the window is.
+AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned char>& valid,
+                               const AveragingOptions& options, AveragingReport* report = nullptr);
+
+}  // namespace gyrotherm::fit

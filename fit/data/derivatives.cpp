@@ -1,0 +1,43 @@
+#include "fit/data/derivatives.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+// Central differences within each run (one-sided at its ends), or backward
+// differences (0 at the first window of a run) for the causal mode.
+std::vector<double> differentiate(const std::vector<double>& t_s, const std::vector<double>& x,
+                                  const std::vector<std::size_t>& run, DerivativeMode mode) {
+  const std::size_t n = x.size();
+  std::vector<double> d(n, 0.0);
+  for (std::size_t p = 0; p < n; ++p) {
+    const bool has_prev = p > 0 && run[p - 1] == run[p];
+    const bool has_next = p + 1 < n && run[p + 1] == run[p];
+    std::size_t lo = p, hi = p;
+    if (mode == DerivativeMode::causal) {
+      if (has_prev) lo = p - 1;
+    } else {
+      if (has_prev) lo = p - 1;
+      if (has_next) hi = p + 1;
+    }
+    if (hi != lo) d[p] = (x[hi] - x[lo]) / (t_s[hi] - t_s[lo]);
+  }
+  return d;
+}
+
+}  // namespace
+
+DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode) {
+  DerivedSeries d;
+  d.temp_c = data.temp_c;
+  d.time_h.reserve(data.size());
+  for (double t : data.time_s) d.time_h.push_back((t - data.start_time_s) / 3600.0);
+  d.rate_c_per_s = differentiate(data.time_s, data.temp_c, data.run, mode);
+  d.accel_c_per_s2 = differentiate(data.time_s, d.rate_c_per_s, data.run, mode);
+  if (!data.temp2_c.empty()) {
+    d.grad_c.resize(data.size());
+    for (std::size_t p = 0; p < data.size(); ++p) d.grad_c[p] = data.temp2_c[p] - data.temp_c[p];
+  }
+  return d;
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,366 @@
+#include "fit/data/measurement.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string_view>
+#include <system_error>
+
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Reads a file in fixed blocks and hands out one line at a time (without its
+// LF), so a file of any size costs one block of memory plus the longest line.
+// std::getline into a std::string would also work, but a block scan with
+// memchr is several times faster and lets us count the bytes consumed.
+class LineReader {
+ public:
+  static constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
+
+  explicit LineReader(std::FILE* file) : file_(file), buffer_(kBlockBytes) {}
+
+  // False at the end of the file. The view is valid until the next call.
+  bool next(std::string_view& line) {
+    for (;;) {
+      const char* first = buffer_.data() + begin_;
+      const std::size_t available = end_ - begin_;
+      if (const void* lf = std::memchr(first, '\n', available)) {
+        const auto length = static_cast<std::size_t>(static_cast<const char*>(lf) - first);
+        line = std::string_view(first, length);
+        begin_ += length + 1;
+        consumed_ += length + 1;
+        return true;
+      }
+      if (at_end_) {
+        if (available == 0) return false;
+        line = std::string_view(first, available);  // a last line without LF
+        begin_ = end_;
+        consumed_ += available;
+        return true;
+      }
+      refill();
+    }
+  }
+
+  bool failed() const { return std::ferror(file_) != 0; }
+  std::size_t consumed_bytes() const { return consumed_; }
+
+ private:
+  // Keeps the partial line at the front, grows the buffer only for a line
+  // longer than a block, and reads what fits.
+  void refill() {
+    if (begin_ > 0) {
+      std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+      end_ -= begin_;
+      begin_ = 0;
+    }
+    if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);
+    const std::size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
+    end_ += got;
+    if (got == 0) at_end_ = true;
+  }
+
+  std::FILE* file_;
+  std::vector<char> buffer_;
+  std::size_t begin_ = 0, end_ = 0, consumed_ = 0;
+  bool at_end_ = false;
+};
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+std::string_view trim(std::string_view s) {
+  const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+bool is_blank(std::string_view line) { return trim(line).empty(); }
+
+// A field as it appears in a message: quoted, and cut if very long.
+std::string shown(std::string_view text) {
+  constexpr std::size_t kMaxChars = 40;
+  if (text.size() <= kMaxChars) return fmt::format("'{}'", text);
+  return fmt::format("'{}…'", text.substr(0, kMaxChars));
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) {
+    if (!out.empty()) out += ", ";
+    out += n.empty() ? std::string("''") : n;
+  }
+  return out;
+}
+
+// The roles a column can play, in the order of Parsed::value.
+enum Role : int { kTime = 0, kTemp = 1, kGyro = 2, kTemp2 = 3, kRoles = 4, kNoRole = -1 };
+
+constexpr std::array<const char*, kRoles> kOptionOf = {"--time-col", "--temp-col", "--gyro-col",
+                                                       "--temp2-col"};
+constexpr std::array<const char*, kRoles> kWhatOf = {"time", "temperature", "gyro",
+                                                     "second temperature"};
+
+// Parses one needed field; returns an empty string on success, else what is wrong.
+std::string parse_number(std::string_view field, double& value) {
+  std::string_view text = trim(field);
+  if (text.empty()) return "empty field, expected a number";
+  std::string_view digits = text;
+  if (digits.size() > 1 && digits.front() == '+' && digits[1] != '-' && digits[1] != '+')
+    digits.remove_prefix(1);  // from_chars does not take a '+'
+  const char* last = digits.data() + digits.size();
+  const auto [ptr, ec] = std::from_chars(digits.data(), last, value, std::chars_format::general);
+  if (ec == std::errc::result_out_of_range)
+    return fmt::format("{} is out of the range of a double", shown(text));
+  if (ec != std::errc() || ptr != last) return fmt::format("{} is not a number", shown(text));
+  if (!std::isfinite(value)) return fmt::format("{} is not a finite number", shown(text));
+  return {};
+}
+
+// Values no instrument produces: a guard against a wrong column or unit, and
+// against numbers whose squares overflow in the fit.
+std::string out_of_range(Role role, double v) {
+  switch (role) {
+    case kTemp:
+    case kTemp2:
+      if (v < -273.15 || v > 1000.0)
+        return fmt::format("{:g} is not a temperature in °C (expected -273.15..1000)", v);
+      return {};
+    case kGyro:
+      if (std::abs(v) > 1e9)
+        return fmt::format("{:g} °/h is beyond any gyro's range (|value| <= 1e9 °/h expected; "
+                           "is the unit right?)",
+                           v);
+      return {};
+    case kTime:
+      if (std::abs(v) > 1e12)
+        return fmt::format("{:g} s is not a plausible time (|value| <= 1e12 s expected)", v);
+      return {};
+    default:
+      return {};
+  }
+}
+
+class CsvParser {
+ public:
+  CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {}
+
+  Measurement read(const fs::path& file);
+  // Streaming: every row goes to `sink` instead of being stored.
+  void set_sink(RowSink sink) { sink_ = std::move(sink); }
+  bool has_temp2() const { return has_temp2_; }
+  std::size_t rows() const { return rows_; }
+
+ private:
+  [[noreturn]] void fail(std::size_t line, const std::string& message) const {
+    throw InputError(located(name_, line, message));
+  }
+  void parse_header(std::string_view line, std::size_t line_number, Measurement& m);
+  void parse_row(std::string_view line, std::size_t line_number, Measurement& m);
+  void reserve(Measurement& m, std::size_t line_bytes) const;
+
+  std::string name_;
+  const ColumnMap& map_;
+  std::vector<int> role_of_column_;              // Role of each header column
+  std::array<std::size_t, kRoles> column_of_{};  // header column of each role
+  bool has_temp2_ = false;
+  std::size_t rows_ = 0;
+  double last_time_ = 0.0;
+  RowSink sink_;
+  std::size_t header_line_ = 0, first_row_line_ = 0, previous_line_ = 0;
+  std::uintmax_t file_bytes_ = 0, header_end_bytes_ = 0;
+};
+
+void CsvParser::parse_header(std::string_view line, std::size_t line_number, Measurement& m) {
+  if (line.find(',') == std::string_view::npos) {
+    const std::size_t other = line.find_first_of(";\t");
+    if (other != std::string_view::npos)
+      fail(line_number,
+           fmt::format("the header {} has no comma but a {}: the delimiter must be a comma",
+                       shown(line), line[other] == ';' ? "semicolon" : "tab"));
+  }
+  for (std::size_t from = 0;;) {
+    const std::size_t comma = line.find(',', from);
+    m.columns.emplace_back(trim(line.substr(
+        from, comma == std::string_view::npos ? std::string_view::npos : comma - from)));
+    if (comma == std::string_view::npos) break;
+    from = comma + 1;
+  }
+  const std::vector<std::string>& names = m.columns;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    for (std::size_t j = i + 1; j < names.size(); ++j)
+      if (!names[i].empty() && names[i] == names[j])
+        fail(line_number, fmt::format("column '{}' appears twice in the header (columns {} and {})",
+                                      names[i], i + 1, j + 1));
+
+  role_of_column_.assign(names.size(), kNoRole);
+  const std::array<const std::string*, kRoles> wanted = {&map_.time, &map_.temp, &map_.gyro,
+                                                         &map_.temp2};
+  const std::string& default_temp2 = ColumnMap{}.temp2;
+  for (int role = 0; role < kRoles; ++role) {
+    const std::string& name = *wanted[role];
+    const bool optional = role == kTemp2;
+    const bool explicit_temp2 = optional && name != default_temp2;
+    if (optional && name.empty()) continue;  // temp2 switched off
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end()) {
+      if (optional && !explicit_temp2) continue;
+      fail(line_number,
+           fmt::format("no column '{}' (the header has: {}); name the {} column with {}", name,
+                       joined(names), kWhatOf[role], kOptionOf[role]));
+    }
+    const auto column = static_cast<std::size_t>(it - names.begin());
+    if (const int other = role_of_column_[column]; other != kNoRole) {
+      if (optional && !explicit_temp2) continue;  // e.g. --temp-col temp2_c
+      fail(line_number,
+           fmt::format("{} and {} both name column '{}'", kOptionOf[other], kOptionOf[role], name));
+    }
+    role_of_column_[column] = role;
+    column_of_[role] = column;
+    if (optional) has_temp2_ = true;
+  }
+  header_line_ = line_number;
+}
+
+// Reserves for the rows the rest of the file probably holds, judged by the
+// length of the first row; bounded by the shortest possible row ("1,2,3\n").
+void CsvParser::reserve(Measurement& m, std::size_t line_bytes) const {
+  if (file_bytes_ <= header_end_bytes_) return;
+  const auto remaining = static_cast<std::size_t>(file_bytes_ - header_end_bytes_);
+  const std::size_t shortest_row = 2 * role_of_column_.size();
+  const std::size_t rows = std::min(remaining / std::max<std::size_t>(line_bytes + 1, 1),
+                                    remaining / std::max<std::size_t>(shortest_row, 1)) +
+                           1;
+  m.time_s.reserve(rows);
+  m.temp_c.reserve(rows);
+  m.gyro_dph.reserve(rows);
+  if (has_temp2_) m.temp2_c.reserve(rows);
+}
+
+void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measurement& m) {
+  const std::size_t fields =
+      static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+  if (fields != role_of_column_.size())
+    fail(line_number, fmt::format("the row has {} field{}, the header (line {}) has {}", fields,
+                                  fields == 1 ? "" : "s", header_line_, role_of_column_.size()));
+  std::array<double, kRoles> value{};
+  const char* p = line.data();
+  const char* const end = p + line.size();
+  for (std::size_t column = 0;; ++column) {
+    const char* comma =
+        static_cast<const char*>(std::memchr(p, ',', static_cast<std::size_t>(end - p)));
+    const char* field_end = comma != nullptr ? comma : end;
+    if (const int role = role_of_column_[column]; role != kNoRole) {
+      const std::string problem =
+          parse_number(std::string_view(p, static_cast<std::size_t>(field_end - p)), value[role]);
+      if (!problem.empty())
+        fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
+      const std::string range = out_of_range(static_cast<Role>(role), value[role]);
+      if (!range.empty()) fail(line_number, fmt::format("column {}: {}", m.columns[column], range));
+    }
+    if (comma == nullptr) break;
+    p = comma + 1;
+  }
+  if (rows_ > 0 && !(value[kTime] > last_time_))
+    fail(line_number,
+         fmt::format("column {}: time {} is not after {} on line {} (time must be strictly "
+                     "increasing)",
+                     m.columns[column_of_[kTime]], value[kTime], last_time_, previous_line_));
+  last_time_ = value[kTime];
+  if (sink_) {
+    sink_(value[kTime], value[kTemp], value[kGyro], has_temp2_ ? value[kTemp2] : 0.0);
+  } else {
+    m.time_s.push_back(value[kTime]);
+    m.temp_c.push_back(value[kTemp]);
+    m.gyro_dph.push_back(value[kGyro]);
+    if (has_temp2_) m.temp2_c.push_back(value[kTemp2]);
+  }
+  if (rows_ == 0) first_row_line_ = line_number;
+  previous_line_ = line_number;
+  ++rows_;
+}
+
+Measurement CsvParser::read(const fs::path& file) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (!fs::exists(status)) throw InputError(located(name_, 0, "no such file"));
+  if (fs::is_directory(status))
+    throw InputError(located(name_, 0, "cannot read: it is a folder, expected a CSV file"));
+  std::unique_ptr<std::FILE, FileCloser> handle(std::fopen(file.c_str(), "rb"));
+  if (!handle)
+    throw InputError(located(name_, 0, fmt::format("cannot read ({})", std::strerror(errno))));
+  file_bytes_ = fs::file_size(file, ec);
+  if (ec) file_bytes_ = 0;
+
+  Measurement m;
+  m.file = name_;
+  LineReader reader(handle.get());
+  std::string_view line;
+  std::size_t line_number = 0;
+  bool seen_comment = false;
+  while (reader.next(line)) {
+    ++line_number;
+    if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (is_blank(line)) continue;
+    if (header_line_ == 0) {
+      if (line.front() == '#') {
+        seen_comment = true;
+        continue;
+      }
+      parse_header(line, line_number, m);
+      header_end_bytes_ = reader.consumed_bytes();
+      continue;
+    }
+    if (rows_ == 0 && !sink_) reserve(m, line.size());
+    parse_row(line, line_number, m);
+  }
+  if (reader.failed()) throw InputError(located(name_, line_number, "cannot read (read error)"));
+
+  if (header_line_ == 0)
+    throw InputError(located(
+        name_, 0,
+        fmt::format("{}, expected a header line naming the columns {}, {}, {}",
+                    seen_comment ? "no header (only comments and blank lines)" : "empty file",
+                    map_.time, map_.temp, map_.gyro)));
+  if (rows_ == 0)
+    throw InputError(located(name_, header_line_, "the header is not followed by any data row"));
+  if (rows_ < 2)
+    throw InputError(located(name_, first_row_line_, "only 1 data row; at least 2 are needed"));
+  return m;
+}
+
+}  // namespace
+
+Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns) {
+  return CsvParser(file, columns).read(file);
+}
+
+CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
+                       const RowSink& sink) {
+  CsvParser parser(file, columns);
+  parser.set_sink(sink);
+  const Measurement header_only = parser.read(file);
+  CsvHeader h;
+  h.file = header_only.file;
+  h.columns = header_only.columns;
+  h.has_temp2 = parser.has_temp2();
+  h.rows = parser.rows();
+  return h;
+}
+
+}  // namespace gyrotherm::fit

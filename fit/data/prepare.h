@@ -1,0 +1,43 @@
+#pragma once
+// Reading and conditioning a record, the data half of the pipeline
+// (fit/pipeline.h has the rest):
+//
+//   1. read the measurement CSV (fit/data/measurement.h);
+//   2. flag counting glitches with a moving-median rule (fit/data/outliers.h);
+//   3. average into windows that never span a gap (fit/data/averaging.h);
+//   4. the window means' derivatives (fit/data/derivatives.h).
+//
+// Records too large to hold are prepared by streaming (fit/data/streaming.h).
+
+#include <filesystem>
+#include <string>
+
+#include "fit/data/averaging.h"
+#include "fit/data/derivatives.h"
+#include "fit/data/measurement.h"
+#include "fit/data/outliers.h"
+
+namespace gyrotherm::fit {
+
+struct PipelineOptions {
+  ColumnMap columns;
+  bool remove_outliers = true;
+  OutlierOptions outliers;
+  AveragingOptions averaging;
+  DerivativeMode derivative = DerivativeMode::central;
+};
+
+struct PreparedData {
+  std::string file;
+  std::size_t raw_samples = 0;
+  OutlierReport outliers;
+  AveragingReport averaging;
+  AveragedSeries series;
+  DerivedSeries derived;
+  bool has_temp2() const { return !series.temp2_c.empty(); }
+};
+
+PreparedData prepare_data(const Measurement& measurement, const PipelineOptions& options);
+PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options);
+
+}  // namespace gyrotherm::fit

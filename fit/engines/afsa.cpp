@@ -1,0 +1,157 @@
+#include "fit/engines/afsa.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fit/engines/fish_swarm.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+constexpr char kName[] = "afsa";
+// The engine's stream of make_rng(seed, stream).
+constexpr std::uint64_t kStream = 0xAF5A;
+constexpr double kBoxWidth = 2.0;
+
+// The one place the option rules live: make() reads KEY=VALUE strings with
+// them and validate() checks an Options aggregate with the same reader.
+void read_options(OptionReader& reader, AfsaEngine::Options& o) {
+  reader.integer("fish", o.fish, 2, 100000);
+  reader.integer("max_iterations", o.max_iterations, 1, 100000000);
+  reader.real("visual", o.visual, 0.0, 1.0, true);
+  reader.real("step", o.step, 0.0, 1.0, true);
+  reader.real("crowding", o.crowding, 0.0, 1.0, true);
+  reader.integer("try_number", o.try_number, 1, 1000);
+}
+
+using fish_swarm::Fish;
+
+// One run: Li's choice of mates and targets on top of the shared school
+// (fit/engines/fish_swarm.h), whose evaluator's best point is the bulletin board.
+FitResult run(const AfsaEngine::Options& o, const LinearProblem& problem,
+              FitObserver* observer) {
+  fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, kStream,
+                            fish_swarm::PreyMove::step_towards, o.try_number);
+  school.visual = o.visual * kBoxWidth;
+  school.step = o.step * kBoxWidth;
+  const std::size_t n = static_cast<std::size_t>(o.fish);
+  const std::size_t m = school.dimension();
+  const auto finish = [&](long iterations, Termination fallback) {
+    return school.evaluator().result(
+        kName, iterations, fallback,
+        fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
+                    iterations, o.max_iterations, o.visual, o.step));
+  };
+
+  // Scatter the swarm over the box; the evaluator's best point is the
+  // bulletin board from the first evaluation on.
+  if (!school.scatter(n)) return finish(0, Termination::max_iterations);
+  std::vector<Fish>& swarm = school.fish();
+
+  std::vector<double> centre(m);
+  for (long g = 1; g <= o.max_iterations; ++g) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Fish& fish = swarm[i];
+      // The mates within Visual: their number, centre and best.
+      int n_f = 0;
+      std::size_t best = i;
+      std::fill(centre.begin(), centre.end(), 0.0);
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j == i || school.distance(swarm[j].x, fish.x) >= school.visual) continue;
+        ++n_f;
+        for (std::size_t k = 0; k < m; ++k) centre[k] += swarm[j].x[k];
+        if (best == i || swarm[j].f < swarm[best].f) best = j;
+      }
+      const bool uncrowded =
+          n_f >= 1 && static_cast<double>(n_f) / static_cast<double>(n) < o.crowding;
+
+      // (2) Swarm, towards the mates' centre.
+      std::optional<Fish> swarmed;
+      if (uncrowded) {
+        for (double& c : centre) c /= static_cast<double>(n_f);
+        const std::optional<double> f_centre = school.evaluate(centre);
+        if (!f_centre) return finish(g, Termination::max_iterations);
+        const double to_centre = school.distance(fish.x, centre);
+        if (*f_centre < fish.f && to_centre > 0.0) {
+          swarmed = school.move_towards(fish, centre, to_centre);
+          if (!swarmed) return finish(g, Termination::max_iterations);
+        }
+      }
+      // (3) Follow, towards the best mate.
+      std::optional<Fish> followed;
+      if (uncrowded && swarm[best].f < fish.f) {
+        const std::vector<double> leader = swarm[best].x;
+        followed = school.move_towards(fish, leader, school.distance(fish.x, leader));
+        if (!followed) return finish(g, Termination::max_iterations);
+      }
+      // (1) Prey stands in for a move whose test failed; the better move wins.
+      if (!school.settle(i, std::move(swarmed), std::move(followed)))
+        return finish(g, Termination::max_iterations);
+    }
+    if (observer && !observer->on_iteration(g, school.evaluator().evaluations(),
+                                            school.evaluator().best()))
+      return finish(g, Termination::stopped);
+  }
+  return finish(o.max_iterations, Termination::max_iterations);
+}
+
+}  // namespace
+
+void AfsaEngine::Options::validate() const {
+  std::map<std::string, std::string> given = {
+      {"fish", fmt::format("{}", fish)},
+      {"max_iterations", fmt::format("{}", max_iterations)},
+      {"visual", fmt::format("{}", visual)},
+      {"step", fmt::format("{}", step)},
+      {"crowding", fmt::format("{}", crowding)},
+      {"try_number", fmt::format("{}", try_number)},
+  };
+  OptionReader reader(kName, given);
+  Options copy = *this;
+  read_options(reader, copy);
+  reader.finish();
+  check_stopping_rules(kName, max_evaluations, target_objective);
+}
+
+AfsaEngine::AfsaEngine(Options options) : options_(std::move(options)) { options_.validate(); }
+
+FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
+  return run(options_, problem, observer);
+}
+
+EngineInfo afsa_engine_info() {
+  const AfsaEngine::Options d;
+  EngineInfo info;
+  info.name = kName;
+  info.description =
+      "artificial fish swarm (Li 2002): prey, swarm and follow within a fixed Visual and Step";
+  info.stochastic = true;
+  info.default_evaluations = d.max_evaluations;
+  info.options = {
+      {"fish", fmt::format("{}: N, the swarm size", d.fish)},
+      {"max_iterations", fmt::format("{}: iteration limit", d.max_iterations)},
+      {"visual", fmt::format("{}: Visual, fraction of the box width", d.visual)},
+      {"step", fmt::format("{}: Step, fraction of the box width", d.step)},
+      {"crowding", fmt::format("{}: δ, crowded when n_f/N ≥ δ (1: never)", d.crowding)},
+      {"try_number", fmt::format("{}: prey attempts before a random step", d.try_number)},
+  };
+  info.make = [](const EngineSettings& settings) -> std::unique_ptr<Engine> {
+    AfsaEngine::Options o;
+    OptionReader reader(kName, settings.options);
+    read_options(reader, o);
+    reader.finish();
+    o.seed = settings.seed;
+    if (settings.max_evaluations != 0) o.max_evaluations = settings.max_evaluations;
+    o.target_objective = settings.target_objective;
+    return std::make_unique<AfsaEngine>(o);
+  };
+  return info;
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,171 @@
+#pragma once
+// One interface for every fitting engine (STYLE.md, "One engine shape").
+//
+// An engine minimises LinearProblem::objective (σ of the residual, the paper's
+// eq. 6) over the unit box z ∈ [−1, 1]^m. It takes a seed, a budget of
+// objective evaluations and a target σ; it returns a FitResult summary. An
+// engine that does not converge says so in the result; it never prints and
+// never exits. Progress goes to an optional FitObserver.
+//
+// Engines count evaluations through an Evaluator, which also keeps the best
+// point, the history of the best σ against evaluations, and decides when the
+// budget is spent or the target reached, so every engine is measured the same
+// way.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fit/model/linear_problem.h"
+
+namespace gyrotherm::fit {
+
+enum class Termination {
+  exact,             // a closed-form answer (ols, stepwise)
+  target_reached,    // σ ≤ the target
+  budget_exhausted,  // the evaluation budget is spent
+  max_iterations,    // the engine's own iteration limit (e.g. IAFSA's G_max)
+  converged,         // the engine's own convergence test
+  stopped,           // the observer asked to stop
+};
+const char* to_string(Termination t);
+
+struct HistoryPoint {
+  long evaluations = 0;
+  double best_objective = 0.0;
+};
+
+// A 95 % confidence interval in physical units.
+struct Interval {
+  double lower = 0.0;
+  double upper = 0.0;
+};
+
+struct FitResult {
+  std::string engine;
+  std::vector<double> z;              // best point in the unit box
+  double objective = 0.0;             // σ at z (Gram form)
+  long evaluations = 0;
+  long iterations = 0;
+  double seconds = 0.0;
+  Termination termination = Termination::budget_exhausted;
+  std::string message;
+  std::vector<HistoryPoint> history;  // best σ each time it improved
+  // Engine-specific extras (empty when not applicable).
+  std::vector<bool> kept;                 // stepwise: which terms are in the model
+  std::vector<double> p_values;           // stepwise/ols: per term
+  std::vector<Interval> intervals;        // ols: 95 % intervals of the physical b_j
+  std::string interval_method;            // how the intervals were computed
+  std::string brief_report() const;
+};
+
+// Common settings; `options` holds engine-specific KEY=VALUE pairs.
+struct EngineSettings {
+  std::uint64_t seed = 1;
+  long max_evaluations = 0;     // 0: the engine's default budget
+  double target_objective = 0;  // stop once σ ≤ this (0: no target)
+  std::map<std::string, std::string> options;
+};
+
+class FitObserver {
+ public:
+  virtual ~FitObserver() = default;
+  // Called once per engine iteration; return false to stop the engine.
+  virtual bool on_iteration(long iteration, long evaluations, double best_objective) = 0;
+};
+
+// Counts evaluations, keeps the best point and the history, and knows when to stop.
+class Evaluator {
+ public:
+  Evaluator(const LinearProblem& problem, long max_evaluations, double target_objective);
+
+  // σ at z (clamped into the box); updates the best point.
+  double operator()(std::span<const double> z);
+  bool budget_left() const { return evaluations_ < max_evaluations_; }
+  bool target_reached() const { return target_ > 0.0 && best_ <= target_; }
+  bool done() const { return !budget_left() || target_reached(); }
+
+  long evaluations() const { return evaluations_; }
+  long max_evaluations() const { return max_evaluations_; }
+  double best() const { return best_; }
+  const std::vector<double>& best_point() const { return best_z_; }
+  const std::vector<HistoryPoint>& history() const { return history_; }
+  std::size_t dimension() const { return problem_.dimension(); }
+  const LinearProblem& problem() const { return problem_; }
+
+  // Fills the common fields of a result (z, objective, evaluations, history,
+  // seconds since construction) and chooses the termination when the
+  // evaluator decided it (target or budget); otherwise uses `fallback`.
+  FitResult result(std::string engine, long iterations, Termination fallback,
+                   std::string message) const;
+
+ private:
+  const LinearProblem& problem_;
+  long max_evaluations_;
+  double target_;
+  long evaluations_ = 0;
+  double best_ = std::numeric_limits<double>::infinity();
+  std::vector<double> best_z_;
+  std::vector<double> clamped_;
+  std::vector<HistoryPoint> history_;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+};
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual FitResult fit(const LinearProblem& problem, FitObserver* observer = nullptr) const = 0;
+};
+
+// One registry entry per engine. `make` validates the settings and throws
+// InputError naming the option, its value and the rule.
+struct EngineInfo {
+  std::string name;
+  std::string description;
+  bool stochastic = false;
+  long default_evaluations = 0;
+  std::vector<std::pair<std::string, std::string>> options;  // name → "default: meaning"
+  std::function<std::unique_ptr<Engine>(const EngineSettings&)> make;
+};
+
+const std::vector<EngineInfo>& engine_registry();
+// Throws InputError listing the known engines.
+const EngineInfo& find_engine(std::string_view name);
+
+// Reads engine-specific options from EngineSettings::options with checks; the
+// engine's `make` uses it, then finish() rejects unknown keys.
+class OptionReader {
+ public:
+  OptionReader(std::string engine, const std::map<std::string, std::string>& options);
+  // Reads `key` into `value` if given; checks lo ≤ value ≤ hi.
+  void integer(const std::string& key, int& value, int lo, int hi);
+  // The same, or the word "auto", read as 0 (the engine then chooses).
+  void integer_or_auto(const std::string& key, int& value, int lo, int hi);
+  void real(const std::string& key, double& value, double lo, double hi, bool lo_open = false);
+  void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed);
+  void finish() const;  // throws for keys nobody asked for
+
+ private:
+  std::string engine_;
+  const std::map<std::string, std::string>& options_;
+  std::vector<std::string> known_;
+};
+
+// The stopping rules every engine's Options share: throws InputError unless
+// max_evaluations ≥ 1 and target_objective is finite and ≥ 0.
+void check_stopping_rules(std::string_view engine, long max_evaluations, double target_objective);
+
+// The registry entries, one function per engine file.
+EngineInfo ols_engine_info();
+EngineInfo stepwise_engine_info();
+EngineInfo afsa_engine_info();
+EngineInfo iafsa_engine_info();
+std::vector<EngineInfo> pagmo_engine_infos();  // pso, de, cmaes, abc
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,206 @@
+#include "fit/engines/iafsa.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fit/engines/fish_swarm.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+constexpr char kName[] = "iafsa";
+// The engine's stream of make_rng(seed, stream): its own numbers, whatever
+// other components draw from the same seed.
+constexpr std::uint64_t kStream = 0x1AF5A;
+constexpr double kBoxWidth = 2.0;
+constexpr int kMaxIterations = 100000000;
+
+std::string auto_or(int value) { return value == IafsaEngine::kAuto ? "auto" : fmt::format("{}", value); }
+
+// The one place the option rules live: make() reads KEY=VALUE strings with
+// them and validate() checks an Options aggregate with the same reader.
+void read_options(OptionReader& reader, IafsaEngine::Options& o) {
+  reader.integer_or_auto("fish", o.fish, 2, 100000);
+  reader.integer_or_auto("max_iterations", o.max_iterations, 1, kMaxIterations);
+  reader.real("visual", o.visual, 0.0, 1.0, true);
+  reader.real("step", o.step, 0.0, 1.0, true);
+  reader.real("visual_min", o.visual_min, 0.0, 1.0);
+  reader.real("step_min", o.step_min, 0.0, 1.0);
+  reader.real("crowding", o.crowding, 0.0, 1.0, true);
+  reader.integer("try_number", o.try_number, 1, 1000);
+  reader.choice("schedule", o.schedule, {"compound", "initial"});
+}
+
+using fish_swarm::Fish;
+
+// Other fish than `self` within Visual of `point`, over N.
+double crowd(const fish_swarm::School& school, const std::vector<double>& point,
+             std::size_t self, double crowding) {
+  if (crowding >= 1.0) return 0.0;  // n ≤ N − 1 < N: never crowded
+  const std::vector<Fish>& swarm = school.fish();
+  int n = 0;
+  for (std::size_t j = 0; j < swarm.size(); ++j)
+    if (j != self && school.distance(swarm[j].x, point) < school.visual) ++n;
+  return static_cast<double>(n) / static_cast<double>(swarm.size());
+}
+
+// One run: the paper's schedule and targets on top of the shared school
+// (fit/engines/fish_swarm.h), whose evaluator's best point is the bulletin board.
+FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
+              FitObserver* observer) {
+  fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, kStream,
+                            fish_swarm::PreyMove::jump_to, o.try_number);
+  Evaluator& eval = school.evaluator();
+  const std::size_t m = school.dimension();
+  const std::size_t n = static_cast<std::size_t>(
+      o.fish == IafsaEngine::kAuto ? IafsaEngine::auto_fish(m) : o.fish);
+  const long g_last =
+      o.max_iterations == IafsaEngine::kAuto ? IafsaEngine::auto_iterations(m) : o.max_iterations;
+  const auto finish = [&](long iterations, Termination fallback) {
+    return eval.result(
+        kName, iterations, fallback,
+        fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
+                    iterations, g_last, school.visual / kBoxWidth,
+                    school.step / kBoxWidth));
+  };
+
+  // (2) Scatter the swarm over the box; (3) the evaluator's best point is the
+  // bulletin board from the first evaluation on.
+  school.visual = o.visual * kBoxWidth;
+  school.step = o.step * kBoxWidth;
+  if (!school.scatter(n)) return finish(0, Termination::max_iterations);
+  std::vector<Fish>& swarm = school.fish();
+
+  std::vector<double> centre(m);
+  const double g_max = static_cast<double>(g_last);
+  for (long g = 1; g <= g_last; ++g) {
+    // (4) Eq. (5).
+    const double alpha = std::exp(-3.0 * static_cast<double>(g) / g_max);
+    if (o.schedule == "compound") {
+      school.visual = school.visual * alpha + o.visual_min * kBoxWidth;
+      school.step = school.step * alpha + o.step_min * kBoxWidth;
+    } else {
+      school.visual = o.visual * kBoxWidth * alpha + o.visual_min * kBoxWidth;
+      school.step = o.step * kBoxWidth * alpha + o.step_min * kBoxWidth;
+    }
+
+    // The centre of the whole swarm, evaluated once for every fish.
+    std::fill(centre.begin(), centre.end(), 0.0);
+    for (const Fish& fish : swarm)
+      for (std::size_t k = 0; k < m; ++k) centre[k] += fish.x[k] / static_cast<double>(n);
+    const std::optional<double> f_centre = school.evaluate(centre);
+    if (!f_centre) return finish(g, Termination::max_iterations);
+
+    for (std::size_t i = 0; i < n; ++i) {
+      const Fish& fish = swarm[i];
+      // Swarm, eq. (3), towards the centre of the whole swarm.
+      std::optional<Fish> swarmed;
+      const double to_centre = school.distance(fish.x, centre);
+      if (*f_centre < fish.f && to_centre > 0.0 &&
+          crowd(school, centre, i, o.crowding) < o.crowding) {
+        swarmed = school.move_towards(fish, centre, to_centre);
+        if (!swarmed) return finish(g, Termination::max_iterations);
+      }
+      // Follow, eq. (4), towards the bulletin board (the swarm's best, which
+      // the swarm move may just have improved).
+      const std::vector<double> board = eval.best_point();
+      std::optional<Fish> followed;
+      const double to_board = school.distance(fish.x, board);
+      if (eval.best() < fish.f && to_board > 0.0 &&
+          crowd(school, board, i, o.crowding) < o.crowding) {
+        followed = school.move_towards(fish, board, to_board);
+        if (!followed) return finish(g, Termination::max_iterations);
+      }
+      // Prey is the default of both (once is enough when both fall back to
+      // it); the behaviour with the smaller σ is kept.
+      if (!school.settle(i, std::move(swarmed), std::move(followed)))
+        return finish(g, Termination::max_iterations);
+      // (5) The evaluator refreshed the bulletin board at every evaluation.
+    }
+    // (6)
+    if (observer && !observer->on_iteration(g, eval.evaluations(), eval.best()))
+      return finish(g, Termination::stopped);
+  }
+  return finish(g_last, Termination::max_iterations);
+}
+
+}  // namespace
+
+void IafsaEngine::Options::validate() const {
+  std::map<std::string, std::string> given = {
+      {"fish", auto_or(fish)},
+      {"max_iterations", auto_or(max_iterations)},
+      {"visual", fmt::format("{}", visual)},
+      {"step", fmt::format("{}", step)},
+      {"visual_min", fmt::format("{}", visual_min)},
+      {"step_min", fmt::format("{}", step_min)},
+      {"crowding", fmt::format("{}", crowding)},
+      {"try_number", fmt::format("{}", try_number)},
+      {"schedule", schedule},
+  };
+  OptionReader reader(kName, given);
+  Options copy = *this;
+  read_options(reader, copy);
+  reader.finish();
+  check_stopping_rules(kName, max_evaluations, target_objective);
+}
+
+int IafsaEngine::auto_fish(std::size_t terms) {
+  return 8 + 4 * static_cast<int>(std::min<std::size_t>(terms > 3 ? terms - 3 : 0, 20000));
+}
+
+int IafsaEngine::auto_iterations(std::size_t terms) {
+  const double extra = static_cast<double>(terms > 3 ? terms - 3 : 0);
+  return static_cast<int>(std::min(700.0 * std::pow(2.5, extra), double{kMaxIterations}));
+}
+
+IafsaEngine::IafsaEngine(Options options) : options_(std::move(options)) { options_.validate(); }
+
+FitResult IafsaEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
+  return run(options_, problem, observer);
+}
+
+EngineInfo iafsa_engine_info() {
+  const IafsaEngine::Options d;
+  EngineInfo info;
+  info.name = kName;
+  info.description =
+      "improved artificial fish swarm (Yu et al. 2014): shrinking Visual and Step, swarm to the "
+      "swarm's centre, follow the bulletin board";
+  info.stochastic = true;
+  info.default_evaluations = d.max_evaluations;
+  info.options = {
+      {"fish", "auto: N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms"},
+      {"max_iterations", "auto: G_max of eq. (5), also a stopping rule; auto is 700 up to 3 "
+                         "terms, 700·2.5^(m − 3) for m terms"},
+      {"visual", fmt::format("{}: Visual_0, fraction of the box width", d.visual)},
+      {"step", fmt::format("{}: Step_0, fraction of the box width", d.step)},
+      {"visual_min", fmt::format("{}: Visual_min of eq. (5), fraction of the box width",
+                                 d.visual_min)},
+      {"step_min", fmt::format("{}: Step_min of eq. (5), fraction of the box width", d.step_min)},
+      {"crowding", fmt::format("{}: δ, crowded when n/N ≥ δ (1: never)", d.crowding)},
+      {"try_number", fmt::format("{}: prey attempts before a random step", d.try_number)},
+      {"schedule", fmt::format("{}: eq. (5) as an update (compound) or from Visual_0, Step_0 "
+                               "(initial)",
+                               d.schedule)},
+  };
+  info.make = [](const EngineSettings& settings) -> std::unique_ptr<Engine> {
+    IafsaEngine::Options o;
+    OptionReader reader(kName, settings.options);
+    read_options(reader, o);
+    reader.finish();
+    o.seed = settings.seed;
+    if (settings.max_evaluations != 0) o.max_evaluations = settings.max_evaluations;
+    o.target_objective = settings.target_objective;
+    return std::make_unique<IafsaEngine>(o);
+  };
+  return info;
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,180 @@
+#include "fit/engines/ols.h"
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/students_t.hpp>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace gyrotherm::fit {
+
+namespace {
+
+struct LongRunVariance {
+  Eigen::MatrixXd S;        // long-run covariance of the scores, Σ_p Σ_q E[u_p u_qᵀ]
+  double dof = 0.0;         // Student-t degrees of freedom (0: l − m − 1)
+  std::string description;
+};
+
+LongRunVariance prewhitened_newey_west(const Eigen::MatrixXd& u) {
+  const Eigen::Index l = u.rows(), m = u.cols();
+  // Pre-whitened Newey–West HAC covariance (Andrews & Monahan 1992):
+  // u_p = e_p x̃_p; a VAR(1) u_p = A u_{p−1} + w_p takes out most of the
+  // persistence, the Bartlett-kernel sum runs on w with Andrews' bandwidth,
+  // and S = (I − A)⁻¹ S_w (I − A)⁻ᵀ re-colours it.
+  const Eigen::MatrixXd u_now = u.bottomRows(l - 1), u_before = u.topRows(l - 1);
+  Eigen::MatrixXd A = (u_now.transpose() * u_before) *
+                      (u_before.transpose() * u_before).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  // Keep the VAR stable (eigenvalues of A inside 0.97), as Andrews & Monahan do.
+  {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::VectorXd sv = svd.singularValues();
+    if (sv.maxCoeff() > 0.97) {
+      for (Eigen::Index k = 0; k < sv.size(); ++k) sv[k] = std::min(sv[k], 0.97);
+      A = svd.matrixU() * sv.asDiagonal() * svd.matrixV().transpose();
+    }
+  }
+  const Eigen::MatrixXd w = u_now - u_before * A.transpose();
+  const Eigen::Index n = w.rows();
+  // Andrews' AR(1) plug-in bandwidth for the Bartlett kernel, on the whitened series.
+  double num = 0.0, den = 0.0;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    double c0 = 0.0, c1 = 0.0;
+    for (Eigen::Index p = 0; p < n; ++p) {
+      c0 += w(p, j) * w(p, j);
+      if (p > 0) c1 += w(p, j) * w(p - 1, j);
+    }
+    const double rho_j = std::clamp(c0 > 0.0 ? c1 / c0 : 0.0, -0.97, 0.97);
+    const double s2 = c0 / static_cast<double>(n) * (1.0 - rho_j * rho_j);
+    num += 4.0 * rho_j * rho_j * s2 * s2 / std::pow(1.0 - rho_j, 6) / std::pow(1.0 + rho_j, 2);
+    den += s2 * s2 / std::pow(1.0 - rho_j, 4);
+  }
+  const double alpha = den > 0.0 ? num / den : 0.0;
+  const auto lags = static_cast<Eigen::Index>(std::min<double>(
+      std::ceil(1.1447 * std::cbrt(alpha * static_cast<double>(n))), static_cast<double>(n / 2)));
+  Eigen::MatrixXd S_w = w.transpose() * w;
+  for (Eigen::Index lag = 1; lag <= lags; ++lag) {
+    const double weight = 1.0 - static_cast<double>(lag) / static_cast<double>(lags + 1);
+    const Eigen::MatrixXd gamma = w.bottomRows(n - lag).transpose() * w.topRows(n - lag);
+    S_w += weight * (gamma + gamma.transpose());
+  }
+  const Eigen::MatrixXd recolour =
+      (Eigen::MatrixXd::Identity(m, m) - A).fullPivLu().inverse();
+  Eigen::MatrixXd S = recolour * S_w * recolour.transpose();
+  S *= static_cast<double>(l) / static_cast<double>(l - m - 1);
+  return {S, 0.0, fmt::format("Newey-West HAC pre-whitened by a VAR(1) (Andrews-Monahan), Bartlett "
+                              "kernel with {} lags by Andrews' AR(1) rule", lags)};
+
+}
+
+// Equal-weighted cosine estimator: the scores projected on the B lowest
+// cosine frequencies, Λ_j = sqrt(2/l) Σ_p u_p cos(π j (p + ½)/l); each Λ_j has
+// the long-run covariance Ω of one score, so S = l·Ω̂ = (l/B) Σ_j Λ_j Λ_jᵀ.
+LongRunVariance equal_weighted_cosine(const Eigen::MatrixXd& u, int terms) {
+  const Eigen::Index l = u.rows(), m = u.cols();
+  const int b = terms > 0 ? terms
+                          : static_cast<int>(std::ceil(0.4 * std::pow(static_cast<double>(l), 2.0 / 3.0)));
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, m);
+  Eigen::VectorXd lambda(m);
+  for (int j = 1; j <= b; ++j) {
+    lambda.setZero();
+    for (Eigen::Index p = 0; p < l; ++p)
+      lambda += std::sqrt(2.0 / static_cast<double>(l)) *
+                std::cos(M_PI * j * (static_cast<double>(p) + 0.5) / static_cast<double>(l)) *
+                u.row(p).transpose();
+    S += lambda * lambda.transpose();
+  }
+  S *= static_cast<double>(l) / static_cast<double>(b);
+  return {S, static_cast<double>(b),
+          fmt::format("equal-weighted cosine long-run variance (Lazarus, Lewis, Stock & Watson "
+                      "2018) on the {} lowest frequencies", b)};
+}
+
+}  // namespace
+
+std::vector<double> least_squares_optimum(const LinearProblem& problem) {
+  const Eigen::VectorXd beta =
+      problem.scaled_design().colPivHouseholderQr().solve(problem.centred_y());
+  std::vector<double> z(problem.dimension());
+  for (std::size_t j = 0; j < z.size(); ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    z[j] = beta[jj] / problem.half_width()[jj];
+  }
+  return z;
+}
+
+FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
+  const auto started = std::chrono::steady_clock::now();
+  const Eigen::MatrixXd& X = problem.scaled_design();
+  const Eigen::Index l = X.rows(), m = X.cols();
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
+  const Eigen::VectorXd beta = qr.solve(problem.centred_y());
+  const Eigen::VectorXd e = problem.centred_y() - X * beta;
+
+  FitResult r;
+  r.engine = "ols";
+  r.z.resize(static_cast<std::size_t>(m));
+  for (Eigen::Index j = 0; j < m; ++j)
+    r.z[static_cast<std::size_t>(j)] = beta[j] / problem.half_width()[j];
+  r.objective = problem.objective(r.z);
+  r.evaluations = 1;
+  r.iterations = 1;
+  r.termination = Termination::exact;
+  r.history = {{1, r.objective}};
+
+  const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
+  const LongRunVariance lrv = options_.intervals == IntervalMethod::ewc
+                                  ? equal_weighted_cosine(u, options_.ewc_terms)
+                                  : prewhitened_newey_west(u);
+  const Eigen::MatrixXd xtx_inv =
+      (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  const Eigen::MatrixXd V = xtx_inv * lrv.S * xtx_inv;
+  const double dof = lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1);
+  double e_num = 0.0, e_den = 0.0;
+  for (Eigen::Index p = 0; p < l; ++p) {
+    e_den += e[p] * e[p];
+    if (p > 0) e_num += e[p] * e[p - 1];
+  }
+  const double rho = e_den > 0.0 ? e_num / e_den : 0.0;
+
+  const boost::math::students_t t_dist(dof);
+  const double t95 = boost::math::quantile(boost::math::complement(t_dist, 0.025));
+  const Coefficients c = problem.physical(r.z);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const double se_beta = std::sqrt(std::max(0.0, V(j, j)));
+    const double se = se_beta / problem.scale()[j];
+    const double b = c.b[static_cast<std::size_t>(j)];
+    r.intervals.push_back({b - t95 * se, b + t95 * se});
+    const double t = se_beta > 0.0 ? std::abs(beta[j]) / se_beta : INFINITY;
+    r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t))
+                                          : 0.0);
+  }
+  r.interval_method = fmt::format("{}; residual lag-1 autocorrelation {:.2f}; Student t with {:g} dof",
+                                  lrv.description, rho, dof);
+  r.message = "least squares by column-pivoting QR";
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+EngineInfo ols_engine_info() {
+  EngineInfo info;
+  info.name = "ols";
+  info.description = "exact least squares (QR) with autocorrelation-robust 95 % intervals: the reference";
+  info.stochastic = false;
+  info.default_evaluations = 1;
+  info.options = {{"intervals", "nw: nw (pre-whitened Newey-West) or ewc (equal-weighted cosine)"},
+                  {"ewc_terms", "0: cosine terms B for ewc (0: ceil(0.4 l^(2/3)))"}};
+  info.make = [](const EngineSettings& s) -> std::unique_ptr<Engine> {
+    OlsOptions o;
+    OptionReader reader("ols", s.options);
+    std::string method = "nw";
+    reader.choice("intervals", method, {"ewc", "nw"});
+    o.intervals = method == "nw" ? IntervalMethod::newey_west : IntervalMethod::ewc;
+    reader.integer("ewc_terms", o.ewc_terms, 0, 1000);
+    reader.finish();
+    return std::make_unique<OlsEngine>(o);
+  };
+  return info;
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,57 @@
+#pragma once
+// `ols`: the exact least-squares optimum of the paper's eq. (6), the reference
+// every other engine is scored against.
+//
+//   β̂ = argmin ‖ỹ − X̃β‖²   by column-pivoting Householder QR of the centred,
+//   scaled design X̃ (never the normal equations), b_j = β̂_j / s_j, b0 = mean residual.
+//
+// 95 % confidence intervals. The residuals of 100 s averages are strongly
+// autocorrelated (flicker noise, unmodelled slow effects), so the iid formula
+// σ²(X̃ᵀX̃)⁻¹ would be far too narrow. The covariance is the Newey–West
+// heteroscedasticity-and-autocorrelation-consistent (HAC) sandwich
+//
+//   V = (X̃ᵀX̃)⁻¹ S (X̃ᵀX̃)⁻¹,  S = Γ₀ + Σ_{ℓ=1..L} (1 − ℓ/(L+1)) (Γ_ℓ + Γ_ℓᵀ),
+//   Γ_ℓ = Σ_p e_p e_{p−ℓ} x̃_p x̃_{p−ℓ}ᵀ,
+//
+// with the bandwidth L from Andrews' AR(1) plug-in rule for the Bartlett
+// kernel: ρ = lag-1 autocorrelation of the residuals, α = 4ρ²/((1−ρ)²(1+ρ)²),
+// L = ⌈1.1447 (α l)^{1/3}⌉ (capped at l/2), a small-sample factor l/(l−m−1),
+// and Student-t quantiles with l − m − 1 degrees of freedom.
+//
+// Option intervals=ewc uses instead the equal-weighted cosine estimator
+// (the scores projected on the B = ⌈0.4 l^{2/3}⌉ lowest cosine frequencies,
+// Student t with B dof; Lazarus, Lewis, Stock & Watson, JBES 36 (2018)).
+//
+// Limits, measured in results/ols_coverage.md: neither estimator can see
+// noise whose memory is as long as the regressors' own time scale (the flicker
+// of a gyro over a 9 h cycle): the regression absorbs that drift, the
+// residuals look whiter than the noise was, and the intervals come out too
+// narrow. A model that omits a real effect (the sensor lag's d2T) adds bias.
+//
+// References: Newey & West, Econometrica 55 (1987) 703–708; Andrews,
+// Econometrica 59 (1991) 817–858; Golub & Van Loan, Matrix Computations §5.4.
+
+#include "fit/engines/engine.h"
+
+namespace gyrotherm::fit {
+
+enum class IntervalMethod { ewc, newey_west };
+
+struct OlsOptions {
+  IntervalMethod intervals = IntervalMethod::newey_west;  // long-run variance estimator
+  int ewc_terms = 0;  // cosine frequencies B for ewc; 0: ⌈0.4·l^{2/3}⌉ (LLSW's rule)
+};
+
+class OlsEngine : public Engine {
+ public:
+  explicit OlsEngine(OlsOptions options = {}) : options_(options) {}
+  FitResult fit(const LinearProblem& problem, FitObserver* observer = nullptr) const override;
+
+ private:
+  OlsOptions options_;
+};
+
+// The exact optimum in unit-box coordinates (used by scoring and tests).
+std::vector<double> least_squares_optimum(const LinearProblem& problem);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,167 @@
+#include "fit/engines/stepwise.h"
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/students_t.hpp>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+struct SubsetFit {
+  Eigen::VectorXd beta;     // scaled coefficients of the subset, in its order
+  Eigen::VectorXd p_value;  // per coefficient
+};
+
+SubsetFit fit_subset(const LinearProblem& problem, const std::vector<Eigen::Index>& subset) {
+  const Eigen::Index k = static_cast<Eigen::Index>(subset.size());
+  const double l = static_cast<double>(problem.points());
+  Eigen::MatrixXd g(k, k);
+  Eigen::VectorXd c(k);
+  for (Eigen::Index a = 0; a < k; ++a) {
+    c[a] = problem.cross()[subset[static_cast<std::size_t>(a)]];
+    for (Eigen::Index b = 0; b < k; ++b)
+      g(a, b) = problem.gram()(subset[static_cast<std::size_t>(a)], subset[static_cast<std::size_t>(b)]);
+  }
+  const Eigen::MatrixXd g_inv = g.ldlt().solve(Eigen::MatrixXd::Identity(k, k));
+  SubsetFit fit;
+  fit.beta = g_inv * c;
+  const double s_yy = problem.sigma_y() * problem.sigma_y();
+  const double rss = std::max(0.0, (l - 1.0) * (s_yy - c.dot(fit.beta)));
+  const double dof = l - static_cast<double>(k) - 1.0;
+  const double sigma2 = rss / dof;
+  const boost::math::students_t t_dist(dof);
+  fit.p_value.resize(k);
+  for (Eigen::Index a = 0; a < k; ++a) {
+    const double se = std::sqrt(std::max(0.0, sigma2 * g_inv(a, a) / (l - 1.0)));
+    const double t = se > 0.0 ? std::abs(fit.beta[a]) / se : INFINITY;
+    fit.p_value[a] =
+        std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t)) : 0.0;
+  }
+  return fit;
+}
+
+}  // namespace
+
+FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
+  const auto started = std::chrono::steady_clock::now();
+  const auto m = static_cast<Eigen::Index>(problem.dimension());
+  std::vector<bool> in(static_cast<std::size_t>(m), false);
+  long fits = 0, steps = 0;
+  std::string log;
+  auto subset_of = [&](Eigen::Index extra) {
+    std::vector<Eigen::Index> s;
+    for (Eigen::Index j = 0; j < m; ++j)
+      if (in[static_cast<std::size_t>(j)] || j == extra) s.push_back(j);
+    return s;
+  };
+
+  const long max_steps = 4 * m + 10;  // guards against cycling
+  bool stopped = false;
+  for (; steps < max_steps; ++steps) {
+    // 2. The best term to enter.
+    Eigen::Index best = -1;
+    double best_p = options_.p_enter;
+    for (Eigen::Index j = 0; j < m; ++j) {
+      if (in[static_cast<std::size_t>(j)]) continue;
+      const std::vector<Eigen::Index> s = subset_of(j);
+      const SubsetFit f = fit_subset(problem, s);
+      ++fits;
+      const auto pos = std::find(s.begin(), s.end(), j) - s.begin();
+      if (f.p_value[pos] < best_p) {
+        best_p = f.p_value[pos];
+        best = j;
+      }
+    }
+    if (best >= 0) {
+      in[static_cast<std::size_t>(best)] = true;
+      log += fmt::format("{}+{}", log.empty() ? "" : ", ", problem.term_names()[static_cast<std::size_t>(best)]);
+    } else {
+      // 3. The worst term to remove.
+      const std::vector<Eigen::Index> s = subset_of(-1);
+      if (s.empty()) break;
+      const SubsetFit f = fit_subset(problem, s);
+      ++fits;
+      Eigen::Index worst = -1;
+      double worst_p = options_.p_remove;
+      for (Eigen::Index a = 0; a < static_cast<Eigen::Index>(s.size()); ++a)
+        if (f.p_value[a] > worst_p) {
+          worst_p = f.p_value[a];
+          worst = s[static_cast<std::size_t>(a)];
+        }
+      if (worst < 0) break;  // 4. nothing to add or remove
+      in[static_cast<std::size_t>(worst)] = false;
+      log += fmt::format(", -{}", problem.term_names()[static_cast<std::size_t>(worst)]);
+    }
+    if (observer != nullptr && !observer->on_iteration(steps + 1, fits, NAN)) {
+      stopped = true;
+      break;
+    }
+  }
+
+  FitResult r;
+  r.engine = "stepwise";
+  r.z.assign(static_cast<std::size_t>(m), 0.0);
+  r.kept = in;
+  r.p_values.assign(static_cast<std::size_t>(m), 1.0);
+  const std::vector<Eigen::Index> final_set = subset_of(-1);
+  if (!final_set.empty()) {
+    const SubsetFit f = fit_subset(problem, final_set);
+    ++fits;
+    for (std::size_t a = 0; a < final_set.size(); ++a) {
+      const auto j = final_set[a];
+      r.z[static_cast<std::size_t>(j)] = f.beta[static_cast<Eigen::Index>(a)] / problem.half_width()[j];
+      r.p_values[static_cast<std::size_t>(j)] = f.p_value[static_cast<Eigen::Index>(a)];
+    }
+  }
+  // p-values of the terms left out: as if each were added to the final model.
+  for (Eigen::Index j = 0; j < m; ++j) {
+    if (in[static_cast<std::size_t>(j)]) continue;
+    const std::vector<Eigen::Index> s = subset_of(j);
+    const SubsetFit f = fit_subset(problem, s);
+    ++fits;
+    r.p_values[static_cast<std::size_t>(j)] = f.p_value[std::find(s.begin(), s.end(), j) - s.begin()];
+  }
+  r.objective = problem.objective(r.z);
+  r.evaluations = fits;
+  r.iterations = steps;
+  r.history = {{fits, r.objective}};
+  r.termination = stopped ? Termination::stopped
+                  : steps >= max_steps ? Termination::max_iterations
+                                       : Termination::converged;
+  std::string kept;
+  for (Eigen::Index j = 0; j < m; ++j)
+    if (in[static_cast<std::size_t>(j)]) kept += (kept.empty() ? "" : ", ") + problem.term_names()[static_cast<std::size_t>(j)];
+  r.message = fmt::format("kept {} (steps: {})", kept.empty() ? "no terms" : kept,
+                          log.empty() ? "none" : log);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+EngineInfo stepwise_engine_info() {
+  EngineInfo info;
+  info.name = "stepwise";
+  info.description = "stepwise regression as MATLAB's stepwisefit (enter p<0.05, remove p>0.10)";
+  info.stochastic = false;
+  info.default_evaluations = 0;
+  info.options = {{"p_enter", "0.05: a term enters when its p-value is below this"},
+                  {"p_remove", "0.10: a term leaves when its p-value is above this"}};
+  info.make = [](const EngineSettings& s) -> std::unique_ptr<Engine> {
+    StepwiseOptions o;
+    OptionReader reader("stepwise", s.options);
+    reader.real("p_enter", o.p_enter, 0.0, 1.0, true);
+    reader.real("p_remove", o.p_remove, 0.0, 1.0, true);
+    reader.finish();
+    if (o.p_remove < o.p_enter)
+      throw InputError(fmt::format("stepwise options: p_remove={} must be >= p_enter={} (or a "
+                                   "term could enter and leave forever)",
+                                   o.p_remove, o.p_enter));
+    return std::make_unique<StepwiseEngine>(o);
+  };
+  return info;
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,22 @@
+#pragma once
+// Model formulas: term names of the registry (fit/model/terms.h) joined by '+',
+// e.g. "T + T^2 + dT" (the paper's eq. 6, the default). The intercept is
+// always in; writing "1" is allowed and changes nothing. Spaces are ignored.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fit/model/terms.h"
+
+namespace gyrotherm::fit {
+
+inline constexpr std::string_view kDefaultModel = "T + T^2 + dT";
+
+// Throws InputError for an empty formula, an unknown term (listing the known
+// ones) or a term given twice.
+std::vector<const Term*> parse_formula(std::string_view formula);
+// The canonical text of a term list: "T + T^2 + dT".
+std::string formula_text(const std::vector<const Term*>& terms);
+
+}  // namespace gyrotherm::fit

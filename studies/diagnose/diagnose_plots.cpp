@@ -1,0 +1,145 @@
+#include "studies/diagnose/diagnose_plots.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "sim/util/gnuplot.h"
+#include "sim/allan.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::app {
+namespace {
+
+const char* colour_of(const std::string& kind) {
+  if (kind == "heating") return "#f4c7c3";
+  if (kind == "cooling") return "#c6dbef";
+  if (kind == "turn-on") return "#fde9a8";
+  return "#eeeeee";  // soak
+}
+
+std::vector<double> in_hours(const std::vector<double>& s) {
+  std::vector<double> h(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) h[i] = s[i] / 3600.0;
+  return h;
+}
+
+}  // namespace
+
+void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
+                           const fit::PreparedData& data, const fit::Diagnosis& d,
+                           const fit::Diagnosis* before, const fit::PipelineOptions& pipeline) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("--plots {}: cannot create the folder ({})", dir, ec.message()));
+  const fit::AveragedSeries& s = data.series;
+  const std::vector<double> t_h = in_hours(s.time_s);
+  const std::string floor_text = fmt::format("{:.4g}", d.noise_floor_dph);
+
+  {  // 1. Measured and modelled bias with the temperature.
+    GnuplotFigure fig(dir + "/bias_time.png", 1400, 700);
+    fig.data("d", {"t_h", "measured", "model", "temp"}, {t_h, s.gyro_dph, d.model_dph, s.temp_c});
+    fig.commands(
+        "set title 'Measured and modelled bias (window means) with the gyro temperature'\n"
+        "set xlabel 'time (h)'\nset ylabel 'bias (°/h)'\nset y2label 'temperature (°C)'\n"
+        "set y2tics\nset ytics nomirror\nset key outside right\n"
+        "plot $d using 1:2 with points pt 7 ps 0.5 lc rgb '#444444' title 'measured', "
+        "$d using 1:3 with lines lw 2 lc rgb '#d62728' title 'model', "
+        "$d using 1:4 axes x1y2 with lines lw 1 lc rgb '#1f77b4' title 'temperature'\n");
+    fig.render();
+  }
+  {  // 2. Residual with the segments shaded and the worst marked.
+    GnuplotFigure fig(dir + "/residual_segments.png", 1400, 700);
+    std::vector<double> floor_hi(s.size(), d.noise_floor_dph), floor_lo(s.size(), -d.noise_floor_dph);
+    fig.data("r", {"t_h", "residual", "floor", "minus_floor"}, {t_h, d.residual_dph, floor_hi, floor_lo});
+    std::string cmds =
+        "set title 'Residual of the model; shading: turn-on (yellow), heating (red), cooling "
+        "(blue), soak (grey); the three worst segments are labelled'\n"
+        "set xlabel 'time (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n";
+    for (std::size_t i = 0; i < d.segments.size(); ++i) {
+      const fit::SegmentReport& seg = d.segments[i];
+      cmds += fmt::format(
+          "set object {} rect from {:.6f}, graph 0 to {:.6f}, graph 1 fc rgb '{}' fs solid 0.6 "
+          "noborder behind\n",
+          i + 1, (seg.start_s - 50.0) / 3600.0, (seg.end_s + 50.0) / 3600.0, colour_of(seg.kind));
+    }
+    const auto worst = d.worst_segments();
+    for (std::size_t k = 0; k < worst.size() && k < 3; ++k) {
+      const fit::SegmentReport& seg = d.segments[worst[k]];
+      cmds += fmt::format("set label {} '#{} {} {:.1f}x' at {:.6f}, graph 0.95 center front\n", k + 1,
+                          k + 1, seg.kind, seg.ratio_to_floor, 0.5 * (seg.start_s + seg.end_s) / 3600.0);
+    }
+    cmds += "plot $r using 1:2 with linespoints pt 7 ps 0.4 lw 1 lc rgb '#222222' title 'residual', "
+            "$r using 1:3 with lines dt 2 lc rgb '#2ca02c' title '± noise floor " + floor_text +
+            "', $r using 1:4 with lines dt 2 lc rgb '#2ca02c' notitle\n";
+    fig.commands(cmds);
+    fig.render();
+  }
+  {  // 3. Residual against temperature and against dT/dt.
+    GnuplotFigure fig(dir + "/residual_vs.png", 1400, 600);
+    std::vector<double> rate_mk(s.size());
+    for (std::size_t p = 0; p < s.size(); ++p) rate_mk[p] = data.derived.rate_c_per_s[p] * 60.0;
+    fig.data("v", {"temp", "rate_c_per_min", "residual"}, {s.temp_c, rate_mk, d.residual_dph});
+    fig.commands(
+        "set multiplot layout 1,2 title 'Residual against temperature and temperature rate (a "
+        "pattern here is a missing effect)'\n"
+        "set xlabel 'temperature (°C)'\nset ylabel 'residual (°/h)'\nunset key\n"
+        "plot $v using 1:3 with points pt 7 ps 0.5 lc rgb '#1f77b4'\n"
+        "set xlabel 'dT/dt (°C/min)'\n"
+        "plot $v using 2:3 with points pt 7 ps 0.5 lc rgb '#d62728'\nunset multiplot\n");
+    fig.render();
+  }
+  if (before != nullptr) {  // 4. Before and after the added effect.
+    GnuplotFigure fig(dir + "/before_after.png", 1400, 700);
+    fig.data("b", {"t_h", "before", "after"}, {t_h, before->residual_dph, d.residual_dph});
+    fig.commands(fmt::format(
+        "set title 'Residual before ({:.4g} °/h) and after ({:.4g} °/h) adding the effect; noise "
+        "floor {}'\nset xlabel 'time (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n"
+        "plot $b using 1:2 with lines lw 1.5 lc rgb '#aaaaaa' title 'before', "
+        "$b using 1:3 with lines lw 2 lc rgb '#d62728' title 'after'\n",
+        before->fit.instability_after_dph, d.fit.instability_after_dph, floor_text));
+    fig.render();
+  }
+  {  // 5. Allan deviation of the raw and the compensated output.
+    const double dt = data.averaging.sample_interval_s > 0 ? data.averaging.sample_interval_s : 1.0;
+    std::vector<double> compensated(m.size());
+    std::size_t p = 0;
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      while (p + 1 < s.size() && s.time_s[p + 1] <= m.time_s[k]) ++p;
+      double model = d.model_dph[p];
+      if (p + 1 < s.size() && m.time_s[k] >= s.time_s[p]) {
+        const double f = (m.time_s[k] - s.time_s[p]) / (s.time_s[p + 1] - s.time_s[p]);
+        model += f * (d.model_dph[p + 1] - d.model_dph[p]);
+      }
+      compensated[k] = m.gyro_dph[k] - model;
+    }
+    const std::vector<double> taus = sim::octave_taus(m.size(), dt, 8);
+    const auto raw = sim::allan_deviation(m.gyro_dph, dt, taus);
+    const auto comp = sim::allan_deviation(compensated, dt, taus);
+    std::vector<double> tr, r, rl, ru, tc, c, cl, cu;
+    for (const auto& a : raw) {
+      tr.push_back(a.tau_s); r.push_back(a.deviation); rl.push_back(a.lower); ru.push_back(a.upper);
+    }
+    for (const auto& a : comp) {
+      tc.push_back(a.tau_s); c.push_back(a.deviation); cl.push_back(a.lower); cu.push_back(a.upper);
+    }
+    GnuplotFigure fig(dir + "/allan.png", 1000, 750);
+    fig.data("raw", {"tau", "adev", "lo", "hi"}, {tr, r, rl, ru});
+    fig.data("comp", {"tau", "adev", "lo", "hi"}, {tc, c, cl, cu});
+    fig.commands(fmt::format(
+        "set title 'Allan deviation of the raw and compensated output (68 % bands)'\n"
+        "set logscale xy\nset xlabel 'averaging time τ (s)'\nset ylabel 'Allan deviation (°/h)'\n"
+        "set key outside right\nset arrow from {0}, graph 0 to {0}, graph 1 nohead dt 3 lc rgb '#888888'\n"
+        "set label 'floor {1}' at {0}, {2} point pt 9 ps 2 lc rgb '#2ca02c' offset 1,1\n"
+        "plot $raw using 1:3:4 with filledcurves fc rgb '#cccccc' fs transparent solid 0.5 notitle, "
+        "$raw using 1:2 with linespoints pt 7 ps 0.6 lc rgb '#444444' title 'raw', "
+        "$comp using 1:3:4 with filledcurves fc rgb '#f4a582' fs transparent solid 0.5 notitle, "
+        "$comp using 1:2 with linespoints pt 7 ps 0.6 lc rgb '#d62728' title 'compensated'\n",
+        pipeline.averaging.window_s, floor_text, d.noise_floor_dph));
+    fig.render();
+  }
+}
+
+}  // namespace gyrotherm::app

@@ -1,0 +1,21 @@
+#pragma once
+// The figures of `gyrotherm diagnose --plots DIR` (PNG, gnuplot):
+//   bias_time.png        measured and modelled window means with the temperature
+//   residual_segments.png  the residual against time, segments shaded by kind,
+//                        the worst three marked
+//   residual_vs.png      the residual against temperature and against dT/dt
+//   before_after.png     the residual without and with the added effect (--add)
+//   allan.png            Allan deviation of the raw and compensated output with
+//                        68 % bands, and the noise floor at the averaging time
+
+#include <string>
+
+#include "studies/diagnose/diagnosis.h"
+
+namespace gyrotherm::app {
+
+void write_diagnosis_plots(const std::string& dir, const fit::Measurement& measurement,
+                           const fit::PreparedData& data, const fit::Diagnosis& d,
+                           const fit::Diagnosis* before, const fit::PipelineOptions& pipeline);
+
+}  // namespace gyrotherm::app

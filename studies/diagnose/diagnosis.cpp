@@ -1,0 +1,335 @@
+#include "studies/diagnose/diagnosis.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fit/model/formula.h"
+#include "fit/engines/ols.h"
+#include "sim/util/input_error.h"
+#include "sim/util/random.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+constexpr double kMedianChi2One = 0.454936;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  if (v.size() % 2 == 1) return *mid;
+  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
+}
+
+// Least-squares fit of y on the design with an intercept, on the rows where
+// `use` is true; returns the coefficients (intercept first). Empty if singular.
+Eigen::VectorXd ls_fit(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
+                       const std::vector<bool>& use) {
+  const Eigen::Index n = static_cast<Eigen::Index>(std::count(use.begin(), use.end(), true));
+  Eigen::MatrixXd a(n, x.cols() + 1);
+  Eigen::VectorXd b(n);
+  Eigen::Index r = 0;
+  for (Eigen::Index p = 0; p < x.rows(); ++p) {
+    if (!use[static_cast<std::size_t>(p)]) continue;
+    a(r, 0) = 1.0;
+    a.row(r).tail(x.cols()) = x.row(p);
+    b[r] = y[p];
+    ++r;
+  }
+  // Scale columns for conditioning.
+  Eigen::VectorXd scale = a.colwise().norm().transpose();
+  for (Eigen::Index j = 0; j < scale.size(); ++j)
+    if (scale[j] == 0.0) scale[j] = 1.0;
+  const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(as);
+  if (qr.rank() < as.cols()) return {};
+  return qr.solve(b).cwiseQuotient(scale);
+}
+
+// Cross-validated SSE per block: each block predicted by the model fitted without it.
+std::vector<double> block_sse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
+                              const std::vector<std::size_t>& block, std::size_t blocks) {
+  std::vector<double> sse(blocks, 0.0);
+  for (std::size_t k = 0; k < blocks; ++k) {
+    std::vector<bool> use(static_cast<std::size_t>(y.size()));
+    for (std::size_t p = 0; p < use.size(); ++p) use[p] = block[p] != k;
+    const Eigen::VectorXd c = ls_fit(x, y, use);
+    if (c.size() == 0) {
+      sse[k] = std::numeric_limits<double>::infinity();
+      continue;
+    }
+    for (std::size_t p = 0; p < use.size(); ++p) {
+      if (use[p]) continue;
+      const auto pp = static_cast<Eigen::Index>(p);
+      const double r = y[pp] - c[0] - x.row(pp).dot(c.tail(x.cols()));
+      sse[k] += r * r;
+    }
+  }
+  return sse;
+}
+
+// One-sided sign-flip randomisation test of Σ d_k > 0.
+double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) {
+  double observed = 0.0;
+  for (double v : d) observed += v;
+  Rng rng = make_rng(seed, 0x5167);
+  int at_least = 0;
+  for (int i = 0; i < draws; ++i) {
+    double s = 0.0;
+    for (double v : d) s += (rng() & 1u) ? v : -v;
+    at_least += s >= observed - 1e-15 * std::abs(observed);
+  }
+  return (at_least + 1.0) / (draws + 1.0);
+}
+
+std::vector<std::string> names_of(const std::vector<const Term*>& terms) {
+  std::vector<std::string> n;
+  for (const Term* t : terms) n.push_back(t->name);
+  return n;
+}
+
+}  // namespace
+
+double robust_noise_floor(const AveragedSeries& s) {
+  std::vector<double> h2;
+  for (std::size_t p = 1; p + 1 < s.size(); ++p) {
+    if (s.run[p - 1] != s.run[p] || s.run[p + 1] != s.run[p]) continue;
+    const double h = s.gyro_dph[p + 1] - 2.0 * s.gyro_dph[p] + s.gyro_dph[p - 1];
+    h2.push_back(h * h);
+  }
+  if (h2.size() < 5)
+    throw InputError(fmt::format("only {} usable windows: too few to estimate the noise floor",
+                                 s.size()));
+  return std::sqrt(median(h2) / (6.0 * kMedianChi2One));
+}
+
+std::vector<std::size_t> Diagnosis::worst_segments() const {
+  std::vector<std::size_t> idx(segments.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  std::stable_sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) {
+    return segments[a].ratio_to_floor > segments[b].ratio_to_floor;
+  });
+  return idx;
+}
+
+std::vector<SegmentReport> segment_rms(const Diagnosis& d, const std::vector<double>& residual) {
+  std::vector<SegmentReport> out = d.segments;
+  std::vector<double> ss(out.size(), 0.0);
+  for (std::size_t p = 0; p < residual.size(); ++p) ss[d.window_segment[p]] += residual[p] * residual[p];
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i].rms_dph = std::sqrt(ss[i] / static_cast<double>(out[i].windows));
+    out[i].ratio_to_floor = out[i].rms_dph / d.noise_floor_dph;
+  }
+  return out;
+}
+
+Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& terms,
+                   const EngineInfo& engine, const EngineSettings& settings,
+                   const DiagnosisOptions& options) {
+  Diagnosis d;
+  const AveragedSeries& s = data.series;
+  const std::size_t l = s.size();
+
+  // 1. Compare.
+  d.fit = fit_model(data, terms, engine, settings);
+  d.noise_floor_dph = robust_noise_floor(s);
+  const Eigen::MatrixXd x = design_matrix(data.derived, terms, d.fit.parameters);
+  d.model_dph = model_values(x, d.fit.coefficients);
+  d.residual_dph.resize(l);
+  for (std::size_t p = 0; p < l; ++p) d.residual_dph[p] = s.gyro_dph[p] - d.model_dph[p];
+
+  // 2. Segments from the temperature record.
+  const std::vector<double>& rate = data.derived.rate_c_per_s;
+  double max_rate = 0.0;
+  for (double r : rate) max_rate = std::max(max_rate, std::abs(r));
+  const double threshold = std::max(2e-4, 0.05 * max_rate);
+  std::vector<std::string> kind(l);
+  for (std::size_t p = 0; p < l; ++p) {
+    if (s.time_s[p] - s.start_time_s < 1800.0)
+      kind[p] = "turn-on";
+    else if (rate[p] > threshold)
+      kind[p] = "heating";
+    else if (rate[p] < -threshold)
+      kind[p] = "cooling";
+    else
+      kind[p] = "soak";
+  }
+  // Runs shorter than 3 windows take the kind of the run before them.
+  for (std::size_t p = 0; p < l;) {
+    std::size_t q = p;
+    while (q < l && kind[q] == kind[p]) ++q;
+    if (q - p < 3 && p > 0 && kind[p] != "turn-on")
+      for (std::size_t i = p; i < q; ++i) kind[i] = kind[p - 1];
+    p = q;
+  }
+  d.window_segment.resize(l);
+  for (std::size_t p = 0; p < l; ++p) {
+    const bool new_segment = p == 0 || kind[p] != kind[p - 1] || s.run[p] != s.run[p - 1];
+    if (new_segment) {
+      SegmentReport seg;
+      seg.kind = kind[p];
+      seg.start_s = s.time_s[p];
+      seg.temp_min_c = seg.temp_max_c = s.temp_c[p];
+      d.segments.push_back(seg);
+    }
+    SegmentReport& seg = d.segments.back();
+    seg.end_s = s.time_s[p];
+    seg.temp_min_c = std::min(seg.temp_min_c, s.temp_c[p]);
+    seg.temp_max_c = std::max(seg.temp_max_c, s.temp_c[p]);
+    seg.windows += 1;
+    d.window_segment[p] = d.segments.size() - 1;
+  }
+  d.segments = segment_rms(d, d.residual_dph);
+
+  // Temperature bands: four of equal width.
+  const auto [tlo, thi] = std::minmax_element(s.temp_c.begin(), s.temp_c.end());
+  const double width = std::max((*thi - *tlo) / 4.0, 1e-9);
+  d.bands.resize(4);
+  std::vector<double> band_ss(4, 0.0);
+  for (int b = 0; b < 4; ++b) {
+    d.bands[static_cast<std::size_t>(b)].kind = "band";
+    d.bands[static_cast<std::size_t>(b)].temp_min_c = *tlo + b * width;
+    d.bands[static_cast<std::size_t>(b)].temp_max_c = *tlo + (b + 1) * width;
+    d.bands[static_cast<std::size_t>(b)].start_s = std::numeric_limits<double>::infinity();
+    d.bands[static_cast<std::size_t>(b)].end_s = -std::numeric_limits<double>::infinity();
+  }
+  for (std::size_t p = 0; p < l; ++p) {
+    const auto b = static_cast<std::size_t>(std::min(3.0, std::floor((s.temp_c[p] - *tlo) / width)));
+    d.bands[b].windows += 1;
+    band_ss[b] += d.residual_dph[p] * d.residual_dph[p];
+    d.bands[b].start_s = std::min(d.bands[b].start_s, s.time_s[p]);
+    d.bands[b].end_s = std::max(d.bands[b].end_s, s.time_s[p]);
+  }
+  for (std::size_t b = 0; b < 4; ++b) {
+    if (d.bands[b].windows == 0) continue;
+    d.bands[b].rms_dph = std::sqrt(band_ss[b] / static_cast<double>(d.bands[b].windows));
+    d.bands[b].ratio_to_floor = d.bands[b].rms_dph / d.noise_floor_dph;
+  }
+  std::erase_if(d.bands, [](const SegmentReport& b) { return b.windows == 0; });
+
+  // 3. Candidates, ranked greedily: score every unused term against the
+  // current model; if the best is significant it joins the model and the rest
+  // are scored again against the larger model (so a second effect is judged
+  // on what the first leaves), until the best is not significant.
+  const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(s.gyro_dph.data(), static_cast<Eigen::Index>(l));
+  const std::size_t blocks = std::max<std::size_t>(2, l / options.block_windows);
+  std::vector<std::size_t> block(l);
+  for (std::size_t p = 0; p < l; ++p) block[p] = std::min(blocks - 1, p * blocks / l);
+  const double after2 = d.fit.instability_after_dph * d.fit.instability_after_dph;
+  const double floor2 = d.noise_floor_dph * d.noise_floor_dph;
+  // The excess over the floor; when the model is at the floor already, the
+  // share is of the whole residual variance.
+  const double excess = after2 > floor2 ? after2 - floor2 : after2;
+
+  std::vector<const Term*> untried;
+  for (const Term& term : term_registry()) {
+    if (std::find(terms.begin(), terms.end(), &term) != terms.end()) continue;
+    if (term.needs_temp2 && !data.has_temp2()) {
+      d.skipped.push_back(term.name + " (needs temp2_c)");
+      continue;
+    }
+    untried.push_back(&term);
+  }
+  const double corrected =
+      options.alpha / static_cast<double>(std::max<std::size_t>(1, untried.size()));
+  std::vector<const Term*> current = terms;
+  std::vector<double> current_params = d.fit.parameters;
+  double current_sigma2 = after2;
+  std::vector<std::string> failed;
+  while (!untried.empty()) {
+    const Eigen::MatrixXd xc = design_matrix(data.derived, current, current_params);
+    const std::vector<double> base_sse = block_sse(xc, y, block, blocks);
+    double base_cv = 0.0;
+    for (double v : base_sse) base_cv += v;
+    std::vector<CandidateReport> round;
+    std::vector<std::vector<double>> round_params;
+    for (const Term* term : untried) {
+      std::vector<const Term*> with = current;
+      with.push_back(term);
+      try {
+        const std::vector<double> params = fit_parameters(data.derived, s.gyro_dph, with);
+        const Eigen::MatrixXd xw = design_matrix(data.derived, with, params);
+        const LinearProblem problem(xw, y, names_of(with));
+        const double sigma = problem.sigma_two_pass(problem.physical(least_squares_optimum(problem)));
+        const std::vector<double> sse = block_sse(xw, y, block, blocks);
+        std::vector<double> gains(blocks);
+        double cv = 0.0;
+        for (std::size_t k = 0; k < blocks; ++k) {
+          gains[k] = base_sse[k] - sse[k];
+          cv += sse[k];
+        }
+        CandidateReport c;
+        c.term = term;
+        c.parameter = params.back();
+        c.instability_after_dph = sigma;
+        c.reduction_pct = 100.0 * (current_sigma2 - sigma * sigma) / excess;
+        c.cv_gain_pct = 100.0 * (base_cv - cv) / base_cv;
+        c.p_value = sign_flip_p(gains, options.permutations, options.seed);
+        c.significant = c.p_value < corrected && c.cv_gain_pct > 0.0 &&
+                        c.reduction_pct >= options.min_reduction_pct;
+        round.push_back(c);
+        round_params.push_back(params);
+      } catch (const InputError& e) {
+        failed.push_back(term->name + " (" + e.what() + ")");
+      }
+    }
+    failed.clear();
+    if (round.empty()) break;
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < round.size(); ++i) {
+      const bool better = round[i].significant != round[best].significant
+                              ? round[i].significant
+                              : round[i].reduction_pct > round[best].reduction_pct;
+      if (better) best = i;
+    }
+    if (!round[best].significant) {
+      std::stable_sort(round.begin(), round.end(), [](const CandidateReport& a, const CandidateReport& b) {
+        return a.reduction_pct > b.reduction_pct;
+      });
+      for (const CandidateReport& c : round) d.candidates.push_back(c);
+      break;
+    }
+    d.candidates.push_back(round[best]);
+    current.push_back(round[best].term);
+    current_params = round_params[best];
+    current_sigma2 = round[best].instability_after_dph * round[best].instability_after_dph;
+    untried.erase(std::find(untried.begin(), untried.end(), round[best].term));
+  }
+  for (const std::string& f : failed) d.skipped.push_back(f);
+
+  // The verdict.
+  const double ratio = d.excess_ratio();
+  if (d.candidates.empty()) {
+    d.verdict = fmt::format(
+        "The model is {:.2f} times the noise floor and there is nothing left to try: every "
+        "available term is already in it.",
+        ratio);
+  } else if (d.candidates.front().significant) {
+    std::vector<const Term*> suggested = terms;
+    std::string found;
+    double removed = 0.0;
+    for (const CandidateReport& c : d.candidates) {
+      if (!c.significant) break;
+      suggested.push_back(c.term);
+      found += fmt::format("{}{} ({})", found.empty() ? "" : " and then ", c.term->name, c.term->meaning);
+      removed += c.reduction_pct;
+    }
+    d.suggested_model = formula_text(suggested);
+    d.verdict = fmt::format(
+        "The model is {:.2f} times the noise floor; adding {} removes {:.0f} % of the excess, "
+        "significant under block cross-validation.",
+        ratio, found, std::min(removed, 100.0));
+  } else {
+    d.verdict = fmt::format(
+        "The model is {:.2f} times the noise floor; no missing effect is significant under "
+        "block cross-validation, so no term should be added.",
+        ratio);
+  }
+  return d;
+}
+
+}  // namespace gyrotherm::fit

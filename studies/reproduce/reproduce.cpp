@@ -1,0 +1,101 @@
+#include "studies/reproduce/reproduce.h"
+
+#include <chrono>
+#include <fmt/format.h>
+
+#include "fit/model/formula.h"
+#include "sim/config_loader.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+sim::SimulationResult simulate(const std::filesystem::path& file, std::uint64_t* seed) {
+  const sim::Scenario sc = sim::load_scenario(file);
+  const sim::RigConfig rig = sim::load_rig(sc.rig_file);
+  const sim::GyroConfig gyro = sim::load_gyro(sc.gyro_file);
+  sim::check_scenario_against_rig(sc, rig, sc.rig_file);
+  *seed = sc.seed;
+  return sim::Simulator(sc, rig, gyro).run();
+}
+
+Measurement measured(const sim::SimulationResult& r, const std::string& name) {
+  Measurement m;
+  m.file = name;
+  m.time_s = r.time_s;
+  m.temp_c = r.temp_c;
+  m.gyro_dph = r.gyro_dph;
+  m.temp2_c = r.temp2_c;
+  return m;
+}
+
+Truth truth_of(const std::filesystem::path& cycle) {
+  const sim::Scenario sc = sim::load_scenario(cycle);
+  const sim::GyroConfig g = sim::load_gyro(sc.gyro_file);
+  Truth t;
+  t.coefficients = {{"1", g.truth.b0_dph},
+                    {"T", g.truth.b1_dph_per_c},
+                    {"T^2", g.truth.b2_dph_per_c2},
+                    {"dT", g.truth.b3_dph_per_c_per_s}};
+  return t;
+}
+
+}  // namespace
+
+ReproduceResult reproduce(const ReproduceOptions& o) {
+  const auto started = std::chrono::steady_clock::now();
+  auto progress = [&](const std::string& step, double f) {
+    if (o.progress) o.progress(step, f);
+  };
+  ReproduceResult r;
+  std::vector<std::string> engines = o.engines;
+  if (engines.empty())
+    for (const EngineInfo& e : engine_registry()) engines.push_back(e.name);
+  for (const std::string& e : engines) find_engine(e);  // fail early on a bad name
+
+  progress("simulating the -40..60 degC cycle", 0.0);
+  r.cycle_run = simulate(o.cycle, &r.cycle_seed);
+  progress("simulating Test 1 (random profile)", 0.05);
+  r.test1_run = simulate(o.test1, &r.test1.seed);
+  progress("simulating Test 2 (natural warm-up)", 0.2);
+  r.test2_run = simulate(o.test2, &r.test2.seed);
+  r.truth = truth_of(o.cycle);
+
+  const PipelineOptions pipeline;  // the paper's: glitches removed, 100 s, central differences
+  r.cycle_data = prepare_data(measured(r.cycle_run, "cycle"), pipeline);
+  const std::vector<const Term*> terms = parse_formula(kDefaultModel);
+  const Measurement test1 = measured(r.test1_run, "test1");
+  const Measurement test2 = measured(r.test2_run, "test2");
+  PipelineOptions causal = pipeline;
+  causal.derivative = DerivativeMode::causal;
+  r.test1.name = "test1";
+  r.test2.name = "test2";
+
+  for (std::size_t i = 0; i < engines.size(); ++i) {
+    progress(fmt::format("fitting the cycle with {}", engines[i]),
+             0.25 + 0.75 * static_cast<double>(i) / static_cast<double>(engines.size()));
+    EngineSettings settings;
+    settings.seed = o.engine_seed;
+    EngineOnCycle e;
+    e.engine = engines[i];
+    e.fit = fit_model(r.cycle_data, terms, find_engine(engines[i]), settings);
+    e.coefficient_error = coefficient_errors(e.fit, r.truth);
+    r.cycle_raw_dph = e.fit.instability_before_dph;
+
+    SavedFit saved;
+    saved.engine = e.engine;
+    saved.terms = terms;
+    saved.parameters = e.fit.parameters;
+    saved.coefficients = e.fit.coefficients;
+    saved.pipeline = causal;
+    r.test1.by_engine[e.engine] = compensate(test1, saved, causal);
+    r.test2.by_engine[e.engine] = compensate(test2, saved, causal);
+    r.test1.before_dph = r.test1.by_engine[e.engine].before_dph;
+    r.test2.before_dph = r.test2.by_engine[e.engine].before_dph;
+    r.engines.push_back(std::move(e));
+  }
+  progress("done", 1.0);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+}  // namespace gyrotherm::fit

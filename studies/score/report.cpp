@@ -1,0 +1,131 @@
+#include "studies/score/report.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace gyrotherm::fit {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+Json range_json(Range r) { return Json::array({number(r.low), number(r.high)}); }
+
+void put_summary(Json& j, const std::string& name, const Summary& s, bool with_p10 = false) {
+  j[name + "_median"] = number(s.median);
+  if (with_p10) j[name + "_p10"] = number(s.p10);
+  j[name + "_p90"] = number(s.p90);
+}
+
+}  // namespace
+
+std::string scoreboard_json(const Scoreboard& b) {
+  Json j;
+  j["scenario"] = b.scenario;
+  j["trials"] = b.trials;
+  j["seed"] = b.seed;
+  Json engines = Json::object();
+  for (const EngineScore& e : b.engines) {
+    Json x;
+    // The fields of DESIGN.md first.
+    x["success_rate"] = e.success_rate;
+    x["evals_to_target_median"] = number(e.evaluations_to_target.median);
+    x["seconds_median"] = number(e.seconds_to_target.median);
+    x["gap_median"] = e.gap.median;
+    Json errors = Json::object(), errors90 = Json::object(), errors_ci = Json::object();
+    for (std::size_t k = 0; k < b.error_terms.size(); ++k) {
+      errors[b.error_terms[k]] = e.coefficient_error[k].median;
+      errors90[b.error_terms[k]] = e.coefficient_error[k].p90;
+      errors_ci[b.error_terms[k]] = range_json(e.coefficient_error[k].median_ci);
+    }
+    x["coefficient_error_median"] = errors;
+    x["ratio_median"] = e.ratio.median;
+    // More.
+    x["stochastic"] = e.stochastic;
+    x["budget"] = e.budget;
+    x["reached"] = e.reached;
+    x["evals_to_target_p90"] = number(e.evaluations_to_target.p90);
+    x["seconds_p90"] = number(e.seconds_to_target.p90);
+    put_summary(x, "seconds_run", e.seconds);
+    put_summary(x, "evaluations", e.evaluations);
+    x["gap_p90"] = e.gap.p90;
+    x["coefficient_error_p90"] = errors90;
+    x["ratio_p10"] = e.ratio.p10;
+    Json terminations = Json::object();
+    for (const auto& [name, count] : e.terminations) terminations[name] = count;
+    x["terminations"] = terminations;
+    x["ci95"] = {{"success_rate", range_json(e.success_ci)},
+                 {"evals_to_target_median", range_json(e.evaluations_to_target.median_ci)},
+                 {"gap_median", range_json(e.gap.median_ci)},
+                 {"ratio_median", range_json(e.ratio.median_ci)},
+                 {"coefficient_error_median", errors_ci}};
+    engines[e.engine] = x;
+  }
+  j["engines"] = engines;
+  j["model"] = b.model;
+  j["target"] = fmt::format("sigma <= optimum * (1 + {:g})", b.target_relative);
+  j["target_relative"] = b.target_relative;
+  j["seeds"] = {{"first", b.seed}, {"last", b.seed + (b.trials - 1)}};
+  Json spread = Json::object();
+  for (const auto& [key, r] : b.spread) spread[key] = r;
+  j["spread"] = spread;
+  j["error_terms"] = b.error_terms;
+  j["instability_before_median_dph"] = b.before_median_dph;
+  j["optimum_median_dph"] = b.optimum_median_dph;
+  j["scenario_file"] = b.scenario_file;
+  Json files = Json::object();
+  for (const auto& [k, v] : b.file_sha256) files[k] = v;
+  j["file_sha256"] = files;
+  j["run"] = {{"threads", b.threads}, {"processes", b.processes}, {"seconds", b.seconds}};
+  return j.dump(2) + "\n";
+}
+
+std::string scoreboard_markdown(const Scoreboard& b) {
+  std::string md = fmt::format("# Scoreboard: {}, {} trials\n\n", b.scenario, b.trials);
+  std::string spread;
+  for (const auto& [key, r] : b.spread) spread += fmt::format("{}{} ±{:g} %", spread.empty() ? "" : ", ", key, 100.0 * r);
+  md += fmt::format(
+      "Scenario `{}`, seeds {}..{}, model `B = b0 + {}`; spread: {}. Target: σ ≤ σ*·(1 + {:g}), σ* the "
+      "least-squares optimum of each trial (median σ* {:.6g} °/h, median raw instability {:.6g} °/h). "
+      "Medians over the trials, evaluations with their 95 % interval; \"not reached\": the median "
+      "trial did not reach the target. Coefficient errors are |fit − truth| / |truth|, median / 90th percentile. "
+      "{} s on {} thread(s) × {} process(es).\n\n",
+      b.scenario_file, b.seed, b.seed + (b.trials - 1), b.model, spread.empty() ? "none" : spread,
+      b.target_relative, b.optimum_median_dph, b.before_median_dph, fmt::format("{:.2f}", b.seconds),
+      b.threads, b.processes);
+  md += "| engine | success | evaluations to target | seconds to target | final gap (median / p90) | ratio |";
+  for (const std::string& t : b.error_terms) md += fmt::format(" error {} |", t == "1" ? "b0" : t);
+  md += "\n|---|---|---|---|---|---|";
+  for (std::size_t k = 0; k < b.error_terms.size(); ++k) md += "---|";
+  md += "\n";
+  for (const EngineScore& e : b.engines) {
+    const Summary& ett = e.evaluations_to_target;
+    const std::string evaluations =
+        std::isfinite(ett.median) ? fmt::format("{:.0f} [{}, {}]", ett.median, format_value(ett.median_ci.low, "{:.0f}"),
+                                                format_value(ett.median_ci.high, "{:.0f}"))
+                                  : std::string("not reached");
+    md += fmt::format("| {} | {:.0f} % ({}/{}) | {} | {} | {:.2g} / {:.2g} | {:.3f} |", e.engine,
+                      100.0 * e.success_rate, e.reached, b.trials, evaluations,
+                      format_value(e.seconds_to_target.median, "{:.2g}"), e.gap.median, e.gap.p90, e.ratio.median);
+    for (const Summary& s : e.coefficient_error)
+      md += fmt::format(" {:.2g} % / {:.2g} % |", 100.0 * s.median, 100.0 * s.p90);
+    md += "\n";
+  }
+  md += "\nConvergence (median and quartiles of the gap of the best σ so far against evaluations): "
+        "`convergence.csv`, `convergence.png`.\n";
+  return md;
+}
+
+std::string convergence_csv(const Scoreboard& b) {
+  std::string csv = "engine,evaluations,gap_q25,gap_median,gap_q75\n";
+  auto cell = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); };
+  for (const EngineScore& e : b.engines)
+    for (const CurvePoint& p : e.curve)
+      csv += fmt::format("{},{},{},{},{}\n", e.engine, p.evaluations, cell(p.q25), cell(p.median), cell(p.q75));
+  return csv;
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,55 @@
+#include "studies/score/spread.h"
+
+#include <boost/random/uniform_real_distribution.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cassert>
+
+#include "sim/config_loader.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+
+namespace {
+
+double& spread_target(sim::GyroConfig& g, std::string_view key) {
+  if (key == "b0_dph") return g.truth.b0_dph;
+  if (key == "b1_dph_per_c") return g.truth.b1_dph_per_c;
+  if (key == "b2_dph_per_c2") return g.truth.b2_dph_per_c2;
+  if (key == "b3_dph_per_c_per_s") return g.truth.b3_dph_per_c_per_s;
+  if (key == "arw_deg_per_sqrt_h") return g.noise.arw_deg_per_sqrt_h;
+  if (key == "bias_instability_dph") return g.noise.bias_instability_dph;
+  if (key == "rrw_dph_per_sqrt_h") return g.noise.rrw_dph_per_sqrt_h;
+  if (key == "quantization_arcsec") return g.noise.quantization_arcsec;
+  if (key == "glitch_rate_per_h") return g.noise.glitch_rate_per_h;
+  if (key == "glitch_size_dph") return g.noise.glitch_size_dph;
+  assert(false && "spread_target: a key outside sim::kSpreadKeys");
+  return g.truth.b0_dph;
+}
+
+}  // namespace
+
+sim::GyroConfig apply_spread(const sim::GyroConfig& gyro, const std::map<std::string, double>& spread,
+                             std::uint64_t trial_seed) {
+  sim::GyroConfig g = gyro;
+  if (spread.empty()) return g;
+  for (const auto& [key, r] : spread) {
+    if (std::find(sim::kSpreadKeys.begin(), sim::kSpreadKeys.end(), key) == sim::kSpreadKeys.end())
+      throw InputError(fmt::format("[spread]: unknown key '{}'", key));
+    if (!(r >= 0.0 && r < 1.0))
+      throw InputError(fmt::format("[spread]: {} = {}: must be >= 0 and < 1", key, r));
+  }
+  Rng rng = make_rng(trial_seed, kSpreadStream);
+  boost::random::uniform_real_distribution<double> unit(-1.0, 1.0);
+  // One draw per key, spread or not, so each key's draw is fixed by the seed alone.
+  for (const std::string_view key : sim::kSpreadKeys) {
+    const double u = unit(rng);
+    const auto it = spread.find(std::string(key));
+    if (it == spread.end()) continue;
+    spread_target(g, key) *= 1.0 + it->second * u;
+  }
+  return g;
+}
+
+}  // namespace gyrotherm::fit
