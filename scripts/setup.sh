@@ -15,6 +15,7 @@ packages=(
   libboost-dev                       # Boost.Math distributions, Boost.Random
   libtomlplusplus-dev                # TOML scenario files
   libpagmo-dev                       # peer optimisers (pso, de, cmaes, abc)
+  libssl-dev                         # SHA-256 of input files (OpenSSL libcrypto)
   gnuplot-nox                        # plots
   clang libclang-rt-14-dev           # libFuzzer targets (scripts/fuzz.sh) and their sanitizer runtimes
   time                               # /usr/bin/time for peak memory (scripts/large_input.sh)

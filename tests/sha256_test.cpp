@@ -1,11 +1,11 @@
-// FIPS 180-4 / NIST CAVP example vectors.
+// FIPS 180-4 / NIST CAVP example vectors through the libcrypto wrapper.
 #include "sim/util/sha256.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-namespace gyrotherm::sim {
+namespace gyrotherm {
 namespace {
 
 TEST(Sha256, NistVectors) {
@@ -28,4 +28,4 @@ TEST(Sha256, PaddingBoundaries) {
 }
 
 }  // namespace
-}  // namespace gyrotherm::sim
+}  // namespace gyrotherm

@@ -19,7 +19,7 @@ constexpr double kMadToSigma = 1.4826;
 class Reservoir {
  public:
   explicit Reservoir(std::size_t capacity, std::uint64_t stream)
-      : capacity_(capacity), rng_(make_rng(0x5eed, stream)) {}
+      : capacity_(capacity), rng_(make_rng(streams::reservoir_seed, stream)) {}
   void add(double v) {
     ++seen_;
     if (values_.size() < capacity_) {
@@ -96,7 +96,7 @@ struct Sample {
 PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& o) {
   o.outliers.validate();
   // Pass 1: sample interval and noise floor.
-  Reservoir steps(20000, 1), jumps(20000, 2);
+  Reservoir steps(20000, streams::reservoir_steps), jumps(20000, streams::reservoir_jumps);
   double previous_t = 0.0, previous_x = 0.0, largest = 0.0, smallest_jump = INFINITY;
   bool first = true;
   const CsvHeader header = for_each_row(csv, o.columns, [&](double t, double, double x, double) {

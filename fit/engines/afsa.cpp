@@ -15,8 +15,6 @@ namespace gyrotherm::fit {
 namespace {
 
 constexpr char kName[] = "afsa";
-// The engine's stream of make_rng(seed, stream).
-constexpr std::uint64_t kStream = 0xAF5A;
 constexpr double kBoxWidth = 2.0;
 
 // The one place the option rules live: make() reads KEY=VALUE strings with
@@ -36,7 +34,7 @@ using fish_swarm::Fish;
 // (fit/engines/fish_swarm.h), whose evaluator's best point is the bulletin board.
 FitResult run(const AfsaEngine::Options& o, const LinearProblem& problem,
               FitObserver* observer) {
-  fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, kStream,
+  fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, streams::afsa,
                             fish_swarm::PreyMove::step_towards, o.try_number);
   school.visual = o.visual * kBoxWidth;
   school.step = o.step * kBoxWidth;

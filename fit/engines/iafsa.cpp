@@ -15,9 +15,6 @@ namespace gyrotherm::fit {
 namespace {
 
 constexpr char kName[] = "iafsa";
-// The engine's stream of make_rng(seed, stream): its own numbers, whatever
-// other components draw from the same seed.
-constexpr std::uint64_t kStream = 0x1AF5A;
 constexpr double kBoxWidth = 2.0;
 constexpr int kMaxIterations = 100000000;
 
@@ -54,7 +51,7 @@ double crowd(const fish_swarm::School& school, const std::vector<double>& point,
 // (fit/engines/fish_swarm.h), whose evaluator's best point is the bulletin board.
 FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
               FitObserver* observer) {
-  fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, kStream,
+  fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, streams::iafsa,
                             fish_swarm::PreyMove::jump_to, o.try_number);
   Evaluator& eval = school.evaluator();
   const std::size_t m = school.dimension();

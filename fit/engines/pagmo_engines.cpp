@@ -32,6 +32,7 @@
 #include <utility>
 
 #include "sim/util/input_error.h"
+#include "sim/util/random.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -118,15 +119,6 @@ struct Recipe {
   std::function<pagmo::algorithm(const RunPlan&)> make_algorithm;
 };
 
-// SplitMix64 (Steele, Lea & Flood 2014): decorrelates the seeds derived from
-// one user seed.
-std::uint64_t splitmix64(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
 class PagmoEngine final : public Engine {
  public:
   PagmoEngine(Recipe recipe, EngineSettings settings)
@@ -139,9 +131,10 @@ class PagmoEngine final : public Engine {
     const long size = recipe_.population(m);
     const long per_generation = recipe_.evaluations_per_individual * size;
 
+    // Two decorrelated seeds from the one user seed (the SplitMix64 sequence).
     std::uint64_t state = settings_.seed;
-    const auto population_seed = static_cast<unsigned>(splitmix64(state) >> 32);
-    const auto algorithm_seed = static_cast<unsigned>(splitmix64(state) >> 32);
+    const auto population_seed = static_cast<unsigned>(splitmix64_next(state) >> 32);
+    const auto algorithm_seed = static_cast<unsigned>(splitmix64_next(state) >> 32);
 
     // Enough generations to spend the whole budget; the last may be cut short.
     const long affordable = budget > size ? (budget - size + per_generation - 1) / per_generation : 0;

@@ -1,9 +1,8 @@
 #pragma once
-// SHA-256 (FIPS 180-4), used to fingerprint the scenario, rig and gyro files a
-// simulation was made from (the truth JSON records them).
+// SHA-256 fingerprints of the scenario, rig and gyro files a simulation or a
+// campaign was made from (the truth JSON and the scoreboard record them),
+// computed by OpenSSL's libcrypto (EVP_Digest with EVP_sha256).
 
-#include <cstddef>
-#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>

@@ -76,7 +76,7 @@ std::vector<double> block_sse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y
 double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) {
   double observed = 0.0;
   for (double v : d) observed += v;
-  Rng rng = make_rng(seed, 0x5167);
+  Rng rng = make_rng(seed, streams::diagnosis_sign_flips);
   int at_least = 0;
   for (int i = 0; i < draws; ++i) {
     double s = 0.0;

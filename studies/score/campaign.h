@@ -7,7 +7,7 @@
 //     scenario's), so trial k's record is `gyrotherm simulate SCENARIO
 //     --seed s_k` when the scenario has no [spread];
 //  2. the gyro's parameters are drawn from the scenario's [spread] table,
-//     p = p₀·(1 + r·u), u ~ U(−1, 1) from make_rng(s_k, kSpreadStream), one
+//     p = p₀·(1 + r·u), u ~ U(−1, 1) from make_rng(s_k, streams::score_spread), one
 //     draw per key of sim::kSpreadKeys in that order (so a key's draw never
 //     depends on which other keys are spread);
 //  3. the scenario is simulated once with seed s_k (its thermal trace, which

@@ -40,7 +40,7 @@ sim::GyroConfig apply_spread(const sim::GyroConfig& gyro, const std::map<std::st
     if (!(r >= 0.0 && r < 1.0))
       throw InputError(fmt::format("[spread]: {} = {}: must be >= 0 and < 1", key, r));
   }
-  Rng rng = make_rng(trial_seed, kSpreadStream);
+  Rng rng = make_rng(trial_seed, streams::score_spread);
   boost::random::uniform_real_distribution<double> unit(-1.0, 1.0);
   // One draw per key, spread or not, so each key's draw is fixed by the seed alone.
   for (const std::string_view key : sim::kSpreadKeys) {
