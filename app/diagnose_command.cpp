@@ -56,7 +56,7 @@ int run_diagnose(const DiagnoseOptions& o) {
   const fit::PreparedData data = fit::prepare_data(measurement, pipeline);
   fit::check_columns(terms, data, pipeline.columns);
   std::size_t available = 0;
-  for (const fit::Term& t : fit::term_registry()) available += !t.needs_temp2 || data.has_temp2();
+  for (const fit::Term* t : fit::term_registry()) available += !t->needs_temp2() || data.has_temp2();
   if (terms.size() >= available)
     throw InputError(fmt::format(
         "model '{}' already contains every term that can be tried on this data{}: there is "

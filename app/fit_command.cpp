@@ -54,10 +54,6 @@ fit::EngineSettings engine_settings(const FitOptions& o) {
   return s;
 }
 
-std::string unit_of(const fit::Term* t) {
-  return t->unit == "1" ? "°/h" : "°/h per " + t->unit;
-}
-
 int run_fit(const FitOptions& o) {
   std::string formula = o.model;
   for (const std::string& a : o.add) formula += " + " + a;
@@ -114,7 +110,7 @@ int run_fit(const FitOptions& o) {
   };
   print_row("1", result.coefficients.intercept, "°/h", std::size_t(-1));
   for (std::size_t k = 0; k < terms.size(); ++k) {
-    print_row(terms[k]->name, result.coefficients.b[k], unit_of(terms[k]), k);
+    print_row(std::string(terms[k]->name), result.coefficients.b[k], terms[k]->coefficient_unit(), k);
     if (terms[k]->parameter)
       fmt::print("          {} = {:.6g}\n", terms[k]->parameter->name, result.parameters[k]);
   }

@@ -8,7 +8,7 @@
 
 #include "app/commands.h"
 #include "fit/engines/engine.h"
-#include "fit/model/terms.h"
+#include "sim/effects/effect.h"
 
 namespace gyrotherm::app {
 namespace {
@@ -38,27 +38,36 @@ int run_engines(bool json) {
 int run_effects(bool json) {
   if (json) {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
-    for (const fit::Term& t : fit::term_registry()) {
-      nlohmann::ordered_json e = {{"term", t.name},
-                                  {"meaning", t.meaning},
-                                  {"unit", t.unit},
-                                  {"needs", t.needs_temp2 ? "temp2_c" : "temp_c"}};
-      if (t.parameter)
-        e["parameter"] = {{"name", t.parameter->name},
-                          {"lower", t.parameter->lower},
-                          {"upper", t.parameter->upper}};
+    for (const effects::Effect* t : effects::registry()) {
+      nlohmann::ordered_json e = {{"term", t->name},
+                                  {"meaning", t->meaning},
+                                  {"unit", t->unit},
+                                  {"needs", t->needs_temp2() ? "temp2_c" : "temp_c"},
+                                  {"columns", t->column_names()},
+                                  {"coefficient_unit", t->coefficient_unit()},
+                                  {"simulator", t->hidden() ? "[hidden] " + std::string(t->name)
+                                                            : "[truth] " + std::string(t->truth_key)}};
+      if (t->parameter)
+        e["parameter"] = {{"name", t->parameter->name},
+                          {"lower", t->parameter->lower},
+                          {"upper", t->parameter->upper},
+                          {"gyro_key", t->parameter->gyro_key},
+                          {"simulator_default", t->parameter->simulator_default}};
       j.push_back(e);
     }
     fmt::print("{}\n", nlohmann::ordered_json{{"effects", j}}.dump());
     return 0;
   }
-  for (const fit::Term& t : fit::term_registry()) {
-    std::string extra = t.needs_temp2 ? "  (needs temp2_c)" : "";
-    if (t.parameter)
-      extra += fmt::format("  ({} fitted in [{:g}, {:g}])", t.parameter->name, t.parameter->lower,
-                           t.parameter->upper);
-    fmt::print("{:<7} {:<8} {}{}\n", t.name, t.unit, t.meaning, extra);
+  for (const effects::Effect* t : effects::registry()) {
+    std::string extra = t->needs_temp2() ? "  (needs temp2_c)" : "";
+    if (t->parameter)
+      extra += fmt::format("  ({} fitted in [{:g}, {:g}])", t->parameter->name, t->parameter->lower,
+                           t->parameter->upper);
+    fmt::print("{:<7} {:<8} {}{}\n", t->name, t->unit, t->meaning, extra);
   }
+  fmt::print("\nSimulate a hidden effect with 'gyrotherm simulate ... --hidden TERM=COEF' (TERM one of "
+             "{}); its parameter, if any, is set in the gyro file's [hidden] table.\n",
+             effects::hidden_names());
   return 0;
 }
 

@@ -15,7 +15,7 @@
 #include "app/commands.h"
 #include "sim/util/gnuplot.h"
 #include "sim/config_loader.h"
-#include "sim/hidden_effects.h"
+#include "sim/effects/effect.h"
 #include "sim/output.h"
 #include "sim/simulator.h"
 
@@ -137,8 +137,9 @@ int run_simulate(const SimulateOptions& o) {
   else
     fmt::print("  no chamber: the INS sits in a {:.1f} °C room\n", scenario.room_c);
   std::string hidden;
-  for (const auto& [term, c] : gyro.hidden.coefficient)
-    if (c != 0.0) hidden += fmt::format("{}{}={:g}", hidden.empty() ? "" : ", ", term, c);
+  for (const effects::Effect* e : effects::registry())
+    if (const double c = gyro.coefficient_of(*e); e->hidden() && c != 0.0)
+      hidden += fmt::format("{}{}={:g}", hidden.empty() ? "" : ", ", e->name, c);
   fmt::print("  hidden effects: {}\n", hidden.empty() ? "none" : hidden);
   fmt::print("  CVODE: {} steps, {} right-hand-side evaluations, {} restarts; energy balance "
              "residual {:.2g} J\n",
@@ -160,7 +161,7 @@ void add_simulate_command(CLI::App& app, Run* run) {
   cmd->add_option("--gyro", options->gyro, "Gyro file (overrides the scenario's)");
   cmd->add_option("--seed", options->seed, "Noise seed (overrides the scenario's)");
   cmd->add_option("--hidden", options->hidden,
-                  "Hidden effect TERM=COEF, repeatable; TERM one of " + sim::hidden_term_list())
+                  "Hidden effect TERM=COEF, repeatable; TERM one of " + effects::hidden_names())
       ->take_all();
   cmd->add_option("-o,--output", options->output, "Output CSV (a .truth.json goes beside it)")
       ->required();

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   const sim::Scenario base = sim::load_scenario(std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/cycle.toml");
   const sim::RigConfig rig = sim::load_rig(base.rig_file);
   const sim::GyroConfig gyro = sim::load_gyro(base.gyro_file);
-  const double truth[3] = {gyro.truth.b1_dph_per_c, gyro.truth.b2_dph_per_c2, gyro.truth.b3_dph_per_c_per_s};
+  const double truth[3] = {gyro.coefficient.at("T"), gyro.coefficient.at("T^2"), gyro.coefficient.at("dT")};
 
   std::vector<Row> rows = {{"nw", "T + T^2 + dT", true},  {"ewc", "T + T^2 + dT", true},
                            {"nw", "T + T^2 + dT + d2T", true}, {"nw", "T + T^2 + dT", false},

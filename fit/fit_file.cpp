@@ -131,17 +131,19 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file) {
   s.terms = parse_formula(model);
   const nlohmann::json& coefficients = need(j, "coefficients", "term -> value");
   s.coefficients.intercept = number(need(coefficients, "1", "the intercept"), "coefficients.1");
-  for (const Term* t : s.terms)
+  for (const Term* t : s.terms) {
+    const std::string name(t->name);
     s.coefficients.b.push_back(
-        number(need(coefficients, t->name.c_str(), "a model term's coefficient"),
-               "coefficients." + t->name));
+        number(need(coefficients, name.c_str(), "a model term's coefficient"), "coefficients." + name));
+  }
   s.parameters = default_parameters(s.terms);
   for (std::size_t k = 0; k < s.terms.size(); ++k) {
     if (!s.terms[k]->parameter) continue;
     const nlohmann::json& params = need(j, "parameters", "nonlinear term parameters");
-    const nlohmann::json& p = need(params, s.terms[k]->name.c_str(), "the term's parameter");
-    s.parameters[k] = number(need(p, s.terms[k]->parameter->name.c_str(), "the parameter value"),
-                             "parameters." + s.terms[k]->name + "." + s.terms[k]->parameter->name);
+    const std::string name(s.terms[k]->name), parameter(s.terms[k]->parameter->name);
+    const nlohmann::json& p = need(params, name.c_str(), "the term's parameter");
+    s.parameters[k] = number(need(p, parameter.c_str(), "the parameter value"),
+                             "parameters." + name + "." + parameter);
   }
   const nlohmann::json& pipeline = need(j, "pipeline", "how the data were prepared");
   s.pipeline.averaging.window_s = number(need(pipeline, "avg_s", "the averaging window"), "pipeline.avg_s");

@@ -17,7 +17,7 @@ namespace gyrotherm::fit {
 void check_columns(const std::vector<const Term*>& terms, const PreparedData& data,
                    const ColumnMap& columns) {
   for (const Term* t : terms)
-    if (t->needs_temp2 && !data.has_temp2())
+    if (t->needs_temp2() && !data.has_temp2())
       throw InputError(fmt::format(
           "{}: term '{}' ({}) needs the column '{}', a second temperature sensor on the far side "
           "of the gyro block; the file has none (map another column with --temp2-col)",
@@ -34,19 +34,13 @@ std::vector<double> model_values(const Eigen::MatrixXd& design, const Coefficien
 
 namespace {
 
-std::vector<std::string> names_of(const std::vector<const Term*>& terms) {
-  std::vector<std::string> n;
-  for (const Term* t : terms) n.push_back(t->name);
-  return n;
-}
-
 // Least-squares σ at given parameters; +inf when the design cannot be fitted
 // (a parameter that makes a regressor constant, say).
 double least_squares_sigma(const DerivedSeries& derived, const Eigen::VectorXd& y,
                            const std::vector<const Term*>& terms,
                            const std::vector<double>& parameters) {
   try {
-    const LinearProblem problem(design_matrix(derived, terms, parameters), y, names_of(terms));
+    const LinearProblem problem(design_matrix(derived, terms, parameters), y, term_names(terms));
     return problem.objective(least_squares_optimum(problem));
   } catch (const InputError&) {
     return std::numeric_limits<double>::infinity();
@@ -115,7 +109,7 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(
       data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size()));
   const LinearProblem problem(design_matrix(data.derived, terms, fit.parameters), y,
-                              names_of(terms));
+                              term_names(terms));
   const std::unique_ptr<Engine> e = engine.make(settings);
   fit.engine = e->fit(problem, observer);
   fit.coefficients = problem.physical(fit.engine.z);
@@ -159,7 +153,7 @@ std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Trut
     out[name] = (value - it->second) / std::abs(it->second);
   };
   add("1", fit.coefficients.intercept);
-  for (std::size_t j = 0; j < fit.terms.size(); ++j) add(fit.terms[j]->name, fit.coefficients.b[j]);
+  for (std::size_t j = 0; j < fit.terms.size(); ++j) add(std::string(fit.terms[j]->name), fit.coefficients.b[j]);
   return out;
 }
 

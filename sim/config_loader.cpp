@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/hidden_effects.h"
+#include "sim/effects/effect.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::sim {
@@ -368,25 +368,34 @@ GyroConfig load_gyro(const std::filesystem::path& file) {
   const toml::table root = parse(file);
   TableReader r(root, file.string(), "");
   GyroConfig gyro;
+  // [truth]: b0 and the [truth] key of each of the paper's effects; [hidden]:
+  // every other effect by its term name, and each effect's parameter by its
+  // gyro key (sim/effects/effect.h).
   if (const toml::table* t = r.table("truth")) {
     TableReader c(*t, file.string(), "truth");
-    c.number("b0_dph", gyro.truth.b0_dph);
-    c.number("b1_dph_per_c", gyro.truth.b1_dph_per_c);
-    c.number("b2_dph_per_c2", gyro.truth.b2_dph_per_c2);
-    c.number("b3_dph_per_c_per_s", gyro.truth.b3_dph_per_c_per_s);
+    c.number("b0_dph", gyro.b0_dph);
+    for (const effects::Effect* e : effects::registry())
+      if (!e->hidden()) c.number(e->truth_key, gyro.coefficient[std::string(e->name)]);
     c.finish();
   }
   if (const toml::table* t = r.table("hidden")) {
     TableReader c(*t, file.string(), "hidden");
-    for (const HiddenTerm& term : kHiddenTerms) {
-      double coefficient = 0.0;
-      c.number(term.name, coefficient);
-      gyro.hidden.coefficient[std::string(term.name)] = coefficient;
-    }
-    c.number("hyst_dead_band_c_per_s", gyro.hidden.hyst_dead_band_c_per_s, Rule::non_negative);
-    c.number("warmup_time_constant_s", gyro.hidden.warmup_time_constant_s, Rule::positive);
-    c.finish("hidden terms " + hidden_term_list() +
-             ", and hyst_dead_band_c_per_s, warmup_time_constant_s");
+    std::string parameter_keys;
+    for (const effects::Effect* e : effects::registry())
+      if (e->hidden()) {
+        double coefficient = 0.0;
+        c.number(e->name, coefficient);
+        gyro.coefficient[std::string(e->name)] = coefficient;
+      }
+    for (const effects::Effect* e : effects::registry())
+      if (e->parameter) {
+        double value = e->parameter->simulator_default;
+        c.number(e->parameter->gyro_key, value,
+                 e->parameter->may_be_zero ? Rule::non_negative : Rule::positive);
+        gyro.parameter[std::string(e->name)] = value;
+        parameter_keys += (parameter_keys.empty() ? "" : ", ") + std::string(e->parameter->gyro_key);
+      }
+    c.finish("hidden terms " + effects::hidden_names() + ", and " + parameter_keys);
   }
   if (const toml::table* t = r.table("noise")) {
     TableReader c(*t, file.string(), "noise");
@@ -470,14 +479,19 @@ void check_scenario_against_rig(const Scenario& scenario, const RigConfig& rig,
 void apply_hidden_option(GyroConfig& gyro, std::string_view spec) {
   const std::size_t eq = spec.find('=');
   const std::string usage = "--hidden " + std::string(spec) +
-                            ": expected TERM=COEF with TERM one of " + hidden_term_list();
+                            ": expected TERM=COEF with TERM one of " + effects::hidden_names();
   if (eq == std::string_view::npos || eq == 0) throw InputError(usage);
   const std::string term(spec.substr(0, eq));
   const std::string value(spec.substr(eq + 1));
-  if (!is_hidden_term(term)) {
-    std::string message = "--hidden: unknown term '" + term + "' (valid: " + hidden_term_list() + ")";
-    if (term == "T" || term == "T^2" || term == "dT" || term == "1")
-      message += "; '" + term + "' is part of the true model, set it in the gyro file's [truth]";
+  const effects::Effect* effect = effects::find(term);
+  if (effect == nullptr || !effect->hidden()) {
+    std::string message =
+        "--hidden: unknown term '" + term + "' (valid: " + effects::hidden_names() + ")";
+    if (effect != nullptr)
+      message += "; '" + term + "' is part of the true model, set it in the gyro file's [truth] (" +
+                 std::string(effect->truth_key) + ")";
+    else if (term == "1")
+      message += "; '1' is part of the true model, set it in the gyro file's [truth] (b0_dph)";
     throw InputError(message);
   }
   double coefficient = 0.0;
@@ -486,7 +500,7 @@ void apply_hidden_option(GyroConfig& gyro, std::string_view spec) {
       !std::isfinite(coefficient))
     throw InputError("--hidden " + std::string(spec) + ": '" + value +
                      "' is not a finite number");
-  gyro.hidden.coefficient[term] = coefficient;
+  gyro.coefficient[term] = coefficient;
 }
 
 }  // namespace gyrotherm::sim

@@ -1,32 +1,21 @@
 #pragma once
-// What a gyro file (scenarios/gyro*.toml) describes: the true bias model, the
-// hidden physical effects, and the noise of the 1 Hz output.
+// What a gyro file (scenarios/gyro*.toml) describes: the true bias model, its
+// effects' parameters, and the noise of the 1 Hz output.
 //
-//   B(t) = b0 + b1·T + b2·T² + b3·dT/dt + Σ_k c_k·r_k(t)          [°/h]
+//   B(t) = b0 + Σ_k c_k·r_k(t; θ_k)                                 [°/h]
 //
-// T is the true temperature at the sensor location (the anode side of the
-// block, °C) and dT/dt is in °C/s; r_k are the hidden-effect regressors of
-// sim/hidden_effects.h. The output adds noise (sim/noise.h).
+// over the effects of the registry (sim/effects/effect.h): the paper's
+// b1·T + b2·T² + b3·dT/dt from the [truth] table, the hidden effects from
+// [hidden]. T is the true temperature at the sensor location (the anode side
+// of the block, °C) and dT/dt is in °C/s. The output adds noise (sim/noise.h).
 
 #include <cstdint>
 #include <map>
 #include <string>
 
+#include "sim/effects/effect.h"
+
 namespace gyrotherm::sim {
-
-struct TruthCoefficients {
-  double b0_dph = -7.07712;            // constant bias incl. Earth rate on the axis
-  double b1_dph_per_c = -3.05e-4;      // temperature sensitivity
-  double b2_dph_per_c2 = 1.06e-6;      // curvature
-  double b3_dph_per_c_per_s = 1.81;    // temperature-rate sensitivity
-};
-
-struct HiddenEffects {
-  // Coefficient by term name (see sim/hidden_effects.h); absent or 0 = off.
-  std::map<std::string, double> coefficient;
-  double hyst_dead_band_c_per_s = 2e-4;   // |dT/dt| below this counts as neither heating nor cooling
-  double warmup_time_constant_s = 1800.0; // turn-on transient exp(−t/τ)
-};
 
 struct NoiseConfig {
   double arw_deg_per_sqrt_h = 3e-4;        // angle random walk N: Allan σ(τ) = N/√τ
@@ -43,9 +32,24 @@ struct NoiseConfig {
 };
 
 struct GyroConfig {
-  TruthCoefficients truth;
-  HiddenEffects hidden;
+  double b0_dph = -7.07712;  // constant bias incl. Earth rate on the axis
+  // The true coefficient c_k of each effect by its term name; absent or 0 =
+  // off. Defaults: the paper's b1 (°/h per °C), b2 (°/h per °C²) and b3
+  // (°/h per °C/s).
+  std::map<std::string, double> coefficient = {{"T", -3.05e-4}, {"T^2", 1.06e-6}, {"dT", 1.81}};
+  // θ_k of an effect with a nonlinear parameter, by term name; absent: the
+  // effect's simulator_default.
+  std::map<std::string, double> parameter;
   NoiseConfig noise;
+
+  // c_k (0 when off) and θ_k of an effect.
+  double coefficient_of(const effects::Effect& effect) const;
+  double parameter_of(const effects::Effect& effect) const;
 };
+
+// The true coefficients by term name, the intercept b0 under "1", every
+// effect that is on (c_k ≠ 0): what the truth JSON records and what fits and
+// campaigns are scored against. The one place they are derived.
+std::map<std::string, double> true_coefficients(const GyroConfig& gyro);
 
 }  // namespace gyrotherm::sim

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/util/atomic_file.h"
-#include "sim/hidden_effects.h"
+#include "sim/effects/effect.h"
 #include "sim/util/sha256.h"
 
 namespace gyrotherm::sim {
@@ -60,22 +60,21 @@ std::string truth_json(const Simulator& simulator, const SimulationResult& r) {
   j["temperature"] =
       "T is the true anode-side block temperature (the sensor location), degC; dT in degC/s";
 
+  // The true coefficients (sim/gyro_config.h), in registry order.
+  const std::map<std::string, double> truth = true_coefficients(gyro);
   nlohmann::ordered_json coefficients;
-  coefficients["1"] = gyro.truth.b0_dph;
-  coefficients["T"] = gyro.truth.b1_dph_per_c;
-  coefficients["T^2"] = gyro.truth.b2_dph_per_c2;
-  coefficients["dT"] = gyro.truth.b3_dph_per_c_per_s;
+  coefficients["1"] = truth.at("1");
   nlohmann::ordered_json hidden = nlohmann::ordered_json::object();
-  for (const HiddenTerm& term : kHiddenTerms) {
-    const auto it = gyro.hidden.coefficient.find(std::string(term.name));
-    if (it == gyro.hidden.coefficient.end() || it->second == 0.0) continue;
-    coefficients[std::string(term.name)] = it->second;
+  for (const effects::Effect* e : effects::registry()) {
+    const auto it = truth.find(std::string(e->name));
+    if (it == truth.end()) continue;
+    coefficients[std::string(e->name)] = it->second;
+    if (!e->hidden()) continue;
     nlohmann::ordered_json h = {{"coefficient", it->second},
-                                {"unit", std::string(term.coefficient_unit)},
-                                {"meaning", std::string(term.meaning)}};
-    if (term.name == "hyst") h["dead_band_c_per_s"] = gyro.hidden.hyst_dead_band_c_per_s;
-    if (term.name == "warmup") h["time_constant_s"] = gyro.hidden.warmup_time_constant_s;
-    hidden[std::string(term.name)] = h;
+                                {"unit", e->coefficient_unit()},
+                                {"meaning", std::string(e->meaning)}};
+    if (e->parameter) h[std::string(e->parameter->name)] = gyro.parameter_of(*e);
+    hidden[std::string(e->name)] = h;
   }
   j["coefficients"] = coefficients;
   j["hidden"] = hidden;

@@ -146,7 +146,6 @@ SimulationResult Simulator::record(ThermalTrace trace) const {
   const std::size_t n = tr.time_s.size();
   const double dt = 1.0 / scenario_.sample_rate_hz;
 
-  const BiasModel bias(gyro_);
   GyroNoise noise(gyro_.noise, dt, scenario_.seed);
   const SensorConfig& sensor = rig_.sensor;
   ReadingNoise read_chamber(sensor.noise_c, sensor.resolution_c, scenario_.seed,
@@ -159,30 +158,33 @@ SimulationResult Simulator::record(ThermalTrace trace) const {
                           streams::reading_base + 3);
 
   for (auto* column : {&result.time_s, &result.chamber_c, &result.case_c, &result.temp_c,
-                       &result.temp2_c, &result.gyro_dph, &result.bias_true_dph})
+                       &result.temp2_c, &result.gyro_dph})
     column->reserve(n);
 
-  const double switch_on_s = scenario_.initial == InitialCondition::soaked
-                                 ? 0.0
-                                 : -std::numeric_limits<double>::infinity();
+  // 2. The true state the effects read: the anode side's temperature, its
+  // exact dT/dt, d²T/dt² by central differences (one-sided at the ends), the
+  // far side; switched on at the start of a soaked record.
+  effects::EffectSeries state;
+  state.time_s = tr.time_s;
+  state.temp_c = tr.node_c[N::anode];
+  state.temp2_c = tr.node_c[N::far];
+  state.rate_c_per_s = tr.anode_rate_c_per_s;
+  state.switch_on_s = scenario_.initial == InitialCondition::soaked
+                          ? 0.0
+                          : -std::numeric_limits<double>::infinity();
   const std::vector<double>& rate = tr.anode_rate_c_per_s;
+  state.accel_c_per_s2.assign(n, 0.0);
+  for (std::size_t k = 0; n > 1 && k < n; ++k) {
+    const std::size_t lo = k == 0 ? 0 : k - 1;
+    const std::size_t hi = k + 1 == n ? k : k + 1;
+    state.accel_c_per_s2[k] = (rate[hi] - rate[lo]) / (static_cast<double>(hi - lo) * dt);
+  }
+
+  // 3. The true bias, then the pulse-counted output and the readings.
+  result.bias_true_dph = BiasModel(gyro_).bias_dph(state);
   for (std::size_t k = 0; k < n; ++k) {
-    TrueState s;
-    s.time_s = tr.time_s[k];
-    s.since_switch_on_s = s.time_s - switch_on_s;
-    s.temp_c = tr.node_c[N::anode][k];
-    s.far_c = tr.node_c[N::far][k];
-    s.rate_c_per_s = rate[k];
-    if (n > 1) {
-      // Central differences inside, one-sided at the ends.
-      const std::size_t lo = k == 0 ? 0 : k - 1;
-      const std::size_t hi = k + 1 == n ? k : k + 1;
-      s.accel_c_per_s2 = (rate[hi] - rate[lo]) / (static_cast<double>(hi - lo) * dt);
-    }
-    const double b = bias.bias_dph(s);
-    result.time_s.push_back(s.time_s);
-    result.bias_true_dph.push_back(b);
-    result.gyro_dph.push_back(noise.sample(b, s.temp_c));
+    result.time_s.push_back(tr.time_s[k]);
+    result.gyro_dph.push_back(noise.sample(result.bias_true_dph[k], state.temp_c[k]));
     result.chamber_c.push_back(read_chamber.read(tr.node_c[N::chamber][k]));
     result.case_c.push_back(read_case.read(tr.node_c[N::case_][k]));
     result.temp_c.push_back(read_temp.read(tr.node_c[N::sensor][k]));

@@ -42,7 +42,7 @@ SimPair simulate(const std::vector<Hidden>& hidden, std::uint64_t seed) {
   sim::GyroConfig gyro = sim::load_gyro(sc.gyro_file);
   SimPair r;
   r.without = sim::Simulator(sc, rig, gyro).run();
-  for (const Hidden& h : hidden) gyro.hidden.coefficient[h.term] = h.coefficient;
+  for (const Hidden& h : hidden) gyro.coefficient[h.term] = h.coefficient;
   r.with = sim::Simulator(sc, rig, gyro).run();
   return r;
 }
@@ -149,7 +149,7 @@ TEST(Diagnosis, TwoHiddenEffectsAreBothFoundAndBothReachTheFloor) {
   const PreparedData data = prepare_data(measured(run.with, run.with.gyro_dph), PipelineOptions{});
   const Diagnosis d = diagnose(data, paper_model(), find_engine("ols"), {});
   ASSERT_GE(d.candidates.size(), 2u);
-  std::set<std::string> top = {d.candidates[0].term->name, d.candidates[1].term->name};
+  std::set<std::string> top = {std::string(d.candidates[0].term->name), std::string(d.candidates[1].term->name)};
   EXPECT_EQ(top, (std::set<std::string>{"grad", "warmup"})) << d.verdict;
   EXPECT_TRUE(d.candidates[0].significant && d.candidates[1].significant) << d.verdict;
   EXPECT_TRUE(d.suggested_model.find("grad") != std::string::npos &&

@@ -37,8 +37,8 @@ sim::GyroConfig shipped_gyro() {
 
 TEST(Pipeline, VariableProjectionRecoversAWarmUpTimeConstant) {
   sim::GyroConfig gyro = shipped_gyro();
-  gyro.hidden.coefficient["warmup"] = 0.02;  // °/h at switch-on
-  gyro.hidden.warmup_time_constant_s = 2400.0;
+  gyro.coefficient["warmup"] = 0.02;  // °/h at switch-on
+  gyro.parameter["warmup"] = 2400.0;  // τ, s
   const PreparedData data = simulate_cycle(gyro);
   const auto terms = parse_formula("T + T^2 + dT + warmup");
   const ModelFit fit = fit_model(data, terms, find_engine("ols"), {});
@@ -60,7 +60,7 @@ TEST(Pipeline, VariableProjectionRecoversAWarmUpTimeConstant) {
 
 TEST(Pipeline, AddingAHiddenGradientLowersTheInstability) {
   sim::GyroConfig gyro = shipped_gyro();
-  gyro.hidden.coefficient["grad"] = 0.03;
+  gyro.coefficient["grad"] = 0.03;
   const PreparedData data = simulate_cycle(gyro);
   const ModelFit with = fit_model(data, parse_formula("T + T^2 + dT + grad"), find_engine("ols"), {});
   const ModelFit without = fit_model(data, parse_formula("T + T^2 + dT"), find_engine("ols"), {});

@@ -136,11 +136,11 @@ TEST(ScoreSpread, DrawsWithinTheRangeFromTheTrialSeed) {
   double lo = kInf, hi = -kInf;
   for (std::uint64_t seed = 1; seed <= 500; ++seed) {
     const sim::GyroConfig g = apply_spread(base, spread, seed);
-    const double r = g.truth.b1_dph_per_c / base.truth.b1_dph_per_c - 1.0;
+    const double r = g.coefficient.at("T") / base.coefficient.at("T") - 1.0;
     lo = std::min(lo, r);
     hi = std::max(hi, r);
     EXPECT_LE(std::abs(g.noise.arw_deg_per_sqrt_h / base.noise.arw_deg_per_sqrt_h - 1.0), 0.5);
-    EXPECT_EQ(g.truth.b3_dph_per_c_per_s, base.truth.b3_dph_per_c_per_s);  // not spread
+    EXPECT_EQ(g.coefficient.at("dT"), base.coefficient.at("dT"));  // not spread
     EXPECT_EQ(g.noise.bias_instability_dph, base.noise.bias_instability_dph);
   }
   EXPECT_GE(lo, -0.1);
@@ -155,10 +155,10 @@ TEST(ScoreSpread, SameSeedSameDrawAndKeysAreIndependent) {
   const auto b = apply_spread(base, {{"b1_dph_per_c", 0.2}}, 42);
   const auto c = apply_spread(base, {{"b1_dph_per_c", 0.2}, {"glitch_size_dph", 0.3}}, 42);
   const auto d = apply_spread(base, {{"b1_dph_per_c", 0.2}}, 43);
-  EXPECT_EQ(a.truth.b1_dph_per_c, b.truth.b1_dph_per_c);
-  EXPECT_EQ(a.truth.b1_dph_per_c, c.truth.b1_dph_per_c);  // spreading another key changes nothing here
-  EXPECT_NE(a.truth.b1_dph_per_c, d.truth.b1_dph_per_c);
-  EXPECT_EQ(apply_spread(base, {}, 42).truth.b1_dph_per_c, base.truth.b1_dph_per_c);
+  EXPECT_EQ(a.coefficient.at("T"), b.coefficient.at("T"));
+  EXPECT_EQ(a.coefficient.at("T"), c.coefficient.at("T"));  // spreading another key changes nothing here
+  EXPECT_NE(a.coefficient.at("T"), d.coefficient.at("T"));
+  EXPECT_EQ(apply_spread(base, {}, 42).coefficient.at("T"), base.coefficient.at("T"));
   expect_input_error([&] { apply_spread(base, {{"b1", 0.1}}, 1); }, {"[spread]: unknown key 'b1'"});
   expect_input_error([&] { apply_spread(base, {{"b1_dph_per_c", 1.0}}, 1); }, {"must be >= 0 and < 1"});
 }
@@ -200,7 +200,7 @@ TEST(ScoreCampaign, TrialZeroIsTheScenarioSimulatedWithTheCampaignSeed) {
   EXPECT_EQ(campaign.error_terms(), (std::vector<std::string>{"1", "T", "T^2", "dT"}));
   const sim::GyroConfig g = sim::load_gyro(sc.gyro_file);
   EXPECT_NEAR(t.engines[0].coefficient_error[3],
-              std::abs(ols.coefficients.b[2] - g.truth.b3_dph_per_c_per_s) / g.truth.b3_dph_per_c_per_s, 1e-12);
+              std::abs(ols.coefficients.b[2] - g.coefficient.at("dT")) / g.coefficient.at("dT"), 1e-12);
   // The convergence curve: ols at the optimum from its one evaluation on.
   EXPECT_EQ(t.engines[0].curve_gap.front(), 0.0);
   EXPECT_EQ(t.engines[1].curve_gap.size(), campaign.curve_evaluations().size());

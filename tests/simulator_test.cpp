@@ -10,6 +10,8 @@
 
 #include "sim/simulator.h"
 
+#include "sim/effects/effect.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -39,7 +41,8 @@ Simulator shipped(const std::string& name) {
 // A gyro with every noise source off and a constant true bias.
 GyroConfig quiet_constant_gyro() {
   GyroConfig g;
-  g.truth = {-7.0, 0.0, 0.0, 0.0};
+  g.b0_dph = -7.0;
+  g.coefficient.clear();
   g.noise.arw_deg_per_sqrt_h = 0.0;
   g.noise.bias_instability_dph = 0.0;
   g.noise.rrw_dph_per_sqrt_h = 0.0;
@@ -266,7 +269,8 @@ TEST(Simulator, AllanDeviationWithOnlyArwIsNOverRootTau) {
 
 TEST(Simulator, QuantisationErrorOfHundredSecondAveragesStaysBounded) {
   GyroConfig g = quiet_constant_gyro();
-  g.truth = {-7.07712, -3.05e-4, 1.06e-6, 1.81};  // a bias that moves with the cycle
+  g.b0_dph = -7.07712;  // a bias that moves with the cycle
+  g.coefficient = {{"T", -3.05e-4}, {"T^2", 1.06e-6}, {"dT", 1.81}};
   g.noise.quantization_arcsec = 1.0;               // coarse pulses: 1 °/h per 1 s sample
   Scenario s = load_scenario(scenario_path("cycle"));
   const Simulator sim(s, load_rig(s.rig_file), g);
@@ -308,7 +312,7 @@ TEST(Simulator, RecordOnASharedTraceIsRunForEverySeedAndGyro) {
   const GyroConfig gyro = load_gyro(s.gyro_file);
   const ThermalTrace trace = Simulator(s, rig, gyro).run_thermal();
   GyroConfig other = gyro;
-  other.truth.b1_dph_per_c *= 1.1;
+  other.coefficient.at("T") *= 1.1;
   other.noise.arw_deg_per_sqrt_h *= 0.9;
   for (const GyroConfig& g : {gyro, other})
     for (const std::uint64_t seed : {s.seed, s.seed + 5}) {
@@ -329,13 +333,13 @@ TEST(Simulator, HiddenEffectsAddExactlyTheirTerm) {
   const ThermalTrace& tr = base.truth;
 
   GyroConfig grad = plain;
-  grad.hidden.coefficient["grad"] = 0.01;
+  grad.coefficient["grad"] = 0.01;
   const SimulationResult with_grad = Simulator(s, rig, grad).run();
   GyroConfig warm = plain;
-  warm.hidden.coefficient["warmup"] = 0.02;
+  warm.coefficient["warmup"] = 0.02;
   const SimulationResult with_warm = Simulator(s, rig, warm).run();
   GyroConfig hyst = plain;
-  hyst.hidden.coefficient["hyst"] = 0.003;
+  hyst.coefficient["hyst"] = 0.003;
   const SimulationResult with_hyst = Simulator(s, rig, hyst).run();
 
   int heating = 0, cooling = 0;
@@ -343,10 +347,10 @@ TEST(Simulator, HiddenEffectsAddExactlyTheirTerm) {
     const double grad_c = tr.node(N::far)[k] - tr.node(N::anode)[k];
     EXPECT_NEAR(with_grad.bias_true_dph[k] - base.bias_true_dph[k], 0.01 * grad_c, 1e-12);
     EXPECT_NEAR(with_warm.bias_true_dph[k] - base.bias_true_dph[k],
-                0.02 * std::exp(-tr.time_s[k] / plain.hidden.warmup_time_constant_s), 1e-12);
+                0.02 * std::exp(-tr.time_s[k] / plain.parameter_of(*effects::find("warmup"))), 1e-12);
     const double rate = tr.anode_rate_c_per_s[k];
-    const double sign = rate > plain.hidden.hyst_dead_band_c_per_s    ? 1.0
-                        : rate < -plain.hidden.hyst_dead_band_c_per_s ? -1.0
+    const double sign = rate > plain.parameter_of(*effects::find("hyst"))    ? 1.0
+                        : rate < -plain.parameter_of(*effects::find("hyst")) ? -1.0
                                                                       : 0.0;
     heating += sign > 0;
     cooling += sign < 0;
@@ -357,6 +361,43 @@ TEST(Simulator, HiddenEffectsAddExactlyTheirTerm) {
   // The noise realisation does not depend on the hidden effects.
   for (std::size_t k = 0; k < base.rows(); k += 1000)
     EXPECT_EQ(with_grad.temp_c[k], base.temp_c[k]);
+}
+
+// Every effect of the registry is injected as c·r, r its regressor on the
+// true state: the anode side's temperature, its exact rate and the rate's
+// central differences, the far side, time since the start of a soaked record.
+// (The regressors' formulas are checked by hand in effects_test.cpp.)
+TEST(Simulator, EveryEffectIsInjectedOnTheTrueState) {
+  Scenario s = load_scenario(scenario_path("cycle"));
+  s.segments.resize(3);  // soak, ramp up, soak: about 2.6 h
+  const RigConfig rig = load_rig(s.rig_file);
+  GyroConfig off = load_gyro(s.gyro_file);
+  off.coefficient.clear();
+  const SimulationResult base = Simulator(s, rig, off).run();
+  const ThermalTrace& tr = base.truth;
+  effects::EffectSeries state;
+  state.time_s = tr.time_s;
+  state.temp_c = tr.node(N::anode);
+  state.temp2_c = tr.node(N::far);
+  state.rate_c_per_s = tr.anode_rate_c_per_s;
+  state.accel_c_per_s2.resize(tr.time_s.size());
+  for (std::size_t k = 1; k + 1 < tr.time_s.size(); ++k)
+    state.accel_c_per_s2[k] = (tr.anode_rate_c_per_s[k + 1] - tr.anode_rate_c_per_s[k - 1]) /
+                              (tr.time_s[k + 1] - tr.time_s[k - 1]);
+  for (const effects::Effect* e : effects::registry()) {
+    GyroConfig on = off;
+    on.coefficient[std::string(e->name)] = 0.01;
+    const SimulationResult with = Simulator(s, rig, on).run();
+    const std::vector<double> r = effects::regressor_values(*e, state, on.parameter_of(*e));
+    double largest = 0.0;
+    for (std::size_t k = 1; k + 1 < base.rows(); k += 13) {
+      ASSERT_NEAR(with.bias_true_dph[k] - base.bias_true_dph[k], 0.01 * r[k], 1e-12 + 1e-12 * std::abs(r[k]))
+          << e->name << " at t = " << tr.time_s[k];
+      largest = std::max(largest, std::abs(r[k]));
+    }
+    EXPECT_GT(largest, 0.0) << e->name << ": the cycle's first ramp should excite every effect";
+    EXPECT_EQ(with.temp_c, base.temp_c) << e->name << ": the readings do not depend on the bias";
+  }
 }
 
 TEST(Simulator, TemperatureReadingsLagTheBlockByTheSensorTimeConstant) {

@@ -29,14 +29,12 @@ std::vector<double> differentiate(const std::vector<double>& t_s, const std::vec
 DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode) {
   DerivedSeries d;
   d.temp_c = data.temp_c;
-  d.time_h.reserve(data.size());
-  for (double t : data.time_s) d.time_h.push_back((t - data.start_time_s) / 3600.0);
+  d.temp2_c = data.temp2_c;
+  d.time_s.reserve(data.size());
+  for (double t : data.time_s) d.time_s.push_back(t - data.start_time_s);
+  d.switch_on_s = 0.0;
   d.rate_c_per_s = differentiate(data.time_s, data.temp_c, data.run, mode);
   d.accel_c_per_s2 = differentiate(data.time_s, d.rate_c_per_s, data.run, mode);
-  if (!data.temp2_c.empty()) {
-    d.grad_c.resize(data.size());
-    for (std::size_t p = 0; p < data.size(); ++p) d.grad_c[p] = data.temp2_c[p] - data.temp_c[p];
-  }
   return d;
 }
 

@@ -42,8 +42,14 @@ std::vector<const Term*> parse_formula(std::string_view formula) {
 
 std::string formula_text(const std::vector<const Term*>& terms) {
   std::string out;
-  for (const Term* t : terms) out += (out.empty() ? "" : " + ") + t->name;
+  for (const Term* t : terms) out += (out.empty() ? "" : " + ") + std::string(t->name);
   return out;
+}
+
+std::vector<std::string> term_names(const std::vector<const Term*>& terms) {
+  std::vector<std::string> names;
+  for (const Term* t : terms) names.emplace_back(t->name);
+  return names;
 }
 
 }  // namespace gyrotherm::fit

@@ -18,5 +18,7 @@ inline constexpr std::string_view kDefaultModel = "T + T^2 + dT";
 std::vector<const Term*> parse_formula(std::string_view formula);
 // The canonical text of a term list: "T + T^2 + dT".
 std::string formula_text(const std::vector<const Term*>& terms);
+// The names of a term list, in order.
+std::vector<std::string> term_names(const std::vector<const Term*>& terms);
 
 }  // namespace gyrotherm::fit

@@ -86,11 +86,6 @@ double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) 
   return (at_least + 1.0) / (draws + 1.0);
 }
 
-std::vector<std::string> names_of(const std::vector<const Term*>& terms) {
-  std::vector<std::string> n;
-  for (const Term* t : terms) n.push_back(t->name);
-  return n;
-}
 
 }  // namespace
 
@@ -226,13 +221,13 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   const double excess = after2 > floor2 ? after2 - floor2 : after2;
 
   std::vector<const Term*> untried;
-  for (const Term& term : term_registry()) {
-    if (std::find(terms.begin(), terms.end(), &term) != terms.end()) continue;
-    if (term.needs_temp2 && !data.has_temp2()) {
-      d.skipped.push_back(term.name + " (needs temp2_c)");
+  for (const Term* term : term_registry()) {
+    if (std::find(terms.begin(), terms.end(), term) != terms.end()) continue;
+    if (term->needs_temp2() && !data.has_temp2()) {
+      d.skipped.push_back(std::string(term->name) + " (needs temp2_c)");
       continue;
     }
-    untried.push_back(&term);
+    untried.push_back(term);
   }
   const double corrected =
       options.alpha / static_cast<double>(std::max<std::size_t>(1, untried.size()));
@@ -253,7 +248,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
       try {
         const std::vector<double> params = fit_parameters(data.derived, s.gyro_dph, with);
         const Eigen::MatrixXd xw = design_matrix(data.derived, with, params);
-        const LinearProblem problem(xw, y, names_of(with));
+        const LinearProblem problem(xw, y, term_names(with));
         const double sigma = problem.sigma_two_pass(problem.physical(least_squares_optimum(problem)));
         const std::vector<double> sse = block_sse(xw, y, block, blocks);
         std::vector<double> gains(blocks);
@@ -274,7 +269,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
         round.push_back(c);
         round_params.push_back(params);
       } catch (const InputError& e) {
-        failed.push_back(term->name + " (" + e.what() + ")");
+        failed.push_back(std::string(term->name) + " (" + e.what() + ")");
       }
     }
     failed.clear();

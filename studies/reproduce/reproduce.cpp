@@ -32,10 +32,7 @@ Truth truth_of(const std::filesystem::path& cycle) {
   const sim::Scenario sc = sim::load_scenario(cycle);
   const sim::GyroConfig g = sim::load_gyro(sc.gyro_file);
   Truth t;
-  t.coefficients = {{"1", g.truth.b0_dph},
-                    {"T", g.truth.b1_dph_per_c},
-                    {"T^2", g.truth.b2_dph_per_c2},
-                    {"dT", g.truth.b3_dph_per_c_per_s}};
+  t.coefficients = sim::true_coefficients(g);
   return t;
 }
 

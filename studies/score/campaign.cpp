@@ -23,17 +23,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The true coefficient of each term name the simulator knows ("1" = b0).
-std::map<std::string, double> truth_coefficients(const sim::GyroConfig& g) {
-  std::map<std::string, double> t = {{"1", g.truth.b0_dph},
-                                     {"T", g.truth.b1_dph_per_c},
-                                     {"T^2", g.truth.b2_dph_per_c2},
-                                     {"dT", g.truth.b3_dph_per_c_per_s}};
-  for (const auto& [name, c] : g.hidden.coefficient)
-    if (c != 0.0) t[name] = c;
-  return t;
-}
-
 }  // namespace
 
 void ScoreOptions::validate() const {
@@ -89,10 +78,10 @@ Campaign::Campaign(ScoreOptions options) : options_(std::move(options)) {
   }
 
   // Coefficient errors: the intercept and every model term with a true value.
-  const std::map<std::string, double> truth = truth_coefficients(gyro_);
+  const std::map<std::string, double> truth = sim::true_coefficients(gyro_);
   error_terms_.push_back("1");
   for (const Term* t : terms_)
-    if (truth.count(t->name)) error_terms_.push_back(t->name);
+    if (truth.count(std::string(t->name))) error_terms_.emplace_back(t->name);
 
   // The convergence grid: log-spaced evaluation counts 1 … the largest budget.
   for (int i = 0;; ++i) {
@@ -143,19 +132,17 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
     const PreparedData data = prepare_data(m, options_.pipeline);
     check_columns(terms_, data, options_.pipeline.columns);
     const std::vector<double> parameters = fit_parameters(data.derived, data.series.gyro_dph, terms_);
-    std::vector<std::string> names;
-    for (const Term* t : terms_) names.push_back(t->name);
     const LinearProblem problem(
         design_matrix(data.derived, terms_, parameters),
         Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
                                           static_cast<Eigen::Index>(data.series.size())),
-        names);
+        term_names(terms_));
     const std::vector<double> z_optimum = least_squares_optimum(problem);
     const double optimum_gram = problem.objective(z_optimum);  // what engines see
     out.optimum_dph = problem.sigma_two_pass(problem.physical(z_optimum));
     out.before_dph = problem.sigma_y();
     const double target = optimum_gram * (1.0 + options_.target_relative);
-    const std::map<std::string, double> truth = truth_coefficients(gyro);
+    const std::map<std::string, double> truth = sim::true_coefficients(gyro);
 
     // 4. Every engine on the same problem.
     for (std::size_t e = 0; e < infos_.size(); ++e) {

@@ -14,10 +14,10 @@ namespace gyrotherm::fit {
 namespace {
 
 double& spread_target(sim::GyroConfig& g, std::string_view key) {
-  if (key == "b0_dph") return g.truth.b0_dph;
-  if (key == "b1_dph_per_c") return g.truth.b1_dph_per_c;
-  if (key == "b2_dph_per_c2") return g.truth.b2_dph_per_c2;
-  if (key == "b3_dph_per_c_per_s") return g.truth.b3_dph_per_c_per_s;
+  if (key == "b0_dph") return g.b0_dph;
+  // The [truth] key of one of the paper's effects (sim/effects/).
+  if (const effects::Effect* e = effects::find_by_truth_key(key))
+    return g.coefficient[std::string(e->name)];
   if (key == "arw_deg_per_sqrt_h") return g.noise.arw_deg_per_sqrt_h;
   if (key == "bias_instability_dph") return g.noise.bias_instability_dph;
   if (key == "rrw_dph_per_sqrt_h") return g.noise.rrw_dph_per_sqrt_h;
@@ -25,7 +25,7 @@ double& spread_target(sim::GyroConfig& g, std::string_view key) {
   if (key == "glitch_rate_per_h") return g.noise.glitch_rate_per_h;
   if (key == "glitch_size_dph") return g.noise.glitch_size_dph;
   assert(false && "spread_target: a key outside sim::kSpreadKeys");
-  return g.truth.b0_dph;
+  return g.b0_dph;
 }
 
 }  // namespace

@@ -1,0 +1,98 @@
+#pragma once
+// A physical effect on the gyro bias, defined once for the simulator and the
+// fit (DESIGN.md, "Model formulas and the effect registry").
+//
+// The bias is linear in the effects' coefficients:
+//
+//   B(t) = b0 + Σ_k c_k · r_k(t; θ_k)                                  [°/h]
+//
+// r_k is effect k's regressor, computed from an EffectSeries (the gyro's
+// thermal state over time), and θ_k its optional nonlinear parameter (a time
+// constant, a dead band). The two sides call the same function:
+//
+//  * the simulator evaluates r_k on the true physical state at its sample
+//    times and adds c_k·r_k to the bias (sim/bias_model.h): that is how an
+//    effect is injected, with c_k and θ_k from the gyro file or --hidden;
+//  * the fit evaluates r_k on the window means of a measured record
+//    (fit/data/derivatives.h) and estimates c_k, and θ_k by variable
+//    projection (fit/pipeline.h).
+//
+// So what is simulated is exactly what is fitted. The paper's terms (T, T^2,
+// dT) are effects like any other; their true coefficients come from the gyro
+// file's [truth] table, every other effect's from [hidden].
+//
+// Adding an effect: one file sim/effects/NAME.cpp defining
+// `constinit const Effect NAME{...}` in namespace gyrotherm::effects, one test
+// tests/NAME_test.cpp, one line EFFECT(NAME) in sim/effects/registry.def.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gyrotherm::effects {
+
+// What every regressor reads: one entry per point in time.
+struct EffectSeries {
+  std::vector<double> time_s;          // since the start of the record
+  std::vector<double> temp_c;          // gyro temperature at the sensor location
+  std::vector<double> rate_c_per_s;    // dT/dt
+  std::vector<double> accel_c_per_s2;  // d²T/dt²
+  std::vector<double> temp2_c;         // the far side of the block; empty when not measured
+  // When the gyro was switched on, on the time_s clock: 0 at the start of the
+  // record, −∞ for a gyro running long before it.
+  double switch_on_s = 0.0;
+  std::size_t size() const { return temp_c.size(); }
+};
+
+// The columns of a measurement an effect needs (DESIGN.md's names).
+enum Column : unsigned { kTime = 1u, kTemp = 2u, kTemp2 = 4u };
+
+// A nonlinear parameter of an effect, e.g. a time constant.
+struct EffectParameter {
+  std::string_view name;      // e.g. "time_constant_s" (the fit's JSON key)
+  std::string_view gyro_key;  // its key in a gyro file's [hidden] table
+  double lower = 0.0;         // the fit's search bounds (searched on a log scale)
+  double upper = 0.0;
+  double simulator_default = 0.0;  // the simulator's value when the gyro file is silent
+  bool may_be_zero = false;        // the gyro file may set it to 0
+};
+
+struct Effect {
+  std::string_view name;        // the term name: a public contract (DESIGN.md)
+  std::string_view meaning;     // physical meaning, for `gyrotherm effects` and reports
+  std::string_view unit;        // of the regressor ("1" when dimensionless)
+  unsigned columns = kTemp;     // the Column bits it reads
+  // For the paper's terms, the gyro file's [truth] key of the true
+  // coefficient (e.g. "b1_dph_per_c"); empty for a hidden effect, whose
+  // coefficient is [hidden] NAME = COEF or --hidden NAME=COEF.
+  std::string_view truth_key;
+  std::optional<EffectParameter> parameter;
+  // r(t) at every point of the series; `parameter` is θ (ignored without one).
+  void (*regressor)(const EffectSeries& series, double parameter, std::span<double> out) = nullptr;
+
+  bool needs_temp2() const { return (columns & kTemp2) != 0; }
+  bool hidden() const { return truth_key.empty(); }
+  // "°/h per °C", or "°/h" for a dimensionless regressor.
+  std::string coefficient_unit() const;
+  // "temp_c, temp2_c": the columns it reads, by DESIGN.md's names.
+  std::string column_names() const;
+};
+
+// Every effect, in the order of sim/effects/registry.def.
+const std::vector<const Effect*>& registry();
+// nullptr if unknown.
+const Effect* find(std::string_view name);
+// The effect whose [truth] key this is, or nullptr.
+const Effect* find_by_truth_key(std::string_view truth_key);
+// "T, T^2, T^3, ...": every name, or only the hidden ones.
+std::string names();
+std::string hidden_names();
+
+// r at every point of a series, as a new vector.
+std::vector<double> regressor_values(const Effect& effect, const EffectSeries& series,
+                                     double parameter);
+
+}  // namespace gyrotherm::effects

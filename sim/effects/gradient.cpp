@@ -1,0 +1,23 @@
+// grad: r = T₂ − T (°C), the temperature difference across the gyro block
+// between the far-side sensor and the anode-side one: an imbalance of the
+// Langmuir flow in the two discharge legs. Needs the temp2_c column.
+#include "sim/effects/effect.h"
+
+namespace gyrotherm::effects {
+namespace {
+
+void regressor(const EffectSeries& s, double, std::span<double> out) {
+  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.temp2_c[p] - s.temp_c[p];
+}
+
+}  // namespace
+
+extern constinit const Effect gradient{
+    .name = "grad",
+    .meaning = "temperature gradient across the block (Langmuir-flow imbalance)",
+    .unit = "°C",
+    .columns = kTemp | kTemp2,
+    .regressor = &regressor,
+};
+
+}  // namespace gyrotherm::effects
