@@ -111,8 +111,14 @@ int run_fit(const FitOptions& o) {
   print_row("1", result.coefficients.intercept, "°/h", std::size_t(-1));
   for (std::size_t k = 0; k < terms.size(); ++k) {
     print_row(std::string(terms[k]->name), result.coefficients.b[k], terms[k]->coefficient_unit(), k);
-    if (terms[k]->parameter)
-      fmt::print("          {} = {:.6g}\n", terms[k]->parameter->name, result.parameters[k]);
+    if (terms[k]->parameter) {
+      std::string extra;
+      if (const auto& i = result.parameter_intervals[k])
+        extra += fmt::format("  95% [{:.6g}, {:.6g}]", i->lower, i->upper);
+      if (truth && truth->parameters.count(std::string(terms[k]->name)))
+        extra += fmt::format("  truth {:.6g}", truth->parameters.at(std::string(terms[k]->name)));
+      fmt::print("          {} = {:.6g}{}\n", terms[k]->parameter->name, result.parameters[k], extra);
+    }
   }
   if (!result.engine.interval_method.empty())
     fmt::print("  intervals: {}\n", result.engine.interval_method);

@@ -34,6 +34,13 @@ std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
     if (fit.terms[k]->parameter)
       parameters[fit.terms[k]->name] = {{fit.terms[k]->parameter->name, fit.parameters[k]}};
   j["parameters"] = parameters;
+  Json parameter_intervals = Json::object();
+  for (std::size_t k = 0; k < fit.terms.size(); ++k)
+    if (k < fit.parameter_intervals.size() && fit.parameter_intervals[k])
+      parameter_intervals[fit.terms[k]->name] = {
+          {fit.terms[k]->parameter->name,
+           {fit.parameter_intervals[k]->lower, fit.parameter_intervals[k]->upper}}};
+  if (!parameter_intervals.empty()) j["parameter_intervals_95"] = parameter_intervals;
   j["instability_before_dph"] = fit.instability_before_dph;
   j["instability_after_dph"] = fit.instability_after_dph;
   j["ratio"] = fit.ratio();
@@ -95,6 +102,12 @@ std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
     Json t;
     for (const auto& [k, v] : truth->coefficients) t[k] = v;
     j["truth"] = t;
+    if (!truth->parameters.empty()) {
+      Json p;
+      for (const auto& [k, v] : truth->parameters)
+        p[k] = {{std::string(find_term(k)->parameter->name), v}};
+      j["truth_parameters"] = p;
+    }
     Json e;
     for (const auto& [k, v] : coefficient_errors(fit, *truth)) e[k] = v;
     j["coefficient_error"] = e;

@@ -47,6 +47,52 @@ double least_squares_sigma(const DerivedSeries& derived, const Eigen::VectorXd& 
   }
 }
 
+// The linearised intervals of the header comment.
+std::vector<std::optional<Interval>> parameter_intervals(const DerivedSeries& derived,
+                                                         const Eigen::VectorXd& y,
+                                                         const std::vector<const Term*>& terms,
+                                                         const std::vector<double>& parameters,
+                                                         const Coefficients& c) {
+  std::vector<std::optional<Interval>> out(terms.size());
+  std::vector<std::size_t> nonlinear;
+  for (std::size_t j = 0; j < terms.size(); ++j) {
+    const auto& spec = terms[j]->parameter;
+    // On (or within a grid step of) a bound the search may have stopped short.
+    if (spec && spec->differentiable && parameters[j] > spec->lower * 1.001 &&
+        parameters[j] < spec->upper / 1.001)
+      nonlinear.push_back(j);
+  }
+  if (nonlinear.empty()) return out;
+  const Eigen::MatrixXd x = design_matrix(derived, terms, parameters);
+  Eigen::MatrixXd augmented(x.rows(), x.cols() + static_cast<Eigen::Index>(nonlinear.size()));
+  augmented.leftCols(x.cols()) = x;
+  std::vector<std::string> names = term_names(terms);
+  constexpr double kStep = 1e-4;  // in ln θ
+  for (std::size_t i = 0; i < nonlinear.size(); ++i) {
+    const std::size_t j = nonlinear[i];
+    std::vector<double> up = parameters, down = parameters;
+    up[j] *= std::exp(kStep);
+    down[j] *= std::exp(-kStep);
+    const std::vector<const Term*> one = {terms[j]};
+    const Eigen::MatrixXd hi = design_matrix(derived, one, {up[j]});
+    const Eigen::MatrixXd lo = design_matrix(derived, one, {down[j]});
+    augmented.col(x.cols() + static_cast<Eigen::Index>(i)) = c.b[j] * (hi - lo).col(0) / (2.0 * kStep);
+    names.push_back("d ln " + std::string(terms[j]->parameter->name));
+  }
+  try {
+    const LinearProblem problem(augmented, y, names);
+    const FitResult r = OlsEngine().fit(problem);
+    for (std::size_t i = 0; i < nonlinear.size(); ++i) {
+      const Interval& d = r.intervals[static_cast<std::size_t>(x.cols()) + i];
+      out[nonlinear[i]] = Interval{parameters[nonlinear[i]] * std::exp(d.lower),
+                                   parameters[nonlinear[i]] * std::exp(d.upper)};
+    }
+  } catch (const InputError&) {
+    // A column that vanishes or is collinear: no interval can be had.
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vector<double>& y_in,
@@ -118,6 +164,10 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.optimum_dph = problem.sigma_two_pass(problem.physical(least_squares_optimum(problem)));
   fit.points = problem.points();
   fit.warnings = problem.warnings();
+  fit.parameter_intervals.assign(terms.size(), std::nullopt);
+  if (!fit.engine.intervals.empty())
+    fit.parameter_intervals = parameter_intervals(data.derived, y, terms, fit.parameters,
+                                                  fit.coefficients);
   return fit;
 }
 
@@ -142,6 +192,14 @@ std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
       throw InputError(fmt::format("{}: coefficients.{} is not a number", file.string(), k));
     t.coefficients[k] = v.get<double>();
   }
+  // The nonlinear parameters of hidden effects: hidden.TERM.PARAMETER_NAME.
+  if (j.contains("hidden") && j["hidden"].is_object())
+    for (const auto& [k, h] : j["hidden"].items()) {
+      const Term* term = find_term(k);
+      if (term == nullptr || !term->parameter || !h.is_object()) continue;
+      const std::string key(term->parameter->name);
+      if (h.contains(key) && h[key].is_number()) t.parameters[k] = h[key].get<double>();
+    }
   return t;
 }
 

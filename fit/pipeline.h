@@ -13,6 +13,16 @@
 // section around the best grid point; one parameter at a time, repeated);
 // the chosen engine then fits the linear coefficients at that parameter.
 //
+// Their 95 % intervals (with ols, whose intervals are autocorrelation-robust)
+// come from the linearised model: near the optimum,
+//     B(θ) ≈ B(θ̂) + b_j·∂x_j/∂(ln θ_j)·δ_j,
+// so ols on the design augmented with the columns b_j·∂x_j/∂(ln θ_j)
+// (central differences, step 1e-4 in ln θ) gives δ_j's interval [lo, hi]
+// with the same robust covariance as the coefficients', and θ_j's interval is
+// θ̂_j·[e^lo, e^hi]. A parameter whose regressor is not smooth in it (hyst's
+// dead band), whose column vanishes, or that sits on its search bound gets
+// none.
+//
 // Reference: Golub & Pereyra, "Separable nonlinear least squares: the
 // variable projection method and its applications", Inverse Problems 19 (2003).
 
@@ -37,6 +47,9 @@ void check_columns(const std::vector<const Term*>& terms, const PreparedData& da
 struct ModelFit {
   std::vector<const Term*> terms;
   std::vector<double> parameters;  // per term, NaN where the term has none
+  // 95 % interval of each parameter (ols only; absent where the term has
+  // none or it cannot be had, see above).
+  std::vector<std::optional<Interval>> parameter_intervals;
   Coefficients coefficients;       // physical units
   FitResult engine;
   double instability_before_dph = 0.0;
@@ -64,6 +77,7 @@ std::vector<double> model_values(const Eigen::MatrixXd& design, const Coefficien
 struct Truth {
   std::filesystem::path file;
   std::map<std::string, double> coefficients;  // term → value, "1" = intercept
+  std::map<std::string, double> parameters;    // term → its nonlinear parameter (hidden effects)
 };
 std::optional<Truth> load_truth_beside(const std::filesystem::path& csv);
 // Relative error (fit − true)/|true| per model term and "1"; terms whose true

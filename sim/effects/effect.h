@@ -58,6 +58,9 @@ struct EffectParameter {
   double upper = 0.0;
   double simulator_default = 0.0;  // the simulator's value when the gyro file is silent
   bool may_be_zero = false;        // the gyro file may set it to 0
+  // r is smooth in θ, so the fit can give θ a linearised interval (a dead
+  // band, where r jumps, is not).
+  bool differentiable = true;
 };
 
 struct Effect {

@@ -24,7 +24,8 @@ extern constinit const Effect hysteresis{
                                  .lower = 1e-6,
                                  .upper = 2e-3,
                                  .simulator_default = 2e-4,
-                                 .may_be_zero = true},
+                                 .may_be_zero = true,
+                                 .differentiable = false},
     .regressor = &regressor,
 };
 
