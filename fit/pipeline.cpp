@@ -47,13 +47,19 @@ double least_squares_sigma(const DerivedSeries& derived, const Eigen::VectorXd& 
   }
 }
 
-// The linearised intervals of the header comment.
-std::vector<std::optional<Interval>> parameter_intervals(const DerivedSeries& derived,
-                                                         const Eigen::VectorXd& y,
-                                                         const std::vector<const Term*>& terms,
-                                                         const std::vector<double>& parameters,
-                                                         const Coefficients& c) {
-  std::vector<std::optional<Interval>> out(terms.size());
+// The linearised intervals of the header comment: the parameters', and the
+// coefficients' own, widened by the parameters' uncertainty.
+struct LinearisedIntervals {
+  std::vector<std::optional<Interval>> parameters;  // per term
+  FitResult ols;  // on the augmented design; empty when no parameter took part
+};
+
+LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eigen::VectorXd& y,
+                                         const std::vector<const Term*>& terms,
+                                         const std::vector<double>& parameters,
+                                         const Coefficients& c) {
+  LinearisedIntervals out;
+  out.parameters.assign(terms.size(), std::nullopt);
   std::vector<std::size_t> nonlinear;
   for (std::size_t j = 0; j < terms.size(); ++j) {
     const auto& spec = terms[j]->parameter;
@@ -81,11 +87,11 @@ std::vector<std::optional<Interval>> parameter_intervals(const DerivedSeries& de
   }
   try {
     const LinearProblem problem(augmented, y, names);
-    const FitResult r = OlsEngine().fit(problem);
+    out.ols = OlsEngine().fit(problem);
     for (std::size_t i = 0; i < nonlinear.size(); ++i) {
-      const Interval& d = r.intervals[static_cast<std::size_t>(x.cols()) + i];
-      out[nonlinear[i]] = Interval{parameters[nonlinear[i]] * std::exp(d.lower),
-                                   parameters[nonlinear[i]] * std::exp(d.upper)};
+      const Interval& d = out.ols.intervals[static_cast<std::size_t>(x.cols()) + i];
+      out.parameters[nonlinear[i]] = Interval{parameters[nonlinear[i]] * std::exp(d.lower),
+                                              parameters[nonlinear[i]] * std::exp(d.upper)};
     }
   } catch (const InputError&) {
     // A column that vanishes or is collinear: no interval can be had.
@@ -165,9 +171,18 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.points = problem.points();
   fit.warnings = problem.warnings();
   fit.parameter_intervals.assign(terms.size(), std::nullopt);
-  if (!fit.engine.intervals.empty())
-    fit.parameter_intervals = parameter_intervals(data.derived, y, terms, fit.parameters,
-                                                  fit.coefficients);
+  if (!fit.engine.intervals.empty()) {
+    LinearisedIntervals li =
+        linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients);
+    fit.parameter_intervals = std::move(li.parameters);
+    if (!li.ols.intervals.empty()) {
+      // The coefficients' intervals with the parameters' uncertainty in them.
+      fit.engine.intervals.assign(li.ols.intervals.begin(), li.ols.intervals.begin() + static_cast<std::ptrdiff_t>(terms.size()));
+      fit.engine.p_values.assign(li.ols.p_values.begin(), li.ols.p_values.begin() + static_cast<std::ptrdiff_t>(terms.size()));
+      fit.engine.interval_method = li.ols.interval_method +
+                                   "; with the fitted parameters' uncertainty (linearised)";
+    }
+  }
   return fit;
 }
 

@@ -19,7 +19,10 @@
 // so ols on the design augmented with the columns b_j·∂x_j/∂(ln θ_j)
 // (central differences, step 1e-4 in ln θ) gives δ_j's interval [lo, hi]
 // with the same robust covariance as the coefficients', and θ_j's interval is
-// θ̂_j·[e^lo, e^hi]. A parameter whose regressor is not smooth in it (hyst's
+// θ̂_j·[e^lo, e^hi]. The coefficients' intervals are taken from the same
+// augmented fit, so that they carry the parameters' uncertainty too (a
+// coefficient whose regressor moves with θ is far less certain than it looks
+// at θ̂ held fixed). A parameter whose regressor is not smooth in it (hyst's
 // dead band), whose column vanishes, or that sits on its search bound gets
 // none.
 //
