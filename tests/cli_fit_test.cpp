@@ -7,6 +7,8 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "fit/engines/engine.h"
+#include "sim/effects/effect.h"
 
 namespace gyrotherm {
 namespace {
@@ -81,14 +83,21 @@ TEST(CliFit, EnginesAndEffectsList) {
   ScratchDir dir;
   const auto e = run_cli(dir, "engines --json");
   ASSERT_EQ(e.exit_code, 0);
-  EXPECT_EQ(nlohmann::json::parse(e.out)["engines"].size(), 8u);
+  const auto engines = nlohmann::json::parse(e.out)["engines"];
+  ASSERT_EQ(engines.size(), fit::engine_registry().size());
+  for (std::size_t k = 0; k < engines.size(); ++k) EXPECT_EQ(engines[k]["name"], fit::engine_registry()[k].name);
   const auto f = run_cli(dir, "effects --json");
   ASSERT_EQ(f.exit_code, 0);
-  const auto effects = nlohmann::json::parse(f.out)["effects"];
-  EXPECT_EQ(effects.size(), 10u);
-  EXPECT_EQ(effects[6]["term"], "grad");
-  EXPECT_EQ(effects[6]["needs"], "temp2_c");
-  EXPECT_NE(run_cli(dir, "effects").out.find("warmup"), std::string::npos);
+  const auto listed = nlohmann::json::parse(f.out)["effects"];
+  ASSERT_EQ(listed.size(), effects::registry().size());
+  const std::string text = run_cli(dir, "effects").out;
+  for (std::size_t k = 0; k < listed.size(); ++k) {
+    const effects::Effect& effect = *effects::registry()[k];
+    EXPECT_EQ(listed[k]["term"], std::string(effect.name));
+    EXPECT_EQ(listed[k]["needs"], effect.needs_temp2() ? "temp2_c" : "temp_c");
+    EXPECT_EQ(listed[k].contains("parameter"), effect.parameter.has_value());
+    EXPECT_NE(text.find(std::string(effect.meaning)), std::string::npos) << effect.name;
+  }
 }
 
 struct BadFit {

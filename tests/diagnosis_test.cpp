@@ -177,8 +177,7 @@ TEST(Diagnosis, NoiseFloorIsTheStdOfWhiteWindowMeansAndIgnoresTrendsAndSteps) {
 TEST(Diagnosis, ModelWithEveryTermHasNothingLeftToTry) {
   const SimPair run = simulate({}, 3);
   const PreparedData data = prepare_data(measured(run.with, run.with.gyro_dph), PipelineOptions{});
-  const Diagnosis d = diagnose(data, parse_formula("T + T^2 + T^3 + dT + T*dT + d2T + grad + hyst + warmup + t"),
-                               find_engine("ols"), {});
+  const Diagnosis d = diagnose(data, term_registry(), find_engine("ols"), {});
   EXPECT_TRUE(d.candidates.empty());
   EXPECT_NE(d.verdict.find("nothing left to try"), std::string::npos) << d.verdict;
 }
