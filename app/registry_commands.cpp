@@ -18,7 +18,7 @@ int run_engines(bool json) {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     for (const fit::EngineInfo& e : fit::engine_registry()) {
       nlohmann::ordered_json options = nlohmann::ordered_json::object();
-      for (const auto& [name, text] : e.options) options[name] = text;
+      for (const fit::OptionInfo& o : e.options) options[o.key] = o.line();
       j.push_back({{"name", e.name},
                    {"description", e.description},
                    {"stochastic", e.stochastic},
@@ -30,7 +30,7 @@ int run_engines(bool json) {
   }
   for (const fit::EngineInfo& e : fit::engine_registry()) {
     fmt::print("{:<9} {}{}\n", e.name, e.description, e.stochastic ? " [seeded]" : "");
-    for (const auto& [name, text] : e.options) fmt::print("          --option {}=  {}\n", name, text);
+    for (const fit::OptionInfo& o : e.options) fmt::print("          --option {}=  {}\n", o.key, o.line());
   }
   return 0;
 }

@@ -39,16 +39,5 @@ TEST(Ols, IntervalsCoverTheTruthUnderAutocorrelatedNoise) {
   for (int j = 0; j < 3; ++j) EXPECT_GE(covered[j], 85) << "term " << j;
 }
 
-TEST(Ols, RejectsOptions) {
-  EngineSettings s;
-  s.options["fish"] = "30";
-  try {
-    ols_engine_info().make(s);
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("ols has no option 'fish'"), std::string::npos);
-  }
-}
-
 }  // namespace
 }  // namespace gyrotherm::fit

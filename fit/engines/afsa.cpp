@@ -17,15 +17,21 @@ namespace {
 constexpr char kName[] = "afsa";
 constexpr double kBoxWidth = 2.0;
 
-// The one place the option rules live: make() reads KEY=VALUE strings with
-// them and validate() checks an Options aggregate with the same reader.
-void read_options(OptionReader& reader, AfsaEngine::Options& o) {
-  reader.integer("fish", o.fish, 2, 100000);
-  reader.integer("max_iterations", o.max_iterations, 1, 100000000);
-  reader.real("visual", o.visual, 0.0, 1.0, true);
-  reader.real("step", o.step, 0.0, 1.0, true);
-  reader.real("crowding", o.crowding, 0.0, 1.0, true);
-  reader.integer("try_number", o.try_number, 1, 1000);
+using Options = AfsaEngine::Options;
+
+// Every option, once: parsing, validate() and the listing read this table
+// (a function's static, so that it exists whenever the registry is built).
+const OptionTable<Options>& option_table() {
+  static const OptionTable<Options> table = {
+    {"fish", &Options::fish, whole(2, 100000), "N, the swarm size"},
+    {"max_iterations", &Options::max_iterations, whole(1, 100000000), "iteration limit"},
+    {"visual", &Options::visual, number_above(0.0, 1.0), "Visual, fraction of the box width"},
+    {"step", &Options::step, number_above(0.0, 1.0), "Step, fraction of the box width"},
+    {"crowding", &Options::crowding, number_above(0.0, 1.0),
+     "δ, crowded when n_f/N ≥ δ (1: never)"},
+    {"try_number", &Options::try_number, whole(1, 1000), "prey attempts before a random step"},
+  };
+  return table;
 }
 
 using fish_swarm::Fish;
@@ -102,18 +108,7 @@ FitResult run(const AfsaEngine::Options& o, const LinearProblem& problem,
 }  // namespace
 
 void AfsaEngine::Options::validate() const {
-  std::map<std::string, std::string> given = {
-      {"fish", fmt::format("{}", fish)},
-      {"max_iterations", fmt::format("{}", max_iterations)},
-      {"visual", fmt::format("{}", visual)},
-      {"step", fmt::format("{}", step)},
-      {"crowding", fmt::format("{}", crowding)},
-      {"try_number", fmt::format("{}", try_number)},
-  };
-  OptionReader reader(kName, given);
-  Options copy = *this;
-  read_options(reader, copy);
-  reader.finish();
+  check_options(kName, option_table(), *this);
   check_stopping_rules(kName, max_evaluations, target_objective);
 }
 
@@ -124,30 +119,15 @@ FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) c
 }
 
 EngineInfo afsa_engine_info() {
-  const AfsaEngine::Options d;
   EngineInfo info;
   info.name = kName;
   info.description =
       "artificial fish swarm (Li 2002): prey, swarm and follow within a fixed Visual and Step";
   info.stochastic = true;
-  info.default_evaluations = d.max_evaluations;
-  info.options = {
-      {"fish", fmt::format("{}: N, the swarm size", d.fish)},
-      {"max_iterations", fmt::format("{}: iteration limit", d.max_iterations)},
-      {"visual", fmt::format("{}: Visual, fraction of the box width", d.visual)},
-      {"step", fmt::format("{}: Step, fraction of the box width", d.step)},
-      {"crowding", fmt::format("{}: δ, crowded when n_f/N ≥ δ (1: never)", d.crowding)},
-      {"try_number", fmt::format("{}: prey attempts before a random step", d.try_number)},
-  };
+  info.default_evaluations = Options{}.max_evaluations;
+  info.options = describe_options(option_table());
   info.make = [](const EngineSettings& settings) -> std::unique_ptr<Engine> {
-    AfsaEngine::Options o;
-    OptionReader reader(kName, settings.options);
-    read_options(reader, o);
-    reader.finish();
-    o.seed = settings.seed;
-    if (settings.max_evaluations != 0) o.max_evaluations = settings.max_evaluations;
-    o.target_objective = settings.target_objective;
-    return std::make_unique<AfsaEngine>(o);
+    return std::make_unique<AfsaEngine>(options_from(kName, option_table(), settings));
   };
   return info;
 }

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 
@@ -83,79 +82,6 @@ const EngineInfo& find_engine(std::string_view name) {
   std::string known;
   for (const EngineInfo& info : engine_registry()) known += (known.empty() ? "" : ", ") + info.name;
   throw InputError(fmt::format("unknown engine '{}' (known engines: {})", name, known));
-}
-
-OptionReader::OptionReader(std::string engine, const std::map<std::string, std::string>& options)
-    : engine_(std::move(engine)), options_(options) {}
-
-namespace {
-double parse_number(const std::string& engine, const std::string& key, const std::string& text) {
-  double v = 0.0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v))
-    throw InputError(fmt::format("{} option {}={}: expected a number", engine, key, text));
-  return v;
-}
-}  // namespace
-
-void OptionReader::integer(const std::string& key, int& value, int lo, int hi) {
-  known_.push_back(key);
-  const auto it = options_.find(key);
-  if (it == options_.end()) return;
-  const double v = parse_number(engine_, key, it->second);
-  if (v != std::floor(v) || v < lo || v > hi)
-    throw InputError(fmt::format("{} option {}={}: must be a whole number from {} to {}", engine_,
-                                 key, it->second, lo, hi));
-  value = static_cast<int>(v);
-}
-
-void OptionReader::integer_or_auto(const std::string& key, int& value, int lo, int hi) {
-  const auto it = options_.find(key);
-  if (it != options_.end() && it->second == "auto") {
-    known_.push_back(key);
-    value = 0;
-    return;
-  }
-  try {
-    integer(key, value, lo, hi);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{} (or auto)", e.what()));
-  }
-}
-
-void OptionReader::real(const std::string& key, double& value, double lo, double hi,
-                        bool lo_open) {
-  known_.push_back(key);
-  const auto it = options_.find(key);
-  if (it == options_.end()) return;
-  const double v = parse_number(engine_, key, it->second);
-  if ((lo_open ? v <= lo : v < lo) || v > hi)
-    throw InputError(fmt::format("{} option {}={}: must be {} {} and <= {}", engine_, key,
-                                 it->second, lo_open ? ">" : ">=", lo, hi));
-  value = v;
-}
-
-void OptionReader::choice(const std::string& key, std::string& value,
-                          const std::vector<std::string>& allowed) {
-  known_.push_back(key);
-  const auto it = options_.find(key);
-  if (it == options_.end()) return;
-  if (std::find(allowed.begin(), allowed.end(), it->second) == allowed.end()) {
-    std::string list;
-    for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-    throw InputError(fmt::format("{} option {}={}: must be one of {}", engine_, key, it->second, list));
-  }
-  value = it->second;
-}
-
-void OptionReader::finish() const {
-  for (const auto& [key, value] : options_) {
-    if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
-    std::string list;
-    for (const std::string& k : known_) list += (list.empty() ? "" : ", ") + k;
-    throw InputError(fmt::format("{} has no option '{}' (its options: {})", engine_, key,
-                                 list.empty() ? "none" : list));
-  }
 }
 
 void check_stopping_rules(std::string_view engine, long max_evaluations, double target_objective) {

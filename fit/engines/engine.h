@@ -22,6 +22,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fit/engines/engine_options.h"
 #include "fit/model/linear_problem.h"
 
 namespace gyrotherm::fit {
@@ -130,7 +131,7 @@ struct EngineInfo {
   std::string description;
   bool stochastic = false;
   long default_evaluations = 0;
-  std::vector<std::pair<std::string, std::string>> options;  // name → "default: meaning"
+  std::vector<OptionInfo> options;  // from the engine's option table (fit/engines/engine_options.h)
   std::function<std::unique_ptr<Engine>(const EngineSettings&)> make;
 };
 
@@ -138,28 +139,24 @@ const std::vector<EngineInfo>& engine_registry();
 // Throws InputError listing the known engines.
 const EngineInfo& find_engine(std::string_view name);
 
-// Reads engine-specific options from EngineSettings::options with checks; the
-// engine's `make` uses it, then finish() rejects unknown keys.
-class OptionReader {
- public:
-  OptionReader(std::string engine, const std::map<std::string, std::string>& options);
-  // Reads `key` into `value` if given; checks lo ≤ value ≤ hi.
-  void integer(const std::string& key, int& value, int lo, int hi);
-  // The same, or the word "auto", read as 0 (the engine then chooses).
-  void integer_or_auto(const std::string& key, int& value, int lo, int hi);
-  void real(const std::string& key, double& value, double lo, double hi, bool lo_open = false);
-  void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed);
-  void finish() const;  // throws for keys nobody asked for
-
- private:
-  std::string engine_;
-  const std::map<std::string, std::string>& options_;
-  std::vector<std::string> known_;
-};
-
 // The stopping rules every engine's Options share: throws InputError unless
 // max_evaluations ≥ 1 and target_objective is finite and ≥ 0.
 void check_stopping_rules(std::string_view engine, long max_evaluations, double target_objective);
+
+// The common part of an engine's `make`: its Options from the table and the
+// KEY=VALUE strings, and, for an engine that has them, the seed, the budget
+// (0 keeps the engine's default) and the target.
+template <class Options>
+Options options_from(std::string_view engine, const OptionTable<Options>& table,
+                     const EngineSettings& settings) {
+  Options o;
+  read_options(engine, table, settings.options, o);
+  if constexpr (requires { o.seed; }) o.seed = settings.seed;
+  if constexpr (requires { o.max_evaluations; })
+    if (settings.max_evaluations != 0) o.max_evaluations = settings.max_evaluations;
+  if constexpr (requires { o.target_objective; }) o.target_objective = settings.target_objective;
+  return o;
+}
 
 // The registry entries, one function per engine file.
 EngineInfo ols_engine_info();

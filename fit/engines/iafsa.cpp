@@ -18,20 +18,29 @@ constexpr char kName[] = "iafsa";
 constexpr double kBoxWidth = 2.0;
 constexpr int kMaxIterations = 100000000;
 
-std::string auto_or(int value) { return value == IafsaEngine::kAuto ? "auto" : fmt::format("{}", value); }
+using Options = IafsaEngine::Options;
 
-// The one place the option rules live: make() reads KEY=VALUE strings with
-// them and validate() checks an Options aggregate with the same reader.
-void read_options(OptionReader& reader, IafsaEngine::Options& o) {
-  reader.integer_or_auto("fish", o.fish, 2, 100000);
-  reader.integer_or_auto("max_iterations", o.max_iterations, 1, kMaxIterations);
-  reader.real("visual", o.visual, 0.0, 1.0, true);
-  reader.real("step", o.step, 0.0, 1.0, true);
-  reader.real("visual_min", o.visual_min, 0.0, 1.0);
-  reader.real("step_min", o.step_min, 0.0, 1.0);
-  reader.real("crowding", o.crowding, 0.0, 1.0, true);
-  reader.integer("try_number", o.try_number, 1, 1000);
-  reader.choice("schedule", o.schedule, {"compound", "initial"});
+// Every option, once: parsing, validate() and the listing read this table
+// (a function's static, so that it exists whenever the registry is built).
+const OptionTable<Options>& option_table() {
+  static const OptionTable<Options> table = {
+      {"fish", &Options::fish, whole_or_auto(2, 100000),
+       "N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms"},
+      {"max_iterations", &Options::max_iterations, whole_or_auto(1, kMaxIterations),
+       "G_max of eq. (5), also a stopping rule; auto is 700 up to 3 terms, 700·2.5^(m − 3) for "
+       "m terms"},
+      {"visual", &Options::visual, number_above(0.0, 1.0), "Visual_0, fraction of the box width"},
+      {"step", &Options::step, number_above(0.0, 1.0), "Step_0, fraction of the box width"},
+      {"visual_min", &Options::visual_min, number_in(0.0, 1.0),
+       "Visual_min of eq. (5), fraction of the box width"},
+      {"step_min", &Options::step_min, number_in(0.0, 1.0),
+       "Step_min of eq. (5), fraction of the box width"},
+      {"crowding", &Options::crowding, number_above(0.0, 1.0), "δ, crowded when n/N ≥ δ (1: never)"},
+      {"try_number", &Options::try_number, whole(1, 1000), "prey attempts before a random step"},
+      {"schedule", &Options::schedule, one_of({"compound", "initial"}),
+       "eq. (5) as an update (compound) or from Visual_0, Step_0 (initial)"},
+  };
+  return table;
 }
 
 using fish_swarm::Fish;
@@ -130,21 +139,7 @@ FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
 }  // namespace
 
 void IafsaEngine::Options::validate() const {
-  std::map<std::string, std::string> given = {
-      {"fish", auto_or(fish)},
-      {"max_iterations", auto_or(max_iterations)},
-      {"visual", fmt::format("{}", visual)},
-      {"step", fmt::format("{}", step)},
-      {"visual_min", fmt::format("{}", visual_min)},
-      {"step_min", fmt::format("{}", step_min)},
-      {"crowding", fmt::format("{}", crowding)},
-      {"try_number", fmt::format("{}", try_number)},
-      {"schedule", schedule},
-  };
-  OptionReader reader(kName, given);
-  Options copy = *this;
-  read_options(reader, copy);
-  reader.finish();
+  check_options(kName, option_table(), *this);
   check_stopping_rules(kName, max_evaluations, target_objective);
 }
 
@@ -164,38 +159,16 @@ FitResult IafsaEngine::fit(const LinearProblem& problem, FitObserver* observer) 
 }
 
 EngineInfo iafsa_engine_info() {
-  const IafsaEngine::Options d;
   EngineInfo info;
   info.name = kName;
   info.description =
       "improved artificial fish swarm (Yu et al. 2014): shrinking Visual and Step, swarm to the "
       "swarm's centre, follow the bulletin board";
   info.stochastic = true;
-  info.default_evaluations = d.max_evaluations;
-  info.options = {
-      {"fish", "auto: N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms"},
-      {"max_iterations", "auto: G_max of eq. (5), also a stopping rule; auto is 700 up to 3 "
-                         "terms, 700·2.5^(m − 3) for m terms"},
-      {"visual", fmt::format("{}: Visual_0, fraction of the box width", d.visual)},
-      {"step", fmt::format("{}: Step_0, fraction of the box width", d.step)},
-      {"visual_min", fmt::format("{}: Visual_min of eq. (5), fraction of the box width",
-                                 d.visual_min)},
-      {"step_min", fmt::format("{}: Step_min of eq. (5), fraction of the box width", d.step_min)},
-      {"crowding", fmt::format("{}: δ, crowded when n/N ≥ δ (1: never)", d.crowding)},
-      {"try_number", fmt::format("{}: prey attempts before a random step", d.try_number)},
-      {"schedule", fmt::format("{}: eq. (5) as an update (compound) or from Visual_0, Step_0 "
-                               "(initial)",
-                               d.schedule)},
-  };
+  info.default_evaluations = Options{}.max_evaluations;
+  info.options = describe_options(option_table());
   info.make = [](const EngineSettings& settings) -> std::unique_ptr<Engine> {
-    IafsaEngine::Options o;
-    OptionReader reader(kName, settings.options);
-    read_options(reader, o);
-    reader.finish();
-    o.seed = settings.seed;
-    if (settings.max_evaluations != 0) o.max_evaluations = settings.max_evaluations;
-    o.target_objective = settings.target_objective;
-    return std::make_unique<IafsaEngine>(o);
+    return std::make_unique<IafsaEngine>(options_from(kName, option_table(), settings));
   };
   return info;
 }

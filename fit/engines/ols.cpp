@@ -123,7 +123,7 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   r.history = {{1, r.objective}};
 
   const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
-  const LongRunVariance lrv = options_.intervals == IntervalMethod::ewc
+  const LongRunVariance lrv = options_.intervals == "ewc"
                                   ? equal_weighted_cosine(u, options_.ewc_terms)
                                   : prewhitened_newey_west(u);
   const Eigen::MatrixXd xtx_inv =
@@ -156,23 +156,34 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   return r;
 }
 
+namespace {
+
+// Every option, once: parsing, validate() and the listing read this table.
+const OptionTable<OlsOptions>& option_table() {
+  static const OptionTable<OlsOptions> table = {
+      {"intervals", &OlsOptions::intervals, one_of({"nw", "ewc"}),
+       "nw (pre-whitened Newey-West) or ewc (equal-weighted cosine)"},
+      {"ewc_terms", &OlsOptions::ewc_terms, whole(0, 1000),
+       "cosine terms B for ewc (0: ceil(0.4 l^(2/3)))"},
+  };
+  return table;
+}
+
+}  // namespace
+
+void OlsOptions::validate() const { check_options("ols", option_table(), *this); }
+
+OlsEngine::OlsEngine(OlsOptions options) : options_(std::move(options)) { options_.validate(); }
+
 EngineInfo ols_engine_info() {
   EngineInfo info;
   info.name = "ols";
   info.description = "exact least squares (QR) with autocorrelation-robust 95 % intervals: the reference";
   info.stochastic = false;
   info.default_evaluations = 1;
-  info.options = {{"intervals", "nw: nw (pre-whitened Newey-West) or ewc (equal-weighted cosine)"},
-                  {"ewc_terms", "0: cosine terms B for ewc (0: ceil(0.4 l^(2/3)))"}};
+  info.options = describe_options(option_table());
   info.make = [](const EngineSettings& s) -> std::unique_ptr<Engine> {
-    OlsOptions o;
-    OptionReader reader("ols", s.options);
-    std::string method = "nw";
-    reader.choice("intervals", method, {"ewc", "nw"});
-    o.intervals = method == "nw" ? IntervalMethod::newey_west : IntervalMethod::ewc;
-    reader.integer("ewc_terms", o.ewc_terms, 0, 1000);
-    reader.finish();
-    return std::make_unique<OlsEngine>(o);
+    return std::make_unique<OlsEngine>(options_from("ols", option_table(), s));
   };
   return info;
 }

@@ -31,20 +31,24 @@
 // References: Newey & West, Econometrica 55 (1987) 703–708; Andrews,
 // Econometrica 59 (1991) 817–858; Golub & Van Loan, Matrix Computations §5.4.
 
+#include <string>
+#include <vector>
+
 #include "fit/engines/engine.h"
 
 namespace gyrotherm::fit {
 
-enum class IntervalMethod { ewc, newey_west };
-
 struct OlsOptions {
-  IntervalMethod intervals = IntervalMethod::newey_west;  // long-run variance estimator
+  std::string intervals = "nw";  // long-run variance estimator: nw (Newey–West) or ewc
   int ewc_terms = 0;  // cosine frequencies B for ewc; 0: ⌈0.4·l^{2/3}⌉ (LLSW's rule)
+
+  // Throws InputError naming the field, its value and the rule.
+  void validate() const;
 };
 
 class OlsEngine : public Engine {
  public:
-  explicit OlsEngine(OlsOptions options = {}) : options_(options) {}
+  explicit OlsEngine(OlsOptions options = {});
   FitResult fit(const LinearProblem& problem, FitObserver* observer = nullptr) const override;
 
  private:

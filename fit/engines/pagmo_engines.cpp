@@ -205,16 +205,8 @@ EngineInfo base_info(std::string name, std::string description) {
   return info;
 }
 
-// Reads `population`: 0 (automatic, when `automatic` says how) or 5..kMaxPopulation;
-// pagmo's de and cmaes need at least 5 individuals.
-void read_population(OptionReader& reader, const std::string& engine,
-                     const std::map<std::string, std::string>& options, int& value, bool automatic) {
-  reader.integer("population", value, automatic ? 0 : 5, kMaxPopulation);
-  if (automatic && value > 0 && value < 5)
-    throw InputError(fmt::format("{} option population={}: must be 0 (automatic) or a whole number "
-                                 "from 5 to {}",
-                                 engine, options.at("population"), kMaxPopulation));
-}
+// Each engine below: its Options, its table (every option once: parsing and
+// the listing read it), and `make`.
 
 // ---------------------------------------------------------------------------
 // pso
@@ -237,38 +229,34 @@ long spso_swarm(std::size_t m) {
   return 10 + static_cast<long>(std::floor(2.0 * std::sqrt(static_cast<double>(m))));
 }
 
-EngineInfo pso_info() {
-  const PsoOptions d;
-  EngineInfo info = base_info("pso", "particle swarm optimisation (pagmo::pso)");
-  info.options = {
-      {"population", fmt::format("{}: particles (0: 10 + 2 sqrt(m); else 5..{})", d.population,
-                                 kMaxPopulation)},
-      {"omega", fmt::format("{}: inertia weight or constriction factor (0..1)", d.omega)},
-      {"eta1", fmt::format("{}: cognitive acceleration (0..4)", d.eta1)},
-      {"eta2", fmt::format("{}: social acceleration (0..4)", d.eta2)},
-      {"max_vel", fmt::format("{}: largest velocity as a fraction of the box (>0..1)", d.max_vel)},
-      {"variant", fmt::format("{}: velocity update 1..6 (5 constriction, 6 fully informed)", d.variant)},
-      {"topology", fmt::format("{}: 1 gbest, 2 lbest ring, 3 von Neumann, 4 adaptive random",
-                               d.topology)},
-      {"neighbours", fmt::format("{}: lbest ring neighbours / adaptive informants (2..population-1; "
-                                 "2..{} with the automatic swarm)",
-                                 d.neighbours, kSmallestAutomaticSwarm - 1)},
+const OptionTable<PsoOptions>& pso_table() {
+  using O = PsoOptions;
+  static const OptionTable<O> table = {
+      {"population", &O::population, whole_or_zero(5, kMaxPopulation, "automatic"),
+       "particles; automatic: 10 + 2 sqrt(m)"},
+      {"omega", &O::omega, number_in(0.0, 1.0), "inertia weight or constriction factor"},
+      {"eta1", &O::eta1, number_in(0.0, 4.0), "cognitive acceleration"},
+      {"eta2", &O::eta2, number_in(0.0, 4.0), "social acceleration"},
+      {"max_vel", &O::max_vel, number_above(0.0, 1.0), "largest velocity as a fraction of the box"},
+      {"variant", &O::variant, whole(1, 6), "velocity update (5 constriction, 6 fully informed)"},
+      {"topology", &O::topology, whole(1, 4), "1 gbest, 2 lbest ring, 3 von Neumann, 4 adaptive random"},
+      {"neighbours", &O::neighbours, whole(2, kMaxPopulation - 1),
+       "lbest ring neighbours / adaptive informants, at most population - 1 (11 with the "
+       "automatic swarm)"},
   };
+  return table;
+}
+
+EngineInfo pso_info() {
+  EngineInfo info = base_info("pso", "particle swarm optimisation (pagmo::pso)");
+  info.options = describe_options(pso_table());
   info.make = [](const EngineSettings& settings) {
-    PsoOptions o;
-    OptionReader r("pso", settings.options);
-    read_population(r, "pso", settings.options, o.population, /*automatic=*/true);
-    r.real("omega", o.omega, 0.0, 1.0);
-    r.real("eta1", o.eta1, 0.0, 4.0);
-    r.real("eta2", o.eta2, 0.0, 4.0);
-    r.real("max_vel", o.max_vel, 0.0, 1.0, /*lo_open=*/true);
-    r.integer("variant", o.variant, 1, 6);
-    r.integer("topology", o.topology, 1, 4);
+    const PsoOptions o = options_from("pso", pso_table(), settings);
     // pagmo's ring takes neighbours/2 on each side (1 would leave none) and
     // wraps once around the swarm (more than the other particles overruns it).
-    r.integer("neighbours", o.neighbours, 2,
-              (o.population > 0 ? o.population : kSmallestAutomaticSwarm) - 1);
-    r.finish();
+    const int most = (o.population > 0 ? o.population : kSmallestAutomaticSwarm) - 1;
+    if (o.neighbours > most)
+      reject_option("pso", "neighbours", std::to_string(o.neighbours), whole(2, most));
     Recipe recipe{
         .engine = "pso",
         .population = [o](std::size_t m) { return o.population > 0 ? o.population : spso_swarm(m); },
@@ -297,31 +285,27 @@ struct DeOptions {
   double xtol = 1e-12;  // stop when best and worst differ by less (L1, unit box)
 };
 
-EngineInfo de_info() {
-  const DeOptions d;
-  EngineInfo info = base_info("de", "differential evolution (pagmo::de)");
-  info.options = {
-      {"population", fmt::format("{}: individuals (5..{})", d.population, kMaxPopulation)},
-      {"F", fmt::format("{}: differential weight (0..1)", d.f)},
-      {"CR", fmt::format("{}: crossover probability (0..1)", d.cr)},
-      {"variant", fmt::format("{}: strategy 1..10 (1 best/1/exp, 2 rand/1/exp, 6 best/1/bin, "
-                              "7 rand/1/bin, ...)",
-                              d.variant)},
-      {"ftol", fmt::format("{}: stop when the spread of sigma is below this, units of y (0: never)",
-                           d.ftol)},
-      {"xtol", fmt::format("{}: stop when best and worst differ by less in the unit box (0..2)",
-                           d.xtol)},
+const OptionTable<DeOptions>& de_table() {
+  using O = DeOptions;
+  static const OptionTable<O> table = {
+      {"population", &O::population, whole(5, kMaxPopulation), "individuals"},
+      {"F", &O::f, number_in(0.0, 1.0), "differential weight"},
+      {"CR", &O::cr, number_in(0.0, 1.0), "crossover probability"},
+      {"variant", &O::variant, whole(1, 10),
+       "strategy (1 best/1/exp, 2 rand/1/exp, 6 best/1/bin, 7 rand/1/bin, ...)"},
+      {"ftol", &O::ftol, number_in(0.0, std::numeric_limits<double>::max()),
+       "stop when the spread of sigma is below this, units of y (0: never)"},
+      {"xtol", &O::xtol, number_in(0.0, 2.0),
+       "stop when best and worst differ by less in the unit box"},
   };
+  return table;
+}
+
+EngineInfo de_info() {
+  EngineInfo info = base_info("de", "differential evolution (pagmo::de)");
+  info.options = describe_options(de_table());
   info.make = [](const EngineSettings& settings) {
-    DeOptions o;
-    OptionReader r("de", settings.options);
-    read_population(r, "de", settings.options, o.population, /*automatic=*/false);
-    r.real("F", o.f, 0.0, 1.0);
-    r.real("CR", o.cr, 0.0, 1.0);
-    r.integer("variant", o.variant, 1, 10);
-    r.real("ftol", o.ftol, 0.0, std::numeric_limits<double>::max());
-    r.real("xtol", o.xtol, 0.0, 2.0);
-    r.finish();
+    const DeOptions o = options_from("de", de_table(), settings);
     Recipe recipe{.engine = "de",
                   .population = [o](std::size_t) { return long{o.population}; },
                   .evaluations_per_individual = 1,
@@ -350,26 +334,25 @@ long hansen_lambda(std::size_t m) {
   return std::max(5L, 4 + static_cast<long>(std::floor(3.0 * std::log(static_cast<double>(m)))));
 }
 
+const OptionTable<CmaesOptions>& cmaes_table() {
+  using O = CmaesOptions;
+  static const OptionTable<O> table = {
+      {"population", &O::population, whole_or_zero(5, kMaxPopulation, "automatic"),
+       "offspring per generation, lambda; automatic: 4 + 3 ln m"},
+      {"sigma0", &O::sigma0, number_above(0.0, 1.0), "initial step as a fraction of the box width"},
+      {"ftol", &O::ftol, number_in(0.0, std::numeric_limits<double>::max()),
+       "stop when the spread of sigma is below this, units of y (0: never)"},
+      {"xtol", &O::xtol, number_in(0.0, 2.0), "stop when a step is shorter in the unit box"},
+  };
+  return table;
+}
+
 EngineInfo cmaes_info() {
-  const CmaesOptions d;
   EngineInfo info =
       base_info("cmaes", "covariance matrix adaptation evolution strategy (pagmo::cmaes)");
-  info.options = {
-      {"population", fmt::format("{}: offspring per generation, lambda (0: 4 + 3 ln m; else 5..{})",
-                                 d.population, kMaxPopulation)},
-      {"sigma0", fmt::format("{}: initial step as a fraction of the box width (>0..1)", d.sigma0)},
-      {"ftol", fmt::format("{}: stop when the spread of sigma is below this, units of y (0: never)",
-                           d.ftol)},
-      {"xtol", fmt::format("{}: stop when a step is shorter in the unit box (0..2)", d.xtol)},
-  };
+  info.options = describe_options(cmaes_table());
   info.make = [](const EngineSettings& settings) {
-    CmaesOptions o;
-    OptionReader r("cmaes", settings.options);
-    read_population(r, "cmaes", settings.options, o.population, /*automatic=*/true);
-    r.real("sigma0", o.sigma0, 0.0, 1.0, /*lo_open=*/true);
-    r.real("ftol", o.ftol, 0.0, std::numeric_limits<double>::max());
-    r.real("xtol", o.xtol, 0.0, 2.0);
-    r.finish();
+    const CmaesOptions o = options_from("cmaes", cmaes_table(), settings);
     Recipe recipe{
         .engine = "cmaes",
         .population = [o](std::size_t m) { return o.population > 0 ? o.population : hansen_lambda(m); },
@@ -393,22 +376,22 @@ struct AbcOptions {
   int limit = 0;        // failed trials before a source is abandoned (0: population·m)
 };
 
-EngineInfo abc_info() {
-  const AbcOptions d;
-  EngineInfo info = base_info("abc", "artificial bee colony (pagmo::bee_colony)");
-  info.options = {
-      {"population", fmt::format("{}: food sources; a generation costs twice this (5..{})",
-                                 d.population, kMaxPopulation)},
-      {"limit", fmt::format("{}: failed trials before a source is abandoned (0: population * m; "
-                            "else 1..1000000)",
-                            d.limit)},
+const OptionTable<AbcOptions>& abc_table() {
+  using O = AbcOptions;
+  static const OptionTable<O> table = {
+      {"population", &O::population, whole(5, kMaxPopulation),
+       "food sources; a generation costs twice this"},
+      {"limit", &O::limit, whole(0, 1000000),
+       "failed trials before a source is abandoned (0: population * m)"},
   };
+  return table;
+}
+
+EngineInfo abc_info() {
+  EngineInfo info = base_info("abc", "artificial bee colony (pagmo::bee_colony)");
+  info.options = describe_options(abc_table());
   info.make = [](const EngineSettings& settings) {
-    AbcOptions o;
-    OptionReader r("abc", settings.options);
-    read_population(r, "abc", settings.options, o.population, /*automatic=*/false);
-    r.integer("limit", o.limit, 0, 1000000);
-    r.finish();
+    const AbcOptions o = options_from("abc", abc_table(), settings);
     Recipe recipe{
         .engine = "abc",
         .population = [o](std::size_t) { return long{o.population}; },

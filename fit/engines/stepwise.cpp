@@ -141,25 +141,40 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
   return r;
 }
 
+namespace {
+
+// Every option, once: parsing, validate() and the listing read this table.
+const OptionTable<StepwiseOptions>& option_table() {
+  static const OptionTable<StepwiseOptions> table = {
+      {"p_enter", &StepwiseOptions::p_enter, number_above(0.0, 1.0),
+       "a term enters when its p-value is below this"},
+      {"p_remove", &StepwiseOptions::p_remove, number_above(0.0, 1.0),
+       "a term leaves when its p-value is above this (>= p_enter)"},
+  };
+  return table;
+}
+
+}  // namespace
+
+void StepwiseOptions::validate() const {
+  check_options("stepwise", option_table(), *this);
+  if (p_remove < p_enter)
+    throw InputError(fmt::format("stepwise options: p_remove={} must be >= p_enter={} (or a "
+                                 "term could enter and leave forever)",
+                                 p_remove, p_enter));
+}
+
+StepwiseEngine::StepwiseEngine(StepwiseOptions options) : options_(options) { options_.validate(); }
+
 EngineInfo stepwise_engine_info() {
   EngineInfo info;
   info.name = "stepwise";
   info.description = "stepwise regression as MATLAB's stepwisefit (enter p<0.05, remove p>0.10)";
   info.stochastic = false;
   info.default_evaluations = 0;
-  info.options = {{"p_enter", "0.05: a term enters when its p-value is below this"},
-                  {"p_remove", "0.10: a term leaves when its p-value is above this"}};
+  info.options = describe_options(option_table());
   info.make = [](const EngineSettings& s) -> std::unique_ptr<Engine> {
-    StepwiseOptions o;
-    OptionReader reader("stepwise", s.options);
-    reader.real("p_enter", o.p_enter, 0.0, 1.0, true);
-    reader.real("p_remove", o.p_remove, 0.0, 1.0, true);
-    reader.finish();
-    if (o.p_remove < o.p_enter)
-      throw InputError(fmt::format("stepwise options: p_remove={} must be >= p_enter={} (or a "
-                                   "term could enter and leave forever)",
-                                   o.p_remove, o.p_enter));
-    return std::make_unique<StepwiseEngine>(o);
+    return std::make_unique<StepwiseEngine>(options_from("stepwise", option_table(), s));
   };
   return info;
 }

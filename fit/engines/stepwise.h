@@ -28,12 +28,15 @@ namespace gyrotherm::fit {
 
 struct StepwiseOptions {
   double p_enter = 0.05;   // a term enters when its p-value is below this
-  double p_remove = 0.10;  // a term leaves when its p-value is above this
+  double p_remove = 0.10;  // a term leaves when its p-value is above this, ≥ p_enter
+
+  // Throws InputError naming the field, its value and the rule.
+  void validate() const;
 };
 
 class StepwiseEngine : public Engine {
  public:
-  explicit StepwiseEngine(StepwiseOptions options) : options_(options) {}
+  explicit StepwiseEngine(StepwiseOptions options);
   FitResult fit(const LinearProblem& problem, FitObserver* observer = nullptr) const override;
 
  private:
