@@ -14,7 +14,7 @@
 #include "app/commands.h"
 #include "studies/diagnose/diagnose_plots.h"
 #include "app/pipeline_options.h"
-#include "studies/diagnose/diagnosis.h"
+#include "studies/diagnose/report.h"
 #include "fit/model/formula.h"
 #include "sim/util/input_error.h"
 
@@ -34,87 +34,28 @@ struct DiagnoseOptions {
 
 std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
 
-nlohmann::ordered_json segment_json(const fit::SegmentReport& s) {
-  return {{"kind", s.kind},       {"start_s", s.start_s},         {"end_s", s.end_s},
-          {"temp_min_c", s.temp_min_c}, {"temp_max_c", s.temp_max_c}, {"windows", s.windows},
-          {"rms_dph", s.rms_dph}, {"ratio_to_floor", s.ratio_to_floor}};
-}
-
-std::string quoted(const std::string& s) { return "\"" + s + "\""; }
-
 int run_diagnose(const DiagnoseOptions& o) {
-  std::vector<const fit::Term*> base_terms = fit::parse_formula(o.model);
+  const std::vector<const fit::Term*> base_terms = fit::parse_formula(o.model);
   std::string formula = o.model;
   for (const std::string& a : o.add) formula += " + " + a;
   const std::vector<const fit::Term*> terms = fit::parse_formula(formula);
   const fit::EngineInfo& engine = fit::find_engine(o.engine);
   fit::EngineSettings settings;
   settings.seed = o.seed;
-  engine.make(settings);
+  engine.make(settings);  // validates the settings before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
   const fit::Measurement measurement = fit::read_measurement_csv(o.data, pipeline.columns);
   const fit::PreparedData data = fit::prepare_data(measurement, pipeline);
-  fit::check_columns(terms, data, pipeline.columns);
-  std::size_t available = 0;
-  for (const fit::Term* t : fit::term_registry()) available += !t->needs_temp2() || data.has_temp2();
-  if (terms.size() >= available)
-    throw InputError(fmt::format(
-        "model '{}' already contains every term that can be tried on this data{}: there is "
-        "nothing left to try (see 'gyrotherm effects'; drop terms with --model to test them)",
-        fit::formula_text(terms), data.has_temp2() ? "" : " (grad needs a temp2_c column)"));
-
-  const fit::Diagnosis d = fit::diagnose(data, terms, engine, settings);
-  // Step 5: with --add, the model without the added terms is the "before".
-  std::optional<fit::Diagnosis> before;
-  if (!o.add.empty()) before = fit::diagnose(data, base_terms, engine, settings);
-  const std::string next =
-      d.suggested_model.empty()
-          ? ""
-          : fmt::format("gyrotherm diagnose {} --model {}", o.data, quoted(d.suggested_model));
+  const fit::DiagnoseReport report =
+      fit::diagnose_record(data, pipeline.columns, base_terms, terms, engine, settings);
+  const fit::Diagnosis& d = report.diagnosis;
+  const std::optional<fit::Diagnosis>& before = report.before;
+  const std::string& next = report.next_command;
 
   if (!o.plots.empty())
-    write_diagnosis_plots(o.plots, measurement, data, d, before ? &*before : nullptr, pipeline);
-
+    fit::write_diagnosis_plots(o.plots, measurement, data, d, before ? &*before : nullptr, pipeline);
   if (o.json) {
-    nlohmann::ordered_json j;
-    j["model"] = fit::formula_text(terms);
-    j["engine"] = engine.name;
-    j["instability_dph"] = d.fit.instability_after_dph;
-    j["instability_before_dph"] = d.fit.instability_before_dph;
-    j["noise_floor_dph"] = d.noise_floor_dph;
-    j["ratio_to_floor"] = d.excess_ratio();
-    nlohmann::ordered_json segments = nlohmann::ordered_json::array();
-    for (std::size_t i : d.worst_segments()) segments.push_back(segment_json(d.segments[i]));
-    j["segments"] = segments;
-    nlohmann::ordered_json bands = nlohmann::ordered_json::array();
-    for (const auto& b : d.bands) bands.push_back(segment_json(b));
-    j["bands"] = bands;
-    nlohmann::ordered_json effects = nlohmann::ordered_json::array();
-    for (const fit::CandidateReport& c : d.candidates) {
-      nlohmann::ordered_json e = {{"term", c.term->name},
-                                  {"meaning", c.term->meaning},
-                                  {"instability_after_dph", c.instability_after_dph},
-                                  {"reduction_pct", c.reduction_pct},
-                                  {"significant", c.significant},
-                                  {"p_value", c.p_value},
-                                  {"cv_gain_pct", c.cv_gain_pct}};
-      if (c.term->parameter) e[c.term->parameter->name] = c.parameter;
-      effects.push_back(e);
-    }
-    j["missing_effects"] = effects;
-    j["skipped"] = d.skipped;
-    j["significance"] =
-        "block cross-validation: blocks of 10 windows, one-sided sign-flip test of the per-block "
-        "SSE gains, Bonferroni over the candidates, and at least 10 % of the excess removed";
-    j["warnings"] = d.fit.warnings;
-    j["verdict"] = d.verdict;
-    j["next_command"] = next;
-    if (before) {
-      j["before_after"] = {{"model_before", fit::formula_text(base_terms)},
-                           {"instability_before_dph", before->fit.instability_after_dph},
-                           {"instability_after_dph", d.fit.instability_after_dph}};
-    }
-    fmt::print("{}\n", j.dump());
+    fmt::print("{}\n", fit::diagnosis_json(report).dump());
     return 0;
   }
 

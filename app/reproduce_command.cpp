@@ -11,9 +11,7 @@
 
 #include "app/comma_list.h"
 #include "app/commands.h"
-#include "sim/util/gnuplot.h"
-#include "studies/reproduce/reproduce.h"
-#include "sim/util/atomic_file.h"
+#include "studies/reproduce/report.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
@@ -30,217 +28,6 @@ struct ReproduceCli {
 std::string default_scenarios_dir() {
   if (std::filesystem::exists("scenarios/cycle.toml")) return "scenarios";
   return std::string(GYROTHERM_SOURCE_DIR) + "/scenarios";
-}
-
-using Json = nlohmann::ordered_json;
-
-Json table_json(const fit::ReproduceResult& r) {
-  const fit::PaperFigures paper;
-  Json j;
-  Json cycle_engines;
-  for (const auto& e : r.engines) {
-    Json coefficients;
-    coefficients["1"] = e.fit.coefficients.intercept;
-    for (std::size_t k = 0; k < e.fit.terms.size(); ++k)
-      coefficients[e.fit.terms[k]->name] = e.fit.coefficients.b[k];
-    Json errors;
-    for (const auto& [k, v] : e.coefficient_error) errors[k] = v;
-    cycle_engines[e.engine] = {{"after_dph", e.fit.instability_after_dph},
-                               {"ratio", e.fit.ratio()},
-                               {"coefficients", coefficients},
-                               {"coefficient_error", errors},
-                               {"evaluations", e.fit.engine.evaluations},
-                               {"seconds", e.fit.engine.seconds},
-                               {"termination", fit::to_string(e.fit.engine.termination)},
-                               {"gap_to_least_squares", e.fit.instability_after_dph / e.fit.optimum_dph - 1.0}};
-  }
-  j["cycle"] = {{"raw_dph", r.cycle_raw_dph}, {"windows", r.cycle_data.series.size()},
-                {"engines", cycle_engines}};
-  for (const fit::TestOutcome* t : {&r.test1, &r.test2}) {
-    Json engines;
-    for (const auto& [name, c] : t->by_engine)
-      engines[name] = {{"after_dph", c.after_dph}, {"times", c.ratio()}};
-    j[t->name] = {{"before_dph", t->before_dph}, {"windows", t->by_engine.empty() ? 0 : t->by_engine.begin()->second.data.series.size()},
-                  {"compensation", "causal (backward differences, completed windows only)"},
-                  {"engines", engines}};
-  }
-  j["paper"] = {{"cycle", {{"raw_dph", paper.cycle_raw}, {"stepwise_dph", paper.cycle_stepwise}, {"iafsa_dph", paper.cycle_iafsa}}},
-                {"test1", {{"before_dph", paper.test1_before}, {"after_dph", paper.test1_after}, {"times", paper.test1_times}}},
-                {"test2", {{"before_dph", paper.test2_before}, {"after_dph", paper.test2_after}, {"times", paper.test2_times}}}};
-  j["seeds"] = {{"cycle", r.cycle_seed}, {"test1", r.test1.seed}, {"test2", r.test2.seed}};
-  j["seconds"] = r.seconds;
-  return j;
-}
-
-std::string pct(double ours, double paper) { return fmt::format("{:+.0f} %", 100.0 * (ours / paper - 1.0)); }
-
-std::string table_markdown(const fit::ReproduceResult& r, double total_seconds) {
-  const fit::PaperFigures paper;
-  auto find = [&](const std::string& name) -> const fit::EngineOnCycle* {
-    for (const auto& e : r.engines)
-      if (e.engine == name) return &e;
-    return nullptr;
-  };
-  std::string md = "# Table 1, side by side\n\n";
-  md += fmt::format(
-      "Made by `gyrotherm reproduce` (the README's main command) in {:.1f} s on this machine; seeds: "
-      "cycle {}, Test 1 {}, Test 2 {}. Instability = standard deviation of the 100 s means "
-      "(°/h). The gyro is the default simulated one (`scenarios/gyro.toml`), calibrated as "
-      "`results/calibration.md` describes.\n\n",
-      total_seconds, r.cycle_seed, r.test1.seed, r.test2.seed);
-
-  md += "## −40..60 °C cycle (the training data)\n\n| | paper | ours | ours vs paper |\n|---|---|---|---|\n";
-  md += fmt::format("| raw | {} | {:.5f} | {} |\n", paper.cycle_raw, r.cycle_raw_dph, pct(r.cycle_raw_dph, paper.cycle_raw));
-  if (const auto* s = find("stepwise"))
-    md += fmt::format("| stepwise | {} (4.35×) | {:.5f} ({:.2f}×) | {} |\n", paper.cycle_stepwise,
-                      s->fit.instability_after_dph, s->fit.ratio(), pct(s->fit.instability_after_dph, paper.cycle_stepwise));
-  if (const auto* s = find("iafsa"))
-    md += fmt::format("| IAFSA | {} (5.15×) | {:.5f} ({:.2f}×) | {} |\n", paper.cycle_iafsa,
-                      s->fit.instability_after_dph, s->fit.ratio(), pct(s->fit.instability_after_dph, paper.cycle_iafsa));
-  md += "\nEvery engine on the cycle (the paper's model T + T^2 + dT; errors against the simulator's truth):\n\n"
-        "| engine | after (°/h) | ratio | gap to least squares | b1 (T) | b2 (T^2) | b3 (dT) | error b1 / b2 / b3 | evaluations | seconds |\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& e : r.engines) {
-    auto err = [&](const char* k) {
-      const auto it = e.coefficient_error.find(k);
-      return it == e.coefficient_error.end() ? std::string("–") : fmt::format("{:+.1f} %", 100.0 * it->second);
-    };
-    md += fmt::format("| {} | {:.5f} | {:.2f} | {:.1e} | {:.4g} | {:.4g} | {:.4g} | {} / {} / {} | {} | {:.4f} |\n", e.engine,
-                      e.fit.instability_after_dph, e.fit.ratio(),
-                      e.fit.instability_after_dph / e.fit.optimum_dph - 1.0, e.fit.coefficients.b[0],
-                      e.fit.coefficients.b[1], e.fit.coefficients.b[2], err("T"), err("T^2"), err("dT"),
-                      e.fit.engine.evaluations, e.fit.engine.seconds);
-  }
-  md += fmt::format("\nTruth: b1 = {}, b2 = {}, b3 = {} (the paper's IAFSA model).\n",
-                    r.truth.coefficients.at("T"), r.truth.coefficients.at("T^2"), r.truth.coefficients.at("dT"));
-
-  for (const fit::TestOutcome* t : {&r.test1, &r.test2}) {
-    const bool one = t->name == "test1";
-    md += fmt::format("\n## {} ({})\n\nEach engine's cycle fit applied with the causal, real-time compensator.\n\n"
-                      "| | before (°/h) | after (°/h) | times |\n|---|---|---|---|\n",
-                      one ? "Test 1" : "Test 2", one ? "random profile, INS in the chamber, 72 h" : "natural warm-up in a 23 °C room, 16 h");
-    md += fmt::format("| paper (IAFSA) | {} | {} | {} |\n", one ? paper.test1_before : paper.test2_before,
-                      one ? paper.test1_after : paper.test2_after, one ? paper.test1_times : paper.test2_times);
-    for (const auto& e : r.engines) {
-      const auto& c = t->by_engine.at(e.engine);
-      md += fmt::format("| ours, {} | {:.5f} | {:.5f} | {:.2f} |\n", e.engine, c.before_dph, c.after_dph, c.ratio());
-    }
-    const std::string best = t->by_engine.count("iafsa") ? "iafsa" : r.engines.front().engine;
-    const auto& c = t->by_engine.at(best);
-    md += fmt::format("\nOurs ({}) against the paper: before {}, after {}{}.\n", best,
-                      pct(c.before_dph, one ? paper.test1_before : paper.test2_before),
-                      pct(c.after_dph, one ? paper.test1_after : paper.test2_after),
-                      one ? "; the raw figure of Test 1 cannot be reached with the paper's coefficients "
-                            "and profile (even a gyro following the chamber instantly gives about "
-                            "0.0106 °/h), see results/calibration.md"
-                          : "");
-  }
-
-  md += R"(
-## What the engines can and cannot do
-
-Every engine here minimises the same objective, the paper's σ of the residual
-of the 100 s means, on the same data. On the training data nothing can beat the
-exact least-squares optimum (`ols`): the objective is a convex quadratic in
-the coefficients, so any engine that converges reaches the same σ and the same
-coefficients, and the gap column above measures how close each came. The
-paper's "IAFSA 15.5 % better than stepwise regression" cannot come from a
-better optimiser of the same σ; an engine can differ from least squares only
-when:
-
-* **a term is dropped**: stepwise keeps a term only if its F-test passes, and a
-  dropped term (here often T^2, whose effect over −40..60 °C is small next to
-  the noise) leaves its part of the bias in the residual;
-* **the search has not converged**: a swarm stopped by its iteration limit or
-  budget sits above the optimum (see the gap column; basic AFSA is the usual
-  case);
-* **the terms differ**: a different model (another term, another derivative
-  estimate, a different averaging) is a different problem with a different
-  optimum;
-* **the data differ**: outliers left in, or other preprocessing, change the
-  optimum itself.
-
-Out of sample (Tests 1 and 2) all converged engines give the same numbers
-because they found the same coefficients; what differs from the cycle is the
-data: the INS has other thermal paths than the gyro in its shield, and the
-causal compensator sees dT/dt half a window late.
-)";
-  return md;
-}
-
-void plot_figures(const std::string& dir, const fit::ReproduceResult& r) {
-  auto hours = [](const std::vector<double>& s) {
-    std::vector<double> h(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i) h[i] = s[i] / 3600.0;
-    return h;
-  };
-  const auto& c = r.cycle_run;
-  {
-    GnuplotFigure fig(dir + "/fig2_cycle_1s.png", 1400, 700);
-    std::vector<double> t, g, temp;
-    for (std::size_t k = 0; k < c.rows(); k += 2) {
-      t.push_back(c.time_s[k] / 3600.0);
-      g.push_back(c.gyro_dph[k]);
-      temp.push_back(c.temp_c[k]);
-    }
-    fig.data("d", {"t_h", "gyro", "temp"}, {t, g, temp});
-    fig.commands("set title 'Fig. 2: gyro output (1 s) and temperature, -40..60 degC cycle'\n"
-                 "set xlabel 'time (h)'\nset ylabel 'gyro output (°/h)'\nset y2label 'temperature (°C)'\n"
-                 "set y2tics\nset ytics nomirror\nset key outside right\n"
-                 "plot $d using 1:2 with dots lc rgb '#555555' title '1 s output', "
-                 "$d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'temperature'\n");
-    fig.render();
-  }
-  const fit::AveragedSeries& s = r.cycle_data.series;
-  {
-    GnuplotFigure fig(dir + "/fig3_cycle_100s.png", 1400, 700);
-    fig.data("d", {"t_h", "gyro", "temp"}, {hours(s.time_s), s.gyro_dph, s.temp_c});
-    fig.commands(fmt::format("set title 'Fig. 3: 100 s means and temperature, cycle (instability {:.5f} °/h)'\n"
-                             "set xlabel 'time (h)'\nset ylabel 'gyro, 100 s means (°/h)'\nset y2label 'temperature (°C)'\n"
-                             "set y2tics\nset ytics nomirror\nset key outside right\n"
-                             "plot $d using 1:2 with linespoints pt 7 ps 0.4 lc rgb '#333333' title '100 s means', "
-                             "$d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'temperature'\n",
-                             r.cycle_raw_dph));
-    fig.render();
-  }
-  {  // Figs. 4 and 5: compensated with stepwise and with IAFSA (or whatever ran).
-    GnuplotFigure fig(dir + "/fig4_5_cycle_compensated.png", 1400, 700);
-    std::string plot = "plot ";
-    int n = 0;
-    for (const auto& e : r.engines) {
-      if (e.engine != "stepwise" && e.engine != "iafsa" && e.engine != "ols") continue;
-      const Eigen::MatrixXd x = fit::design_matrix(r.cycle_data.derived, e.fit.terms, e.fit.parameters);
-      const std::vector<double> model = fit::model_values(x, e.fit.coefficients);
-      std::vector<double> comp(s.size());
-      for (std::size_t p = 0; p < s.size(); ++p) comp[p] = s.gyro_dph[p] - model[p];
-      fig.data("e" + std::to_string(n), {"t_h", "compensated"}, {hours(s.time_s), comp});
-      plot += fmt::format("{}$e{} using 1:2 with linespoints pt 7 ps 0.4 title '{} ({:.5f} °/h)'", n ? ", " : "", n,
-                          e.engine, e.fit.instability_after_dph);
-      ++n;
-    }
-    fig.commands("set title 'Figs. 4-5: cycle after compensation (100 s means minus the model)'\n"
-                 "set xlabel 'time (h)'\nset ylabel 'compensated bias (°/h)'\nset key outside right\n" + plot + "\n");
-    if (n > 0) fig.render();
-  }
-  for (const fit::TestOutcome* t : {&r.test1, &r.test2}) {
-    if (t->by_engine.empty()) continue;
-    const std::string best = t->by_engine.count("iafsa") ? "iafsa" : t->by_engine.begin()->first;
-    const fit::Compensation& comp = t->by_engine.at(best);
-    const fit::AveragedSeries& ts = comp.data.series;
-    const bool one = t->name == "test1";
-    GnuplotFigure fig(dir + (one ? "/fig6_7_test1.png" : "/fig8_9_test2.png"), 1400, 1000);
-    fig.data("d", {"t_h", "gyro", "temp", "comp"}, {hours(ts.time_s), ts.gyro_dph, ts.temp_c, comp.window_compensated_dph});
-    fig.commands(fmt::format(
-        "set multiplot layout 2,1 title '{}'\n"
-        "set ylabel 'gyro, 100 s means (°/h)'\nset y2label 'temperature (°C)'\nset y2tics\nset ytics nomirror\nset key outside right\n"
-        "plot $d using 1:2 with lines lc rgb '#333333' title 'before ({:.5f} °/h)', $d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'temperature'\n"
-        "unset y2tics\nunset y2label\nset xlabel 'time (h)'\nset ylabel 'compensated (°/h)'\n"
-        "plot $d using 1:4 with lines lc rgb '#d62728' title 'after, {} causal ({:.5f} °/h)'\nunset multiplot\n",
-        one ? "Figs. 6-7: Test 1, random profile, before and after real-time compensation"
-            : "Figs. 8-9: Test 2, natural warm-up, before and after real-time compensation",
-        comp.before_dph, best, comp.after_dph));
-    fig.render();
-  }
 }
 
 int run_reproduce(const ReproduceCli& o) {
@@ -262,16 +49,9 @@ int run_reproduce(const ReproduceCli& o) {
   const auto started = std::chrono::steady_clock::now();
   const fit::ReproduceResult r = fit::reproduce(options);
 
-  std::error_code ec;
-  std::filesystem::create_directories(o.out, ec);
-  if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));
   options.progress("drawing the figures", 1.0);
-  plot_figures(o.out, r);
-  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  Json j = table_json(r);
-  j["total_seconds"] = total;
-  write_file_atomically(o.out + "/table1.json", j.dump(2) + "\n");
-  write_file_atomically(o.out + "/table1.md", table_markdown(r, total));
+  const nlohmann::ordered_json j = fit::write_reproduce_report(o.out, r, started);
+  const double total = j["total_seconds"].get<double>();
 
   if (o.json) {
     fmt::print("{}\n", j.dump());
@@ -286,7 +66,7 @@ int run_reproduce(const ReproduceCli& o) {
                : e.engine == "iafsa"  ? fmt::format("paper {:.5f}", paper.cycle_iafsa)
                                       : std::string(17, ' '),
                e.fit.instability_after_dph, e.fit.ratio());
-  const std::string best = r.test1.by_engine.count("iafsa") ? "iafsa" : r.engines.front().engine;
+  const std::string best = fit::shown_engine(r);
   fmt::print("  test 1 paper {:.5f} -> {:.5f} ({:.2f}x)  ours ({}) {:.5f} -> {:.5f} ({:.2f}x)\n", paper.test1_before,
              paper.test1_after, paper.test1_times, best, r.test1.before_dph, r.test1.by_engine.at(best).after_dph,
              r.test1.by_engine.at(best).ratio());

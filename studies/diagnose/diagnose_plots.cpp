@@ -10,7 +10,7 @@
 #include "sim/allan.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::app {
+namespace gyrotherm::fit {
 namespace {
 
 const char* colour_of(const std::string& kind) {
@@ -28,13 +28,13 @@ std::vector<double> in_hours(const std::vector<double>& s) {
 
 }  // namespace
 
-void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
-                           const fit::PreparedData& data, const fit::Diagnosis& d,
-                           const fit::Diagnosis* before, const fit::PipelineOptions& pipeline) {
+void write_diagnosis_plots(const std::string& dir, const Measurement& m,
+                           const PreparedData& data, const Diagnosis& d,
+                           const Diagnosis* before, const PipelineOptions& pipeline) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--plots {}: cannot create the folder ({})", dir, ec.message()));
-  const fit::AveragedSeries& s = data.series;
+  const AveragedSeries& s = data.series;
   const std::vector<double> t_h = in_hours(s.time_s);
   const std::string floor_text = fmt::format("{:.4g}", d.noise_floor_dph);
 
@@ -59,7 +59,7 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
         "(blue), soak (grey); the three worst segments are labelled'\n"
         "set xlabel 'time (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n";
     for (std::size_t i = 0; i < d.segments.size(); ++i) {
-      const fit::SegmentReport& seg = d.segments[i];
+      const SegmentReport& seg = d.segments[i];
       cmds += fmt::format(
           "set object {} rect from {:.6f}, graph 0 to {:.6f}, graph 1 fc rgb '{}' fs solid 0.6 "
           "noborder behind\n",
@@ -67,7 +67,7 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     }
     const auto worst = d.worst_segments();
     for (std::size_t k = 0; k < worst.size() && k < 3; ++k) {
-      const fit::SegmentReport& seg = d.segments[worst[k]];
+      const SegmentReport& seg = d.segments[worst[k]];
       cmds += fmt::format("set label {} '#{} {} {:.1f}x' at {:.6f}, graph 0.95 center front\n", k + 1,
                           k + 1, seg.kind, seg.ratio_to_floor, 0.5 * (seg.start_s + seg.end_s) / 3600.0);
     }
@@ -142,4 +142,4 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   }
 }
 
-}  // namespace gyrotherm::app
+}  // namespace gyrotherm::fit

@@ -12,10 +12,10 @@
 
 #include "studies/diagnose/diagnosis.h"
 
-namespace gyrotherm::app {
+namespace gyrotherm::fit {
 
-void write_diagnosis_plots(const std::string& dir, const fit::Measurement& measurement,
-                           const fit::PreparedData& data, const fit::Diagnosis& d,
-                           const fit::Diagnosis* before, const fit::PipelineOptions& pipeline);
+void write_diagnosis_plots(const std::string& dir, const Measurement& measurement,
+                           const PreparedData& data, const Diagnosis& d,
+                           const Diagnosis* before, const PipelineOptions& pipeline);
 
-}  // namespace gyrotherm::app
+}  // namespace gyrotherm::fit

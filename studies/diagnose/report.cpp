@@ -1,0 +1,94 @@
+#include "studies/diagnose/report.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "fit/model/formula.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+nlohmann::ordered_json segment_json(const SegmentReport& s) {
+  return {{"kind", s.kind},       {"start_s", s.start_s},         {"end_s", s.end_s},
+          {"temp_min_c", s.temp_min_c}, {"temp_max_c", s.temp_max_c}, {"windows", s.windows},
+          {"rms_dph", s.rms_dph}, {"ratio_to_floor", s.ratio_to_floor}};
+}
+
+}  // namespace
+
+void check_something_left_to_try(const std::vector<const Term*>& terms, const PreparedData& data) {
+  std::size_t available = 0;
+  for (const Term* t : term_registry()) available += !t->needs_temp2() || data.has_temp2();
+  if (terms.size() >= available)
+    throw InputError(fmt::format(
+        "model '{}' already contains every term that can be tried on this data{}: there is "
+        "nothing left to try (see 'gyrotherm effects'; drop terms with --model to test them)",
+        formula_text(terms), data.has_temp2() ? "" : " (grad needs a temp2_c column)"));
+}
+
+DiagnoseReport diagnose_record(const PreparedData& data, const ColumnMap& columns,
+                               const std::vector<const Term*>& base_terms,
+                               const std::vector<const Term*>& terms, const EngineInfo& engine,
+                               const EngineSettings& settings) {
+  DiagnoseReport r;
+  r.base_terms = base_terms;
+  r.terms = terms;
+  r.engine = engine.name;
+  check_columns(terms, data, columns);
+  check_something_left_to_try(terms, data);
+  r.diagnosis = diagnose(data, terms, engine, settings);
+  // Step 5: with --add, the model without the added terms is the "before".
+  if (terms.size() > base_terms.size()) r.before = diagnose(data, base_terms, engine, settings);
+  if (!r.diagnosis.suggested_model.empty())
+    r.next_command =
+        fmt::format("gyrotherm diagnose {} --model \"{}\"", data.file, r.diagnosis.suggested_model);
+  return r;
+}
+
+nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
+  const Diagnosis& d = report.diagnosis;
+  const std::optional<Diagnosis>& before = report.before;
+  nlohmann::ordered_json j;
+  j["model"] = formula_text(report.terms);
+  j["engine"] = report.engine;
+  j["instability_dph"] = d.fit.instability_after_dph;
+  j["instability_before_dph"] = d.fit.instability_before_dph;
+  j["noise_floor_dph"] = d.noise_floor_dph;
+  j["ratio_to_floor"] = d.excess_ratio();
+  nlohmann::ordered_json segments = nlohmann::ordered_json::array();
+  for (std::size_t i : d.worst_segments()) segments.push_back(segment_json(d.segments[i]));
+  j["segments"] = segments;
+  nlohmann::ordered_json bands = nlohmann::ordered_json::array();
+  for (const auto& b : d.bands) bands.push_back(segment_json(b));
+  j["bands"] = bands;
+  nlohmann::ordered_json effects = nlohmann::ordered_json::array();
+  for (const CandidateReport& c : d.candidates) {
+    nlohmann::ordered_json e = {{"term", c.term->name},
+                                {"meaning", c.term->meaning},
+                                {"instability_after_dph", c.instability_after_dph},
+                                {"reduction_pct", c.reduction_pct},
+                                {"significant", c.significant},
+                                {"p_value", c.p_value},
+                                {"cv_gain_pct", c.cv_gain_pct}};
+    if (c.term->parameter) e[c.term->parameter->name] = c.parameter;
+    effects.push_back(e);
+  }
+  j["missing_effects"] = effects;
+  j["skipped"] = d.skipped;
+  j["significance"] =
+      "block cross-validation: blocks of 10 windows, one-sided sign-flip test of the per-block "
+      "SSE gains, Bonferroni over the candidates, and at least 10 % of the excess removed";
+  j["warnings"] = d.fit.warnings;
+  j["verdict"] = d.verdict;
+  j["next_command"] = report.next_command;
+  if (before) {
+    j["before_after"] = {{"model_before", formula_text(report.base_terms)},
+                         {"instability_before_dph", before->fit.instability_after_dph},
+                         {"instability_after_dph", d.fit.instability_after_dph}};
+  }
+  return j;
+}
+
+}  // namespace gyrotherm::fit

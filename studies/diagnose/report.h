@@ -1,0 +1,39 @@
+#pragma once
+// The whole `gyrotherm diagnose` job and its report, above the five steps of
+// studies/diagnose/diagnosis.h: the model as given, and with --add the model
+// without the added terms as the "before" of step 5; the `diagnose --json`
+// object (DESIGN.md's fields: model, instability_dph, noise_floor_dph,
+// segments, missing_effects, verdict; and more) and the next command to run.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "studies/diagnose/diagnosis.h"
+
+namespace gyrotherm::fit {
+
+struct DiagnoseReport {
+  std::vector<const Term*> base_terms;  // the model without --add
+  std::vector<const Term*> terms;       // the model diagnosed
+  std::string engine;
+  Diagnosis diagnosis;
+  std::optional<Diagnosis> before;      // with --add: the model without the added terms
+  std::string next_command;             // the model with the best significant effect, or ""
+};
+
+// Throws InputError when the model already holds every term that could be
+// tried on this data (nothing would be left to rank).
+void check_something_left_to_try(const std::vector<const Term*>& terms, const PreparedData& data);
+
+// `terms` is `base_terms` followed by the terms --add names (the caller
+// parsed the whole formula, which refuses a term given twice).
+DiagnoseReport diagnose_record(const PreparedData& data, const ColumnMap& columns,
+                               const std::vector<const Term*>& base_terms,
+                               const std::vector<const Term*>& terms, const EngineInfo& engine,
+                               const EngineSettings& settings);
+
+nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,32 @@
+#pragma once
+// The report of `gyrotherm reproduce` (studies/reproduce/reproduce.h): the
+// paper's Table 1 beside ours as table1.json (DESIGN.md's fields: cycle,
+// test1, test2, paper, seeds) and table1.md (with a short, factual section on
+// what an engine can and cannot change), and figures in the spirit of the
+// paper's Figs. 2–9 (gnuplot).
+
+#include <chrono>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "studies/reproduce/reproduce.h"
+
+namespace gyrotherm::fit {
+
+nlohmann::ordered_json table_json(const ReproduceResult& r);
+std::string table_markdown(const ReproduceResult& r, double total_seconds);
+void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r);
+
+// Everything into `dir` (created if need be): the figures, then table1.json
+// and table1.md, each written atomically, stating the seconds since `started`
+// (the whole job, figures included). Returns the JSON.
+nlohmann::ordered_json write_reproduce_report(const std::filesystem::path& dir,
+                                              const ReproduceResult& r,
+                                              std::chrono::steady_clock::time_point started);
+
+// The engine whose compensation the tests' figures and summaries show:
+// iafsa (the paper's) when it ran, else the first.
+std::string shown_engine(const ReproduceResult& r);
+
+}  // namespace gyrotherm::fit
