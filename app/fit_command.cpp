@@ -62,12 +62,8 @@ int run_fit(const FitOptions& o) {
   const fit::EngineSettings settings = engine_settings(o);
   engine.make(settings);  // validates the options before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
-  // Large logs are streamed: read twice, never held (fit/data/streaming.h).
-  std::error_code size_error;
-  const auto bytes = std::filesystem::file_size(o.data, size_error);
-  const bool streamed = !size_error && bytes > fit::kStreamingThresholdBytes;
-  const fit::PreparedData data =
-      streamed ? fit::prepare_data_streaming(o.data, pipeline) : fit::prepare_data(o.data, pipeline);
+  bool streamed = false;  // large logs are read twice, never held (fit/data/streaming.h)
+  const fit::PreparedData data = fit::prepare_csv(o.data, pipeline, &streamed);
   fit::check_columns(terms, data, pipeline.columns);
   const fit::ModelFit result = fit::fit_model(data, terms, engine, settings);
   const std::optional<fit::Truth> truth = fit::load_truth_beside(o.data);
@@ -149,24 +145,13 @@ int run_compensate(const CompensateOptions& o) {
   const fit::Compensation c = fit::compensate(m, saved, pipeline);
   if (!o.output.empty()) fit::write_compensated_csv(o.output, c);
   if (o.json) {
-    nlohmann::ordered_json j;
-    j["data"] = o.data;
-    j["fit"] = o.fit_file;
-    j["model"] = fit::formula_text(saved.terms);
-    j["engine"] = saved.engine;
-    j["derivative"] = pipeline.derivative == fit::DerivativeMode::causal ? "causal" : "central";
-    j["instability_before_dph"] = c.before_dph;
-    j["instability_after_dph"] = c.after_dph;
-    j["ratio"] = c.ratio();
-    j["windows"] = c.data.series.size();
-    j["outliers_removed"] = c.data.outliers.removed;
-    if (!o.output.empty()) j["output"] = o.output;
+    const nlohmann::ordered_json j = fit::compensation_json(c, saved, pipeline, o.data, o.fit_file, o.output);
     fmt::print("{}\n", j.dump());
     return 0;
   }
   fmt::print("compensate {} with {} ({}: B = b0 + {}, {} derivatives)\n", o.data, o.fit_file,
              saved.engine, fit::formula_text(saved.terms),
-             pipeline.derivative == fit::DerivativeMode::causal ? "causal" : "central");
+             fit::to_string(pipeline.derivative));
   fmt::print("instability (std of {:g} s averages): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
              pipeline.averaging.window_s, c.before_dph, c.after_dph, c.ratio());
   if (!o.output.empty()) fmt::print("wrote {}\n", o.output);

@@ -16,14 +16,11 @@
 
 #include "app/comma_list.h"
 #include "app/commands.h"
-#include "sim/util/gnuplot.h"
 #include "app/score_mpi.h"
 #include "studies/score/baseline.h"
 #include "studies/score/campaign.h"
 #include "studies/score/outcome_packing.h"
 #include "studies/score/report.h"
-#include "studies/score/spread.h"
-#include "sim/util/atomic_file.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
@@ -115,78 +112,12 @@ class Progress final : public fit::ScoreObserver {
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 };
 
-void plot_convergence(const std::filesystem::path& png, const fit::Scoreboard& b) {
-  constexpr double kFloor = 1e-12;  // the log axis cannot show a gap of 0
-  GnuplotFigure fig(png, 1400, 900);
-  std::string plot = "plot ";
-  const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
-  for (std::size_t e = 0; e < b.engines.size(); ++e) {
-    const fit::EngineScore& s = b.engines[e];
-    std::vector<double> x, q25, median, q75;
-    for (const fit::CurvePoint& p : s.curve) {
-      x.push_back(static_cast<double>(p.evaluations));
-      auto floor = [&](double v) { return std::isfinite(v) ? std::max(v, kFloor) : NAN; };
-      q25.push_back(floor(p.q25));
-      median.push_back(floor(p.median));
-      q75.push_back(floor(p.q75));
-    }
-    const std::string name = "e" + std::to_string(e);
-    const char* colour = colours[e % std::size(colours)];
-    fig.data(name, {"evaluations", "q25", "median", "q75"}, {x, q25, median, q75});
-    plot += fmt::format("{}${} using 1:2:4 with filledcurves lc rgb '{}' notitle, "
-                        "${} using 1:3 with linespoints pt 7 ps 0.5 lw 2 lc rgb '{}' title '{}'",
-                        e ? ", " : "", name, colour, name, colour, s.engine);
-  }
-  fig.commands(fmt::format(
-      "set title 'Convergence on {}: gap of the best sigma so far to the least-squares optimum, "
-      "median and quartiles of {} trials'\n"
-      "set xlabel 'objective evaluations'\nset ylabel 'sigma / optimum - 1 (gaps below {:g} drawn at {:g})'\n"
-      "set logscale xy\nset format y '%.0e'\nset key outside right\n"
-      "set style fill transparent solid 0.15 noborder\n"
-      "set arrow from graph 0, first {:g} to graph 1, first {:g} nohead dt 2 lc rgb '#555555'\n"
-      "set label 'target' at graph 0.01, first {:g} offset 0, 0.7 tc rgb '#555555'\n{}\n",
-      b.scenario, b.trials, kFloor, kFloor, b.target_relative, b.target_relative, b.target_relative, plot));
-  fig.render();
-}
-
-std::string text_table(const fit::Scoreboard& b) {
-  std::string t = fmt::format("{:<9} {:>8} {:>22} {:>11} {:>19} {:>7}", "engine", "success",
-                              "evals to target [CI]", "s to target", "gap median / p90", "ratio");
-  for (const std::string& term : b.error_terms) t += fmt::format(" {:>9}", "err " + (term == "1" ? "b0" : term));
-  t += "\n";
-  auto v = [](double x, const char* spec) {
-    return std::isfinite(x) ? fmt::format(fmt::runtime(spec), x) : std::string("not reached");
-  };
-  for (const fit::EngineScore& e : b.engines) {
-    const auto& ett = e.evaluations_to_target;
-    t += fmt::format("{:<9} {:>7.0f}% {:>22} {:>11} {:>19} {:>7.3f}", e.engine, 100.0 * e.success_rate,
-                     std::isfinite(ett.median)
-                         ? fmt::format("{:.0f} [{:.0f}, {}]", ett.median, ett.median_ci.low, v(ett.median_ci.high, "{:.0f}"))
-                         : std::string("not reached"),
-                     v(e.seconds_to_target.median, "{:.2g}"), fmt::format("{:.1e} / {:.1e}", e.gap.median, e.gap.p90),
-                     e.ratio.median);
-    for (const fit::Summary& s : e.coefficient_error) t += fmt::format(" {:>8.3g}%", 100.0 * s.median);
-    t += "\n";
-  }
-  return t;
-}
-
 // Rank 0's part after the trials: files, the baseline check, the report.
 int report(const fit::Scoreboard& board, const std::optional<fit::Baseline>& baseline, const ScoreCli& o) {
   const std::string json = fit::scoreboard_json(board);
   std::vector<std::string> written;
   if (!o.out.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(o.out, ec);
-    if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));
-    const std::filesystem::path dir(o.out);
-    write_file_atomically(dir / "scoreboard.json", json);
-    write_file_atomically(dir / "scoreboard.md", fit::scoreboard_markdown(board));
-    write_file_atomically(dir / "convergence.csv", fit::convergence_csv(board));
-    plot_convergence(dir / "convergence.png", board);
-    for (const char* f : {"scoreboard.json", "scoreboard.md", "convergence.csv", "convergence.png"})
-      written.push_back((dir / f).string());
+    written = fit::write_score_files(o.out, board);
   }
   fit::BaselineComparison check;
   if (baseline) check = fit::compare_to_baseline(board, *baseline);
@@ -200,7 +131,7 @@ int report(const fit::Scoreboard& board, const std::optional<fit::Baseline>& bas
     fmt::print("median raw instability {:.6g} °/h, median least-squares optimum {:.6g} °/h; "
                "medians over the trials, coefficient errors |fit - truth|/|truth|\n",
                board.before_median_dph, board.optimum_median_dph);
-    fmt::print("{}", text_table(board));
+    fmt::print("{}", fit::scoreboard_text(board));
     fmt::print("{:.2f} s on {} thread(s) x {} process(es)\n", board.seconds, board.threads, board.processes);
     for (const std::string& f : written) fmt::print("wrote {}\n", f);
   }

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "app/commands.h"
-#include "sim/util/gnuplot.h"
 #include "sim/config_loader.h"
 #include "sim/effects/effect.h"
 #include "sim/output.h"
@@ -33,59 +32,6 @@ struct SimulateOptions {
   bool json = false;
 };
 
-// Worst |chamber − set point| over the soaks, skipping the first 10 min after
-// each step (what a chamber's data sheet calls its control accuracy).
-double soak_control_error_c(const sim::Simulator& simulator, const sim::ThermalTrace& tr) {
-  const sim::Scenario& sc = simulator.scenario();
-  if (!sc.chamber) return 0.0;
-  const sim::Profile profile(sc.start_c, sc.segments);
-  double worst = 0.0;
-  for (std::size_t k = 0; k < tr.time_s.size(); ++k) {
-    const std::size_t s = profile.segment_at(tr.time_s[k]);
-    if (profile.segments()[s].kind != sim::SegmentKind::hold) continue;
-    if (tr.time_s[k] < profile.segment_start_s(s) + 600.0) continue;
-    worst = std::max(worst, std::abs(tr.node(sim::RigDynamics::chamber)[k] - tr.setpoint_c[k]));
-  }
-  return worst;
-}
-
-// Temperatures (top) and the gyro output as 100 s averages with the true bias
-// (bottom), against time in hours.
-void plot_simulation(const std::string& png, const sim::Simulator& simulator,
-                     const sim::SimulationResult& r) {
-  const std::size_t window = std::max<std::size_t>(
-      1, static_cast<std::size_t>(std::lround(100.0 * simulator.scenario().sample_rate_hz)));
-  std::vector<double> hours(r.rows());
-  for (std::size_t k = 0; k < r.rows(); ++k) hours[k] = r.time_s[k] / 3600.0;
-  const std::vector<double> t_avg = window_means(hours, window);
-  const std::vector<double> gyro_avg = window_means(r.gyro_dph, window);
-  const std::vector<double> bias_avg = window_means(r.bias_true_dph, window);
-  const std::vector<double> temp_avg = window_means(r.temp_c, window);
-  const std::vector<double> chamber_avg = window_means(r.chamber_c, window);
-  const std::vector<double> case_avg = window_means(r.case_c, window);
-  const std::vector<double> temp2_avg = window_means(r.temp2_c, window);
-
-  GnuplotFigure fig(png, 1400, 1000);
-  fig.data("t", {"time_h", "chamber_c", "case_c", "temp_c", "temp2_c"},
-           {t_avg, chamber_avg, case_avg, temp_avg, temp2_avg});
-  fig.data("g", {"time_h", "gyro_dph", "bias_true_dph"}, {t_avg, gyro_avg, bias_avg});
-  const std::string title = fmt::format("gyrotherm simulate: {} (seed {})",
-                                        simulator.scenario().name, r.seed);
-  fig.commands(fmt::format(
-      "set multiplot layout 2,1 title '{}'\n"
-      "set ylabel 'temperature (°C)'\nset key outside right\n"
-      "plot $t using 1:2 with lines lw 1.5 title 'chamber air', "
-      "$t using 1:3 with lines lw 1.5 title 'case / shield', "
-      "$t using 1:4 with lines lw 2 title 'gyro (Pt800)', "
-      "$t using 1:5 with lines lw 1 dt 2 title 'gyro far side'\n"
-      "set xlabel 'time (h)'\nset ylabel 'gyro output, 100 s averages (°/h)'\n"
-      "plot $g using 1:2 with points pt 7 ps 0.4 title 'measured', "
-      "$g using 1:3 with lines lw 2 title 'true bias'\n"
-      "unset multiplot",
-      title));
-  fig.render();
-}
-
 int run_simulate(const SimulateOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   sim::Scenario scenario = sim::load_scenario(o.scenario);
@@ -100,13 +46,13 @@ int run_simulate(const SimulateOptions& o) {
   const sim::Simulator simulator(scenario, rig, gyro);
   const sim::SimulationResult result = simulator.run();
   sim::write_simulation(o.output, simulator, result);
-  if (!o.plot.empty()) plot_simulation(o.plot, simulator, result);
+  if (!o.plot.empty()) sim::plot_simulation(o.plot, simulator, result);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   const auto& temp = result.truth.node(sim::RigDynamics::anode);
   const auto [tmin, tmax] = std::minmax_element(temp.begin(), temp.end());
-  const double soak_error = soak_control_error_c(simulator, result.truth);
+  const double soak_error = sim::soak_control_error_c(simulator.scenario(), result.truth);
   const std::string truth_file = sim::truth_path_for(o.output).string();
   const double hours = result.time_s.back() / 3600.0;
 

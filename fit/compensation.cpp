@@ -1,5 +1,7 @@
 #include "fit/compensation.h"
 
+#include "fit/model/formula.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -83,6 +85,24 @@ void write_compensated_csv(const std::filesystem::path& file, const Compensation
                    c.temp_c[k], c.gyro_dph[k], c.model_dph[k], c.gyro_dph[k] - c.model_dph[k],
                    static_cast<int>(c.outlier[k]));
   write_file_atomically(file, std::string_view(out.data(), out.size()));
+}
+
+nlohmann::ordered_json compensation_json(const Compensation& c, const SavedFit& fit,
+                                         const PipelineOptions& pipeline, const std::string& data_file,
+                                         const std::string& fit_file, const std::string& output) {
+  nlohmann::ordered_json j;
+  j["data"] = data_file;
+  j["fit"] = fit_file;
+  j["model"] = formula_text(fit.terms);
+  j["engine"] = fit.engine;
+  j["derivative"] = to_string(pipeline.derivative);
+  j["instability_before_dph"] = c.before_dph;
+  j["instability_after_dph"] = c.after_dph;
+  j["ratio"] = c.ratio();
+  j["windows"] = c.data.series.size();
+  j["outliers_removed"] = c.data.outliers.removed;
+  if (!output.empty()) j["output"] = output;
+  return j;
 }
 
 }  // namespace gyrotherm::fit

@@ -15,6 +15,8 @@
 // compensated = gyro − B: the residual bias, centred near zero.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "fit/fit_file.h"
@@ -38,5 +40,11 @@ Compensation compensate(const Measurement& measurement, const SavedFit& fit,
 
 // time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier (atomically).
 void write_compensated_csv(const std::filesystem::path& file, const Compensation& c);
+
+// The `compensate --json` object: data, fit, model, engine, derivative,
+// instability before and after, ratio, windows, outliers removed, output.
+nlohmann::ordered_json compensation_json(const Compensation& c, const SavedFit& fit,
+                                         const PipelineOptions& pipeline, const std::string& data_file,
+                                         const std::string& fit_file, const std::string& output);
 
 }  // namespace gyrotherm::fit

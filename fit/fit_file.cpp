@@ -14,8 +14,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-const char* mode_name(DerivativeMode m) { return m == DerivativeMode::causal ? "causal" : "central"; }
-
 }  // namespace
 
 std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
@@ -89,7 +87,7 @@ std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
                {"windows", data.series.size()},
                {"dropped_windows", data.averaging.dropped_windows}};
   j["pipeline"] = {{"avg_s", pipeline.averaging.window_s},
-                   {"derivative", mode_name(pipeline.derivative)},
+                   {"derivative", to_string(pipeline.derivative)},
                    {"remove_outliers", pipeline.remove_outliers},
                    {"outlier_window_s", pipeline.outliers.window_s},
                    {"outlier_threshold", pipeline.outliers.threshold},

@@ -4,7 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 #include "sim/util/atomic_file.h"
+#include "sim/util/gnuplot.h"
 #include "sim/effects/effect.h"
 #include "sim/util/sha256.h"
 
@@ -120,6 +124,41 @@ void write_simulation(const std::filesystem::path& csv, const Simulator& simulat
   json_file.stream() << json_text;
   json_file.commit();
   csv_file.commit();
+}
+
+void plot_simulation(const std::filesystem::path& png, const Simulator& simulator,
+                     const SimulationResult& r) {
+  const std::size_t window = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::lround(100.0 * simulator.scenario().sample_rate_hz)));
+  std::vector<double> hours(r.rows());
+  for (std::size_t k = 0; k < r.rows(); ++k) hours[k] = r.time_s[k] / 3600.0;
+  const std::vector<double> t_avg = window_means(hours, window);
+  const std::vector<double> gyro_avg = window_means(r.gyro_dph, window);
+  const std::vector<double> bias_avg = window_means(r.bias_true_dph, window);
+  const std::vector<double> temp_avg = window_means(r.temp_c, window);
+  const std::vector<double> chamber_avg = window_means(r.chamber_c, window);
+  const std::vector<double> case_avg = window_means(r.case_c, window);
+  const std::vector<double> temp2_avg = window_means(r.temp2_c, window);
+
+  GnuplotFigure fig(png, 1400, 1000);
+  fig.data("t", {"time_h", "chamber_c", "case_c", "temp_c", "temp2_c"},
+           {t_avg, chamber_avg, case_avg, temp_avg, temp2_avg});
+  fig.data("g", {"time_h", "gyro_dph", "bias_true_dph"}, {t_avg, gyro_avg, bias_avg});
+  const std::string title = fmt::format("gyrotherm simulate: {} (seed {})",
+                                        simulator.scenario().name, r.seed);
+  fig.commands(fmt::format(
+      "set multiplot layout 2,1 title '{}'\n"
+      "set ylabel 'temperature (°C)'\nset key outside right\n"
+      "plot $t using 1:2 with lines lw 1.5 title 'chamber air', "
+      "$t using 1:3 with lines lw 1.5 title 'case / shield', "
+      "$t using 1:4 with lines lw 2 title 'gyro (Pt800)', "
+      "$t using 1:5 with lines lw 1 dt 2 title 'gyro far side'\n"
+      "set xlabel 'time (h)'\nset ylabel 'gyro output, 100 s averages (°/h)'\n"
+      "plot $g using 1:2 with points pt 7 ps 0.4 title 'measured', "
+      "$g using 1:3 with lines lw 2 title 'true bias'\n"
+      "unset multiplot",
+      title));
+  fig.render();
 }
 
 }  // namespace gyrotherm::sim

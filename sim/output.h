@@ -28,4 +28,9 @@ std::string truth_json(const Simulator& simulator, const SimulationResult& resul
 void write_simulation(const std::filesystem::path& csv, const Simulator& simulator,
                       const SimulationResult& result);
 
+// `simulate --plot`: temperatures (top) and the gyro output as 100 s averages
+// with the true bias (bottom), against time in hours (PNG, gnuplot).
+void plot_simulation(const std::filesystem::path& png, const Simulator& simulator,
+                     const SimulationResult& result);
+
 }  // namespace gyrotherm::sim

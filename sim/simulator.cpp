@@ -193,4 +193,17 @@ SimulationResult Simulator::record(ThermalTrace trace) const {
   return result;
 }
 
+double soak_control_error_c(const Scenario& sc, const ThermalTrace& tr) {
+  if (!sc.chamber) return 0.0;
+  const Profile profile(sc.start_c, sc.segments);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < tr.time_s.size(); ++k) {
+    const std::size_t s = profile.segment_at(tr.time_s[k]);
+    if (profile.segments()[s].kind != SegmentKind::hold) continue;
+    if (tr.time_s[k] < profile.segment_start_s(s) + 600.0) continue;
+    worst = std::max(worst, std::abs(tr.node(RigDynamics::chamber)[k] - tr.setpoint_c[k]));
+  }
+  return worst;
+}
+
 }  // namespace gyrotherm::sim

@@ -94,4 +94,9 @@ class Simulator {
   SimulationOptions options_;
 };
 
+// Worst |chamber − set point| over the soaks, skipping the first 10 min after
+// each step (what a chamber's data sheet calls its control accuracy); 0
+// without a chamber.
+double soak_control_error_c(const Scenario& scenario, const ThermalTrace& trace);
+
 }  // namespace gyrotherm::sim

@@ -26,6 +26,8 @@ std::vector<double> differentiate(const std::vector<double>& t_s, const std::vec
 
 }  // namespace
 
+const char* to_string(DerivativeMode mode) { return mode == DerivativeMode::causal ? "causal" : "central"; }
+
 DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode) {
   DerivedSeries d;
   d.temp_c = data.temp_c;

@@ -15,6 +15,8 @@
 namespace gyrotherm::fit {
 
 enum class DerivativeMode { central, causal };
+// "central" or "causal", as the fit file and reports write it.
+const char* to_string(DerivativeMode mode);
 
 // The fit's name for the effects' state series.
 using DerivedSeries = effects::EffectSeries;

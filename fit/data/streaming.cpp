@@ -196,4 +196,13 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
   return d;
 }
 
+PreparedData prepare_csv(const std::filesystem::path& csv, const PipelineOptions& options,
+                         bool* streamed) {
+  std::error_code size_error;
+  const auto bytes = std::filesystem::file_size(csv, size_error);
+  const bool stream = !size_error && bytes > kStreamingThresholdBytes;
+  if (streamed != nullptr) *streamed = stream;
+  return stream ? prepare_data_streaming(csv, options) : prepare_data(csv, options);
+}
+
 }  // namespace gyrotherm::fit

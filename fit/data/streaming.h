@@ -29,4 +29,9 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
 // The reader switches to streaming above this file size.
 inline constexpr std::uintmax_t kStreamingThresholdBytes = 64ull << 20;
 
+// prepare_data(), or prepare_data_streaming() for a file larger than
+// kStreamingThresholdBytes; *streamed (if given) says which.
+PreparedData prepare_csv(const std::filesystem::path& csv, const PipelineOptions& options,
+                         bool* streamed = nullptr);
+
 }  // namespace gyrotherm::fit

@@ -5,6 +5,10 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "sim/util/atomic_file.h"
+#include "sim/util/gnuplot.h"
+#include "sim/util/input_error.h"
+
 namespace gyrotherm::fit {
 
 namespace {
@@ -126,6 +130,77 @@ std::string convergence_csv(const Scoreboard& b) {
     for (const CurvePoint& p : e.curve)
       csv += fmt::format("{},{},{},{},{}\n", e.engine, p.evaluations, cell(p.q25), cell(p.median), cell(p.q75));
   return csv;
+}
+
+void plot_convergence(const std::filesystem::path& png, const Scoreboard& b) {
+  constexpr double kFloor = 1e-12;  // the log axis cannot show a gap of 0
+  GnuplotFigure fig(png, 1400, 900);
+  std::string plot = "plot ";
+  const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                           "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+  for (std::size_t e = 0; e < b.engines.size(); ++e) {
+    const EngineScore& s = b.engines[e];
+    std::vector<double> x, q25, median, q75;
+    for (const CurvePoint& p : s.curve) {
+      x.push_back(static_cast<double>(p.evaluations));
+      auto floor = [&](double v) { return std::isfinite(v) ? std::max(v, kFloor) : NAN; };
+      q25.push_back(floor(p.q25));
+      median.push_back(floor(p.median));
+      q75.push_back(floor(p.q75));
+    }
+    const std::string name = fmt::format("e{}", e);
+    const char* colour = colours[e % std::size(colours)];
+    fig.data(name, {"evaluations", "q25", "median", "q75"}, {x, q25, median, q75});
+    plot += fmt::format("{}${} using 1:2:4 with filledcurves lc rgb '{}' notitle, "
+                        "${} using 1:3 with linespoints pt 7 ps 0.5 lw 2 lc rgb '{}' title '{}'",
+                        e ? ", " : "", name, colour, name, colour, s.engine);
+  }
+  fig.commands(fmt::format(
+      "set title 'Convergence on {}: gap of the best sigma so far to the least-squares optimum, "
+      "median and quartiles of {} trials'\n"
+      "set xlabel 'objective evaluations'\nset ylabel 'sigma / optimum - 1 (gaps below {:g} drawn at {:g})'\n"
+      "set logscale xy\nset format y '%.0e'\nset key outside right\n"
+      "set style fill transparent solid 0.15 noborder\n"
+      "set arrow from graph 0, first {:g} to graph 1, first {:g} nohead dt 2 lc rgb '#555555'\n"
+      "set label 'target' at graph 0.01, first {:g} offset 0, 0.7 tc rgb '#555555'\n{}\n",
+      b.scenario, b.trials, kFloor, kFloor, b.target_relative, b.target_relative, b.target_relative, plot));
+  fig.render();
+}
+
+std::string scoreboard_text(const Scoreboard& b) {
+  std::string t = fmt::format("{:<9} {:>8} {:>22} {:>11} {:>19} {:>7}", "engine", "success",
+                              "evals to target [CI]", "s to target", "gap median / p90", "ratio");
+  for (const std::string& term : b.error_terms) t += fmt::format(" {:>9}", "err " + (term == "1" ? "b0" : term));
+  t += "\n";
+  auto v = [](double x, const char* spec) {
+    return std::isfinite(x) ? fmt::format(fmt::runtime(spec), x) : std::string("not reached");
+  };
+  for (const EngineScore& e : b.engines) {
+    const auto& ett = e.evaluations_to_target;
+    t += fmt::format("{:<9} {:>7.0f}% {:>22} {:>11} {:>19} {:>7.3f}", e.engine, 100.0 * e.success_rate,
+                     std::isfinite(ett.median)
+                         ? fmt::format("{:.0f} [{:.0f}, {}]", ett.median, ett.median_ci.low, v(ett.median_ci.high, "{:.0f}"))
+                         : std::string("not reached"),
+                     v(e.seconds_to_target.median, "{:.2g}"), fmt::format("{:.1e} / {:.1e}", e.gap.median, e.gap.p90),
+                     e.ratio.median);
+    for (const Summary& s : e.coefficient_error) t += fmt::format(" {:>8.3g}%", 100.0 * s.median);
+    t += "\n";
+  }
+  return t;
+}
+
+std::vector<std::string> write_score_files(const std::filesystem::path& dir, const Scoreboard& board) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", dir.string(), ec.message()));
+  write_file_atomically(dir / "scoreboard.json", scoreboard_json(board));
+  write_file_atomically(dir / "scoreboard.md", scoreboard_markdown(board));
+  write_file_atomically(dir / "convergence.csv", convergence_csv(board));
+  plot_convergence(dir / "convergence.png", board);
+  std::vector<std::string> written;
+  for (const char* f : {"scoreboard.json", "scoreboard.md", "convergence.csv", "convergence.png"})
+    written.push_back((dir / f).string());
+  return written;
 }
 
 }  // namespace gyrotherm::fit

@@ -1,8 +1,11 @@
 #pragma once
 // The scoreboard's reports: the `score --json` object (DESIGN.md's fields and
-// more), a Markdown page, and the convergence curves as CSV.
+// more), a Markdown page, a text table for the terminal, and the convergence
+// curves as CSV and as a figure.
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "studies/score/campaign.h"
 
@@ -16,5 +19,13 @@ std::string scoreboard_markdown(const Scoreboard& board);
 // engine, evaluations, gap_q25, gap_median, gap_q75 (empty cell: +∞).
 std::string convergence_csv(const Scoreboard& board);
 
+
+// One row per engine for the terminal.
+std::string scoreboard_text(const Scoreboard& board);
+// Log–log median and quartiles of the gap against evaluations, with the target.
+void plot_convergence(const std::filesystem::path& png, const Scoreboard& board);
+// scoreboard.json, scoreboard.md, convergence.csv and convergence.png into
+// `dir` (created if need be), each atomically; returns the paths written.
+std::vector<std::string> write_score_files(const std::filesystem::path& dir, const Scoreboard& board);
 
 }  // namespace gyrotherm::fit
