@@ -23,10 +23,7 @@ namespace {
 
 struct DiagnoseOptions {
   std::string data;
-  std::string model = std::string(fit::kDefaultModel);
-  std::vector<std::string> add;
-  std::string engine = "ols";
-  std::uint64_t seed = 1;
+  ModelOptions model;
   std::string plots;
   bool json = false;
   DataOptions data_options;
@@ -35,13 +32,11 @@ struct DiagnoseOptions {
 std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
 
 int run_diagnose(const DiagnoseOptions& o) {
-  const std::vector<const fit::Term*> base_terms = fit::parse_formula(o.model);
-  std::string formula = o.model;
-  for (const std::string& a : o.add) formula += " + " + a;
-  const std::vector<const fit::Term*> terms = fit::parse_formula(formula);
-  const fit::EngineInfo& engine = fit::find_engine(o.engine);
+  const std::vector<const fit::Term*> base_terms = o.model.base_terms();
+  const std::vector<const fit::Term*> terms = o.model.terms();
+  const fit::EngineInfo& engine = fit::find_engine(o.model.engine);
   fit::EngineSettings settings;
-  settings.seed = o.seed;
+  settings.seed = o.model.seed;
   engine.make(settings);  // validates the settings before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
   const fit::Measurement measurement = fit::read_measurement_csv(o.data, pipeline.columns);
@@ -92,7 +87,7 @@ int run_diagnose(const DiagnoseOptions& o) {
   }
   if (before) {
     fmt::print("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",
-               fmt::join(o.add, ", "), before->fit.instability_after_dph,
+               fmt::join(o.model.add, ", "), before->fit.instability_after_dph,
                d.fit.instability_after_dph, d.noise_floor_dph);
     const auto rows = fit::segment_rms(*before, before->residual_dph);
     for (std::size_t i = 0; i < rows.size() && i < d.segments.size(); ++i)
@@ -113,10 +108,7 @@ void add_diagnose_command(CLI::App& app, Run* run) {
   CLI::App* cmd = app.add_subcommand(
       "diagnose", "Where a bias model fails on measurements, and which physical effect is missing");
   cmd->add_option("data", o->data, "Measurement CSV")->required();
-  cmd->add_option("--model", o->model, "Model formula (default 'T + T^2 + dT')");
-  cmd->add_option("--add", o->add, "Add a term and compare before/after (repeatable)");
-  cmd->add_option("--engine", o->engine, "Fitting engine (default ols)");
-  cmd->add_option("--seed", o->seed, "Seed of a stochastic engine");
+  add_model_options(cmd, o->model, "Add a term and compare before/after (repeatable)");
   cmd->add_option("--plots", o->plots, "Write PNG figures into this folder");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   add_data_options(cmd, o->data_options);

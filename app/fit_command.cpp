@@ -25,10 +25,7 @@ namespace {
 
 struct FitOptions {
   std::string data;
-  std::string model = std::string(fit::kDefaultModel);
-  std::vector<std::string> add;
-  std::string engine = "ols";
-  std::uint64_t seed = 1;
+  ModelOptions model;
   long budget = 0;
   double target = 0.0;
   std::vector<std::string> engine_options;
@@ -39,7 +36,7 @@ struct FitOptions {
 
 fit::EngineSettings engine_settings(const FitOptions& o) {
   fit::EngineSettings s;
-  s.seed = o.seed;
+  s.seed = o.model.seed;
   if (o.budget < 0) throw InputError(fmt::format("--budget {}: must be >= 0", o.budget));
   s.max_evaluations = o.budget;
   if (!(o.target >= 0.0) || !std::isfinite(o.target))
@@ -55,10 +52,8 @@ fit::EngineSettings engine_settings(const FitOptions& o) {
 }
 
 int run_fit(const FitOptions& o) {
-  std::string formula = o.model;
-  for (const std::string& a : o.add) formula += " + " + a;
-  const std::vector<const fit::Term*> terms = fit::parse_formula(formula);
-  const fit::EngineInfo& engine = fit::find_engine(o.engine);
+  const std::vector<const fit::Term*> terms = o.model.terms();
+  const fit::EngineInfo& engine = fit::find_engine(o.model.engine);
   const fit::EngineSettings settings = engine_settings(o);
   engine.make(settings);  // validates the options before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
@@ -164,10 +159,7 @@ void add_fit_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<FitOptions>();
   CLI::App* cmd = app.add_subcommand("fit", "Fit a bias model to measurements (CSV)");
   cmd->add_option("data", o->data, "Measurement CSV (time_s, temp_c, gyro_dph[, temp2_c])")->required();
-  cmd->add_option("--model", o->model, "Model formula, terms joined by + (default 'T + T^2 + dT')");
-  cmd->add_option("--add", o->add, "Add a term to the model (repeatable)");
-  cmd->add_option("--engine", o->engine, "Fitting engine (default ols; see 'gyrotherm engines')");
-  cmd->add_option("--seed", o->seed, "Seed of a stochastic engine (default 1)");
+  add_model_options(cmd, o->model, "Add a term to the model (repeatable)");
   cmd->add_option("--budget", o->budget, "Maximum objective evaluations (0: the engine's default)");
   cmd->add_option("--target", o->target, "Stop when sigma <= this, °/h (0: none)");
   cmd->add_option("--option", o->engine_options, "Engine option KEY=VALUE (repeatable)");

@@ -38,4 +38,19 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
                   "Name of the far-side temperature column (°C), for the grad term");
 }
 
+std::vector<const fit::Term*> ModelOptions::base_terms() const { return fit::parse_formula(model); }
+
+std::vector<const fit::Term*> ModelOptions::terms() const {
+  std::string formula = model;
+  for (const std::string& a : add) formula += " + " + a;
+  return fit::parse_formula(formula);  // refuses a term given twice
+}
+
+void add_model_options(CLI::App* cmd, ModelOptions& o, const std::string& add_help) {
+  cmd->add_option("--model", o.model, "Model formula, terms joined by + (default 'T + T^2 + dT')");
+  cmd->add_option("--add", o.add, add_help);
+  cmd->add_option("--engine", o.engine, "Fitting engine (default ols; see 'gyrotherm engines')");
+  cmd->add_option("--seed", o.seed, "Seed of a stochastic engine (default 1)");
+}
+
 }  // namespace gyrotherm::app

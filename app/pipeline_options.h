@@ -5,6 +5,11 @@
 
 #include <optional>
 
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fit/model/formula.h"
 #include "fit/pipeline.h"
 
 namespace CLI {
@@ -23,5 +28,19 @@ struct DataOptions {
 };
 
 void add_data_options(CLI::App* command, DataOptions& options, bool with_avg = true);
+
+// The model and engine options shared by fit and diagnose.
+struct ModelOptions {
+  std::string model = std::string(fit::kDefaultModel);
+  std::vector<std::string> add;  // terms appended with --add
+  std::string engine = "ols";
+  std::uint64_t seed = 1;
+  // The terms of --model alone, and with the --add terms after them.
+  std::vector<const fit::Term*> base_terms() const;
+  std::vector<const fit::Term*> terms() const;
+};
+
+// `add_help` says what --add does for this command.
+void add_model_options(CLI::App* command, ModelOptions& options, const std::string& add_help);
 
 }  // namespace gyrotherm::app

@@ -35,17 +35,9 @@ FitResult run(const LinearProblem& problem, EngineSettings settings,
 TEST(Afsa, ComesCloseToTheLeastSquaresOptimumOnThePaperCycleAtDefaults) {
   // At its default budget (20000 evaluations) AFSA lands within ~1e-5 of the
   // optimum σ (worst of 20 seeds 1.4e-5); the test allows 1e-3.
-  const Cycle c = cycle_design(false);
-  const Eigen::VectorXd y = bias_dph(c.design, kPaper, 0.002);
-  const LinearProblem problem = make_problem(c, y);
-  const double optimum = least_squares_sigma(c.design, y);
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    EngineSettings settings;  // default budget, no target
-    settings.seed = seed;
-    const FitResult r = run(problem, settings);
-    EXPECT_LE(r.objective, optimum * (1.0 + 1e-3)) << "seed " << seed;
-    EXPECT_LE(sigma_at(problem, r), optimum * (1.0 + 1e-3)) << "seed " << seed;
-    EXPECT_GE(sigma_at(problem, r), optimum * (1.0 - 1e-12)) << "seed " << seed;
+  const DefaultRuns d = runs_at_defaults("afsa");
+  for (const FitResult& r : d.runs) {
+    expect_near_optimum(d, r, 1e-3);
     EXPECT_EQ(r.evaluations, 20000);
     EXPECT_EQ(r.termination, Termination::budget_exhausted);
   }

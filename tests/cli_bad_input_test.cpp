@@ -13,10 +13,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::run_cli;
-using testing::ScratchDir;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 
 // A clean 1 Hz record: a slow temperature cycle from `lo` to `hi` °C and the
 // paper's bias on it, with a small deterministic wiggle as noise.

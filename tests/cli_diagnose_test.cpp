@@ -12,10 +12,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::run_cli;
-using testing::ScratchDir;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 
 TEST(CliDiagnose, FindsAHiddenGradientAndWatchesTheErrorFall) {
   ScratchDir dir;

@@ -13,11 +13,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::run_cli;
-using testing::ScratchDir;
-using testing::slurp;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 
 // A 3 h cycle segment (quick) simulated into dir/name.csv.
 void simulate_short(const ScratchDir& dir, const std::string& name, int seed,

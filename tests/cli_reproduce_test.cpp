@@ -11,11 +11,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::run_cli;
-using testing::ScratchDir;
-using testing::slurp;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 
 std::string files(const std::string& rig) {
   return "rig = \"" + source_path("scenarios/" + rig) + "\"\ngyro = \"" +

@@ -13,14 +13,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::CliResult;
-using testing::run_cli;
-using testing::ScratchDir;
-using testing::slurp;
-using testing::run_shell;
-using testing::short_scenario_text;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 using Json = nlohmann::json;
 
 // The command that made results/score_baseline.json (docs_score.md).

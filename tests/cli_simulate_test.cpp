@@ -12,11 +12,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::run_cli;
-using testing::ScratchDir;
-using testing::slurp;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 
 // A short cycle (so the test is quick) on the shipped rig and gyro.
 std::string short_scenario() {

@@ -29,10 +29,7 @@
 namespace gyrotherm::fit {
 namespace {
 
-using testing::kB1;
-using testing::kB2;
-using testing::kB3;
-using testing::paper_problem;
+using namespace gyrotherm::testing;
 
 const LinearProblem& noisy_problem() {
   static const LinearProblem p = paper_problem(0.002, 0.8, 9);

@@ -39,17 +39,9 @@ FitResult run(const LinearProblem& problem, EngineSettings settings,
 }
 
 TEST(Iafsa, ReachesTheLeastSquaresOptimumOnThePaperCycleAtDefaults) {
-  const Cycle c = cycle_design(false);
-  const Eigen::VectorXd y = bias_dph(c.design, kPaper, 0.002);
-  const LinearProblem problem = make_problem(c, y);
-  const double optimum = least_squares_sigma(c.design, y);
-  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    EngineSettings settings;  // default budget, no target
-    settings.seed = seed;
-    const FitResult r = run(problem, settings);
-    EXPECT_LE(r.objective, optimum * (1.0 + 1e-6)) << "seed " << seed;
-    EXPECT_LE(sigma_at(problem, r), optimum * (1.0 + 1e-6)) << "seed " << seed;
-    EXPECT_GE(sigma_at(problem, r), optimum * (1.0 - 1e-12)) << "seed " << seed;
+  const DefaultRuns d = runs_at_defaults("iafsa");
+  for (const FitResult& r : d.runs) {
+    expect_near_optimum(d, r, 1e-6);
     EXPECT_LE(r.evaluations, 20000);
     EXPECT_EQ(r.termination, Termination::max_iterations);
     EXPECT_EQ(r.iterations, 700);

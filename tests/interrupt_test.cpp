@@ -18,10 +18,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::ScratchDir;
-using testing::slurp;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 
 std::vector<std::string> names_in(const std::filesystem::path& dir) {
   std::vector<std::string> out;

@@ -18,10 +18,7 @@
 namespace gyrotherm {
 namespace {
 
-using testing::run_cli;
-using testing::ScratchDir;
-using testing::source_path;
-using testing::write_text;
+using namespace gyrotherm::testing;
 
 // τ·y' = x − y, y(0) = x(0), for x rising at a °C/s from x0 until t1, then
 // held: y = x − aτ(1 − e^{−t/τ}) on the ramp, then y = x1 − (x1 − y1)e^{−(t−t1)/τ}.

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Dense>
 #include <boost/random/normal_distribution.hpp>
 
@@ -121,6 +123,34 @@ inline LinearProblem make_problem(const Cycle& c, const Eigen::VectorXd& y) {
 // σ of the residuals at the engine's answer, recomputed from the data.
 inline double sigma_at(const LinearProblem& problem, const FitResult& r) {
   return problem.sigma_two_pass(problem.physical(r.z));
+}
+
+// An engine at its defaults (default budget, no target) on the paper's cycle
+// with 0.002 °/h of noise, once per seed 1..5; each run is checked against
+// `optimum` by the caller.
+struct DefaultRuns {
+  LinearProblem problem;
+  double optimum;  // the least-squares σ
+  std::vector<FitResult> runs;
+};
+
+inline DefaultRuns runs_at_defaults(const std::string& engine) {
+  const Cycle c = cycle_design(false);
+  const Eigen::VectorXd y = bias_dph(c.design, kPaper, 0.002);
+  DefaultRuns d{make_problem(c, y), least_squares_sigma(c.design, y), {}};
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    fit::EngineSettings settings;
+    settings.seed = seed;
+    d.runs.push_back(fit::find_engine(engine).make(settings)->fit(d.problem));
+  }
+  return d;
+}
+
+// σ at the engine's answer within `relative` above the optimum, and not below it.
+inline void expect_near_optimum(const DefaultRuns& d, const FitResult& r, double relative) {
+  EXPECT_LE(r.objective, d.optimum * (1.0 + relative));
+  EXPECT_LE(sigma_at(d.problem, r), d.optimum * (1.0 + relative));
+  EXPECT_GE(sigma_at(d.problem, r), d.optimum * (1.0 - 1e-12));
 }
 
 }  // namespace gyrotherm::testing::lagged_cycle

@@ -119,17 +119,9 @@ FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) c
 }
 
 EngineInfo afsa_engine_info() {
-  EngineInfo info;
-  info.name = kName;
-  info.description =
-      "artificial fish swarm (Li 2002): prey, swarm and follow within a fixed Visual and Step";
-  info.stochastic = true;
-  info.default_evaluations = Options{}.max_evaluations;
-  info.options = describe_options(option_table());
-  info.make = [](const EngineSettings& settings) -> std::unique_ptr<Engine> {
-    return std::make_unique<AfsaEngine>(options_from(kName, option_table(), settings));
-  };
-  return info;
+  return engine_info<AfsaEngine>(
+      kName, "artificial fish swarm (Li 2002): prey, swarm and follow within a fixed Visual and Step",
+      /*stochastic=*/true, Options{}.max_evaluations, &option_table);
 }
 
 }  // namespace gyrotherm::fit

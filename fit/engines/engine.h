@@ -158,6 +158,23 @@ Options options_from(std::string_view engine, const OptionTable<Options>& table,
   return o;
 }
 
+// The registry entry of an engine class built from its Options: the listing
+// from the table, and `make` reading the options with it (options_from).
+template <class EngineClass, class Options>
+EngineInfo engine_info(std::string name, std::string description, bool stochastic,
+                       long default_evaluations, const OptionTable<Options>& (*table)()) {
+  EngineInfo info;
+  info.name = name;
+  info.description = std::move(description);
+  info.stochastic = stochastic;
+  info.default_evaluations = default_evaluations;
+  info.options = describe_options(table());
+  info.make = [name, table](const EngineSettings& settings) -> std::unique_ptr<Engine> {
+    return std::make_unique<EngineClass>(options_from(name, table(), settings));
+  };
+  return info;
+}
+
 // The registry entries, one function per engine file.
 EngineInfo ols_engine_info();
 EngineInfo stepwise_engine_info();

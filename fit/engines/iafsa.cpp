@@ -159,18 +159,10 @@ FitResult IafsaEngine::fit(const LinearProblem& problem, FitObserver* observer) 
 }
 
 EngineInfo iafsa_engine_info() {
-  EngineInfo info;
-  info.name = kName;
-  info.description =
-      "improved artificial fish swarm (Yu et al. 2014): shrinking Visual and Step, swarm to the "
-      "swarm's centre, follow the bulletin board";
-  info.stochastic = true;
-  info.default_evaluations = Options{}.max_evaluations;
-  info.options = describe_options(option_table());
-  info.make = [](const EngineSettings& settings) -> std::unique_ptr<Engine> {
-    return std::make_unique<IafsaEngine>(options_from(kName, option_table(), settings));
-  };
-  return info;
+  return engine_info<IafsaEngine>(kName,
+                                  "improved artificial fish swarm (Yu et al. 2014): shrinking Visual "
+                                  "and Step, swarm to the swarm's centre, follow the bulletin board",
+                                  /*stochastic=*/true, Options{}.max_evaluations, &option_table);
 }
 
 }  // namespace gyrotherm::fit

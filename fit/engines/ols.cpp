@@ -176,16 +176,9 @@ void OlsOptions::validate() const { check_options("ols", option_table(), *this);
 OlsEngine::OlsEngine(OlsOptions options) : options_(std::move(options)) { options_.validate(); }
 
 EngineInfo ols_engine_info() {
-  EngineInfo info;
-  info.name = "ols";
-  info.description = "exact least squares (QR) with autocorrelation-robust 95 % intervals: the reference";
-  info.stochastic = false;
-  info.default_evaluations = 1;
-  info.options = describe_options(option_table());
-  info.make = [](const EngineSettings& s) -> std::unique_ptr<Engine> {
-    return std::make_unique<OlsEngine>(options_from("ols", option_table(), s));
-  };
-  return info;
+  return engine_info<OlsEngine>(
+      "ols", "exact least squares (QR) with autocorrelation-robust 95 % intervals: the reference",
+      /*stochastic=*/false, /*default_evaluations=*/1, &option_table);
 }
 
 }  // namespace gyrotherm::fit

@@ -167,16 +167,9 @@ void StepwiseOptions::validate() const {
 StepwiseEngine::StepwiseEngine(StepwiseOptions options) : options_(options) { options_.validate(); }
 
 EngineInfo stepwise_engine_info() {
-  EngineInfo info;
-  info.name = "stepwise";
-  info.description = "stepwise regression as MATLAB's stepwisefit (enter p<0.05, remove p>0.10)";
-  info.stochastic = false;
-  info.default_evaluations = 0;
-  info.options = describe_options(option_table());
-  info.make = [](const EngineSettings& s) -> std::unique_ptr<Engine> {
-    return std::make_unique<StepwiseEngine>(options_from("stepwise", option_table(), s));
-  };
-  return info;
+  return engine_info<StepwiseEngine>(
+      "stepwise", "stepwise regression as MATLAB's stepwisefit (enter p<0.05, remove p>0.10)",
+      /*stochastic=*/false, /*default_evaluations=*/0, &option_table);
 }
 
 }  // namespace gyrotherm::fit

@@ -94,6 +94,13 @@ const Effect* find_by_truth_key(std::string_view truth_key);
 std::string names();
 std::string hidden_names();
 
+// The regressor of an effect whose r at a point depends on that point alone:
+// pointwise<f>, f(series, index, θ) → r.
+template <auto f>
+void pointwise(const EffectSeries& series, double parameter, std::span<double> out) {
+  for (std::size_t p = 0; p < out.size(); ++p) out[p] = f(series, p, parameter);
+}
+
 // r at every point of a series, as a new vector.
 std::vector<double> regressor_values(const Effect& effect, const EffectSeries& series,
                                      double parameter);

@@ -4,20 +4,15 @@
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::effects {
-namespace {
-
-void regressor(const EffectSeries& s, double, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.temp2_c[p] - s.temp_c[p];
-}
-
-}  // namespace
 
 extern constinit const Effect gradient{
     .name = "grad",
     .meaning = "temperature gradient across the block (Langmuir-flow imbalance)",
     .unit = "°C",
     .columns = kTemp | kTemp2,
-    .regressor = &regressor,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
+      return s.temp2_c[p] - s.temp_c[p];
+    })>,
 };
 
 }  // namespace gyrotherm::effects

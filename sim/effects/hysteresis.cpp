@@ -4,16 +4,6 @@
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::effects {
-namespace {
-
-void regressor(const EffectSeries& s, double dead_band, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) {
-    const double r = s.rate_c_per_s[p];
-    out[p] = r > dead_band ? 1.0 : (r < -dead_band ? -1.0 : 0.0);
-  }
-}
-
-}  // namespace
 
 extern constinit const Effect hysteresis{
     .name = "hyst",
@@ -26,7 +16,10 @@ extern constinit const Effect hysteresis{
                                  .simulator_default = 2e-4,
                                  .may_be_zero = true,
                                  .differentiable = false},
-    .regressor = &regressor,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double dead_band) {
+      const double r = s.rate_c_per_s[p];
+      return r > dead_band ? 1.0 : (r < -dead_band ? -1.0 : 0.0);
+    })>,
 };
 
 }  // namespace gyrotherm::effects

@@ -3,19 +3,14 @@
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::effects {
-namespace {
-
-void regressor(const EffectSeries& s, double, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.temp_c[p] * s.rate_c_per_s[p];
-}
-
-}  // namespace
 
 extern constinit const Effect rate_times_temperature{
     .name = "T*dT",
     .meaning = "rate sensitivity that changes with temperature",
     .unit = "°C²/s",
-    .regressor = &regressor,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
+      return s.temp_c[p] * s.rate_c_per_s[p];
+    })>,
 };
 
 }  // namespace gyrotherm::effects

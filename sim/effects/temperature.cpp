@@ -3,20 +3,15 @@
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::effects {
-namespace {
-
-void regressor(const EffectSeries& s, double, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.temp_c[p];
-}
-
-}  // namespace
 
 extern constinit const Effect temperature{
     .name = "T",
     .meaning = "temperature sensitivity",
     .unit = "°C",
     .truth_key = "b1_dph_per_c",
-    .regressor = &regressor,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
+      return s.temp_c[p];
+    })>,
 };
 
 }  // namespace gyrotherm::effects

@@ -3,19 +3,14 @@
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::effects {
-namespace {
-
-void regressor(const EffectSeries& s, double, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.temp_c[p] * s.temp_c[p] * s.temp_c[p];
-}
-
-}  // namespace
 
 extern constinit const Effect temperature_cubed{
     .name = "T^3",
     .meaning = "higher-order curvature",
     .unit = "°C³",
-    .regressor = &regressor,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
+      return s.temp_c[p] * s.temp_c[p] * s.temp_c[p];
+    })>,
 };
 
 }  // namespace gyrotherm::effects

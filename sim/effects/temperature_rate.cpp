@@ -4,20 +4,15 @@
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::effects {
-namespace {
-
-void regressor(const EffectSeries& s, double, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.rate_c_per_s[p];
-}
-
-}  // namespace
 
 extern constinit const Effect temperature_rate{
     .name = "dT",
     .meaning = "temperature-rate effect (cavity bending, gas flow)",
     .unit = "°C/s",
     .truth_key = "b3_dph_per_c_per_s",
-    .regressor = &regressor,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
+      return s.rate_c_per_s[p];
+    })>,
 };
 
 }  // namespace gyrotherm::effects

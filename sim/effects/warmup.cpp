@@ -7,13 +7,6 @@
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::effects {
-namespace {
-
-void regressor(const EffectSeries& s, double tau_s, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) out[p] = std::exp(-(s.time_s[p] - s.switch_on_s) / tau_s);
-}
-
-}  // namespace
 
 extern constinit const Effect warmup{
     .name = "warmup",
@@ -25,7 +18,9 @@ extern constinit const Effect warmup{
                                  .lower = 60.0,
                                  .upper = 7200.0,
                                  .simulator_default = 1800.0},
-    .regressor = &regressor,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double tau_s) {
+      return std::exp(-(s.time_s[p] - s.switch_on_s) / tau_s);
+    })>,
 };
 
 }  // namespace gyrotherm::effects

@@ -44,26 +44,20 @@ Rng make_rng(std::uint64_t seed, std::uint64_t stream);
 // Every stream id of the project, in one place, so that no two components
 // share one by accident. A component draws only from make_rng(seed, its id).
 namespace streams {
-// The simulator's noise (sim/noise.h), one per component.
-inline constexpr std::uint64_t arw = 1;
-inline constexpr std::uint64_t flicker = 2;
-inline constexpr std::uint64_t rrw = 3;
-inline constexpr std::uint64_t quantizer = 4;
-inline constexpr std::uint64_t glitch = 5;
-// Temperature reading i uses stream reading_base + i.
-inline constexpr std::uint64_t reading_base = 16;
-// The fish-swarm engines' own generators (fit/engines/afsa.h, iafsa.h).
-inline constexpr std::uint64_t afsa = 0xAF5A;
-inline constexpr std::uint64_t iafsa = 0x1AF5A;
-// The sign-flip randomisation test of diagnose (studies/diagnose/diagnosis.h).
-inline constexpr std::uint64_t diagnosis_sign_flips = 0x5167;
-// The per-trial [spread] draws of score (studies/score/spread.h).
-inline constexpr std::uint64_t score_spread = 0x5C0E;
-// The streaming reader's reservoir samples (fit/data/streaming.h): a fixed
-// seed, so that a record is always prepared the same way.
-inline constexpr std::uint64_t reservoir_seed = 0x5eed;
-inline constexpr std::uint64_t reservoir_steps = 1;
-inline constexpr std::uint64_t reservoir_jumps = 2;
+enum : std::uint64_t {
+  // The simulator's noise (sim/noise.h), one per component; temperature
+  // reading i uses stream reading_base + i.
+  arw = 1, flicker = 2, rrw = 3, quantizer = 4, glitch = 5, reading_base = 16,
+  // The fish-swarm engines' own generators (fit/engines/afsa.h, iafsa.h).
+  afsa = 0xAF5A, iafsa = 0x1AF5A,
+  // The sign-flip randomisation test of diagnose (studies/diagnose/diagnosis.h).
+  diagnosis_sign_flips = 0x5167,
+  // The per-trial [spread] draws of score (studies/score/spread.h).
+  score_spread = 0x5C0E,
+  // The streaming reader's reservoir samples (fit/data/streaming.h), from a
+  // fixed seed so that a record is always prepared the same way.
+  reservoir_seed = 0x5eed, reservoir_steps = 1, reservoir_jumps = 2,
+};
 }  // namespace streams
 
 }  // namespace gyrotherm
