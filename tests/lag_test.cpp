@@ -125,13 +125,8 @@ TEST(Lag, RecoveryOverSeeds) {
   constexpr int kSeeds = 12;
   for (int seed = 1; seed <= kSeeds; ++seed) {
     sc.seed = static_cast<std::uint64_t>(seed);
-    sim::SimulationResult r = sim::Simulator(sc, rig, gyro).record(trace);
-    fit::Measurement m;
-    m.file = "lag";
-    m.time_s = std::move(r.time_s);
-    m.temp_c = std::move(r.temp_c);
-    m.gyro_dph = std::move(r.gyro_dph);
-    const fit::PreparedData data = fit::prepare_data(m, fit::PipelineOptions{});
+    const fit::PreparedData data = fit::prepare_data(
+        fit::measurement_of(sim::Simulator(sc, rig, gyro).record(trace), "lag"), fit::PipelineOptions{});
     const fit::ModelFit f = fit::fit_model(data, with_lag, ols, {});
     EXPECT_NEAR(f.coefficients.b[3] / 0.003, 1.0, 0.2) << "seed " << seed;
     EXPECT_NEAR(f.parameters[3] / 1200.0, 1.0, 0.2) << "seed " << seed;

@@ -22,12 +22,7 @@ PreparedData simulate_cycle(sim::GyroConfig gyro, std::uint64_t seed = 1) {
   sim::Scenario sc = sim::load_scenario(source_path("scenarios/cycle.toml"));
   sc.seed = seed;
   const sim::SimulationResult r = sim::Simulator(sc, sim::load_rig(sc.rig_file), gyro).run();
-  Measurement m;
-  m.file = "cycle";
-  m.time_s = r.time_s;
-  m.temp_c = r.temp_c;
-  m.gyro_dph = r.gyro_dph;
-  m.temp2_c = r.temp2_c;
+  const Measurement m = measurement_of(r, "cycle");
   return prepare_data(m, PipelineOptions{});
 }
 

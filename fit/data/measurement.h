@@ -33,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/simulator.h"
+
 namespace gyrotherm::fit {
 
 // The names of the needed columns in the file's header.
@@ -56,6 +58,10 @@ struct Measurement {
 
 // Reads and checks a measurement CSV; throws InputError (see above) on bad input.
 Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns = {});
+
+// A simulated record as a measurement (time, temp_c, temp2_c, gyro_dph), as if
+// read from its CSV without the rounding; `file` names it in messages.
+Measurement measurement_of(sim::SimulationResult record, std::string file);
 
 // Streaming: the same reading and checks, but every row is handed to `sink`
 // (temp2_c is 0 when the file has no such column) and nothing is stored.

@@ -18,16 +18,6 @@ sim::SimulationResult simulate(const std::filesystem::path& file, std::uint64_t*
   return sim::Simulator(sc, rig, gyro).run();
 }
 
-Measurement measured(const sim::SimulationResult& r, const std::string& name) {
-  Measurement m;
-  m.file = name;
-  m.time_s = r.time_s;
-  m.temp_c = r.temp_c;
-  m.gyro_dph = r.gyro_dph;
-  m.temp2_c = r.temp2_c;
-  return m;
-}
-
 Truth truth_of(const std::filesystem::path& cycle) {
   const sim::Scenario sc = sim::load_scenario(cycle);
   const sim::GyroConfig g = sim::load_gyro(sc.gyro_file);
@@ -58,10 +48,10 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
   r.truth = truth_of(o.cycle);
 
   const PipelineOptions pipeline;  // the paper's: glitches removed, 100 s, central differences
-  r.cycle_data = prepare_data(measured(r.cycle_run, "cycle"), pipeline);
+  r.cycle_data = prepare_data(measurement_of(r.cycle_run, "cycle"), pipeline);
   const std::vector<const Term*> terms = parse_formula(kDefaultModel);
-  const Measurement test1 = measured(r.test1_run, "test1");
-  const Measurement test2 = measured(r.test2_run, "test2");
+  const Measurement test1 = measurement_of(r.test1_run, "test1");
+  const Measurement test2 = measurement_of(r.test2_run, "test2");
   PipelineOptions causal = pipeline;
   causal.derivative = DerivativeMode::causal;
   r.test1.name = "test1";

@@ -123,12 +123,7 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
     // optimum once.
     sim::SimulationResult record =
         sim::Simulator(std::move(scenario), rig_, gyro).record(trace_);
-    Measurement m;
-    m.file = fmt::format("{} (trial {}, seed {})", scenario_.name, k, out.seed);
-    m.time_s = std::move(record.time_s);
-    m.temp_c = std::move(record.temp_c);
-    m.gyro_dph = std::move(record.gyro_dph);
-    m.temp2_c = std::move(record.temp2_c);
+    const Measurement m = measurement_of(std::move(record), fmt::format("{} (trial {}, seed {})", scenario_.name, k, out.seed));
     const PreparedData data = prepare_data(m, options_.pipeline);
     check_columns(terms_, data, options_.pipeline.columns);
     const std::vector<double> parameters = fit_parameters(data.derived, data.series.gyro_dph, terms_);
