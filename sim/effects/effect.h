@@ -22,8 +22,10 @@
 // file's [truth] table, every other effect's from [hidden].
 //
 // Adding an effect: one file sim/effects/NAME.cpp defining
-// `constinit const Effect NAME{...}` in namespace gyrotherm::effects, one test
-// tests/NAME_test.cpp, one line EFFECT(NAME) in sim/effects/registry.def.
+// `extern constinit const Effect NAME{...}` in namespace gyrotherm::effects
+// (sim/effects/lag.cpp is a full example, temperature.cpp a pointwise one),
+// one test tests/NAME_test.cpp, one line EFFECT(NAME) in
+// sim/effects/registry.def. The sources are globbed: CMake needs no edit.
 
 #include <cstddef>
 #include <optional>
