@@ -54,9 +54,9 @@ int run_diagnose(const DiagnoseOptions& o) {
     return 0;
   }
 
-  fmt::print("diagnose {}: model B = b0 + {} ({}), {} windows of {:g} s, {} glitches removed\n",
-             o.data, fit::formula_text(terms), engine.name, data.series.size(),
-             pipeline.averaging.window_s, data.outliers.removed);
+  fmt::print("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n",
+             o.data, fit::formula_text(terms), engine.name, fit::describe_windows(data, pipeline),
+             data.outliers.removed);
   fmt::print("1. compare: instability {:.5f} -> {:.5f} °/h; noise floor {:.5f} °/h (robust Hadamard "
              "deviation of the {:g} s means):\n   the model is {:.2f} times the floor\n",
              d.fit.instability_before_dph, d.fit.instability_after_dph, d.noise_floor_dph,

@@ -69,9 +69,9 @@ int run_fit(const FitOptions& o) {
     return 0;
   }
 
-  fmt::print("data: {}: {} samples{} every {:g} s, {} glitches removed, {} gaps, {} windows of {:g} s\n",
-             data.file, data.raw_samples, streamed ? " (streamed)" : "", data.averaging.sample_interval_s, data.outliers.removed,
-             data.averaging.gaps.size(), data.series.size(), pipeline.averaging.window_s);
+  fmt::print("data: {}: {} samples{} every {:g} s, {} glitches removed, {} gaps, {}\n", data.file,
+             data.raw_samples, streamed ? " (streamed)" : "", data.averaging.sample_interval_s,
+             data.outliers.removed, data.averaging.gaps.size(), fit::describe_windows(data, pipeline));
   if (!data.outliers.times_s.empty()) {
     std::string times;
     for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 8; ++k)

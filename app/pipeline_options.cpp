@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
@@ -17,6 +19,8 @@ fit::PipelineOptions DataOptions::resolved() const {
       throw InputError(fmt::format("--outlier-threshold {}: must be > 0 (robust sigmas)", *outlier_threshold));
     p.outliers.threshold = *outlier_threshold;
   }
+  if (!(p.derivative_span_s > 0.0) || !std::isfinite(p.derivative_span_s))
+    throw InputError(fmt::format("--deriv-span {}: must be a number of seconds > 0", p.derivative_span_s));
   if (causal) p.derivative = fit::DerivativeMode::causal;
   if (keep_outliers) p.remove_outliers = false;
   return p;
@@ -26,6 +30,9 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
   if (with_avg)
     cmd->add_option("--avg", o.pipeline.averaging.window_s,
                     "Averaging window in seconds (default 100, the paper's 100 s averages)");
+  cmd->add_option("--deriv-span", o.pipeline.derivative_span_s,
+                  "Longest time between two window centres that dT/dt and d2T/dt2 may span, "
+                  "across a gap or not (default 600 s)");
   cmd->add_flag("--causal", o.causal,
                 "Backward differences for dT/dt and d2T (a real-time compensator); default central");
   cmd->add_flag("--keep-outliers", o.keep_outliers, "Do not remove counting glitches");

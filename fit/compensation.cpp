@@ -30,7 +30,7 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   c.data.raw_samples = m.size();
   if (pipeline.remove_outliers) c.data.outliers = flag_outliers(m, pipeline.outliers, valid);
   c.data.series = average_windows(m, valid, pipeline.averaging, &c.data.averaging);
-  c.data.derived = derive(c.data.series, pipeline.derivative);
+  c.data.derived = derive(c.data.series, pipeline.derivative, pipeline.derivative_span_s);
   check_columns(fit.terms, c.data, pipeline.columns);
 
   const AveragedSeries& s = c.data.series;
@@ -49,7 +49,7 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   c.outlier.resize(m.size());
   for (std::size_t k = 0; k < m.size(); ++k) c.outlier[k] = valid[k] ? 0 : 1;
   c.model_dph.resize(m.size());
-  const double half_window = 0.5 * pipeline.averaging.window_s;
+  const double half_window = 0.5 * s.window_s;  // a burst's half length with bursts
   std::size_t p = 0;  // windows are in time order
   for (std::size_t k = 0; k < m.size(); ++k) {
     const double t = m.time_s[k];

@@ -85,9 +85,12 @@ std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
                {"outlier_times_s", outlier_times},
                {"gaps", gaps},
                {"windows", data.series.size()},
-               {"dropped_windows", data.averaging.dropped_windows}};
+               {"dropped_windows", data.averaging.dropped_windows},
+               {"bursts", data.averaging.bursts},
+               {"windows_described", describe_windows(data, pipeline)}};
   j["pipeline"] = {{"avg_s", pipeline.averaging.window_s},
                    {"derivative", to_string(pipeline.derivative)},
+                   {"deriv_span_s", pipeline.derivative_span_s},
                    {"remove_outliers", pipeline.remove_outliers},
                    {"outlier_window_s", pipeline.outliers.window_s},
                    {"outlier_threshold", pipeline.outliers.threshold},
@@ -163,6 +166,9 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file) {
     throw InputError(fmt::format("{}: pipeline.derivative = '{}': expected 'central' or 'causal'",
                                  file.string(), mode));
   s.pipeline.derivative = mode == "causal" ? DerivativeMode::causal : DerivativeMode::central;
+  // Fit files from before derivatives bridged gaps have no span: the default.
+  if (pipeline.contains("deriv_span_s"))
+    s.pipeline.derivative_span_s = number(pipeline["deriv_span_s"], "pipeline.deriv_span_s");
   s.pipeline.remove_outliers = need(pipeline, "remove_outliers", "bool").get<bool>();
   s.pipeline.outliers.window_s = number(need(pipeline, "outlier_window_s", "s"), "pipeline.outlier_window_s");
   s.pipeline.outliers.threshold = number(need(pipeline, "outlier_threshold", "MADs"), "pipeline.outlier_threshold");

@@ -218,6 +218,54 @@ TEST(AverageWindows, BadOptionsAreRejectedByName) {
   EXPECT_NO_THROW(AveragingOptions{}.validate());
 }
 
+// A logger that records in bursts: 5 s at 10 Hz every 300 s, shorter than
+// the 100 s window; each burst becomes one window, its mean at its centre.
+TEST(AverageWindows, BurstsShorterThanTheWindowAreOneWindowEach) {
+  std::vector<double> t;
+  for (int b = 0; b < 6; ++b)
+    for (const double u : range(0.0, 4.9, 0.1)) t.push_back(300.0 * b + u);
+  const Measurement m = record(t);
+  AveragingReport report;
+  const AveragedSeries s = average_windows(m, all_valid(m), AveragingOptions{}, &report);
+  ASSERT_EQ(s.size(), 6u);
+  EXPECT_TRUE(report.bursts);
+  EXPECT_EQ(report.gaps.size(), 5u);
+  EXPECT_NEAR(report.median_run_s, 5.0, 1e-9);
+  EXPECT_NEAR(report.median_spacing_s, 300.0, 1e-9);
+  EXPECT_NEAR(s.window_s, 5.0, 1e-9);
+  for (std::size_t b = 0; b < 6; ++b) {
+    const double centre = 300.0 * static_cast<double>(b) + 2.45;
+    EXPECT_NEAR(s.time_s[b], centre, 1e-9);
+    EXPECT_NEAR(s.temp_c[b], 20.0 + centre / 10.0, 1e-9);
+    EXPECT_EQ(s.samples[b], 50u);
+    EXPECT_EQ(s.run[b], b);
+  }
+  // A burst mostly made of rejected samples is dropped, as a window would be.
+  std::vector<unsigned char> valid = all_valid(m);
+  for (std::size_t k = 50; k < 80; ++k) valid[k] = 0;
+  EXPECT_EQ(average_windows(m, valid, AveragingOptions{}).size(), 5u);
+  // A window shorter than the bursts: plain windows again.
+  AveragingOptions short_windows;
+  short_windows.window_s = 1.0;
+  AveragingReport plain;
+  EXPECT_EQ(average_windows(m, all_valid(m), short_windows, &plain).size(), 6u * 5u);
+  EXPECT_FALSE(plain.bursts);
+}
+
+// A continuous record with one short fragment is not bursty: the fragment's
+// partial window is dropped as before.
+TEST(AverageWindows, AShortRunInAContinuousRecordIsNotABurst) {
+  std::vector<double> t = range(0.0, 999.0);
+  for (const double u : range(1500.0, 1530.0)) t.push_back(u);
+  for (const double u : range(2000.0, 2999.0)) t.push_back(u);
+  const Measurement m = record(t);
+  AveragingReport report;
+  const AveragedSeries s = average_windows(m, all_valid(m), AveragingOptions{}, &report);
+  EXPECT_FALSE(report.bursts);
+  EXPECT_EQ(s.size(), 20u);
+  EXPECT_EQ(s.window_s, 100.0);
+}
+
 TEST(WindowAverager, StreamsOneSampleAtATime) {
   // The same windows as ExactMeans, fed by hand with one rejected sample.
   WindowAverager averager({.window_s = 5.0}, 1.0, true);

@@ -54,5 +54,29 @@ TEST(Derivatives, CausalDifferencesUseOnlyThePast) {
   EXPECT_NEAR(d.rate_c_per_s[7], (d.temp_c[7] - d.temp_c[6]) / 100.0, 1e-15);
 }
 
+// Window means 305 s apart across gaps (a bursty logger): the default span
+// of 600 s bridges them, so dT/dt is central and exact for a quadratic; a span
+// shorter than the spacing leaves every window without neighbours.
+TEST(Derivatives, BridgeGapsUpToTheSpan) {
+  AveragedSeries s;
+  for (int i = 0; i < 6; ++i) {
+    const double t = 2.5 + 305.0 * i;
+    s.time_s.push_back(t);
+    s.temp_c.push_back(24.0 - 1e-3 * t + 1e-8 * t * t);
+    s.gyro_dph.push_back(0.0);
+    s.samples.push_back(250);
+    s.run.push_back(static_cast<std::size_t>(i));  // every window its own run
+  }
+  const DerivedSeries d = derive(s, DerivativeMode::central);
+  for (std::size_t p = 1; p + 1 < s.size(); ++p)
+    EXPECT_NEAR(d.rate_c_per_s[p], -1e-3 + 2e-8 * s.time_s[p], 1e-15) << p;
+  EXPECT_NEAR(d.accel_c_per_s2[2], 2e-8, 1e-15);
+  const DerivedSeries causal = derive(s, DerivativeMode::causal);
+  EXPECT_EQ(causal.rate_c_per_s[0], 0.0);
+  EXPECT_NEAR(causal.rate_c_per_s[3], (s.temp_c[3] - s.temp_c[2]) / 305.0, 1e-15);
+  const DerivedSeries unbridged = derive(s, DerivativeMode::central, 200.0);
+  for (double r : unbridged.rate_c_per_s) EXPECT_EQ(r, 0.0);
+}
+
 }  // namespace
 }  // namespace gyrotherm::fit

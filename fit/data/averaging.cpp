@@ -5,12 +5,30 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <utility>
 
+#include "sim/util/format.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
+namespace {
+
+// Rule 1.
+bool is_gap(double step_s, double sample_interval_s, const AveragingOptions& o) {
+  return step_s > o.gap_factor * sample_interval_s || step_s > o.window_s;
+}
+
+double median_of(std::vector<double> v) {
+  const std::size_t half = v.size() / 2;
+  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(half);
+  std::nth_element(v.begin(), middle, v.end());
+  if (v.size() % 2 == 1) return *middle;
+  return 0.5 * (*std::max_element(v.begin(), middle) + *middle);
+}
+
+}  // namespace
 
 void AveragingOptions::validate() const {
   if (!(window_s > 0.0) || !std::isfinite(window_s))
@@ -31,20 +49,26 @@ void AveragingOptions::validate() const {
 }
 
 WindowAverager::WindowAverager(const AveragingOptions& options, double sample_interval_s,
-                               bool has_temp2)
-    : options_(options), has_temp2_(has_temp2) {
+                               bool has_temp2, bool whole_runs)
+    : options_(options), has_temp2_(has_temp2), whole_runs_(whole_runs) {
   options_.validate();
   assert(sample_interval_s > 0.0);
-  if (options_.window_s < sample_interval_s)
+  if (options_.window_s < sample_interval_s && !whole_runs_)
     throw InputError(
         fmt::format("--avg {}: the averaging window is shorter than the sample "
                     "interval ({} s)",
                     options_.window_s, sample_interval_s));
   min_valid_samples_ = options_.min_fill * options_.window_s / sample_interval_s;
   report_.sample_interval_s = sample_interval_s;
+  report_.bursts = whole_runs_;
+  series_.window_s = options_.window_s;
 }
 
 void WindowAverager::start_window(double time_s) {
+  if (whole_runs_) {  // the window ends with the run
+    window_end_s_ = std::numeric_limits<double>::infinity();
+    return;
+  }
   // The window [r + jW, r + (j+1)W) that holds time_s; j from a division, then
   // nudged so that rounding can never put time_s outside it.
   const double w = options_.window_s;
@@ -56,7 +80,9 @@ void WindowAverager::start_window(double time_s) {
 
 void WindowAverager::close_window() {
   if (window_samples_ == 0) return;
-  if (window_valid_ > 0 && static_cast<double>(window_valid_) >= min_valid_samples_) {
+  const double needed = whole_runs_ ? options_.min_fill * static_cast<double>(window_samples_)
+                                    : min_valid_samples_;
+  if (window_valid_ > 0 && static_cast<double>(window_valid_) >= needed) {
     const auto n = static_cast<double>(window_valid_);
     series_.time_s.push_back(run_start_s_ + sum_time_s_ / n);
     series_.temp_c.push_back(sum_temp_c_ / n);
@@ -80,7 +106,7 @@ void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double t
   } else {
     assert(time_s > last_time_s_);
     const double step_s = time_s - last_time_s_;
-    if (step_s > options_.gap_factor * report_.sample_interval_s || step_s > options_.window_s) {
+    if (is_gap(step_s, report_.sample_interval_s, options_)) {
       close_window();
       longest_run_s_ = std::max(longest_run_s_, last_time_s_ - run_start_s_);
       report_.gaps.push_back({last_time_s_, time_s});
@@ -112,11 +138,22 @@ double median_sample_interval_s(const std::vector<double>& time_s) {
   assert(time_s.size() >= 2);
   std::vector<double> steps(time_s.size() - 1);
   for (std::size_t k = 1; k < time_s.size(); ++k) steps[k - 1] = time_s[k] - time_s[k - 1];
-  const std::size_t half = steps.size() / 2;
-  const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(half);
-  std::nth_element(steps.begin(), middle, steps.end());
-  if (steps.size() % 2 == 1) return *middle;
-  return 0.5 * (*std::max_element(steps.begin(), middle) + *middle);
+  return median_of(std::move(steps));
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> gap_free_runs(const std::vector<double>& time_s,
+                                                               double sample_interval_s,
+                                                               const AveragingOptions& options) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  if (time_s.empty()) return runs;
+  std::size_t first = 0;
+  for (std::size_t k = 1; k < time_s.size(); ++k)
+    if (is_gap(time_s[k] - time_s[k - 1], sample_interval_s, options)) {
+      runs.emplace_back(first, k - 1);
+      first = k;
+    }
+  runs.emplace_back(first, time_s.size() - 1);
+  return runs;
 }
 
 AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned char>& valid,
@@ -128,9 +165,18 @@ AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned 
                              fmt::format("{} sample{}: averaging needs at least 2", m.size(),
                                          m.size() == 1 ? "" : "s")));
   const double interval_s = median_sample_interval_s(m.time_s);
+  // Bursts: runs mostly shorter than the window.
+  const auto runs = gap_free_runs(m.time_s, interval_s, options);
+  std::vector<double> lengths, starts;
+  for (const auto& [first, last] : runs) {
+    lengths.push_back(m.time_s[last] - m.time_s[first] + interval_s);
+    starts.push_back(m.time_s[first]);
+  }
+  const double median_run_s = median_of(lengths);
+  const bool bursts = runs.size() > 1 && median_run_s < options.window_s;
   std::optional<WindowAverager> averager;
   try {
-    averager.emplace(options, interval_s, m.has_temp2());
+    averager.emplace(options, interval_s, m.has_temp2(), bursts);
   } catch (const InputError& e) {
     throw InputError(located(m.file, 0, e.what()));
   }
@@ -138,16 +184,24 @@ AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned 
     averager->add(m.time_s[k], m.temp_c[k], m.gyro_dph[k], m.has_temp2() ? m.temp2_c[k] : 0.0,
                   valid[k] != 0);
   AveragedSeries series = averager->finish();
-  if (report != nullptr) *report = averager->report();
+  AveragingReport r = averager->report();
+  r.median_run_s = median_run_s;
+  if (bursts) {
+    std::vector<double> spacing;
+    for (std::size_t i = 1; i < starts.size(); ++i) spacing.push_back(starts[i] - starts[i - 1]);
+    r.median_spacing_s = median_of(spacing);
+    series.window_s = median_run_s;
+  }
+  if (report != nullptr) *report = r;
   if (series.size() == 0)
     throw InputError(located(
         m.file, 0,
         fmt::format("no averaging window survives: the record is {} s long (longest gap-free run "
                     "{} s, {} gap{}) and the window (--avg) is {} s, of which at least {} % must "
                     "be valid samples",
-                    averager->record_s(), averager->longest_run_s(), averager->report().gaps.size(),
-                    averager->report().gaps.size() == 1 ? "" : "s", options.window_s,
-                    100.0 * options.min_fill)));
+                    human(averager->record_s()), human(averager->longest_run_s()),
+                    averager->report().gaps.size(), averager->report().gaps.size() == 1 ? "" : "s",
+                    human(options.window_s), human(100.0 * options.min_fill))));
   return series;
 }
 

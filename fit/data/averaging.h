@@ -13,6 +13,14 @@
 //      drops the partial last window of every run (and windows mostly made of
 //      rejected glitches).
 //
+// Bursty records. A logger that records in bursts (the PAN log: 5 s of 50 Hz
+// every 305 s) has gap-free runs shorter than any useful window, and rule 4
+// would drop them all. When the median run is shorter than W, each run
+// becomes one window instead (its mean, at the mean time of its samples; it
+// needs min_fill of its own samples valid), and the report says so
+// (AveragingReport::bursts). average_windows decides this from the whole
+// record; the streaming reader keeps plain windows.
+//
 // The work is done by WindowAverager, which sees one sample at a time and keeps
 // only the current window, so a streaming reader can feed it a record of any
 // length (it needs Δ up front: from a first pass, a prefix, or the file's
@@ -24,6 +32,7 @@
 // of length τ).
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "fit/data/measurement.h"
@@ -41,6 +50,7 @@ struct AveragingOptions {
 
 struct AveragedSeries {
   std::vector<double> time_s;                     // mean time of the samples in each window
+  double window_s = 0;  // the windows' length: W, or with bursts the median burst length
   std::vector<double> temp_c, gyro_dph, temp2_c;  // window means (temp2_c empty if absent)
   std::vector<std::size_t> samples;               // valid samples in each window
   std::vector<std::size_t> run;                   // index of the gap-free run the window belongs to
@@ -56,6 +66,9 @@ struct AveragingReport {
   std::vector<Gap> gaps;
   double sample_interval_s = 0;     // Δ, the median time step
   std::size_t dropped_windows = 0;  // windows with some samples but too few valid ones
+  bool bursts = false;              // each gap-free run averaged as one window
+  double median_run_s = 0;          // median length of the gap-free runs
+  double median_spacing_s = 0;      // with bursts: median time between burst starts
 };
 
 // One window at a time. Feed samples in increasing time with add(), then call
@@ -63,8 +76,10 @@ struct AveragingReport {
 class WindowAverager {
  public:
   // sample_interval_s is Δ. Throws InputError if the options are invalid or
-  // the window is shorter than Δ.
-  WindowAverager(const AveragingOptions& options, double sample_interval_s, bool has_temp2);
+  // the window is shorter than Δ. With whole_runs, every gap-free run is one
+  // window (bursty records).
+  WindowAverager(const AveragingOptions& options, double sample_interval_s, bool has_temp2,
+                 bool whole_runs = false);
 
   // temp2_c is ignored when has_temp2 is false.
   void add(double time_s, double temp_c, double gyro_dph, double temp2_c, bool valid);
@@ -81,6 +96,7 @@ class WindowAverager {
   AveragingOptions options_;
   double min_valid_samples_;  // min_fill · W/Δ
   bool has_temp2_;
+  bool whole_runs_;
   AveragedSeries series_;
   AveragingReport report_;
 
@@ -94,6 +110,11 @@ class WindowAverager {
 
 // The median time step of the record, s (Δ above). Needs at least 2 samples.
 double median_sample_interval_s(const std::vector<double>& time_s);
+
+// The gap-free runs of a record by rule 1: [first, last] sample indices.
+std::vector<std::pair<std::size_t, std::size_t>> gap_free_runs(const std::vector<double>& time_s,
+                                                               double sample_interval_s,
+                                                               const AveragingOptions& options);
 
 // Averages m (samples with valid[k] = 0 excluded; valid.size() == m.size()).
 // Throws InputError naming m.file if no window survives, saying how long the

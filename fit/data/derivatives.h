@@ -4,10 +4,16 @@
 // (and temp2_c), and their first and second time derivatives. The gyro is
 // taken to be switched on at the first sample (for warmup).
 //
-// Derivatives are taken on the averaged series within each gap-free run:
-// central differences (the default; one-sided at the ends of a run), or
-// backward differences for a causal, real-time compensator (0 at the first
-// window of a run).
+// Derivatives are taken on the window means at their actual centre times:
+// central differences (the default), or backward differences for a causal,
+// real-time compensator. A neighbouring window is used when its centre is at
+// most `span_s` away, across a gap or not: a logger's bursts a few minutes
+// apart are bridged, a long interruption never is. Where only one neighbour
+// is that close the difference is one-sided; with none it is 0.
+//
+// The default span, 600 s, bridges the 305 s between the PAN log's bursts and
+// stays well below the thermal time constants of a gyro block (tens of
+// minutes), so a difference never reaches across a change of regime.
 
 #include "fit/data/averaging.h"
 #include "sim/effects/effect.h"
@@ -21,6 +27,9 @@ const char* to_string(DerivativeMode mode);
 // The fit's name for the effects' state series.
 using DerivedSeries = effects::EffectSeries;
 
-DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode);
+inline constexpr double kDefaultDerivativeSpanS = 600.0;
+
+DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode,
+                     double span_s = kDefaultDerivativeSpanS);
 
 }  // namespace gyrotherm::fit

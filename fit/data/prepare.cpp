@@ -1,5 +1,9 @@
 #include "fit/data/prepare.h"
 
+#include <fmt/format.h>
+
+#include "sim/util/format.h"
+
 namespace gyrotherm::fit {
 
 PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) {
@@ -9,12 +13,21 @@ PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) 
   std::vector<unsigned char> valid(m.size(), 1);
   if (options.remove_outliers) d.outliers = flag_outliers(m, options.outliers, valid);
   d.series = average_windows(m, valid, options.averaging, &d.averaging);
-  d.derived = derive(d.series, options.derivative);
+  d.derived = derive(d.series, options.derivative, options.derivative_span_s);
   return d;
 }
 
 PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options) {
   return prepare_data(read_measurement_csv(csv, options.columns), options);
+}
+
+std::string describe_windows(const PreparedData& d, const PipelineOptions& o) {
+  const std::size_t n = d.series.size();
+  if (!d.averaging.bursts) return fmt::format("{} windows of {} s", n, human(o.averaging.window_s));
+  return fmt::format("{} bursts of {} s every {} s, each averaged as one window (shorter than the {} s "
+                     "window)",
+                     n, human(d.averaging.median_run_s), human(d.averaging.median_spacing_s),
+                     human(o.averaging.window_s));
 }
 
 }  // namespace gyrotherm::fit

@@ -25,6 +25,7 @@ struct PipelineOptions {
   OutlierOptions outliers;
   AveragingOptions averaging;
   DerivativeMode derivative = DerivativeMode::central;
+  double derivative_span_s = kDefaultDerivativeSpanS;  // --deriv-span (fit/data/derivatives.h)
 };
 
 struct PreparedData {
@@ -38,6 +39,10 @@ struct PreparedData {
 };
 
 PreparedData prepare_data(const Measurement& measurement, const PipelineOptions& options);
+
+// "317 windows of 100 s", or for a bursty record "25 bursts of 5 s every
+// 305 s, each averaged as one window (shorter than the 100 s window)".
+std::string describe_windows(const PreparedData& data, const PipelineOptions& options);
 PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options);
 
 }  // namespace gyrotherm::fit

@@ -192,7 +192,7 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
   advance(true);
   d.series = averager.finish();
   d.averaging = averager.report();
-  d.derived = derive(d.series, o.derivative);
+  d.derived = derive(d.series, o.derivative, o.derivative_span_s);
   return d;
 }
 
