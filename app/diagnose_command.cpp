@@ -16,6 +16,7 @@
 #include "app/pipeline_options.h"
 #include "studies/diagnose/report.h"
 #include "fit/model/formula.h"
+#include "sim/util/format.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
@@ -57,10 +58,14 @@ int run_diagnose(const DiagnoseOptions& o) {
   fmt::print("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n",
              o.data, fit::formula_text(terms), engine.name, fit::describe_windows(data, pipeline),
              data.outliers.removed);
-  fmt::print("1. compare: instability {:.5f} -> {:.5f} °/h; noise floor {:.5f} °/h (robust Hadamard "
-             "deviation of the {:g} s means):\n   the model is {:.2f} times the floor\n",
-             d.fit.instability_before_dph, d.fit.instability_after_dph, d.noise_floor_dph,
-             pipeline.averaging.window_s, d.excess_ratio());
+  fmt::print("1. compare: instability {} -> {} °/h; noise floor {} °/h ({}):\n"
+             "   the model is {:.2f} times the floor\n",
+             human(d.fit.instability_before_dph), human(d.fit.instability_after_dph),
+             human(d.noise_floor_dph), d.floor.description(), d.excess_ratio());
+  if (d.floor.method == "hadamard" && d.floor.within_dph > 0.0 && d.floor.within_dph < 0.7 * d.floor.dph)
+    fmt::print("   (the scatter inside the windows alone gives {} °/h: the rest of the floor is noise "
+               "slower than a window, bias instability)\n",
+               human(d.floor.within_dph));
   fmt::print("2. where it fails (residual RMS over the floor, worst first):\n");
   const auto worst = d.worst_segments();
   for (std::size_t k = 0; k < worst.size() && k < 6; ++k) {

@@ -90,11 +90,26 @@ void WindowAverager::close_window() {
     if (has_temp2_) series_.temp2_c.push_back(sum_temp2_c_ / n);
     series_.samples.push_back(window_valid_);
     series_.run.push_back(run_);
+    // Within the window: the sample variance, and the lag-1 autocorrelation
+    // of consecutive valid samples about their own means.
+    const double mean_u = sum_u_ / n;
+    const double var = n > 1.0 ? std::max(0.0, (sum_u2_ - n * mean_u * mean_u) / (n - 1.0)) : 0.0;
+    double lag1 = 0.0;
+    if (lag_pairs_ >= 3 && var > 0.0) {
+      const auto pairs = static_cast<double>(lag_pairs_);
+      const double cov = (sum_lag_ - sum_lag_now_ * sum_lag_prev_ / pairs) / (pairs - 1.0);
+      lag1 = std::clamp(cov / var, -1.0, 1.0);
+    }
+    series_.gyro_sd_dph.push_back(std::sqrt(var));
+    series_.gyro_lag1.push_back(lag1);
   } else {
     ++report_.dropped_windows;
   }
   window_samples_ = window_valid_ = 0;
   sum_time_s_ = sum_temp_c_ = sum_gyro_dph_ = sum_temp2_c_ = 0.0;
+  sum_u_ = sum_u2_ = sum_lag_ = sum_lag_now_ = sum_lag_prev_ = 0.0;
+  previous_valid_ = false;
+  lag_pairs_ = 0;
 }
 
 void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double temp2_c,
@@ -120,7 +135,22 @@ void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double t
   }
   last_time_s_ = time_s;
   ++window_samples_;
-  if (!valid) return;
+  if (!valid) {
+    previous_valid_ = false;
+    return;
+  }
+  if (window_valid_ == 0) first_gyro_ = gyro_dph;
+  const double u = gyro_dph - first_gyro_;
+  sum_u_ += u;
+  sum_u2_ += u * u;
+  if (previous_valid_) {
+    sum_lag_ += u * previous_u_;
+    sum_lag_now_ += u;
+    sum_lag_prev_ += previous_u_;
+    ++lag_pairs_;
+  }
+  previous_u_ = u;
+  previous_valid_ = true;
   ++window_valid_;
   sum_time_s_ += time_s - run_start_s_;  // relative: epoch times keep their digits
   sum_temp_c_ += temp_c;

@@ -53,6 +53,10 @@ struct AveragedSeries {
   double window_s = 0;  // the windows' length: W, or with bursts the median burst length
   std::vector<double> temp_c, gyro_dph, temp2_c;  // window means (temp2_c empty if absent)
   std::vector<std::size_t> samples;               // valid samples in each window
+  // The scatter of the gyro samples inside each window: their standard
+  // deviation and lag-1 autocorrelation (consecutive valid samples; 0 when
+  // there are too few), for a noise floor from within the windows.
+  std::vector<double> gyro_sd_dph, gyro_lag1;
   std::vector<std::size_t> run;                   // index of the gap-free run the window belongs to
   double start_time_s = 0;                        // time of the first sample of the record
   std::size_t size() const { return time_s.size(); }
@@ -106,6 +110,13 @@ class WindowAverager {
   // The current window: sums of the valid samples (time relative to the run start).
   std::size_t window_samples_ = 0, window_valid_ = 0;
   double sum_time_s_ = 0, sum_temp_c_ = 0, sum_gyro_dph_ = 0, sum_temp2_c_ = 0;
+  // Within-window scatter, on gyro values less the window's first valid one
+  // (so that the sums keep their digits): Σu, Σu², Σu_k·u_{k−1} and Σu_k,
+  // Σu_{k−1} over consecutive valid pairs.
+  double first_gyro_ = 0, sum_u_ = 0, sum_u2_ = 0, sum_lag_ = 0, sum_lag_now_ = 0, sum_lag_prev_ = 0;
+  double previous_u_ = 0;
+  bool previous_valid_ = false;
+  std::size_t lag_pairs_ = 0;
 };
 
 // The median time step of the record, s (Δ above). Needs at least 2 samples.

@@ -14,6 +14,7 @@ PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) 
   if (options.remove_outliers) d.outliers = flag_outliers(m, options.outliers, valid);
   d.series = average_windows(m, valid, options.averaging, &d.averaging);
   d.derived = derive(d.series, options.derivative, options.derivative_span_s);
+  d.derivative_span_s = options.derivative_span_s;
   return d;
 }
 

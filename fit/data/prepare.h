@@ -35,6 +35,7 @@ struct PreparedData {
   AveragingReport averaging;
   AveragedSeries series;
   DerivedSeries derived;
+  double derivative_span_s = kDefaultDerivativeSpanS;  // as derived
   bool has_temp2() const { return !series.temp2_c.empty(); }
 };
 

@@ -193,6 +193,7 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
   d.series = averager.finish();
   d.averaging = averager.report();
   d.derived = derive(d.series, o.derivative, o.derivative_span_s);
+  d.derivative_span_s = o.derivative_span_s;
   return d;
 }
 

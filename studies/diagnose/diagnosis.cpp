@@ -89,17 +89,76 @@ double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) 
 
 }  // namespace
 
-double robust_noise_floor(const AveragedSeries& s) {
+namespace {
+
+// The squared second differences of equally spaced window means (within
+// 10 %) no farther apart than span_s.
+std::vector<double> hadamard_squares(const AveragedSeries& s, double span_s) {
   std::vector<double> h2;
   for (std::size_t p = 1; p + 1 < s.size(); ++p) {
-    if (s.run[p - 1] != s.run[p] || s.run[p + 1] != s.run[p]) continue;
+    const double before = s.time_s[p] - s.time_s[p - 1], after = s.time_s[p + 1] - s.time_s[p];
+    if (std::max(before, after) > span_s) continue;
+    if (std::abs(before - after) > 0.1 * std::max(before, after)) continue;
     const double h = s.gyro_dph[p + 1] - 2.0 * s.gyro_dph[p] + s.gyro_dph[p - 1];
     h2.push_back(h * h);
   }
+  return h2;
+}
+
+// The root mean square of the windows' standard errors (header, step 1).
+double within_window_floor(const AveragedSeries& s) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t p = 0; p < s.size() && p < s.gyro_sd_dph.size(); ++p) {
+    if (s.samples[p] < 2) continue;
+    const double rho = std::clamp(s.gyro_lag1[p], -0.5, 0.95);
+    sum += s.gyro_sd_dph[p] * s.gyro_sd_dph[p] * (1.0 + rho) /
+           ((1.0 - rho) * static_cast<double>(s.samples[p]));
+    ++n;
+  }
+  return n > 0 ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+}
+
+}  // namespace
+
+double robust_noise_floor(const AveragedSeries& s) {
+  const std::vector<double> h2 = hadamard_squares(s, std::numeric_limits<double>::infinity());
   if (h2.size() < 5)
     throw InputError(fmt::format("only {} usable windows: too few to estimate the noise floor",
                                  s.size()));
   return std::sqrt(median(h2) / (6.0 * kMedianChi2One));
+}
+
+NoiseFloor estimate_noise_floor(const AveragedSeries& s, double span_s) {
+  NoiseFloor f;
+  const std::vector<double> h2 = hadamard_squares(s, span_s);
+  f.triples = h2.size();
+  if (!h2.empty()) f.hadamard_dph = std::sqrt(median(h2) / (6.0 * kMedianChi2One));
+  f.within_dph = within_window_floor(s);
+  if (f.triples >= kMinHadamardTriples) {
+    f.method = "hadamard";
+    f.dph = f.hadamard_dph;
+  } else if (f.within_dph > 0.0) {
+    f.method = "within-window scatter";
+    f.dph = f.within_dph;
+  } else {
+    throw InputError(fmt::format(
+        "only {} windows ({} equally spaced triples): too few to estimate the noise floor from "
+        "the window means, and the windows hold too few samples to estimate it from their scatter",
+        s.size(), f.triples));
+  }
+  return f;
+}
+
+std::string NoiseFloor::description() const {
+  if (method == "hadamard")
+    return fmt::format("robust Hadamard deviation of the window means, {} triples", triples);
+  return fmt::format(
+      "from the scatter inside the windows (the standard error of a window mean, corrected for "
+      "the autocorrelation of its samples): only {} equally spaced triples of windows, fewer than "
+      "the {} a Hadamard estimate needs; noise slower than a window is not in it and shows as "
+      "excess",
+      triples, kMinHadamardTriples);
 }
 
 std::vector<std::size_t> Diagnosis::worst_segments() const {
@@ -128,10 +187,16 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   Diagnosis d;
   const AveragedSeries& s = data.series;
   const std::size_t l = s.size();
+  if (l < kMinBlocks)
+    throw InputError(fmt::format(
+        "{}: only {} windows: diagnose needs at least {} (a shorter --avg gives more windows, "
+        "if the record's runs allow it)",
+        data.file, l, kMinBlocks));
 
   // 1. Compare.
   d.fit = fit_model(data, terms, engine, settings);
-  d.noise_floor_dph = robust_noise_floor(s);
+  d.floor = estimate_noise_floor(s, data.derivative_span_s);
+  d.noise_floor_dph = d.floor.dph;
   const Eigen::MatrixXd x = design_matrix(data.derived, terms, d.fit.parameters);
   d.model_dph = model_values(x, d.fit.coefficients);
   d.residual_dph.resize(l);
@@ -163,7 +228,10 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   }
   d.window_segment.resize(l);
   for (std::size_t p = 0; p < l; ++p) {
-    const bool new_segment = p == 0 || kind[p] != kind[p - 1] || s.run[p] != s.run[p - 1];
+    // A segment ends where the kind changes or the record stops for longer
+    // than the derivatives' span (a bursty logger's bursts stay together).
+    const bool new_segment =
+        p == 0 || kind[p] != kind[p - 1] || s.time_s[p] - s.time_s[p - 1] > data.derivative_span_s;
     if (new_segment) {
       SegmentReport seg;
       seg.kind = kind[p];
@@ -211,7 +279,11 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   // are scored again against the larger model (so a second effect is judged
   // on what the first leaves), until the best is not significant.
   const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(s.gyro_dph.data(), static_cast<Eigen::Index>(l));
-  const std::size_t blocks = std::max<std::size_t>(2, l / options.block_windows);
+  // Blocks of block_windows, smaller on a short record so that there are at
+  // least kMinBlocks of them (a sign-flip test on fewer cannot reach p < α).
+  const std::size_t block_windows =
+      std::clamp<std::size_t>(l / kMinBlocks, 1, options.block_windows);
+  const std::size_t blocks = std::max<std::size_t>(2, l / block_windows);
   std::vector<std::size_t> block(l);
   for (std::size_t p = 0; p < l; ++p) block[p] = std::min(blocks - 1, p * blocks / l);
   const double after2 = d.fit.instability_after_dph * d.fit.instability_after_dph;
@@ -229,6 +301,30 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
     }
     untried.push_back(term);
   }
+  // What the record can support: the smallest p of a sign-flip test on B
+  // blocks is 2^−B, so at most ⌊α·2^B⌋ candidates can pass Bonferroni; each
+  // needs 3 residual degrees of freedom left with it and its parameter. The
+  // simplest candidates (no parameter) are tried first, in registry order.
+  const std::size_t supported = std::min<std::size_t>(
+      untried.size(), static_cast<std::size_t>(std::floor(
+                          options.alpha * std::pow(2.0, static_cast<double>(std::min<std::size_t>(blocks, 30))))));
+  std::stable_partition(untried.begin(), untried.end(), [](const Term* t) { return !t->parameter; });
+  std::vector<const Term*> tried;
+  for (std::size_t i = 0; i < untried.size(); ++i) {
+    const std::size_t parameters = terms.size() + 2 + (untried[i]->parameter ? 1 : 0);
+    const bool no_dof = l < parameters + 3;
+    if (i < supported && !no_dof) {
+      tried.push_back(untried[i]);
+      continue;
+    }
+    d.limited = true;
+    d.skipped.push_back(fmt::format(
+        "{} (not tried: {} windows {})", untried[i]->name, l,
+        no_dof ? std::string("leave too few degrees of freedom for it")
+               : fmt::format("in {} blocks support at most {} candidate test{}", blocks, supported,
+                             supported == 1 ? "" : "s")));
+  }
+  untried = std::move(tried);
   const double corrected =
       options.alpha / static_cast<double>(std::max<std::size_t>(1, untried.size()));
   std::vector<const Term*> current = terms;
@@ -272,7 +368,6 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
         failed.push_back(std::string(term->name) + " (" + e.what() + ")");
       }
     }
-    failed.clear();
     if (round.empty()) break;
     std::size_t best = 0;
     for (std::size_t i = 1; i < round.size(); ++i) {
@@ -294,6 +389,10 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
     current_sigma2 = round[best].instability_after_dph * round[best].instability_after_dph;
     untried.erase(std::find(untried.begin(), untried.end(), round[best].term));
   }
+  // Candidates that could not be fitted (collinear with the model, say),
+  // each named once.
+  std::sort(failed.begin(), failed.end());
+  failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
   for (const std::string& f : failed) d.skipped.push_back(f);
 
   // The verdict.

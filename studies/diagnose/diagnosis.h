@@ -6,9 +6,18 @@
 //     floor, what a perfect model would leave, estimated from the data alone:
 //     a robust Hadamard deviation of the window means y_p,
 //        floor² = median_p (y_{p+1} − 2y_p + y_{p−1})² / (6 · 0.4549),
-//     (0.4549 = median of χ²₁). Second differences cancel the locally linear
-//     thermal trends of soaks; the median ignores the ramps' transients. For
-//     white noise it equals the standard deviation of the window means.
+//     (0.4549 = median of χ²₁), over the triples of equally spaced windows
+//     (within 10 %) no farther apart than the derivatives' span, so a
+//     bursty record's burst means count too. Second differences cancel the
+//     locally linear thermal trends of soaks; the median ignores the ramps'
+//     transients. For white noise it equals the standard deviation of the
+//     window means. With fewer than 10 such triples the floor comes from the
+//     scatter inside the windows instead: the standard error of each window
+//     mean, s_p²·(1 + ρ_p)/((1 − ρ_p)·n_p) with ρ_p the lag-1
+//     autocorrelation of its samples (an AR(1) correction, ρ held in
+//     [−0.5, 0.95]), pooled as the root mean square. That one sees only noise
+//     faster than a window; slower noise (bias instability) then shows as
+//     excess, and the report says which estimate was used.
 //  2. Where it fails. The record is split by its own temperature: the first
 //     30 min (turn-on), heating (dT/dt > r), cooling (< −r), soak (|dT/dt| ≤ r),
 //     r = max(2e-4 °C/s, 5 % of the largest |dT/dt|), runs shorter than 3
@@ -42,6 +51,10 @@
 
 namespace gyrotherm::fit {
 
+// A record with fewer windows cannot be diagnosed: a sign-flip test on fewer
+// blocks cannot reach significance.
+inline constexpr std::size_t kMinBlocks = 8;
+
 struct DiagnosisOptions {
   std::size_t block_windows = 10;  // windows per cross-validation block
   double alpha = 0.05;             // family-wise significance over the candidates
@@ -69,9 +82,21 @@ struct CandidateReport {
   bool significant = false;
 };
 
+// The estimate of step 1 and how it was made.
+struct NoiseFloor {
+  double dph = 0;               // the floor used
+  std::string method;           // "hadamard" or "within-window scatter"
+  std::size_t triples = 0;      // equally spaced triples for the Hadamard estimate
+  double hadamard_dph = 0;      // 0 when there were too few triples
+  double within_dph = 0;        // from the scatter inside the windows (0 if unknown)
+  std::string description() const;
+};
+inline constexpr std::size_t kMinHadamardTriples = 10;
+
 struct Diagnosis {
   ModelFit fit;                           // the model as given
   double noise_floor_dph = 0;
+  NoiseFloor floor;                       // how noise_floor_dph was estimated
   double excess_ratio() const { return fit.instability_after_dph / noise_floor_dph; }
   std::vector<SegmentReport> segments;    // in time order
   std::vector<SegmentReport> bands;       // by temperature
@@ -80,12 +105,16 @@ struct Diagnosis {
   std::vector<double> model_dph;          // per window
   std::vector<CandidateReport> candidates;  // best first
   std::vector<std::string> skipped;       // terms that could not be tried, and why
+  bool limited = false;                   // the record supported fewer tests than there were candidates
   std::string verdict;
   std::string suggested_model;            // the model with the best significant term, or ""
   // Segments and bands, worst first (indices into segments / bands).
   std::vector<std::size_t> worst_segments() const;
 };
 
+
+NoiseFloor estimate_noise_floor(const AveragedSeries& series, double span_s);
+// The Hadamard estimate alone (throws InputError with fewer than 5 triples).
 double robust_noise_floor(const AveragedSeries& series);
 
 Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& terms,

@@ -56,6 +56,11 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   j["instability_dph"] = d.fit.instability_after_dph;
   j["instability_before_dph"] = d.fit.instability_before_dph;
   j["noise_floor_dph"] = d.noise_floor_dph;
+  j["noise_floor"] = {{"method", d.floor.method},
+                      {"description", d.floor.description()},
+                      {"hadamard_triples", d.floor.triples},
+                      {"hadamard_dph", d.floor.hadamard_dph},
+                      {"within_window_dph", d.floor.within_dph}};
   j["ratio_to_floor"] = d.excess_ratio();
   nlohmann::ordered_json segments = nlohmann::ordered_json::array();
   for (std::size_t i : d.worst_segments()) segments.push_back(segment_json(d.segments[i]));
