@@ -100,6 +100,7 @@ int run_diagnose(const DiagnoseOptions& o) {
                  hours(rows[i].end_s), rows[i].ratio_to_floor, d.segments[i].ratio_to_floor);
   }
   for (const std::string& w : d.fit.warnings) fmt::print("warning: {}\n", w);
+  for (const std::string& n : d.confounding_notes) fmt::print("cannot tell: {}\n", n);
   fmt::print("verdict: {}\n", d.verdict);
   if (!next.empty()) fmt::print("next: {}\n", next);
   if (!o.plots.empty()) fmt::print("plots in {}/\n", o.plots);

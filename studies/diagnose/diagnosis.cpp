@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "fit/model/formula.h"
+#include "studies/diagnose/confounding.h"
 #include "fit/engines/ols.h"
 #include "sim/util/input_error.h"
 #include "sim/util/random.h"
@@ -395,19 +396,53 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
   for (const std::string& f : failed) d.skipped.push_back(f);
 
+  // What the record cannot tell apart: the model's terms and every candidate
+  // tried, at their fitted parameters.
+  {
+    std::vector<const Term*> all = terms;
+    std::vector<double> params = d.fit.parameters;
+    for (const CandidateReport& c : d.candidates) {
+      all.push_back(c.term);
+      params.push_back(c.parameter);
+    }
+    const Confounding confounding = find_confounding(data.derived, all, params);
+    d.confounded = confounding.groups;
+    d.confounding_notes = confounding.notes;
+    for (CandidateReport& c : d.candidates)
+      if (const auto* group = confounding.group_of(std::string(c.term->name)); group != nullptr) {
+        c.confounded_with = *group;
+        std::erase(c.confounded_with, std::string(c.term->name));
+      }
+  }
+
   // The verdict.
   const double ratio = d.excess_ratio();
+  const std::string limited =
+      d.limited ? " (this record supported fewer tests than there are candidates; see 'not tried')"
+                : "";
   if (d.candidates.empty()) {
     d.verdict = fmt::format(
         "The model is {:.2f} times the noise floor and there is nothing left to try: every "
         "available term is already in it.",
         ratio);
+  } else if (d.candidates.front().significant && !d.candidates.front().confounded_with.empty()) {
+    // Significant, but not alone: say which effects it cannot be told from.
+    const CandidateReport& c = d.candidates.front();
+    std::string others;
+    for (const std::string& o : c.confounded_with)
+      others += (others.empty() ? "" : ", ") + (o == "1" ? std::string("a constant offset") : o);
+    d.verdict = fmt::format(
+        "The model is {:.2f} times the noise floor; adding {} ({}) would remove {:.0f} % of the "
+        "excess, but on this record it cannot be told apart from {}, so the data do not say which "
+        "effect it is: {}",
+        ratio, c.term->name, c.term->meaning, c.reduction_pct, others,
+        d.confounding_notes.empty() ? std::string() : d.confounding_notes.front());
   } else if (d.candidates.front().significant) {
     std::vector<const Term*> suggested = terms;
     std::string found;
     double removed = 0.0;
     for (const CandidateReport& c : d.candidates) {
-      if (!c.significant) break;
+      if (!c.significant || !c.confounded_with.empty()) break;
       suggested.push_back(c.term);
       found += fmt::format("{}{} ({})", found.empty() ? "" : " and then ", c.term->name, c.term->meaning);
       removed += c.reduction_pct;
@@ -420,8 +455,8 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   } else {
     d.verdict = fmt::format(
         "The model is {:.2f} times the noise floor; no missing effect is significant under "
-        "block cross-validation, so no term should be added.",
-        ratio);
+        "block cross-validation{}, so no term should be added.",
+        ratio, limited);
   }
   return d;
 }

@@ -80,6 +80,7 @@ struct CandidateReport {
   double cv_gain_pct = 0;              // of the cross-validated SSE
   double p_value = 1;                  // sign-flip test, before the correction
   bool significant = false;
+  std::vector<std::string> confounded_with;  // terms this record cannot tell it from ("1": an offset)
 };
 
 // The estimate of step 1 and how it was made.
@@ -106,6 +107,8 @@ struct Diagnosis {
   std::vector<CandidateReport> candidates;  // best first
   std::vector<std::string> skipped;       // terms that could not be tried, and why
   bool limited = false;                   // the record supported fewer tests than there were candidates
+  std::vector<std::vector<std::string>> confounded;  // groups of terms this record cannot tell apart
+  std::vector<std::string> confounding_notes;        // why, in plain words, one per group
   std::string verdict;
   std::string suggested_model;            // the model with the best significant term, or ""
   // Segments and bands, worst first (indices into segments / bands).

@@ -76,7 +76,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
                                 {"reduction_pct", c.reduction_pct},
                                 {"significant", c.significant},
                                 {"p_value", c.p_value},
-                                {"cv_gain_pct", c.cv_gain_pct}};
+                                {"cv_gain_pct", c.cv_gain_pct},
+                                {"confounded_with", c.confounded_with}};
     if (c.term->parameter) e[c.term->parameter->name] = c.parameter;
     effects.push_back(e);
   }
@@ -86,6 +87,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
       "block cross-validation: blocks of 10 windows, one-sided sign-flip test of the per-block "
       "SSE gains, Bonferroni over the candidates, and at least 10 % of the excess removed";
   j["warnings"] = d.fit.warnings;
+  j["confounded"] = d.confounded;
+  j["confounding"] = d.confounding_notes;
   j["verdict"] = d.verdict;
   j["next_command"] = report.next_command;
   if (before) {

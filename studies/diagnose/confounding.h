@@ -1,0 +1,40 @@
+#pragma once
+// Effects a record cannot tell apart (diagnose, step 3).
+//
+// Two terms whose regressors are nearly collinear over the windows,
+// |corr(x_a, x_b)| > 0.99, explain the same part of the bias on this record:
+// whichever a fit picks, the data do not say it is that one. A regressor that
+// is nearly constant (its standard deviation under 2 % of its mean) cannot be
+// told from the intercept "1". Such terms are grouped (transitively), and
+// each group gets a sentence saying why, in the record's own terms (it only
+// cools; the rate hardly changes; the range is narrow), and what test would
+// separate them.
+//
+// The PAN log (cooling 24 → 16 °C at an almost constant rate) is the typical
+// case: temperature and time correlate at −0.999, so a temperature effect
+// cannot be told from a drift, and dT/dt is nearly constant, so a rate effect
+// cannot be told from an offset.
+
+#include <string>
+#include <vector>
+
+#include "fit/data/derivatives.h"
+#include "fit/model/terms.h"
+
+namespace gyrotherm::fit {
+
+struct Confounding {
+  std::vector<std::vector<std::string>> groups;  // term names ("1": the intercept)
+  std::vector<std::string> notes;                // one sentence per group
+  // The group holding `term`, or nullptr.
+  const std::vector<std::string>* group_of(const std::string& term) const;
+};
+
+inline constexpr double kConfoundedCorrelation = 0.99;
+inline constexpr double kNearlyConstant = 0.02;  // sd / |mean|
+
+// terms[i] at parameters[i] (NaN where it has none).
+Confounding find_confounding(const DerivedSeries& derived, const std::vector<const Term*>& terms,
+                             const std::vector<double>& parameters);
+
+}  // namespace gyrotherm::fit
