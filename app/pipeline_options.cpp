@@ -11,6 +11,7 @@ namespace gyrotherm::app {
 
 fit::PipelineOptions DataOptions::resolved() const {
   fit::PipelineOptions p = pipeline;
+  p.columns.units.validate();
   if (keep_outliers && outlier_threshold)
     throw InputError("--keep-outliers and --outlier-threshold contradict each other: keep the "
                      "glitches, or set the rule that removes them, not both");
@@ -43,6 +44,15 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
   cmd->add_option("--gyro-col", o.pipeline.columns.gyro, "Name of the gyro output column (°/h)");
   cmd->add_option("--temp2-col", o.pipeline.columns.temp2,
                   "Name of the far-side temperature column (°C), for the grad term");
+  fit::Units& u = o.pipeline.columns.units;
+  cmd->add_option("--time-unit", u.time, "Unit of the time column: s (default), ms or us");
+  cmd->add_option("--gyro-unit", u.gyro, "Unit of the gyro column: dph (default), dps, rad/s or mdps");
+  cmd->add_option("--temp-unit", u.temp, "Unit of the temperature columns: C (default), K or F");
+  cmd->add_option("--gyro-scale", u.gyro_scale,
+                  "Multiply the gyro column by K before its unit (raw counts, a logger's scale)");
+  cmd->add_option("--temp-scale", u.temp_scale,
+                  "Temperature = A x column + B (raw counts): A, before --temp-unit (default 1)");
+  cmd->add_option("--temp-offset", u.temp_offset, "Temperature = A x column + B: B (default 0)");
 }
 
 std::vector<const fit::Term*> ModelOptions::base_terms() const { return fit::parse_formula(model); }

@@ -98,7 +98,15 @@ std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
                     {{"time", pipeline.columns.time},
                      {"temp", pipeline.columns.temp},
                      {"gyro", pipeline.columns.gyro},
-                     {"temp2", pipeline.columns.temp2}}}};
+                     {"temp2", pipeline.columns.temp2},
+                     {"units",
+                      {{"time", pipeline.columns.units.time},
+                       {"gyro", pipeline.columns.units.gyro},
+                       {"temp", pipeline.columns.units.temp},
+                       {"gyro_scale", pipeline.columns.units.gyro_scale},
+                       {"temp_scale", pipeline.columns.units.temp_scale},
+                       {"temp_offset", pipeline.columns.units.temp_offset},
+                       {"conversion", pipeline.columns.units.description()}}}}}};
   if (truth) {
     Json t;
     for (const auto& [k, v] : truth->coefficients) t[k] = v;
@@ -177,6 +185,22 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file) {
   s.pipeline.columns.temp = need(columns, "temp", "name").get<std::string>();
   s.pipeline.columns.gyro = need(columns, "gyro", "name").get<std::string>();
   s.pipeline.columns.temp2 = need(columns, "temp2", "name").get<std::string>();
+  // Fit files from before units were options have none: the defaults.
+  if (columns.contains("units")) {
+    const nlohmann::json& u = columns["units"];
+    Units& units = s.pipeline.columns.units;
+    units.time = need(u, "time", "s, ms or us").get<std::string>();
+    units.gyro = need(u, "gyro", "dph, dps, rad/s or mdps").get<std::string>();
+    units.temp = need(u, "temp", "C, K or F").get<std::string>();
+    units.gyro_scale = number(need(u, "gyro_scale", "a number"), "pipeline.columns.units.gyro_scale");
+    units.temp_scale = number(need(u, "temp_scale", "a number"), "pipeline.columns.units.temp_scale");
+    units.temp_offset = number(need(u, "temp_offset", "a number"), "pipeline.columns.units.temp_offset");
+    try {
+      units.validate();
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: pipeline.columns.units: {}", file.string(), e.what()));
+    }
+  }
   s.instability_after_dph = number(need(j, "instability_after_dph", "°/h"), "instability_after_dph");
   return s;
 }

@@ -17,6 +17,80 @@
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
+
+namespace {
+
+constexpr double kDegPerRad = 57.29577951308232;
+
+double time_factor(const std::string& unit) {
+  return unit == "ms" ? 1e-3 : unit == "us" ? 1e-6 : 1.0;
+}
+double gyro_factor(const std::string& unit) {
+  if (unit == "dps") return 3600.0;
+  if (unit == "rad/s") return 3600.0 * kDegPerRad;
+  if (unit == "mdps") return 3.6;
+  return 1.0;
+}
+
+void check_unit(const char* option, const std::string& value, std::initializer_list<const char*> known) {
+  std::string list;
+  for (const char* k : known) {
+    if (value == k) return;
+    list += (list.empty() ? "" : ", ") + std::string(k);
+  }
+  throw InputError(fmt::format("{} {}: unknown unit (expected one of {})", option, value, list));
+}
+
+void check_scale(const char* option, double value, bool zero_allowed) {
+  if (!std::isfinite(value) || (!zero_allowed && value == 0.0))
+    throw InputError(fmt::format("{} {}: must be a finite number{}", option, value,
+                                 zero_allowed ? "" : " other than 0"));
+}
+
+}  // namespace
+
+void Units::validate() const {
+  check_unit("--time-unit", time, {"s", "ms", "us"});
+  check_unit("--gyro-unit", gyro, {"dph", "dps", "rad/s", "mdps"});
+  check_unit("--temp-unit", temp, {"C", "K", "F"});
+  check_scale("--gyro-scale", gyro_scale, false);
+  check_scale("--temp-scale", temp_scale, false);
+  check_scale("--temp-offset", temp_offset, true);
+}
+
+bool Units::identity() const {
+  return time == "s" && gyro == "dph" && temp == "C" && gyro_scale == 1.0 && temp_scale == 1.0 &&
+         temp_offset == 0.0;
+}
+
+double Units::time_s(double t) const { return t * time_factor(time); }
+
+double Units::gyro_dph(double g) const { return gyro_scale * g * gyro_factor(gyro); }
+
+double Units::temp_c(double x) const {
+  const double v = temp_scale * x + temp_offset;
+  if (temp == "K") return v - 273.15;
+  if (temp == "F") return (v - 32.0) * 5.0 / 9.0;
+  return v;
+}
+
+std::string Units::description() const {
+  if (identity()) return "none";
+  std::vector<std::string> parts;
+  if (time != "s") parts.push_back(fmt::format("time {} → s (× {:g})", time, time_factor(time)));
+  if (gyro != "dph" || gyro_scale != 1.0)
+    parts.push_back(fmt::format("gyro {}{} → °/h (× {:.9g})",
+                                gyro_scale != 1.0 ? fmt::format("{:g} × ", gyro_scale) : "", gyro,
+                                gyro_scale * gyro_factor(gyro)));
+  if (temp != "C" || temp_scale != 1.0 || temp_offset != 0.0) {
+    std::string raw = temp_scale != 1.0 ? fmt::format("{:g} × column", temp_scale) : "column";
+    if (temp_offset != 0.0) raw += fmt::format(" {} {:g}", temp_offset < 0 ? "−" : "+", std::abs(temp_offset));
+    parts.push_back(fmt::format("temp {}{} → °C", raw, temp != "C" ? " in " + temp : std::string()));
+  }
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
 namespace {
 
 namespace fs = std::filesystem;
@@ -157,7 +231,9 @@ std::string out_of_range(Role role, double v) {
 
 class CsvParser {
  public:
-  CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {}
+  CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {
+    map_.units.validate();
+  }
 
   Measurement read(const fs::path& file);
   // Streaming: every row goes to `sink` instead of being stored.
@@ -168,6 +244,16 @@ class CsvParser {
  private:
   [[noreturn]] void fail(std::size_t line, const std::string& message) const {
     throw InputError(located(name_, line, message));
+  }
+  // A value read from the file in the units of map_.units, in s, °C or °/h.
+  double convert(Role role, double v) const {
+    switch (role) {
+      case kTime: return map_.units.time_s(v);
+      case kGyro: return map_.units.gyro_dph(v);
+      case kTemp:
+      case kTemp2: return map_.units.temp_c(v);
+      default: return v;
+    }
   }
   void parse_header(std::string_view line, std::size_t line_number, Measurement& m);
   void parse_row(std::string_view line, std::size_t line_number, Measurement& m);
@@ -269,8 +355,15 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
           parse_number(std::string_view(p, static_cast<std::size_t>(field_end - p)), value[role]);
       if (!problem.empty())
         fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
+      const double read = value[role];
+      value[role] = convert(static_cast<Role>(role), read);
       const std::string range = out_of_range(static_cast<Role>(role), value[role]);
-      if (!range.empty()) fail(line_number, fmt::format("column {}: {}", m.columns[column], range));
+      if (!range.empty())
+        fail(line_number,
+             fmt::format("column {}: {}{}", m.columns[column], range,
+                         read == value[role] ? std::string()
+                                             : fmt::format(" (read {:g}, converted by {})", read,
+                                                           map_.units.description())));
     }
     if (comma == nullptr) break;
     p = comma + 1;

@@ -37,7 +37,34 @@
 
 namespace gyrotherm::fit {
 
-// The names of the needed columns in the file's header.
+// How the numbers of the needed columns become seconds, °C and °/h (the
+// units every report and JSON uses):
+//
+//   time    = t · {1, 10⁻³, 10⁻⁶} for --time-unit s, ms, us;
+//   gyro    = K · g · {1, 3600, 3600·180/π, 3.6} for --gyro-unit dph, dps,
+//             rad/s, mdps, K = --gyro-scale (a logger's counts, or its bug);
+//   temp    = c(A · x + B) for temp_c and temp2_c, A = --temp-scale,
+//             B = --temp-offset (raw counts), c the --temp-unit C, K, F → °C.
+struct Units {
+  std::string time = "s";
+  std::string gyro = "dph";
+  std::string temp = "C";
+  double gyro_scale = 1.0;
+  double temp_scale = 1.0;
+  double temp_offset = 0.0;
+
+  // Throws InputError naming the option, the value and what is allowed.
+  void validate() const;
+  bool identity() const;
+  double time_s(double t) const;
+  double gyro_dph(double g) const;
+  double temp_c(double x) const;
+  // "time ms → s; gyro 0.5 × rad/s → °/h; temp 0.00390625 × counts − 231 → °C",
+  // or "none" when nothing is converted.
+  std::string description() const;
+};
+
+// The names of the needed columns in the file's header, and their units.
 struct ColumnMap {
   std::string time = "time_s";    // seconds, strictly increasing (--time-col)
   std::string temp = "temp_c";    // gyro temperature sensor, °C (--temp-col)
@@ -45,6 +72,7 @@ struct ColumnMap {
   std::string temp2 = "temp2_c";  // optional second sensor, °C (--temp2-col): the default
                                   // name may be absent, another name must exist, and an
                                   // empty name ignores the column
+  Units units;                    // applied as each value is read
 };
 
 struct Measurement {
