@@ -51,27 +51,27 @@ fit::EngineSettings engine_settings(const FitOptions& o) {
   return s;
 }
 
-int run_fit(const FitOptions& o) {
-  const std::vector<const fit::Term*> terms = o.model.terms();
-  const fit::EngineInfo& engine = fit::find_engine(o.model.engine);
-  const fit::EngineSettings settings = engine_settings(o);
-  engine.make(settings);  // validates the options before any work
-  const fit::PipelineOptions pipeline = o.data_options.resolved();
-  bool streamed = false;  // large logs are read twice, never held (fit/data/streaming.h)
-  const fit::PreparedData data = fit::prepare_csv(o.data, pipeline, &streamed);
-  fit::check_columns(terms, data, pipeline.columns);
-  const fit::ModelFit result = fit::fit_model(data, terms, engine, settings);
-  const std::optional<fit::Truth> truth = fit::load_truth_beside(o.data);
-  const std::string json = fit::fit_json_text(result, data, pipeline, settings, truth);
-  if (!o.output.empty()) write_file_atomically(o.output, json);
-  if (o.json) {
-    fmt::print("{}", json);
-    return 0;
-  }
+// One channel's fit, computed before anything is printed or written.
+struct ChannelFit {
+  std::string channel;
+  fit::PipelineOptions pipeline;
+  fit::PreparedData data;
+  fit::ModelFit result;
+  std::optional<fit::Truth> truth;
+  bool streamed = false;
+  nlohmann::ordered_json json;
+};
 
+void print_fit(const ChannelFit& c, const std::vector<const fit::Term*>& terms,
+               const fit::EngineInfo& engine, const fit::EngineSettings& settings) {
+  const fit::PreparedData& data = c.data;
+  const fit::ModelFit& result = c.result;
+  const std::optional<fit::Truth>& truth = c.truth;
   fmt::print("data: {}: {} samples{} every {:g} s, {} glitches removed, {} gaps, {}\n", data.file,
-             data.raw_samples, streamed ? " (streamed)" : "", data.averaging.sample_interval_s,
-             data.outliers.removed, data.averaging.gaps.size(), fit::describe_windows(data, pipeline));
+             data.raw_samples, c.streamed ? " (streamed)" : "", data.averaging.sample_interval_s,
+             data.outliers.removed, data.averaging.gaps.size(), fit::describe_windows(data, c.pipeline));
+  if (!c.pipeline.columns.units.identity())
+    fmt::print("  units converted: {}\n", c.pipeline.columns.units.description());
   if (!data.outliers.times_s.empty()) {
     std::string times;
     for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 8; ++k)
@@ -113,13 +113,72 @@ int run_fit(const FitOptions& o) {
   }
   if (!result.engine.interval_method.empty())
     fmt::print("  intervals: {}\n", result.engine.interval_method);
-  fmt::print("instability (std of {:g} s averages): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
-             pipeline.averaging.window_s, result.instability_before_dph,
+  fmt::print("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
+             fit::averages_name(data, c.pipeline), result.instability_before_dph,
              result.instability_after_dph, result.ratio());
   fmt::print("engine: {}\n", result.engine.brief_report());
   for (const std::string& w : result.warnings) fmt::print("warning: {}\n", w);
   fmt::print("gap to the least-squares optimum: {:.3g} (relative)\n",
              result.instability_after_dph / result.optimum_dph - 1.0);
+}
+
+int run_fit(const FitOptions& o) {
+  const std::vector<const fit::Term*> terms = o.model.terms();
+  const fit::EngineInfo& engine = fit::find_engine(o.model.engine);
+  const fit::EngineSettings settings = engine_settings(o);
+  engine.make(settings);  // validates the options before any work
+  const fit::PipelineOptions pipeline = o.data_options.resolved();
+  const std::vector<std::string> channels = o.data_options.channels();
+  // Every channel is fitted before anything is written: a bad one leaves no file.
+  std::vector<ChannelFit> fits;
+  for (const std::string& channel : channels) {
+    ChannelFit c;
+    c.channel = channel;
+    c.pipeline = for_channel(pipeline, channel);
+    try {
+      // Large logs are read twice, never held (fit/data/streaming.h).
+      c.data = fit::prepare_csv(o.data, c.pipeline, &c.streamed);
+      fit::check_columns(terms, c.data, c.pipeline.columns);
+      c.result = fit::fit_model(c.data, terms, engine, settings);
+    } catch (const InputError& e) {
+      if (channels.size() == 1) throw;
+      throw InputError(fmt::format("channel {}: {}", channel, e.what()));
+    }
+    // The simulator's truth belongs to its one gyro column.
+    if (channels.size() == 1) c.truth = fit::load_truth_beside(o.data);
+    c.json = fit::fit_json(c.result, c.data, c.pipeline, settings, c.truth);
+    fits.push_back(std::move(c));
+  }
+  std::string json;
+  if (fits.size() == 1) {
+    json = fits.front().json.dump(2) + "\n";
+  } else {
+    std::vector<std::pair<std::string, nlohmann::ordered_json>> all;
+    for (const ChannelFit& c : fits) all.emplace_back(c.channel, c.json);
+    json = fit::channels_json(all).dump(2) + "\n";
+  }
+  if (!o.output.empty()) write_file_atomically(o.output, json);
+  if (o.json) {
+    fmt::print("{}", json);
+    return 0;
+  }
+  for (const ChannelFit& c : fits) {
+    if (fits.size() > 1) fmt::print("== channel {} ==\n", c.channel);
+    print_fit(c, terms, engine, settings);
+  }
+  if (fits.size() > 1) {
+    fmt::print("\nsummary ({} channels, model B = b0 + {}):\n", fits.size(), fit::formula_text(terms));
+    std::string header = fmt::format("  {:<14} {:>12} {:>12} {:>8}", "channel", "before °/h", "after °/h", "ratio");
+    for (const fit::Term* t : terms) header += fmt::format(" {:>12}", t->name);
+    fmt::print("{}\n", header);
+    for (const ChannelFit& c : fits) {
+      std::string row = fmt::format("  {:<14} {:>12.6g} {:>12.6g} {:>8.2f}", c.channel,
+                                    c.result.instability_before_dph, c.result.instability_after_dph,
+                                    c.result.ratio());
+      for (double b : c.result.coefficients.b) row += fmt::format(" {:>12.5g}", b);
+      fmt::print("{}\n", row);
+    }
+  }
   if (!o.output.empty()) fmt::print("wrote {}\n", o.output);
   return 0;
 }

@@ -25,7 +25,12 @@ struct DataOptions {
   std::optional<double> outlier_threshold;
   // Applies the flags to pipeline (call after parsing).
   fit::PipelineOptions resolved() const;
+  // The gyro channels of --gyro-col (a comma list), each a column name.
+  std::vector<std::string> channels() const;
 };
+
+// `pipeline` reading one gyro channel.
+fit::PipelineOptions for_channel(fit::PipelineOptions pipeline, const std::string& channel);
 
 void add_data_options(CLI::App* command, DataOptions& options, bool with_avg = true);
 

@@ -16,9 +16,9 @@ using Json = nlohmann::ordered_json;
 
 }  // namespace
 
-std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
-                          const PipelineOptions& pipeline, const EngineSettings& settings,
-                          const std::optional<Truth>& truth) {
+nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
+                                const PipelineOptions& pipeline, const EngineSettings& settings,
+                                const std::optional<Truth>& truth) {
   Json j;
   j["engine"] = fit.engine.engine;
   j["model"] = formula_text(fit.terms);
@@ -121,11 +121,29 @@ std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
     for (const auto& [k, v] : coefficient_errors(fit, *truth)) e[k] = v;
     j["coefficient_error"] = e;
   }
-  return j.dump(2) + "\n";
+  return j;
+}
+
+std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
+                          const PipelineOptions& pipeline, const EngineSettings& settings,
+                          const std::optional<Truth>& truth) {
+  return fit_json(fit, data, pipeline, settings, truth).dump(2) + "\n";
+}
+
+nlohmann::ordered_json channels_json(
+    const std::vector<std::pair<std::string, nlohmann::ordered_json>>& channels) {
+  Json list = Json::array();
+  for (const auto& [name, object] : channels) {
+    Json entry;
+    entry["channel"] = name;
+    for (const auto& [key, value] : object.items()) entry[key] = value;
+    list.push_back(entry);
+  }
+  return Json{{"channels", list}};
 }
 
 namespace {
-SavedFit load_fit_unchecked(const std::filesystem::path& file) {
+nlohmann::json read_json(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw InputError(file.string() + ": no such file (a fit saved with 'gyrotherm fit -o')");
   nlohmann::json j;
@@ -134,6 +152,10 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON ({})", file.string(), e.what()));
   }
+  return j;
+}
+
+SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::json& j) {
   auto need = [&](const nlohmann::json& obj, const char* key, const char* what) -> const nlohmann::json& {
     if (!obj.is_object() || !obj.contains(key))
       throw InputError(fmt::format("{}: missing field '{}' ({}); is this a file written by "
@@ -206,13 +228,31 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file) {
 }
 }  // namespace
 
-SavedFit load_fit(const std::filesystem::path& file) {
+std::vector<SavedFit> load_fits(const std::filesystem::path& file) {
+  const nlohmann::json j = read_json(file);
   try {
-    return load_fit_unchecked(file);
+    if (!j.is_object() || !j.contains("channels")) return {load_fit_unchecked(file, j)};
+    if (!j["channels"].is_array() || j["channels"].empty())
+      throw InputError(fmt::format("{}: channels: expected a list of fits", file.string()));
+    std::vector<SavedFit> fits;
+    for (const nlohmann::json& c : j["channels"]) {
+      SavedFit s = load_fit_unchecked(file, c);
+      s.channel = c.contains("channel") && c["channel"].is_string() ? c["channel"].get<std::string>()
+                                                                   : s.pipeline.columns.gyro;
+      fits.push_back(std::move(s));
+    }
+    return fits;
   } catch (const nlohmann::json::exception& e) {
     // A field of the wrong type (a number where a string belongs, say).
     throw InputError(fmt::format("{}: a field has the wrong type ({})", file.string(), e.what()));
   }
+}
+
+SavedFit load_fit(const std::filesystem::path& file) {
+  std::vector<SavedFit> fits = load_fits(file);
+  if (fits.size() != 1)
+    throw InputError(fmt::format("{}: holds {} channels; one was expected", file.string(), fits.size()));
+  return std::move(fits.front());
 }
 
 }  // namespace gyrotherm::fit

@@ -8,19 +8,33 @@
 // parameters of nonlinear terms, the pipeline (window, derivative mode,
 // outlier rule, column names), ols intervals, stepwise's kept terms, and a
 // summary of the data (outliers removed, gaps).
+//
+// With several gyro channels (--gyro-col gx,gy,gz) the file is
+// {"channels": [{"channel": NAME, …the single-channel object…}, …]}.
 
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fit/pipeline.h"
 
 namespace gyrotherm::fit {
 
+nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
+                                const PipelineOptions& pipeline, const EngineSettings& settings,
+                                const std::optional<Truth>& truth);
 std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
                           const PipelineOptions& pipeline, const EngineSettings& settings,
                           const std::optional<Truth>& truth);
+
+// {"channels": [{"channel": name, ...object}, ...]}, the object's fields after
+// "channel"; what fit, diagnose and compensate print for several channels.
+nlohmann::ordered_json channels_json(
+    const std::vector<std::pair<std::string, nlohmann::ordered_json>>& channels);
 
 struct SavedFit {
   std::filesystem::path file;
@@ -30,9 +44,12 @@ struct SavedFit {
   Coefficients coefficients;
   PipelineOptions pipeline;
   double instability_after_dph = 0.0;
+  std::string channel;  // the gyro column it was fitted to, in a several-channel file
 };
 
 // Throws InputError naming the file and the field for anything missing or malformed.
 SavedFit load_fit(const std::filesystem::path& file);
+// Every channel of a fit file: one for a single-channel file.
+std::vector<SavedFit> load_fits(const std::filesystem::path& file);
 
 }  // namespace gyrotherm::fit

@@ -68,7 +68,8 @@ double Units::time_s(double t) const { return t * time_factor(time); }
 double Units::gyro_dph(double g) const { return gyro_scale * g * gyro_factor(gyro); }
 
 double Units::temp_c(double x) const {
-  const double v = temp_scale * x + temp_offset;
+  // Untouched unless asked (so that −0.0 stays −0.0, as written).
+  const double v = temp_scale == 1.0 && temp_offset == 0.0 ? x : temp_scale * x + temp_offset;
   if (temp == "K") return v - 273.15;
   if (temp == "F") return (v - 32.0) * 5.0 / 9.0;
   return v;

@@ -31,4 +31,9 @@ std::string describe_windows(const PreparedData& d, const PipelineOptions& o) {
                      human(o.averaging.window_s));
 }
 
+std::string averages_name(const PreparedData& d, const PipelineOptions& o) {
+  if (d.averaging.bursts) return "the burst means";
+  return fmt::format("{} s averages", human(o.averaging.window_s));
+}
+
 }  // namespace gyrotherm::fit

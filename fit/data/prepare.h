@@ -44,6 +44,8 @@ PreparedData prepare_data(const Measurement& measurement, const PipelineOptions&
 // "317 windows of 100 s", or for a bursty record "25 bursts of 5 s every
 // 305 s, each averaged as one window (shorter than the 100 s window)".
 std::string describe_windows(const PreparedData& data, const PipelineOptions& options);
+// What the instability is the standard deviation of: "100 s averages" or "the burst means".
+std::string averages_name(const PreparedData& data, const PipelineOptions& options);
 PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOptions& options);
 
 }  // namespace gyrotherm::fit
