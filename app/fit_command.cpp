@@ -192,22 +192,43 @@ struct CompensateOptions {
 };
 
 int run_compensate(const CompensateOptions& o) {
-  const fit::SavedFit saved = fit::load_fit(o.fit_file);
-  fit::PipelineOptions pipeline = saved.pipeline;
-  if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
-  const fit::Measurement m = fit::read_measurement_csv(o.data, pipeline.columns);
-  const fit::Compensation c = fit::compensate(m, saved, pipeline);
-  if (!o.output.empty()) fit::write_compensated_csv(o.output, c);
+  const std::vector<fit::SavedFit> saved = fit::load_fits(o.fit_file);
+  // Every channel the fit holds, each with its own columns and units, all
+  // computed before anything is written.
+  std::vector<std::pair<std::string, fit::Compensation>> done;
+  std::vector<std::pair<std::string, nlohmann::ordered_json>> json;
+  for (const fit::SavedFit& fit : saved) {
+    fit::PipelineOptions pipeline = fit.pipeline;
+    if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
+    try {
+      const fit::Measurement m = fit::read_measurement_csv(o.data, pipeline.columns);
+      done.emplace_back(fit.channel, fit::compensate(m, fit, pipeline));
+    } catch (const InputError& e) {
+      if (saved.size() == 1) throw;
+      throw InputError(fmt::format("channel {}: {}", fit.channel, e.what()));
+    }
+    json.emplace_back(fit.channel, fit::compensation_json(done.back().second, fit, pipeline, o.data,
+                                                          o.fit_file, o.output));
+  }
+  if (!o.output.empty()) {
+    if (done.size() == 1)
+      fit::write_compensated_csv(o.output, done.front().second);
+    else
+      fit::write_compensated_csv(o.output, done);
+  }
   if (o.json) {
-    const nlohmann::ordered_json j = fit::compensation_json(c, saved, pipeline, o.data, o.fit_file, o.output);
-    fmt::print("{}\n", j.dump());
+    fmt::print("{}\n", saved.size() == 1 ? json.front().second.dump() : fit::channels_json(json).dump());
     return 0;
   }
-  fmt::print("compensate {} with {} ({}: B = b0 + {}, {} derivatives)\n", o.data, o.fit_file,
-             saved.engine, fit::formula_text(saved.terms),
-             fit::to_string(pipeline.derivative));
-  fmt::print("instability (std of {:g} s averages): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
-             pipeline.averaging.window_s, c.before_dph, c.after_dph, c.ratio());
+  for (std::size_t i = 0; i < saved.size(); ++i) {
+    const fit::SavedFit& fit = saved[i];
+    const fit::Compensation& c = done[i].second;
+    fmt::print("compensate {}{} with {} ({}: B = b0 + {}, {} derivatives)\n", o.data,
+               saved.size() > 1 ? ", channel " + fit.channel : "", o.fit_file, fit.engine,
+               fit::formula_text(fit.terms), json[i].second["derivative"].get<std::string>());
+    fmt::print("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
+               fit::averages_name(c.data, fit.pipeline), c.before_dph, c.after_dph, c.ratio());
+  }
   if (!o.output.empty()) fmt::print("wrote {}\n", o.output);
   return 0;
 }

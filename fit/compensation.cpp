@@ -88,6 +88,25 @@ void write_compensated_csv(const std::filesystem::path& file, const Compensation
   write_file_atomically(file, std::string_view(out.data(), out.size()));
 }
 
+void write_compensated_csv(const std::filesystem::path& file,
+                           const std::vector<std::pair<std::string, Compensation>>& channels) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "# gyrotherm compensate: NAME_compensated_dph = NAME - NAME_model_dph, per channel\n");
+  fmt::format_to(std::back_inserter(out), "time_s,temp_c");
+  for (const auto& [name, c] : channels)
+    fmt::format_to(std::back_inserter(out), ",{0},{0}_model_dph,{0}_compensated_dph,{0}_outlier", name);
+  fmt::format_to(std::back_inserter(out), "\n");
+  const Compensation& first = channels.front().second;
+  for (std::size_t k = 0; k < first.time_s.size(); ++k) {
+    fmt::format_to(std::back_inserter(out), "{:.10g},{:.6f}", first.time_s[k], first.temp_c[k]);
+    for (const auto& [name, c] : channels)
+      fmt::format_to(std::back_inserter(out), ",{:.6f},{:.9f},{:.9f},{}", c.gyro_dph[k], c.model_dph[k],
+                     c.gyro_dph[k] - c.model_dph[k], static_cast<int>(c.outlier[k]));
+    fmt::format_to(std::back_inserter(out), "\n");
+  }
+  write_file_atomically(file, std::string_view(out.data(), out.size()));
+}
+
 nlohmann::ordered_json compensation_json(const Compensation& c, const SavedFit& fit,
                                          const PipelineOptions& pipeline, const std::string& data_file,
                                          const std::string& fit_file, const std::string& output) {

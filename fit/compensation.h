@@ -40,6 +40,10 @@ Compensation compensate(const Measurement& measurement, const SavedFit& fit,
 
 // time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier (atomically).
 void write_compensated_csv(const std::filesystem::path& file, const Compensation& c);
+// Several channels of the same record: time_s, temp_c, then per channel NAME,
+// NAME_model_dph, NAME_compensated_dph, NAME_outlier (atomically).
+void write_compensated_csv(const std::filesystem::path& file,
+                           const std::vector<std::pair<std::string, Compensation>>& channels);
 
 // The `compensate --json` object: data, fit, model, engine, derivative,
 // instability before and after, ratio, windows, outliers removed, output.
