@@ -14,6 +14,7 @@
 #include "app/commands.h"
 #include "studies/diagnose/diagnose_plots.h"
 #include "app/pipeline_options.h"
+#include "fit/fit_file.h"
 #include "studies/diagnose/report.h"
 #include "fit/model/formula.h"
 #include "sim/util/format.h"
@@ -32,29 +33,23 @@ struct DiagnoseOptions {
 
 std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
 
-int run_diagnose(const DiagnoseOptions& o) {
-  const std::vector<const fit::Term*> base_terms = o.model.base_terms();
-  const std::vector<const fit::Term*> terms = o.model.terms();
-  const fit::EngineInfo& engine = fit::find_engine(o.model.engine);
-  fit::EngineSettings settings;
-  settings.seed = o.model.seed;
-  engine.make(settings);  // validates the settings before any work
-  const fit::PipelineOptions pipeline = o.data_options.resolved();
-  const fit::Measurement measurement = fit::read_measurement_csv(o.data, pipeline.columns);
-  const fit::PreparedData data = fit::prepare_data(measurement, pipeline);
-  const fit::DiagnoseReport report =
-      fit::diagnose_record(data, pipeline.columns, base_terms, terms, engine, settings);
-  const fit::Diagnosis& d = report.diagnosis;
-  const std::optional<fit::Diagnosis>& before = report.before;
-  const std::string& next = report.next_command;
+// One channel's diagnosis, computed before anything is printed or written.
+struct ChannelDiagnosis {
+  std::string channel;
+  fit::PipelineOptions pipeline;
+  fit::Measurement measurement;
+  fit::PreparedData data;
+  fit::DiagnoseReport report;
+};
 
-  if (!o.plots.empty())
-    fit::write_diagnosis_plots(o.plots, measurement, data, d, before ? &*before : nullptr, pipeline);
-  if (o.json) {
-    fmt::print("{}\n", fit::diagnosis_json(report).dump());
-    return 0;
-  }
-
+void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
+                     const std::vector<const fit::Term*>& terms, const fit::EngineInfo& engine,
+                     const std::string& plots) {
+  const fit::PipelineOptions& pipeline = channel.pipeline;
+  const fit::PreparedData& data = channel.data;
+  const fit::Diagnosis& d = channel.report.diagnosis;
+  const std::optional<fit::Diagnosis>& before = channel.report.before;
+  const std::string& next = channel.report.next_command;
   fmt::print("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n",
              o.data, fit::formula_text(terms), engine.name, fit::describe_windows(data, pipeline),
              data.outliers.removed);
@@ -103,7 +98,76 @@ int run_diagnose(const DiagnoseOptions& o) {
   for (const std::string& n : d.confounding_notes) fmt::print("cannot tell: {}\n", n);
   fmt::print("verdict: {}\n", d.verdict);
   if (!next.empty()) fmt::print("next: {}\n", next);
-  if (!o.plots.empty()) fmt::print("plots in {}/\n", o.plots);
+  if (!plots.empty()) fmt::print("plots in {}/\n", plots);
+}
+
+
+int run_diagnose(const DiagnoseOptions& o) {
+  const std::vector<const fit::Term*> base_terms = o.model.base_terms();
+  const std::vector<const fit::Term*> terms = o.model.terms();
+  const fit::EngineInfo& engine = fit::find_engine(o.model.engine);
+  fit::EngineSettings settings;
+  settings.seed = o.model.seed;
+  engine.make(settings);  // validates the settings before any work
+  const fit::PipelineOptions pipeline = o.data_options.resolved();
+  const std::vector<std::string> channels = o.data_options.channels();
+  std::vector<ChannelDiagnosis> all;
+  for (const std::string& channel : channels) {
+    ChannelDiagnosis c;
+    c.channel = channel;
+    c.pipeline = for_channel(pipeline, channel);
+    try {
+      c.measurement = fit::read_measurement_csv(o.data, c.pipeline.columns);
+      c.data = fit::prepare_data(c.measurement, c.pipeline);
+      c.report = fit::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings);
+    } catch (const InputError& e) {
+      if (channels.size() == 1) throw;
+      throw InputError(fmt::format("channel {}: {}", channel, e.what()));
+    }
+    if (channels.size() > 1 && !c.report.next_command.empty())
+      c.report.next_command += " --gyro-col " + channel;
+    all.push_back(std::move(c));
+  }
+  // With several channels, each one's figures in a folder of its own.
+  std::vector<std::string> plots(all.size(), o.plots);
+  for (std::size_t i = 0; i < all.size() && !o.plots.empty(); ++i) {
+    if (all.size() > 1) plots[i] = (std::filesystem::path(o.plots) / all[i].channel).string();
+    const fit::Diagnosis& d = all[i].report.diagnosis;
+    const std::optional<fit::Diagnosis>& before = all[i].report.before;
+    fit::write_diagnosis_plots(plots[i], all[i].measurement, all[i].data, d,
+                               before ? &*before : nullptr, all[i].pipeline);
+  }
+  if (o.json) {
+    if (all.size() == 1) {
+      fmt::print("{}\n", fit::diagnosis_json(all.front().report).dump());
+    } else {
+      std::vector<std::pair<std::string, nlohmann::ordered_json>> list;
+      for (const ChannelDiagnosis& c : all) list.emplace_back(c.channel, fit::diagnosis_json(c.report));
+      fmt::print("{}\n", fit::channels_json(list).dump());
+    }
+    return 0;
+  }
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (all.size() > 1) fmt::print("{}== channel {} ==\n", i ? "\n" : "", all[i].channel);
+    print_diagnosis(o, all[i], terms, engine, plots[i]);
+  }
+  if (all.size() > 1) {
+    fmt::print("\nsummary ({} channels, model B = b0 + {}):\n", all.size(), fit::formula_text(terms));
+    fmt::print("  {:<14} {:>12} {:>12} {:>8}  {}\n", "channel", "after °/h", "floor °/h", "x floor",
+               "best candidate");
+    for (const ChannelDiagnosis& c : all) {
+      const fit::Diagnosis& d = c.report.diagnosis;
+      std::string best = "none";
+      if (!d.candidates.empty()) {
+        const fit::CandidateReport& b = d.candidates.front();
+        best = fmt::format("{} ({:.0f} %{})", b.term->name, b.reduction_pct,
+                           b.significant ? (b.confounded_with.empty() ? ", significant" : ", significant, not alone")
+                                         : "");
+      }
+      fmt::print("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,
+                 d.noise_floor_dph, d.excess_ratio(), best);
+    }
+  }
   return 0;
 }
 
