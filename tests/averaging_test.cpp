@@ -199,6 +199,16 @@ TEST(AverageWindows, NoSurvivingWindowSaysHowLongTheRecordIs) {
     EXPECT_NE(message.find(fragment), std::string::npos) << fragment << " not in: " << message;
 }
 
+TEST(AverageWindows, TheNoWindowMessageShowsNumbersForPeople) {
+  // 0.1 s steps summed up: the last time is 29.300000000000068, said as 29.3.
+  std::vector<double> t;
+  for (double u = 0.0; u < 29.35; u += 0.1) t.push_back(u);
+  const Measurement m = record(t);
+  const std::string message = error_of(m, all_valid(m), {.window_s = 100.0});
+  EXPECT_NE(message.find("29.3 s long"), std::string::npos) << message;
+  EXPECT_EQ(message.find("00000"), std::string::npos) << message;
+}
+
 TEST(AverageWindows, AWindowShorterThanTheSampleIntervalIsRejected) {
   const Measurement m = record(range(0, 100, 10));
   const std::string message = error_of(m, all_valid(m), {.window_s = 5.0});

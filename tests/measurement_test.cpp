@@ -324,5 +324,66 @@ TEST_F(MeasurementTest, ReadsBackA100kRowRecord) {
   EXPECT_DOUBLE_EQ(m.temp2_c.back(), 3.0 + 99999e-4);
 }
 
+// Units: each conversion by hand, then a raw log read with them.
+TEST(Units, ConvertToSecondsDegreesCelsiusAndDegreesPerHour) {
+  Units u;
+  EXPECT_TRUE(u.identity());
+  EXPECT_EQ(u.description(), "none");
+  u.time = "ms";
+  EXPECT_DOUBLE_EQ(u.time_s(1500.0), 1.5);
+  u.time = "us";
+  EXPECT_DOUBLE_EQ(u.time_s(2.0e6), 2.0);
+  u.gyro = "dps";
+  EXPECT_DOUBLE_EQ(u.gyro_dph(1.0), 3600.0);
+  u.gyro = "mdps";
+  EXPECT_DOUBLE_EQ(u.gyro_dph(1000.0), 3600.0);
+  u.gyro = "rad/s";
+  u.gyro_scale = 0.5;  // the PAN logger's factor 2
+  EXPECT_NEAR(u.gyro_dph(1.0), 0.5 * 206264.80624709636, 1e-9);
+  u.temp = "K";
+  EXPECT_NEAR(u.temp_c(300.0), 26.85, 1e-12);
+  u.temp = "F";
+  EXPECT_NEAR(u.temp_c(212.0), 100.0, 1e-12);
+  u.temp = "C";
+  u.temp_scale = 1.0 / 256.0;
+  u.temp_offset = -231.0;
+  EXPECT_DOUBLE_EQ(u.temp_c(65236.0), 65236.0 / 256.0 - 231.0);
+  EXPECT_NE(u.description().find("0.00390625 × column − 231 → °C"), std::string::npos) << u.description();
+}
+
+TEST(Units, BadUnitsAndScalesAreNamed) {
+  for (const auto& [units, fragment] : std::vector<std::pair<Units, std::string>>{
+           {Units{.time = "min"}, "--time-unit min: unknown unit (expected one of s, ms, us)"},
+           {Units{.gyro = "deg/hr"}, "--gyro-unit deg/hr: unknown unit"},
+           {Units{.temp = "R"}, "--temp-unit R: unknown unit (expected one of C, K, F)"},
+           {Units{.gyro_scale = 0.0}, "--gyro-scale 0: must be a finite number other than 0"},
+           {Units{.temp_scale = std::nan("")}, "--temp-scale nan"}}) {
+    try {
+      units.validate();
+      ADD_FAILURE() << fragment;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST_F(MeasurementTest, ReadsARawLogInItsOwnUnits) {
+  const fs::path raw = write("time (ms),g rad/s,temp\n1000,1e-3,65236\n1020,2e-3,65237\n");
+  ColumnMap columns{.time = "time (ms)", .temp = "temp", .gyro = "g rad/s"};
+  columns.units = Units{.time = "ms", .gyro = "rad/s", .temp_scale = 1.0 / 256.0, .temp_offset = -231.0};
+  const Measurement m = read_measurement_csv(raw, columns);
+  EXPECT_DOUBLE_EQ(m.time_s[1], 1.02);
+  EXPECT_NEAR(m.gyro_dph[0], 206.26480624709636, 1e-9);
+  EXPECT_DOUBLE_EQ(m.temp_c[1], 65237.0 / 256.0 - 231.0);
+  // Without the temperature conversion the counts are no temperature, and the
+  // message says so.
+  columns.units.temp_scale = 1.0;
+  columns.units.temp_offset = 0.0;
+  expect_error(raw, {"column temp: 65236 is not a temperature in °C"}, columns);
+  // A range error after a conversion names it.
+  columns.units.temp = "K";
+  expect_error(raw, {"converted by", "temp column in K → °C"}, columns);
+}
+
 }  // namespace
 }  // namespace gyrotherm::fit
