@@ -221,6 +221,28 @@ TEST(RealLogs, AShortFastWarmUpFitsAndDiagnosesWithShortWindows) {
   }
 }
 
+// From 8 windows up: the floor from inside the windows when there are too
+// few for the Hadamard estimate, fewer candidates when the record cannot
+// support more, both said; fewer than 8 windows are refused.
+TEST(RealLogs, DiagnoseWorksFromEightWindowsAndSaysWhatItCouldNotTry) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  const auto r = run_cli(dir, "diagnose c.csv --avg 3600 --model 'T + T^2 + dT + grad' --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_EQ(j["noise_floor"]["method"], "within-window scatter");
+  EXPECT_LT(j["noise_floor"]["hadamard_triples"].get<int>(), 10);
+  int not_tried = 0;
+  for (const Json& s : j["skipped"]) not_tried += s.get<std::string>().find("not tried") != std::string::npos;
+  EXPECT_GE(not_tried, 1) << j["skipped"];
+  EXPECT_NE(j["verdict"].get<std::string>().find("fewer tests"), std::string::npos) << j["verdict"];
+  const auto fit = run_cli(dir, "fit c.csv --avg 3600");
+  EXPECT_EQ(fit.exit_code, 0) << fit.err;
+  const auto few = run_cli(dir, "diagnose c.csv --avg 5000");
+  EXPECT_EQ(few.exit_code, 2);
+  EXPECT_NE(few.err.find("only 6 windows: diagnose needs at least 8"), std::string::npos) << few.err;
+}
+
 struct BadLog {
   std::string name;
   std::string args;  // after the command

@@ -3,15 +3,20 @@
 namespace gyrotherm::fit {
 namespace {
 
-// Central differences (one-sided where a neighbour is farther than span_s),
-// or backward differences (0 without a close enough earlier window).
+// Central differences (one-sided where a neighbour is neither in the same
+// gap-free run nor within span_s), or backward differences (0 without such
+// an earlier window).
 std::vector<double> differentiate(const std::vector<double>& t_s, const std::vector<double>& x,
-                                  DerivativeMode mode, double span_s) {
+                                  const std::vector<std::size_t>& run, DerivativeMode mode,
+                                  double span_s) {
   const std::size_t n = x.size();
   std::vector<double> d(n, 0.0);
+  const auto near = [&](std::size_t a, std::size_t b) {
+    return run[a] == run[b] || t_s[b] - t_s[a] <= span_s;
+  };
   for (std::size_t p = 0; p < n; ++p) {
-    const bool has_prev = p > 0 && t_s[p] - t_s[p - 1] <= span_s;
-    const bool has_next = p + 1 < n && t_s[p + 1] - t_s[p] <= span_s;
+    const bool has_prev = p > 0 && near(p - 1, p);
+    const bool has_next = p + 1 < n && near(p, p + 1);
     std::size_t lo = p, hi = p;
     if (has_prev) lo = p - 1;
     if (mode == DerivativeMode::central && has_next) hi = p + 1;
@@ -31,8 +36,8 @@ DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode, double spa
   d.time_s.reserve(data.size());
   for (double t : data.time_s) d.time_s.push_back(t - data.start_time_s);
   d.switch_on_s = 0.0;
-  d.rate_c_per_s = differentiate(data.time_s, data.temp_c, mode, span_s);
-  d.accel_c_per_s2 = differentiate(data.time_s, d.rate_c_per_s, mode, span_s);
+  d.rate_c_per_s = differentiate(data.time_s, data.temp_c, data.run, mode, span_s);
+  d.accel_c_per_s2 = differentiate(data.time_s, d.rate_c_per_s, data.run, mode, span_s);
   return d;
 }
 

@@ -6,10 +6,11 @@
 //
 // Derivatives are taken on the window means at their actual centre times:
 // central differences (the default), or backward differences for a causal,
-// real-time compensator. A neighbouring window is used when its centre is at
-// most `span_s` away, across a gap or not: a logger's bursts a few minutes
-// apart are bridged, a long interruption never is. Where only one neighbour
-// is that close the difference is one-sided; with none it is 0.
+// real-time compensator. A neighbouring window is used when it belongs to the
+// same gap-free run (contiguous windows, whatever their length), or across a
+// gap when its centre is at most `span_s` away: a logger's bursts a few
+// minutes apart are bridged, a long interruption never is. Where only one
+// neighbour qualifies the difference is one-sided; with none it is 0.
 //
 // The default span, 600 s, bridges the 305 s between the PAN log's bursts and
 // stays well below the thermal time constants of a gyro block (tens of

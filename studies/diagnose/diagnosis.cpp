@@ -93,12 +93,13 @@ double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) 
 namespace {
 
 // The squared second differences of equally spaced window means (within
-// 10 %) no farther apart than span_s.
+// 10 %) of one gap-free run, or across gaps no farther apart than span_s.
 std::vector<double> hadamard_squares(const AveragedSeries& s, double span_s) {
   std::vector<double> h2;
   for (std::size_t p = 1; p + 1 < s.size(); ++p) {
     const double before = s.time_s[p] - s.time_s[p - 1], after = s.time_s[p + 1] - s.time_s[p];
-    if (std::max(before, after) > span_s) continue;
+    const bool one_run = s.run[p - 1] == s.run[p] && s.run[p + 1] == s.run[p];
+    if (!one_run && std::max(before, after) > span_s) continue;
     if (std::abs(before - after) > 0.1 * std::max(before, after)) continue;
     const double h = s.gyro_dph[p + 1] - 2.0 * s.gyro_dph[p] + s.gyro_dph[p - 1];
     h2.push_back(h * h);
@@ -231,8 +232,9 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   for (std::size_t p = 0; p < l; ++p) {
     // A segment ends where the kind changes or the record stops for longer
     // than the derivatives' span (a bursty logger's bursts stay together).
-    const bool new_segment =
-        p == 0 || kind[p] != kind[p - 1] || s.time_s[p] - s.time_s[p - 1] > data.derivative_span_s;
+    const bool new_segment = p == 0 || kind[p] != kind[p - 1] ||
+                             (s.run[p] != s.run[p - 1] &&
+                              s.time_s[p] - s.time_s[p - 1] > data.derivative_span_s);
     if (new_segment) {
       SegmentReport seg;
       seg.kind = kind[p];

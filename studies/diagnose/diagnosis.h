@@ -7,8 +7,8 @@
 //     a robust Hadamard deviation of the window means y_p,
 //        floor² = median_p (y_{p+1} − 2y_p + y_{p−1})² / (6 · 0.4549),
 //     (0.4549 = median of χ²₁), over the triples of equally spaced windows
-//     (within 10 %) no farther apart than the derivatives' span, so a
-//     bursty record's burst means count too. Second differences cancel the
+//     (within 10 %) of one gap-free run, or across gaps no farther apart than
+//     the derivatives' span, so a bursty record's burst means count too. Second differences cancel the
 //     locally linear thermal trends of soaks; the median ignores the ramps'
 //     transients. For white noise it equals the standard deviation of the
 //     window means. With fewer than 10 such triples the floor comes from the
