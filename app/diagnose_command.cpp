@@ -111,23 +111,18 @@ int run_diagnose(const DiagnoseOptions& o) {
   engine.make(settings);  // validates the settings before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
   const std::vector<std::string> channels = o.data_options.channels();
-  std::vector<ChannelDiagnosis> all;
-  for (const std::string& channel : channels) {
-    ChannelDiagnosis c;
-    c.channel = channel;
-    c.pipeline = for_channel(pipeline, channel);
-    try {
-      c.measurement = fit::read_measurement_csv(o.data, c.pipeline.columns);
-      c.data = fit::prepare_data(c.measurement, c.pipeline);
-      c.report = fit::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings);
-    } catch (const InputError& e) {
-      if (channels.size() == 1) throw;
-      throw InputError(fmt::format("channel {}: {}", channel, e.what()));
-    }
-    if (channels.size() > 1 && !c.report.next_command.empty())
-      c.report.next_command += " --gyro-col " + channel;
-    all.push_back(std::move(c));
-  }
+  std::vector<ChannelDiagnosis> all =
+      for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
+        ChannelDiagnosis c;
+        c.channel = channel;
+        c.pipeline = p;
+        c.measurement = fit::read_measurement_csv(o.data, c.pipeline.columns);
+        c.data = fit::prepare_data(c.measurement, c.pipeline);
+        c.report = fit::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings);
+        if (channels.size() > 1 && !c.report.next_command.empty())
+          c.report.next_command += " --gyro-col " + channel;
+        return c;
+      });
   // With several channels, each one's figures in a folder of its own.
   std::vector<std::string> plots(all.size(), o.plots);
   for (std::size_t i = 0; i < all.size() && !o.plots.empty(); ++i) {

@@ -130,25 +130,20 @@ int run_fit(const FitOptions& o) {
   const fit::PipelineOptions pipeline = o.data_options.resolved();
   const std::vector<std::string> channels = o.data_options.channels();
   // Every channel is fitted before anything is written: a bad one leaves no file.
-  std::vector<ChannelFit> fits;
-  for (const std::string& channel : channels) {
-    ChannelFit c;
-    c.channel = channel;
-    c.pipeline = for_channel(pipeline, channel);
-    try {
-      // Large logs are read twice, never held (fit/data/streaming.h).
-      c.data = fit::prepare_csv(o.data, c.pipeline, &c.streamed);
-      fit::check_columns(terms, c.data, c.pipeline.columns);
-      c.result = fit::fit_model(c.data, terms, engine, settings);
-    } catch (const InputError& e) {
-      if (channels.size() == 1) throw;
-      throw InputError(fmt::format("channel {}: {}", channel, e.what()));
-    }
-    // The simulator's truth belongs to its one gyro column.
-    if (channels.size() == 1) c.truth = fit::load_truth_beside(o.data);
-    c.json = fit::fit_json(c.result, c.data, c.pipeline, settings, c.truth);
-    fits.push_back(std::move(c));
-  }
+  const std::vector<ChannelFit> fits =
+      for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
+        ChannelFit c;
+        c.channel = channel;
+        c.pipeline = p;
+        // Large logs are read twice, never held (fit/data/streaming.h).
+        c.data = fit::prepare_csv(o.data, c.pipeline, &c.streamed);
+        fit::check_columns(terms, c.data, c.pipeline.columns);
+        c.result = fit::fit_model(c.data, terms, engine, settings);
+        // The simulator's truth belongs to its one gyro column.
+        if (channels.size() == 1) c.truth = fit::load_truth_beside(o.data);
+        c.json = fit::fit_json(c.result, c.data, c.pipeline, settings, c.truth);
+        return c;
+      });
   std::string json;
   if (fits.size() == 1) {
     json = fits.front().json.dump(2) + "\n";

@@ -10,7 +10,10 @@
 #include <vector>
 
 #include "fit/model/formula.h"
+#include <fmt/format.h>
+
 #include "fit/pipeline.h"
+#include "sim/util/input_error.h"
 
 namespace CLI {
 class App;
@@ -31,6 +34,24 @@ struct DataOptions {
 
 // `pipeline` reading one gyro channel.
 fit::PipelineOptions for_channel(fit::PipelineOptions pipeline, const std::string& channel);
+
+// work(channel, pipeline) for every channel in order, each with its own
+// pipeline, all before the caller prints or writes anything; with several
+// channels an error names its channel.
+template <class Work>
+auto for_each_channel(const std::vector<std::string>& channels, const fit::PipelineOptions& pipeline,
+                      Work work) {
+  std::vector<decltype(work(channels.front(), pipeline))> results;
+  for (const std::string& channel : channels) {
+    try {
+      results.push_back(work(channel, for_channel(pipeline, channel)));
+    } catch (const InputError& e) {
+      if (channels.size() == 1) throw;
+      throw InputError(fmt::format("channel {}: {}", channel, e.what()));
+    }
+  }
+  return results;
+}
 
 void add_data_options(CLI::App* command, DataOptions& options, bool with_avg = true);
 

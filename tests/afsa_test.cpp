@@ -46,24 +46,15 @@ TEST(Afsa, ComesCloseToTheLeastSquaresOptimumOnThePaperCycleAtDefaults) {
 TEST(Afsa, RecoversTheCoefficientsOfNoiseFreeDataToAFewPercent) {
   // The fixed Step limits how finely the swarm settles: the coefficients come
   // back within 1 % (worst of 20 seeds 0.8 %); the test allows 5 %.
-  const Cycle c = cycle_design(false);
-  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.0));
-  const FitResult r = run(problem, EngineSettings{});
-  const Coefficients fitted = problem.physical(r.z);
-  for (std::size_t j = 0; j < kPaper.size(); ++j)
-    EXPECT_NEAR(fitted.b[j], kPaper[j], 5e-2 * std::abs(kPaper[j])) << c.names[j];
-  EXPECT_NEAR(fitted.intercept, kIntercept, 1e-4 * std::abs(kIntercept));
+  expect_recovers_noise_free("afsa", 5e-2, 1e-4);
 }
 
 TEST(Afsa, ScalesToASixTermModelWithMoreFishAndEvaluations) {
   // Six correlated terms (condition number ≈ 400): 40 fish and 100000
   // evaluations bring σ within 3e-3 of the optimum (worst of 20 seeds); the
   // test allows 1e-2.
-  const Cycle c = cycle_design(true);
-  const Eigen::VectorXd y = bias_dph(c.design, kSixTerm, 0.002);
-  const LinearProblem problem = make_problem(c, y);
+  const auto [problem, optimum] = six_term_problem();
   ASSERT_GT(problem.condition_number(), 100.0);
-  const double optimum = least_squares_sigma(c.design, y);
   EngineSettings settings;
   settings.max_evaluations = 100000;
   settings.options = {{"fish", "40"}};
@@ -76,21 +67,7 @@ TEST(Afsa, ScalesToASixTermModelWithMoreFishAndEvaluations) {
 // (engine_contract_test.cpp); the aggregate built in code is checked by the
 // same table, and the stopping rules too.
 TEST(Afsa, ValidateChecksTheAggregate) {
-  try {
-    AfsaEngine{AfsaEngine::Options{.step = 0.0}};
-    ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("afsa option step=0: must be > 0"), std::string::npos) << e.what();
-  }
-  EXPECT_NO_THROW(AfsaEngine::Options{}.validate());
-  try {
-    AfsaEngine{AfsaEngine::Options{.max_evaluations = -5}};
-    ADD_FAILURE() << "max_evaluations = -5 was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("max_evaluations=-5: must be at least 1"), std::string::npos)
-        << e.what();
-  }
-  EXPECT_THROW(AfsaEngine{AfsaEngine::Options{.target_objective = -1.0}}, InputError);
+  expect_aggregate_checked<AfsaEngine>({.step = 0.0}, "afsa option step=0: must be > 0");
 }
 
 }  // namespace

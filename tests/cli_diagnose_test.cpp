@@ -48,7 +48,7 @@ TEST(CliDiagnose, FindsAHiddenGradientAndWatchesTheErrorFall) {
 
 TEST(CliDiagnose, CleanDataSaysSo) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o clean.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "clean.csv");
   const auto r = run_cli(dir, "diagnose clean.csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("no missing effect is significant"), std::string::npos) << r.out;
@@ -57,7 +57,7 @@ TEST(CliDiagnose, CleanDataSaysSo) {
 
 TEST(CliDiagnose, AModelWithEveryTermHasNothingLeftToTry) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "c.csv");
   std::string every;
   for (const effects::Effect* e : effects::registry()) every += (every.empty() ? "" : " + ") + std::string(e->name);
   const auto r = run_cli(dir, "diagnose c.csv --model '" + every + "'");

@@ -128,9 +128,7 @@ TEST(RealLogs, PanDiagnosisSaysWhatTheRecordCannotTell) {
 // diagnosed as on the continuous record.
 TEST(RealLogs, SimulatedBurstsFindAHiddenEffectAsAContinuousRecordDoes) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " --hidden grad=0.0533 -o full.csv")
-                .exit_code,
-            0);
+  simulate_shipped(dir, "cycle", "--hidden grad=0.0533", "full.csv");
   std::ifstream in(dir / "full.csv");
   std::ofstream out(dir / "bursts.csv");
   for (std::string line; std::getline(in, line);) {
@@ -226,7 +224,7 @@ TEST(RealLogs, AShortFastWarmUpFitsAndDiagnosesWithShortWindows) {
 // support more, both said; fewer than 8 windows are refused.
 TEST(RealLogs, DiagnoseWorksFromEightWindowsAndSaysWhatItCouldNotTry) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "c.csv");
   const auto r = run_cli(dir, "diagnose c.csv --avg 3600 --model 'T + T^2 + dT + grad' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json j = Json::parse(r.out);

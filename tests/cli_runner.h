@@ -79,6 +79,15 @@ inline std::string source_path(const std::string& relative) {
   return std::string(GYROTHERM_SOURCE_DIR) + "/" + relative;
 }
 
+// `gyrotherm simulate scenarios/NAME.toml EXTRA -o OUT` in dir; fails the test
+// (with simulate's message) if it fails.
+inline void simulate_shipped(const ScratchDir& dir, const std::string& name, const std::string& extra,
+                             const std::string& out) {
+  const CliResult r = run_cli(dir, "simulate " + source_path("scenarios/" + name + ".toml") + " " +
+                                       extra + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
 // A 2.3 h profile (20 → 60 → −20 °C with 30 min holds) on the shipped shield
 // rig: enough 100 s windows to fit, a few ms to simulate. `extra` is appended
 // (e.g. a [spread] table).

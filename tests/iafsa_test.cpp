@@ -50,13 +50,7 @@ TEST(Iafsa, ReachesTheLeastSquaresOptimumOnThePaperCycleAtDefaults) {
 
 TEST(Iafsa, RecoversTheCoefficientsOfNoiseFreeData) {
   // Worst relative error over 20 seeds 4e-6; the test allows 5e-5.
-  const Cycle c = cycle_design(false);
-  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.0));
-  const FitResult r = run(problem, EngineSettings{});
-  const Coefficients fitted = problem.physical(r.z);
-  for (std::size_t j = 0; j < kPaper.size(); ++j)
-    EXPECT_NEAR(fitted.b[j], kPaper[j], 5e-5 * std::abs(kPaper[j])) << c.names[j];
-  EXPECT_NEAR(fitted.intercept, kIntercept, 1e-7 * std::abs(kIntercept));
+  expect_recovers_noise_free("iafsa", 5e-5, 1e-7);
 }
 
 TEST(Iafsa, ScalesToASixTermModelWithMoreFishAndASlowerSchedule) {
@@ -65,11 +59,8 @@ TEST(Iafsa, ScalesToASixTermModelWithMoreFishAndASlowerSchedule) {
   // 20 fish; they reach 1e-6 in a median of 19000 evaluations (at worst 23000
   // of 20 seeds) and the test gives them 40000. At 8 fish and G_max = 700 the
   // range collapses too early and σ stays well above the optimum.
-  const Cycle c = cycle_design(true);
-  const Eigen::VectorXd y = bias_dph(c.design, kSixTerm, 0.002);
-  const LinearProblem problem = make_problem(c, y);
+  const auto [problem, optimum] = six_term_problem();
   ASSERT_GT(problem.condition_number(), 100.0);
-  const double optimum = least_squares_sigma(c.design, y);
   EngineSettings settings;
   settings.max_evaluations = 40000;
   settings.options = {{"fish", "20"}, {"max_iterations", "20000"}};
@@ -111,21 +102,7 @@ TEST(Iafsa, AutoSizesTheSwarmAndTheScheduleByTheNumberOfTerms) {
 // (engine_contract_test.cpp); the aggregate built in code is checked by the
 // same table, and the stopping rules too.
 TEST(Iafsa, ValidateChecksTheAggregate) {
-  try {
-    IafsaEngine{IafsaEngine::Options{.fish = 1}};
-    ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("iafsa option fish=1: must be a whole number from 2"), std::string::npos) << e.what();
-  }
-  EXPECT_NO_THROW(IafsaEngine::Options{}.validate());
-  try {
-    IafsaEngine{IafsaEngine::Options{.max_evaluations = -5}};
-    ADD_FAILURE() << "max_evaluations = -5 was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("max_evaluations=-5: must be at least 1"), std::string::npos)
-        << e.what();
-  }
-  EXPECT_THROW(IafsaEngine{IafsaEngine::Options{.target_objective = -1.0}}, InputError);
+  expect_aggregate_checked<IafsaEngine>({.fish = 1}, "iafsa option fish=1: must be a whole number from 2");
 }
 
 TEST(Iafsa, ShrinksVisualAndStepByEquationFive) {

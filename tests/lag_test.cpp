@@ -64,16 +64,12 @@ TEST(Lag, IsListedAndInjectableFromTheCommandLine) {
   EXPECT_TRUE(found);
 
   // --hidden with the default τ, and a gyro file that sets τ.
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/warmup.toml") + " --hidden lag=0.003 -o a.csv")
-                .exit_code,
-            0);
+  simulate_shipped(dir, "warmup", "--hidden lag=0.003", "a.csv");
   auto truth = nlohmann::json::parse(testing::slurp(dir / "a.truth.json"));
   EXPECT_EQ(truth["coefficients"]["lag"].get<double>(), 0.003);
   EXPECT_EQ(truth["hidden"]["lag"]["time_constant_s"].get<double>(), 1200.0);
   write_text(dir / "gyro.toml", "[hidden]\nlag = 0.004\nlag_time_constant_s = 900.0\n");
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/warmup.toml") + " --gyro gyro.toml -o b.csv")
-                .exit_code,
-            0);
+  simulate_shipped(dir, "warmup", "--gyro gyro.toml", "b.csv");
   truth = nlohmann::json::parse(testing::slurp(dir / "b.truth.json"));
   EXPECT_EQ(truth["coefficients"]["lag"].get<double>(), 0.004);
   EXPECT_EQ(truth["hidden"]["lag"]["time_constant_s"].get<double>(), 900.0);
@@ -85,9 +81,7 @@ TEST(Lag, IsListedAndInjectableFromTheCommandLine) {
 
 TEST(Lag, FitAddLagRecoversItAndDiagnoseRanksItFirst) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " --hidden lag=0.003 -o lag.csv")
-                .exit_code,
-            0);
+  simulate_shipped(dir, "cycle", "--hidden lag=0.003", "lag.csv");
   const auto fit = run_cli(dir, "fit lag.csv --add lag --json");
   ASSERT_EQ(fit.exit_code, 0) << fit.err;
   const auto f = nlohmann::json::parse(fit.out);

@@ -16,6 +16,7 @@
 
 #include "fit/engines/engine.h"
 #include "fit/model/linear_problem.h"
+#include "sim/util/input_error.h"
 #include "sim/util/random.h"
 
 namespace gyrotherm::testing::lagged_cycle {
@@ -151,6 +152,50 @@ inline void expect_near_optimum(const DefaultRuns& d, const FitResult& r, double
   EXPECT_LE(r.objective, d.optimum * (1.0 + relative));
   EXPECT_LE(sigma_at(d.problem, r), d.optimum * (1.0 + relative));
   EXPECT_GE(sigma_at(d.problem, r), d.optimum * (1.0 - 1e-12));
+}
+
+// The engine at its defaults on noise-free data of the paper's model: the
+// coefficients within `relative`, the intercept within `relative_b0`.
+inline void expect_recovers_noise_free(const std::string& engine, double relative, double relative_b0) {
+  const Cycle c = cycle_design(false);
+  const LinearProblem problem = make_problem(c, bias_dph(c.design, kPaper, 0.0));
+  const FitResult r = fit::find_engine(engine).make(fit::EngineSettings{})->fit(problem);
+  const fit::Coefficients fitted = problem.physical(r.z);
+  for (std::size_t j = 0; j < kPaper.size(); ++j)
+    EXPECT_NEAR(fitted.b[j], kPaper[j], relative * std::abs(kPaper[j])) << c.names[j];
+  EXPECT_NEAR(fitted.intercept, kIntercept, relative_b0 * std::abs(kIntercept));
+}
+
+// The six correlated terms (condition number ≈ 400) with 0.002 °/h of noise,
+// and their least-squares σ.
+struct SixTermProblem {
+  LinearProblem problem;
+  double optimum;
+};
+inline SixTermProblem six_term_problem() {
+  const Cycle c = cycle_design(true);
+  const Eigen::VectorXd y = bias_dph(c.design, kSixTerm, 0.002);
+  return {make_problem(c, y), least_squares_sigma(c.design, y)};
+}
+
+// An engine built from an Options aggregate checks it with its option table
+// and the stopping rules: `bad` must be refused with `message`; the defaults,
+// a negative budget and a negative target are checked too.
+template <class EngineT>
+void expect_aggregate_checked(const typename EngineT::Options& bad, const std::string& message) {
+  using Options = typename EngineT::Options;
+  const auto refused = [](const Options& o, const std::string& fragment) {
+    try {
+      EngineT{o};
+      ADD_FAILURE() << fragment << ": accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  refused(bad, message);
+  EXPECT_NO_THROW(Options{}.validate());
+  refused(Options{.max_evaluations = -5}, "max_evaluations=-5: must be at least 1");
+  refused(Options{.target_objective = -1.0}, "target_objective=-1");
 }
 
 }  // namespace gyrotherm::testing::lagged_cycle
