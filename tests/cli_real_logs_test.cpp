@@ -54,6 +54,9 @@ TEST(RealLogs, PanLogFitsAllThreeAxesWithDefaultOptions) {
     EXPECT_EQ(c["data"]["windows"].get<int>(), 25);
     EXPECT_TRUE(c["data"]["bursts"].get<bool>());
   }
+  // With every option at its default (the paper's model) too.
+  const auto defaults = run_cli(dir, "fit " + csv + " --gyro-col gx_dph,gy_dph,gz_dph");
+  EXPECT_EQ(defaults.exit_code, 0) << defaults.err;
   // The human report says what happened to the bursts, per channel and in a summary.
   const auto human = run_cli(dir, "fit " + csv + " --gyro-col gx_dph,gy_dph,gz_dph --model T");
   ASSERT_EQ(human.exit_code, 0) << human.err;
