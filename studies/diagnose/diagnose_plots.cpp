@@ -137,7 +137,7 @@ void write_diagnosis_plots(const std::string& dir, const Measurement& m,
         "$raw using 1:2 with linespoints pt 7 ps 0.6 lc rgb '#444444' title 'raw', "
         "$comp using 1:3:4 with filledcurves fc rgb '#f4a582' fs transparent solid 0.5 notitle, "
         "$comp using 1:2 with linespoints pt 7 ps 0.6 lc rgb '#d62728' title 'compensated'\n",
-        pipeline.averaging.window_s, floor_text, d.noise_floor_dph));
+        data.series.window_s, floor_text, d.noise_floor_dph));  // a burst's length with bursts
     fig.render();
   }
 }
