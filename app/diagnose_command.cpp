@@ -130,7 +130,7 @@ int run_diagnose(const DiagnoseOptions& o) {
     const fit::Diagnosis& d = all[i].report.diagnosis;
     const std::optional<fit::Diagnosis>& before = all[i].report.before;
     fit::write_diagnosis_plots(plots[i], all[i].measurement, all[i].data, d,
-                               before ? &*before : nullptr, all[i].pipeline);
+                               before ? &*before : nullptr);
   }
   if (o.json) {
     if (all.size() == 1) {

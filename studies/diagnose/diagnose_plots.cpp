@@ -30,7 +30,7 @@ std::vector<double> in_hours(const std::vector<double>& s) {
 
 void write_diagnosis_plots(const std::string& dir, const Measurement& m,
                            const PreparedData& data, const Diagnosis& d,
-                           const Diagnosis* before, const PipelineOptions& pipeline) {
+                           const Diagnosis* before) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--plots {}: cannot create the folder ({})", dir, ec.message()));

@@ -16,6 +16,6 @@ namespace gyrotherm::fit {
 
 void write_diagnosis_plots(const std::string& dir, const Measurement& measurement,
                            const PreparedData& data, const Diagnosis& d,
-                           const Diagnosis* before, const PipelineOptions& pipeline);
+                           const Diagnosis* before);
 
 }  // namespace gyrotherm::fit
