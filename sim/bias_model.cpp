@@ -12,7 +12,7 @@ std::vector<double> BiasModel::bias_dph(const effects::EffectSeries& truth) cons
   std::vector<double> b(truth.size(), b0_dph_);
   std::vector<double> r(truth.size());
   for (const Active& a : active_) {
-    a.effect->regressor(truth, a.parameter, r);
+    a.effect->compute(truth, a.parameter, r);
     for (std::size_t k = 0; k < b.size(); ++k) b[k] += a.coefficient * r[k];
   }
   return b;

@@ -11,7 +11,7 @@ Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<co
   const auto l = static_cast<Eigen::Index>(derived.size());
   Eigen::MatrixXd x(l, static_cast<Eigen::Index>(terms.size()));
   for (std::size_t j = 0; j < terms.size(); ++j)
-    terms[j]->regressor(derived, parameters[j],
+    terms[j]->compute(derived, parameters[j],
                         std::span<double>(x.col(static_cast<Eigen::Index>(j)).data(),
                                           static_cast<std::size_t>(l)));
   return x;

@@ -28,6 +28,7 @@
 // sim/effects/registry.def. The sources are globbed: CMake needs no edit.
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -43,6 +44,9 @@ struct EffectSeries {
   std::vector<double> rate_c_per_s;    // dT/dt
   std::vector<double> accel_c_per_s2;  // d²T/dt²
   std::vector<double> temp2_c;         // the far side of the block; empty when not measured
+  // Other columns of a measured log by name (window means) and their rates;
+  // empty for the simulator.
+  std::map<std::string, std::vector<double>, std::less<>> extra, extra_rate;
   // When the gyro was switched on, on the time_s clock: 0 at the start of the
   // record, −∞ for a gyro running long before it.
   double switch_on_s = 0.0;
@@ -66,6 +70,8 @@ struct EffectParameter {
 };
 
 struct Effect {
+  using Regressor = void (*)(const Effect& self, const EffectSeries& series, double parameter,
+                             std::span<double> out);
   std::string_view name;        // the term name: a public contract (DESIGN.md)
   std::string_view meaning;     // physical meaning, for `gyrotherm effects` and reports
   std::string_view unit;        // of the regressor ("1" when dimensionless)
@@ -75,8 +81,19 @@ struct Effect {
   // coefficient is [hidden] NAME = COEF or --hidden NAME=COEF.
   std::string_view truth_key;
   std::optional<EffectParameter> parameter;
-  // r(t) at every point of the series; `parameter` is θ (ignored without one).
-  void (*regressor)(const EffectSeries& series, double parameter, std::span<double> out) = nullptr;
+  // r(t) at every point of the series; `parameter` is θ (ignored without
+  // one). Call it through compute().
+  Regressor regressor = nullptr;
+  // Terms made at run time rather than registered (fit/model/terms.h): a
+  // column of the user's log (its value, or its rate), or a bias step at
+  // step_time_s since the start of the record.
+  std::string_view column;
+  bool column_rate = false;
+  double step_time_s = 0.0;
+
+  void compute(const EffectSeries& series, double theta, std::span<double> out) const {
+    regressor(*this, series, theta, out);
+  }
 
   bool needs_temp2() const { return (columns & kTemp2) != 0; }
   bool hidden() const { return truth_key.empty(); }
@@ -99,7 +116,7 @@ std::string hidden_names();
 // The regressor of an effect whose r at a point depends on that point alone:
 // pointwise<f>, f(series, index, θ) → r.
 template <auto f>
-void pointwise(const EffectSeries& series, double parameter, std::span<double> out) {
+void pointwise(const Effect&, const EffectSeries& series, double parameter, std::span<double> out) {
   for (std::size_t p = 0; p < out.size(); ++p) out[p] = f(series, p, parameter);
 }
 

@@ -20,7 +20,7 @@
 namespace gyrotherm::effects {
 namespace {
 
-void regressor(const EffectSeries& s, double tau_s, std::span<double> out) {
+void regressor(const Effect&, const EffectSeries& s, double tau_s, std::span<double> out) {
   if (out.empty()) return;
   out[0] = s.temp_c[0];
   for (std::size_t k = 1; k < out.size(); ++k) {

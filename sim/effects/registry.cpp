@@ -47,8 +47,8 @@ std::string Effect::coefficient_unit() const {
 
 std::string Effect::column_names() const {
   std::string out;
-  auto add = [&](unsigned bit, const char* column) {
-    if ((columns & bit) != 0) out += (out.empty() ? "" : ", ") + std::string(column);
+  auto add = [&](unsigned bit, const char* column_name) {
+    if ((columns & bit) != 0) out += (out.empty() ? "" : ", ") + std::string(column_name);
   };
   add(kTime, "time_s");
   add(kTemp, "temp_c");
@@ -59,7 +59,7 @@ std::string Effect::column_names() const {
 std::vector<double> regressor_values(const Effect& effect, const EffectSeries& series,
                                      double parameter) {
   std::vector<double> r(series.size());
-  effect.regressor(series, parameter, r);
+  effect.compute(series, parameter, r);
   return r;
 }
 
