@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "app/comma_list.h"
 #include "app/commands.h"
 #include "studies/diagnose/diagnose_plots.h"
 #include "app/pipeline_options.h"
@@ -26,6 +27,7 @@ namespace {
 struct DiagnoseOptions {
   std::string data;
   ModelOptions model;
+  std::string candidates;
   std::string plots;
   bool json = false;
   DataOptions data_options;
@@ -76,7 +78,7 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
   fmt::print("3. missing effects (share of the excess removed; block cross-validation p):\n");
   for (std::size_t k = 0; k < d.candidates.size(); ++k) {
     const fit::CandidateReport& c = d.candidates[k];
-    fmt::print("   {} {:<7} {:5.0f} %  p = {:<8.2g} {:<12} {}\n", c.significant ? "*" : " ",
+    fmt::print("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n", c.significant ? "*" : " ",
                c.term->name, c.reduction_pct, c.p_value, c.significant ? "significant" : "",
                c.term->meaning);
   }
@@ -95,6 +97,10 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
                  hours(rows[i].end_s), rows[i].ratio_to_floor, d.segments[i].ratio_to_floor);
   }
   for (const std::string& w : d.fit.warnings) fmt::print("warning: {}\n", w);
+  for (const fit::StepEvent& e : d.events)
+    fmt::print("event: a bias step at {} of {:+.3g} °/h (95 % [{:.3g}, {:.3g}]){}\n", hours(e.time_s),
+               e.size_dph, e.size_interval_dph.lower, e.size_interval_dph.upper,
+               e.significant ? ", significant" : ", not significant against the other candidates");
   for (const std::string& n : d.confounding_notes) fmt::print("cannot tell: {}\n", n);
   fmt::print("verdict: {}\n", d.verdict);
   if (!next.empty()) fmt::print("next: {}\n", next);
@@ -111,14 +117,21 @@ int run_diagnose(const DiagnoseOptions& o) {
   engine.make(settings);  // validates the settings before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
   const std::vector<std::string> channels = o.data_options.channels();
+  fit::DiagnosisOptions diagnosis_options;
+  diagnosis_options.candidates = split_commas(o.candidates);
+  diagnosis_options.excluded_columns = channels;  // no gyro channel explains another
+  const fit::PipelineOptions with_columns = fit::reading_columns_of(pipeline, terms);
   std::vector<ChannelDiagnosis> all =
-      for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
+      for_each_channel(channels, with_columns, [&](const std::string& channel, const fit::PipelineOptions& p) {
         ChannelDiagnosis c;
         c.channel = channel;
         c.pipeline = p;
+        // Every other numeric column of the log may be a candidate.
+        c.pipeline.columns.other_numeric = true;
         c.measurement = fit::read_measurement_csv(o.data, c.pipeline.columns);
         c.data = fit::prepare_data(c.measurement, c.pipeline);
-        c.report = fit::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings);
+        c.report = fit::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings,
+                                        diagnosis_options);
         if (channels.size() > 1 && !c.report.next_command.empty())
           c.report.next_command += " --gyro-col " + channel;
         return c;
@@ -174,6 +187,9 @@ void add_diagnose_command(CLI::App& app, Run* run) {
       "diagnose", "Where a bias model fails on measurements, and which physical effect is missing");
   cmd->add_option("data", o->data, "Measurement CSV")->required();
   add_model_options(cmd, o->model, "Add a term and compare before/after (repeatable)");
+  cmd->add_option("--candidates", o->candidates,
+                  "Candidates to try: a comma list (terms, columns, 'step'), or +NAME/-NAME to add to or "
+                  "remove from the default set (every other term, every numeric column, the steps found)");
   cmd->add_option("--plots", o->plots, "Write PNG figures into this folder");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   add_data_options(cmd, o->data_options);

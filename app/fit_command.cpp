@@ -127,7 +127,7 @@ int run_fit(const FitOptions& o) {
   const fit::EngineInfo& engine = fit::find_engine(o.model.engine);
   const fit::EngineSettings settings = engine_settings(o);
   engine.make(settings);  // validates the options before any work
-  const fit::PipelineOptions pipeline = o.data_options.resolved();
+  const fit::PipelineOptions pipeline = fit::reading_columns_of(o.data_options.resolved(), terms);
   const std::vector<std::string> channels = o.data_options.channels();
   // Every channel is fitted before anything is written: a bad one leaves no file.
   const std::vector<ChannelFit> fits =
@@ -193,7 +193,7 @@ int run_compensate(const CompensateOptions& o) {
   std::vector<std::pair<std::string, fit::Compensation>> done;
   std::vector<std::pair<std::string, nlohmann::ordered_json>> json;
   for (const fit::SavedFit& fit : saved) {
-    fit::PipelineOptions pipeline = fit.pipeline;
+    fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
     if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
     try {
       const fit::Measurement m = fit::read_measurement_csv(o.data, pipeline.columns);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -22,6 +23,20 @@ void check_columns(const std::vector<const Term*>& terms, const PreparedData& da
           "{}: term '{}' ({}) needs the column '{}', a second temperature sensor on the far side "
           "of the gyro block; the file has none (map another column with --temp2-col)",
           data.file, t->name, t->meaning, columns.temp2));
+  for (const Term* t : terms)
+    if (is_column_term(t) && !data.derived.extra.contains(t->column))
+      throw InputError(fmt::format("{}: term '{}' names the column '{}', which was not read as "
+                                   "numbers (is it in the file, and all numbers?)",
+                                   data.file, t->name, t->column));
+}
+
+PipelineOptions reading_columns_of(PipelineOptions options, const std::vector<const Term*>& terms) {
+  for (const Term* t : terms) {
+    if (!is_column_term(t)) continue;
+    std::vector<std::string>& extra = options.columns.extra;
+    if (std::find(extra.begin(), extra.end(), t->column) == extra.end()) extra.emplace_back(t->column);
+  }
+  return options;
 }
 
 std::vector<double> model_values(const Eigen::MatrixXd& design, const Coefficients& c) {

@@ -43,6 +43,9 @@
 
 namespace gyrotherm::fit {
 
+// `options` reading every log column the terms name (fit/model/terms.h).
+PipelineOptions reading_columns_of(PipelineOptions options, const std::vector<const Term*>& terms);
+
 // Throws InputError if a term needs a column the data lacks (e.g. grad without temp2_c).
 void check_columns(const std::vector<const Term*>& terms, const PreparedData& data,
                    const ColumnMap& columns);

@@ -49,8 +49,12 @@ void AveragingOptions::validate() const {
 }
 
 WindowAverager::WindowAverager(const AveragingOptions& options, double sample_interval_s,
-                               bool has_temp2, bool whole_runs)
-    : options_(options), has_temp2_(has_temp2), whole_runs_(whole_runs) {
+                               bool has_temp2, bool whole_runs, std::vector<std::string> extra_names)
+    : options_(options),
+      has_temp2_(has_temp2),
+      whole_runs_(whole_runs),
+      extra_names_(std::move(extra_names)),
+      sum_extra_(extra_names_.size(), 0.0) {
   options_.validate();
   assert(sample_interval_s > 0.0);
   if (options_.window_s < sample_interval_s && !whole_runs_)
@@ -102,18 +106,21 @@ void WindowAverager::close_window() {
     }
     series_.gyro_sd_dph.push_back(std::sqrt(var));
     series_.gyro_lag1.push_back(lag1);
+    for (std::size_t i = 0; i < extra_names_.size(); ++i)
+      series_.extra[extra_names_[i]].push_back(sum_extra_[i] / n);
   } else {
     ++report_.dropped_windows;
   }
   window_samples_ = window_valid_ = 0;
   sum_time_s_ = sum_temp_c_ = sum_gyro_dph_ = sum_temp2_c_ = 0.0;
   sum_u_ = sum_u2_ = sum_lag_ = sum_lag_now_ = sum_lag_prev_ = 0.0;
+  std::fill(sum_extra_.begin(), sum_extra_.end(), 0.0);
   previous_valid_ = false;
   lag_pairs_ = 0;
 }
 
 void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double temp2_c,
-                         bool valid) {
+                         bool valid, std::span<const double> extra) {
   if (!started_) {
     started_ = true;
     series_.start_time_s = run_start_s_ = time_s;
@@ -156,6 +163,7 @@ void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double t
   sum_temp_c_ += temp_c;
   sum_gyro_dph_ += gyro_dph;
   if (has_temp2_) sum_temp2_c_ += temp2_c;
+  for (std::size_t i = 0; i < sum_extra_.size() && i < extra.size(); ++i) sum_extra_[i] += extra[i];
 }
 
 AveragedSeries WindowAverager::finish() {
@@ -206,13 +214,20 @@ AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned 
   const bool bursts = runs.size() > 1 && median_run_s < options.window_s;
   std::optional<WindowAverager> averager;
   try {
-    averager.emplace(options, interval_s, m.has_temp2(), bursts);
+    std::vector<std::string> names;
+    for (const auto& [name, values] : m.extra) names.push_back(name);
+    averager.emplace(options, interval_s, m.has_temp2(), bursts, std::move(names));
   } catch (const InputError& e) {
     throw InputError(located(m.file, 0, e.what()));
   }
-  for (std::size_t k = 0; k < m.size(); ++k)
+  std::vector<const std::vector<double>*> extra_columns;
+  for (const auto& [name, values] : m.extra) extra_columns.push_back(&values);
+  std::vector<double> extra(extra_columns.size());
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    for (std::size_t i = 0; i < extra.size(); ++i) extra[i] = (*extra_columns[i])[k];
     averager->add(m.time_s[k], m.temp_c[k], m.gyro_dph[k], m.has_temp2() ? m.temp2_c[k] : 0.0,
-                  valid[k] != 0);
+                  valid[k] != 0, extra);
+  }
   AveragedSeries series = averager->finish();
   AveragingReport r = averager->report();
   r.median_run_s = median_run_s;

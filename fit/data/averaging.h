@@ -32,6 +32,9 @@
 // of length τ).
 
 #include <cstddef>
+#include <map>
+#include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -57,6 +60,8 @@ struct AveragedSeries {
   // deviation and lag-1 autocorrelation (consecutive valid samples; 0 when
   // there are too few), for a noise floor from within the windows.
   std::vector<double> gyro_sd_dph, gyro_lag1;
+  // The window means of a log's extra columns (Measurement::extra).
+  std::map<std::string, std::vector<double>, std::less<>> extra;
   std::vector<std::size_t> run;                   // index of the gap-free run the window belongs to
   double start_time_s = 0;                        // time of the first sample of the record
   std::size_t size() const { return time_s.size(); }
@@ -83,10 +88,12 @@ class WindowAverager {
   // the window is shorter than Δ. With whole_runs, every gap-free run is one
   // window (bursty records).
   WindowAverager(const AveragingOptions& options, double sample_interval_s, bool has_temp2,
-                 bool whole_runs = false);
+                 bool whole_runs = false, std::vector<std::string> extra_names = {});
 
-  // temp2_c is ignored when has_temp2 is false.
-  void add(double time_s, double temp_c, double gyro_dph, double temp2_c, bool valid);
+  // temp2_c is ignored when has_temp2 is false; extra holds this sample's
+  // value of each extra column, in the order of extra_names.
+  void add(double time_s, double temp_c, double gyro_dph, double temp2_c, bool valid,
+           std::span<const double> extra = {});
   AveragedSeries finish();
 
   const AveragingReport& report() const { return report_; }
@@ -101,6 +108,8 @@ class WindowAverager {
   double min_valid_samples_;  // min_fill · W/Δ
   bool has_temp2_;
   bool whole_runs_;
+  std::vector<std::string> extra_names_;
+  std::vector<double> sum_extra_;
   AveragedSeries series_;
   AveragingReport report_;
 

@@ -38,6 +38,10 @@ DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode, double spa
   d.switch_on_s = 0.0;
   d.rate_c_per_s = differentiate(data.time_s, data.temp_c, data.run, mode, span_s);
   d.accel_c_per_s2 = differentiate(data.time_s, d.rate_c_per_s, data.run, mode, span_s);
+  for (const auto& [name, values] : data.extra) {
+    d.extra[name] = values;
+    d.extra_rate[name] = differentiate(data.time_s, values, data.run, mode, span_s);
+  }
   return d;
 }
 

@@ -263,6 +263,15 @@ class CsvParser {
   std::string name_;
   const ColumnMap& map_;
   std::vector<int> role_of_column_;              // Role of each header column
+  // Extra columns: header column → its vector in the measurement, and
+  // whether a non-number there is an error (asked for by name) or drops it.
+  struct Extra {
+    std::size_t column;
+    std::string name;
+    bool strict;
+    bool numeric = true;
+  };
+  std::vector<Extra> extras_;
   std::array<std::size_t, kRoles> column_of_{};  // header column of each role
   bool has_temp2_ = false;
   std::size_t rows_ = 0;
@@ -320,6 +329,26 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
     column_of_[role] = column;
     if (optional) has_temp2_ = true;
   }
+  for (const std::string& name : map_.extra) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end())
+      fail(line_number, fmt::format("unknown term '{}': neither a known term (see 'gyrotherm "
+                                    "effects') nor step@TIME, nor a column of the log (the header "
+                                    "has: {})",
+                                    name, joined(names)));
+    const auto column = static_cast<std::size_t>(it - names.begin());
+    if (role_of_column_[column] != kNoRole)
+      fail(line_number, fmt::format("column '{}' is the {} column; it cannot be a model term too", name,
+                                    kWhatOf[role_of_column_[column]]));
+    extras_.push_back({column, name, true});
+  }
+  if (map_.other_numeric)
+    for (std::size_t column = 0; column < names.size(); ++column) {
+      const bool taken = role_of_column_[column] != kNoRole ||
+                         std::any_of(extras_.begin(), extras_.end(),
+                                     [&](const Extra& e) { return e.column == column; });
+      if (!taken && !names[column].empty()) extras_.push_back({column, names[column], false});
+    }
   header_line_ = line_number;
 }
 
@@ -347,10 +376,25 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
   std::array<double, kRoles> value{};
   const char* p = line.data();
   const char* const end = p + line.size();
+  std::size_t next_extra = 0;  // extras_ in header order (see read())
   for (std::size_t column = 0;; ++column) {
     const char* comma =
         static_cast<const char*>(std::memchr(p, ',', static_cast<std::size_t>(end - p)));
     const char* field_end = comma != nullptr ? comma : end;
+    for (; next_extra < extras_.size() && extras_[next_extra].column == column; ++next_extra) {
+      Extra& e = extras_[next_extra];
+      if (!e.numeric) continue;
+      double v = 0.0;
+      const std::string problem =
+          parse_number(std::string_view(p, static_cast<std::size_t>(field_end - p)), v);
+      if (!problem.empty()) {
+        if (e.strict) fail(line_number, fmt::format("column {}: {}", e.name, problem));
+        e.numeric = false;  // a column of text, say: not a candidate
+        m.extra.erase(e.name);
+        continue;
+      }
+      if (!sink_) m.extra[e.name].push_back(v);
+    }
     if (const int role = role_of_column_[column]; role != kNoRole) {
       const std::string problem =
           parse_number(std::string_view(p, static_cast<std::size_t>(field_end - p)), value[role]);
@@ -403,6 +447,7 @@ Measurement CsvParser::read(const fs::path& file) {
   Measurement m;
   m.file = name_;
   LineReader reader(handle.get());
+  const auto by_column = [](const Extra& a, const Extra& b) { return a.column < b.column; };
   std::string_view line;
   std::size_t line_number = 0;
   bool seen_comment = false;
@@ -417,6 +462,7 @@ Measurement CsvParser::read(const fs::path& file) {
         continue;
       }
       parse_header(line, line_number, m);
+      std::sort(extras_.begin(), extras_.end(), by_column);
       header_end_bytes_ = reader.consumed_bytes();
       continue;
     }

@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -73,12 +74,20 @@ struct ColumnMap {
                                   // name may be absent, another name must exist, and an
                                   // empty name ignores the column
   Units units;                    // applied as each value is read
+  // Other columns to read as numbers, for model terms named after them
+  // (fit/model/terms.h): each must exist and hold numbers. With
+  // other_numeric, every further column that holds only numbers is read too
+  // (diagnose tries them as candidates); a column with anything else is left.
+  std::vector<std::string> extra;
+  bool other_numeric = false;
 };
 
 struct Measurement {
   std::string file;  // as given to the reader, for messages
   std::vector<double> time_s, temp_c, gyro_dph;
   std::vector<double> temp2_c;       // empty when the file has no such column
+  // The extra columns read (ColumnMap::extra, other_numeric), as written.
+  std::map<std::string, std::vector<double>, std::less<>> extra;
   std::vector<std::string> columns;  // the header as read (trimmed)
   bool has_temp2() const { return !temp2_c.empty(); }
   std::size_t size() const { return time_s.size(); }

@@ -201,7 +201,9 @@ PreparedData prepare_csv(const std::filesystem::path& csv, const PipelineOptions
                          bool* streamed) {
   std::error_code size_error;
   const auto bytes = std::filesystem::file_size(csv, size_error);
-  const bool stream = !size_error && bytes > kStreamingThresholdBytes;
+  // Log columns as model terms need the record in memory.
+  const bool stream = !size_error && bytes > kStreamingThresholdBytes && options.columns.extra.empty() &&
+                      !options.columns.other_numeric;
   if (streamed != nullptr) *streamed = stream;
   return stream ? prepare_data_streaming(csv, options) : prepare_data(csv, options);
 }

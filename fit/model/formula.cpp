@@ -27,10 +27,11 @@ std::vector<const Term*> parse_formula(std::string_view formula) {
                                    "end)",
                                    formula));
     if (name == "1") continue;
-    const Term* term = find_term(name);
+    const Term* term = term_by_name(name);
     if (term == nullptr)
-      throw InputError(fmt::format("model '{}': unknown term '{}' (known terms: {})", formula,
-                                   name, term_list()));
+      throw InputError(fmt::format("model '{}': unknown term '{}' (known terms: {}), nor step@TIME "
+                                   "nor a column of the log by its name",
+                                   formula, name, term_list()));
     if (std::find(terms.begin(), terms.end(), term) != terms.end())
       throw InputError(fmt::format("model '{}': term '{}' appears twice", formula, name));
     terms.push_back(term);

@@ -1,7 +1,8 @@
 #pragma once
-// Model formulas: term names of the registry (fit/model/terms.h) joined by '+',
-// e.g. "T + T^2 + dT" (the paper's eq. 6, the default). The intercept is
-// always in; writing "1" is allowed and changes nothing. Spaces are ignored.
+// Model formulas: term names joined by '+', e.g. "T + T^2 + dT" (the
+// paper's eq. 6, the default): the registry's, step@TIME, and the log's own
+// columns NAME and d(NAME) (fit/model/terms.h). The intercept is always in;
+// writing "1" is allowed and changes nothing. Spaces are ignored.
 
 #include <string>
 #include <string_view>

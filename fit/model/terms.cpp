@@ -1,10 +1,102 @@
 #include "fit/model/terms.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
+#include <deque>
+#include <mutex>
+#include <string>
 #include <limits>
 #include <span>
 
 namespace gyrotherm::fit {
+namespace {
+
+// Every run-time term made so far, and the strings its views point into.
+struct MadeTerms {
+  std::mutex mutex;
+  std::deque<effects::Effect> terms;
+  std::deque<std::string> text;
+  std::string_view keep(std::string s) { return text.emplace_back(std::move(s)); }
+};
+
+MadeTerms& made() {
+  static MadeTerms m;
+  return m;
+}
+
+void column_values(const effects::Effect& self, const DerivedSeries& s, double, std::span<double> out) {
+  const auto& source = self.column_rate ? s.extra_rate : s.extra;
+  const auto it = source.find(self.column);
+  for (std::size_t p = 0; p < out.size(); ++p)
+    out[p] = it == source.end() ? std::numeric_limits<double>::quiet_NaN() : it->second[p];
+}
+
+void step_values(const effects::Effect& self, const DerivedSeries& s, double, std::span<double> out) {
+  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.time_s[p] >= self.step_time_s ? 1.0 : 0.0;
+}
+
+}  // namespace
+
+bool is_column_name(std::string_view name) {
+  if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_')) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
+  });
+}
+
+const Term* step_term(double time_s) {
+  const std::string name = fmt::format("step@{:g}", time_s);
+  MadeTerms& m = made();
+  const std::lock_guard lock(m.mutex);
+  for (const effects::Effect& t : m.terms)
+    if (t.name == name) return &t;
+  effects::Effect t;
+  t.name = m.keep(name);
+  t.meaning = m.keep(fmt::format("a bias step at {:g} s (an RLG mode hop)", time_s));
+  t.unit = "1";
+  t.columns = effects::kTime;
+  t.regressor = &step_values;
+  t.step_time_s = time_s;
+  return &m.terms.emplace_back(t);
+}
+
+const Term* column_term(std::string_view column, bool rate) {
+  const std::string name = rate ? fmt::format("d({})", column) : std::string(column);
+  MadeTerms& m = made();
+  const std::lock_guard lock(m.mutex);
+  for (const effects::Effect& t : m.terms)
+    if (t.name == name) return &t;
+  effects::Effect t;
+  t.name = m.keep(name);
+  t.column = m.keep(std::string(column));
+  t.column_rate = rate;
+  t.meaning = m.keep(rate ? fmt::format("the rate of the logged column {}", column)
+                          : fmt::format("the logged column {}", column));
+  t.unit = m.keep(rate ? fmt::format("{} unit/s", column) : fmt::format("{} unit", column));
+  t.columns = effects::kTime;
+  t.regressor = &column_values;
+  return &m.terms.emplace_back(t);
+}
+
+const Term* term_by_name(std::string_view name) {
+  if (const Term* t = find_term(name)) return t;
+  if (name.starts_with("step@")) {
+    const std::string_view number = name.substr(5);
+    double time_s = 0.0;
+    const auto [ptr, ec] = std::from_chars(number.data(), number.data() + number.size(), time_s);
+    if (ec != std::errc() || ptr != number.data() + number.size() || !std::isfinite(time_s) || time_s < 0.0)
+      return nullptr;
+    return step_term(time_s);
+  }
+  if (name.starts_with("d(") && name.ends_with(")") && is_column_name(name.substr(2, name.size() - 3)))
+    return column_term(name.substr(2, name.size() - 3), true);
+  if (is_column_name(name)) return column_term(name, false);
+  return nullptr;
+}
 
 Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<const Term*>& terms,
                               const std::vector<double>& parameters) {

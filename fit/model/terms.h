@@ -26,6 +26,25 @@ using TermParameter = effects::EffectParameter;
 inline const std::vector<const Term*>& term_registry() { return effects::registry(); }
 // nullptr if unknown.
 inline const Term* find_term(std::string_view name) { return effects::find(name); }
+
+// Terms beyond the registry, made on first use and kept for the life of the
+// process (so that a name always gives the same pointer):
+//
+//   step@TIME   0 before TIME, 1 from it on (TIME in s since the record's
+//               first sample): a bias step, an RLG's mode hop;
+//   NAME        the window means of the log's column NAME: a quantity the user
+//               logged (case or chamber temperature, supply voltage, field);
+//   d(NAME)     its rate, d(NAME)/dt, per second.
+//
+// A column name is a letter or '_' followed by letters, digits, '_' or '.'.
+const Term* step_term(double time_s);
+const Term* column_term(std::string_view column, bool rate);
+// A registered term or one of the above, by name; nullptr if it is none.
+const Term* term_by_name(std::string_view name);
+inline bool is_column_term(const Term* t) { return !t->column.empty(); }
+inline bool is_step_term(const Term* t) { return t->name.starts_with("step@"); }
+// Whether a log column's name can be written as a term.
+bool is_column_name(std::string_view name);
 // "T, T^2, T^3, dT, ..."
 inline std::string term_list() { return effects::names(); }
 

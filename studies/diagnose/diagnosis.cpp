@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "fit/model/formula.h"
+#include "studies/diagnose/candidates.h"
 #include "studies/diagnose/confounding.h"
 #include "fit/engines/ols.h"
 #include "sim/util/input_error.h"
@@ -295,15 +296,11 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   // share is of the whole residual variance.
   const double excess = after2 > floor2 ? after2 - floor2 : after2;
 
-  std::vector<const Term*> untried;
-  for (const Term* term : term_registry()) {
-    if (std::find(terms.begin(), terms.end(), term) != terms.end()) continue;
-    if (term->needs_temp2() && !data.has_temp2()) {
-      d.skipped.push_back(std::string(term->name) + " (needs temp2_c)");
-      continue;
-    }
-    untried.push_back(term);
-  }
+  CandidateSet candidates =
+      candidate_set(data, terms, d.residual_dph, options.candidates, options.excluded_columns);
+  std::vector<const Term*> untried = std::move(candidates.terms);
+  d.skipped = std::move(candidates.skipped);
+  const std::vector<StepCandidate> steps = std::move(candidates.steps);
   // What the record can support: the smallest p of a sign-flip test on B
   // blocks is 2^−B, so at most ⌊α·2^B⌋ candidates can pass Bonferroni; each
   // needs 3 residual degrees of freedom left with it and its parameter. The
@@ -417,6 +414,59 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
       }
   }
 
+  // The steps found, each sized with the model (ols) and judged by the
+  // candidates' test.
+  for (const StepCandidate& found : steps) {
+    const Term* step = step_term(found.time_s);
+    StepEvent e;
+    e.time_s = found.time_s;
+    e.cusum_p = found.p_value;
+    try {
+      std::vector<const Term*> with = terms;
+      if (std::find(with.begin(), with.end(), step) == with.end()) with.push_back(step);
+      const ModelFit f = fit_model(data, with, find_engine("ols"), {});
+      e.size_dph = f.coefficients.b.back();
+      e.size_interval_dph = f.engine.intervals.back();
+    } catch (const InputError&) {
+      continue;
+    }
+    for (const CandidateReport& c : d.candidates)
+      if (c.term == step) e.significant = c.significant && c.confounded_with.empty();
+    d.events.push_back(e);
+  }
+
+  // What is left: the model with every significant candidate, against the floor.
+  {
+    std::vector<const Term*> final_terms = terms;
+    for (const CandidateReport& c : d.candidates) {
+      if (!c.significant || !c.confounded_with.empty()) break;
+      final_terms.push_back(c.term);
+    }
+    try {
+      const ModelFit f = fit_model(data, final_terms, find_engine("ols"), {});
+      if (f.instability_after_dph > kStructureRemains * d.noise_floor_dph) {
+        Diagnosis at_end = d;
+        at_end.fit = f;
+        const Eigen::MatrixXd xf = design_matrix(data.derived, final_terms, f.parameters);
+        const std::vector<double> mf = model_values(xf, f.coefficients);
+        std::vector<double> rf(l);
+        for (std::size_t p = 0; p < l; ++p) rf[p] = s.gyro_dph[p] - mf[p];
+        const std::vector<SegmentReport> rows = segment_rms(at_end, rf);
+        const auto worst = std::max_element(rows.begin(), rows.end(), [](const SegmentReport& a, const SegmentReport& b) {
+          return a.ratio_to_floor < b.ratio_to_floor;
+        });
+        d.remaining = fmt::format(
+            "structure remains that no candidate explains: {} is still {:.2f} times the floor, "
+            "worst in the {} segment at {:.2f}–{:.2f} h ({:.1f} to {:.1f} °C), {:.2f} times the floor",
+            final_terms.size() > terms.size() ? "the model with the significant candidates" : "the model",
+            f.instability_after_dph / d.noise_floor_dph, worst->kind,
+            (worst->start_s - s.start_time_s) / 3600.0, (worst->end_s - s.start_time_s) / 3600.0,
+            worst->temp_min_c, worst->temp_max_c, worst->ratio_to_floor);
+      }
+    } catch (const InputError&) {
+    }
+  }
+
   // The verdict.
   const double ratio = d.excess_ratio();
   const std::string limited =
@@ -460,6 +510,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
         "block cross-validation{}, so no term should be added.",
         ratio, limited);
   }
+  if (!d.remaining.empty()) d.verdict += " Still, " + d.remaining + ".";
   return d;
 }
 

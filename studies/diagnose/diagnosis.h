@@ -54,6 +54,9 @@ namespace gyrotherm::fit {
 // A record with fewer windows cannot be diagnosed: a sign-flip test on fewer
 // blocks cannot reach significance.
 inline constexpr std::size_t kMinBlocks = 8;
+// A model with every significant candidate still above this many times the
+// floor leaves structure no candidate explains (the verdict says where).
+inline constexpr double kStructureRemains = 1.5;
 
 struct DiagnosisOptions {
   std::size_t block_windows = 10;  // windows per cross-validation block
@@ -61,6 +64,19 @@ struct DiagnosisOptions {
   double min_reduction_pct = 10.0; // a significant effect removes at least this share of the excess
   int permutations = 20000;        // sign-flip draws
   std::uint64_t seed = 1;          // of the sign flips
+  // --candidates (studies/diagnose/candidates.h): empty for the default set.
+  std::vector<std::string> candidates;
+  // Log columns that are never candidates (the other gyro channels).
+  std::vector<std::string> excluded_columns;
+};
+
+// A bias step found in the model's residual, after scoring (--json events).
+struct StepEvent {
+  double time_s = 0;          // since the start of the record
+  double size_dph = 0;        // least squares with the model
+  Interval size_interval_dph;  // 95 %, ols
+  double cusum_p = 1;         // the change-point test that found it
+  bool significant = false;   // it passed the candidates' test and joined the suggested model
 };
 
 struct SegmentReport {
@@ -109,6 +125,8 @@ struct Diagnosis {
   bool limited = false;                   // the record supported fewer tests than there were candidates
   std::vector<std::vector<std::string>> confounded;  // groups of terms this record cannot tell apart
   std::vector<std::string> confounding_notes;        // why, in plain words, one per group
+  std::vector<StepEvent> events;          // bias steps, in time order
+  std::string remaining;                  // where structure remains that no candidate explains, or ""
   std::string verdict;
   std::string suggested_model;            // the model with the best significant term, or ""
   // Segments and bands, worst first (indices into segments / bands).

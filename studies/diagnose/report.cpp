@@ -31,16 +31,16 @@ void check_something_left_to_try(const std::vector<const Term*>& terms, const Pr
 DiagnoseReport diagnose_record(const PreparedData& data, const ColumnMap& columns,
                                const std::vector<const Term*>& base_terms,
                                const std::vector<const Term*>& terms, const EngineInfo& engine,
-                               const EngineSettings& settings) {
+                               const EngineSettings& settings, const DiagnosisOptions& options) {
   DiagnoseReport r;
   r.base_terms = base_terms;
   r.terms = terms;
   r.engine = engine.name;
   check_columns(terms, data, columns);
   check_something_left_to_try(terms, data);
-  r.diagnosis = diagnose(data, terms, engine, settings);
+  r.diagnosis = diagnose(data, terms, engine, settings, options);
   // Step 5: with --add, the model without the added terms is the "before".
-  if (terms.size() > base_terms.size()) r.before = diagnose(data, base_terms, engine, settings);
+  if (terms.size() > base_terms.size()) r.before = diagnose(data, base_terms, engine, settings, options);
   if (!r.diagnosis.suggested_model.empty())
     r.next_command =
         fmt::format("gyrotherm diagnose {} --model \"{}\"", data.file, r.diagnosis.suggested_model);
@@ -87,6 +87,16 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
       "block cross-validation: blocks of 10 windows, one-sided sign-flip test of the per-block "
       "SSE gains, Bonferroni over the candidates, and at least 10 % of the excess removed";
   j["warnings"] = d.fit.warnings;
+  nlohmann::ordered_json events = nlohmann::ordered_json::array();
+  for (const StepEvent& e : d.events)
+    events.push_back({{"kind", "step"},
+                      {"time_s", e.time_s},
+                      {"size_dph", e.size_dph},
+                      {"size_interval_dph", {e.size_interval_dph.lower, e.size_interval_dph.upper}},
+                      {"significant", e.significant},
+                      {"cusum_p", e.cusum_p}});
+  j["events"] = events;
+  j["remaining"] = d.remaining;
   j["confounded"] = d.confounded;
   j["confounding"] = d.confounding_notes;
   j["verdict"] = d.verdict;

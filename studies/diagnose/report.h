@@ -32,7 +32,7 @@ void check_something_left_to_try(const std::vector<const Term*>& terms, const Pr
 DiagnoseReport diagnose_record(const PreparedData& data, const ColumnMap& columns,
                                const std::vector<const Term*>& base_terms,
                                const std::vector<const Term*>& terms, const EngineInfo& engine,
-                               const EngineSettings& settings);
+                               const EngineSettings& settings, const DiagnosisOptions& options = {});
 
 nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report);
 

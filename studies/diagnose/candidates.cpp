@@ -1,0 +1,91 @@
+#include "studies/diagnose/candidates.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+bool contains(const std::vector<const Term*>& v, const Term* t) {
+  return std::find(v.begin(), v.end(), t) != v.end();
+}
+
+}  // namespace
+
+CandidateSet candidate_set(const PreparedData& data, const std::vector<const Term*>& model,
+                           const std::vector<double>& residual,
+                           const std::vector<std::string>& requested,
+                           const std::vector<std::string>& excluded_columns) {
+  CandidateSet set;
+  std::vector<const Term*> all;
+  for (const Term* term : term_registry()) {
+    if (contains(model, term)) continue;
+    if (term->needs_temp2() && !data.has_temp2()) {
+      set.skipped.push_back(std::string(term->name) + " (needs temp2_c)");
+      continue;
+    }
+    all.push_back(term);
+  }
+  for (const auto& [name, values] : data.derived.extra) {
+    if (std::find(excluded_columns.begin(), excluded_columns.end(), name) != excluded_columns.end() ||
+        std::find(kNeverCandidates.begin(), kNeverCandidates.end(), name) != kNeverCandidates.end())
+      continue;
+    if (!is_column_name(name)) {
+      set.skipped.push_back(fmt::format("column '{}' (its name cannot be written in a model: use "
+                                        "letters, digits, '_' and '.')",
+                                        name));
+      continue;
+    }
+    for (const bool rate : {false, true})
+      if (const Term* t = column_term(name, rate); !contains(model, t)) all.push_back(t);
+  }
+  // Steps where the model's residual bends.
+  std::vector<double> since_start(data.series.size());
+  for (std::size_t p = 0; p < since_start.size(); ++p)
+    since_start[p] = data.series.time_s[p] - data.series.start_time_s;
+  set.steps = find_steps(since_start, residual);
+  std::vector<const Term*> steps;
+  for (const StepCandidate& s : set.steps)
+    if (const Term* t = step_term(s.time_s); !contains(model, t)) steps.push_back(t);
+  all.insert(all.end(), steps.begin(), steps.end());
+
+  if (requested.empty()) {
+    set.terms = std::move(all);
+    return set;
+  }
+  // --candidates: exactly a list, or the default set with +/- changes.
+  const bool changes = std::all_of(requested.begin(), requested.end(), [](const std::string& r) {
+    return !r.empty() && (r[0] == '+' || r[0] == '-');
+  });
+  std::vector<const Term*> chosen = changes ? all : std::vector<const Term*>{};
+  for (const std::string& r : requested) {
+    const bool remove = changes && r[0] == '-';
+    const std::string name = changes ? r.substr(1) : r;
+    std::vector<const Term*> named;
+    if (name == "step") {
+      named = steps;
+    } else if (const Term* t = term_by_name(name)) {
+      named = {t};
+    } else {
+      throw InputError(fmt::format("--candidates {}: unknown term '{}' (a known term, step, step@TIME "
+                                   "or a column of the log)",
+                                   r, name));
+    }
+    for (const Term* t : named) {
+      if (remove) {
+        std::erase(chosen, t);
+      } else if (!contains(chosen, t) && !contains(model, t)) {
+        if (is_column_term(t) && !data.derived.extra.contains(t->column))
+          throw InputError(fmt::format("--candidates {}: the log has no numeric column '{}'", r, t->column));
+        chosen.push_back(t);
+      }
+    }
+  }
+  set.terms = std::move(chosen);
+  return set;
+}
+
+}  // namespace gyrotherm::fit
