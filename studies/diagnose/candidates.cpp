@@ -16,7 +16,7 @@ bool contains(const std::vector<const Term*>& v, const Term* t) {
 }  // namespace
 
 CandidateSet candidate_set(const PreparedData& data, const std::vector<const Term*>& model,
-                           const std::vector<double>& residual,
+                           const std::vector<double>& parameters,
                            const std::vector<std::string>& requested,
                            const std::vector<std::string>& excluded_columns) {
   CandidateSet set;
@@ -46,7 +46,10 @@ CandidateSet candidate_set(const PreparedData& data, const std::vector<const Ter
   std::vector<double> since_start(data.series.size());
   for (std::size_t p = 0; p < since_start.size(); ++p)
     since_start[p] = data.series.time_s[p] - data.series.start_time_s;
-  set.steps = find_steps(since_start, residual);
+  const Eigen::MatrixXd design = design_matrix(data.derived, model, parameters);
+  set.steps = find_steps(since_start, design,
+                         Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
+                                                           static_cast<Eigen::Index>(data.series.size())));
   std::vector<const Term*> steps;
   for (const StepCandidate& s : set.steps)
     if (const Term* t = step_term(s.time_s); !contains(model, t)) steps.push_back(t);

@@ -32,8 +32,9 @@ struct CandidateSet {
 // The columns that are never candidates besides the record's own roles.
 inline const std::vector<std::string> kNeverCandidates = {"bias_true_dph"};
 
+// parameters: the model's fitted nonlinear parameters.
 CandidateSet candidate_set(const PreparedData& data, const std::vector<const Term*>& model,
-                           const std::vector<double>& residual,
+                           const std::vector<double>& parameters,
                            const std::vector<std::string>& requested,
                            const std::vector<std::string>& excluded_columns);
 

@@ -28,7 +28,7 @@ bool is_temperature(const std::string& name) {
   return name == "T" || name == "T^2" || name == "T^3" || name == "lag";
 }
 bool is_rate(const std::string& name) {
-  return name == "dT" || name == "T*dT" || name == "d2T" || name == "hyst";
+  return name == "dT" || name == "T*dT" || name == "d2T" || name == "hyst" || name.starts_with("d(");
 }
 
 // Smallest root with path halving.
@@ -57,8 +57,12 @@ Confounding find_confounding(const DerivedSeries& derived, const std::vector<con
   std::vector<bool> constant(n, false);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::VectorXd xi = x.col(static_cast<Eigen::Index>(i));
+    // Only a rate has a natural zero against which "nearly constant" means
+    // something (a steady cooling rate); a logged voltage of 28 ± 0.4 V varies.
     const double m = mean_of(xi);
-    constant[i] = m != 0.0 && sd_of(xi) < kNearlyConstant * std::abs(m);
+    const std::string name(terms[i]->name);
+    constant[i] = (is_rate(name) || terms[i]->column_rate) && m != 0.0 &&
+                  sd_of(xi) < kNearlyConstant * std::abs(m);
     if (constant[i]) parent[root(parent, i)] = root(parent, n);
     for (std::size_t j = 0; j < i; ++j)
       if (std::abs(correlation(xi, x.col(static_cast<Eigen::Index>(j)))) > kConfoundedCorrelation)

@@ -3,9 +3,9 @@
 //
 // Two terms whose regressors are nearly collinear over the windows,
 // |corr(x_a, x_b)| > 0.99, explain the same part of the bias on this record:
-// whichever a fit picks, the data do not say it is that one. A regressor that
-// is nearly constant (its standard deviation under 2 % of its mean) cannot be
-// told from the intercept "1". Such terms are grouped (transitively), and
+// whichever a fit picks, the data do not say it is that one. A rate that is
+// nearly constant (its standard deviation under 2 % of its mean: a steady
+// ramp) cannot be told from the intercept "1". Such terms are grouped (transitively), and
 // each group gets a sentence saying why, in the record's own terms (it only
 // cools; the rate hardly changes; the range is narrow), and what test would
 // separate them.

@@ -297,7 +297,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   const double excess = after2 > floor2 ? after2 - floor2 : after2;
 
   CandidateSet candidates =
-      candidate_set(data, terms, d.residual_dph, options.candidates, options.excluded_columns);
+      candidate_set(data, terms, d.fit.parameters, options.candidates, options.excluded_columns);
   std::vector<const Term*> untried = std::move(candidates.terms);
   d.skipped = std::move(candidates.skipped);
   const std::vector<StepCandidate> steps = std::move(candidates.steps);
@@ -426,7 +426,11 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
       if (std::find(with.begin(), with.end(), step) == with.end()) with.push_back(step);
       const ModelFit f = fit_model(data, with, find_engine("ols"), {});
       e.size_dph = f.coefficients.b.back();
-      e.size_interval_dph = f.engine.intervals.back();
+      // The wider of ols's interval and ±1.96 placebo spreads (steps.h).
+      const double placebo = placebo_step_sd(design_matrix(data.derived, with, f.parameters), y, found.index);
+      const Interval ols = f.engine.intervals.back();
+      const double half = std::max(0.5 * (ols.upper - ols.lower), 1.96 * placebo);
+      e.size_interval_dph = {e.size_dph - half, e.size_dph + half};
     } catch (const InputError&) {
       continue;
     }
