@@ -1,0 +1,200 @@
+// Diagnosis beyond the registry (issue 13): bias steps (mode hops), the
+// user's own columns, effects a record cannot tell apart, and what is left.
+// Every record is simulated, with the step or the column's effect added to
+// the gyro output by the test, so the truth is known.
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+
+namespace gyrotherm {
+namespace {
+
+using namespace gyrotherm::testing;
+using Json = nlohmann::json;
+
+// Rewrites a simulated CSV: gyro_dph (column 6) += extra(t), and with a
+// column name, that column appended with column(t).
+void rewrite(const ScratchDir& dir, const std::string& in, const std::string& out,
+             const std::function<double(double)>& extra, const std::string& column = "",
+             const std::function<double(double)>& value = {}) {
+  std::ifstream src(dir / in);
+  std::ofstream dst(dir / out);
+  for (std::string line; std::getline(src, line);) {
+    if (line.empty() || line[0] == '#') {
+      dst << line << "\n";
+      continue;
+    }
+    if (line.rfind("time_s", 0) == 0) {
+      dst << line << (column.empty() ? "" : "," + column) << "\n";
+      continue;
+    }
+    std::vector<std::string> f;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) f.push_back(cell);
+    const double t = std::stod(f[0]);
+    f[5] = fmt::format("{:.6f}", std::stod(f[5]) + extra(t));
+    std::string joined;
+    for (std::size_t i = 0; i < f.size(); ++i) joined += (i ? "," : "") + f[i];
+    if (!column.empty()) joined += fmt::format(",{:.5f}", value(t));
+    dst << joined << "\n";
+  }
+}
+
+Json diagnose_json(const ScratchDir& dir, const std::string& args) {
+  const auto r = run_cli(dir, "diagnose " + args + " --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return r.exit_code == 0 ? Json::parse(r.out) : Json{};
+}
+
+struct StepCase {
+  std::string scenario;
+  double time_s;
+  double size_dph;
+};
+void PrintTo(const StepCase& c, std::ostream* os) { *os << c.scenario << " " << c.time_s << " " << c.size_dph; }
+
+class Steps : public ::testing::TestWithParam<StepCase> {};
+
+// A single step at several times and signs: located within an hour, its size
+// within its interval, named in the verdict, no smooth term significant, and
+// the model with the step near the floor.
+TEST_P(Steps, AreFoundSizedAndNamedNotPassedOffAsDrift) {
+  const StepCase& c = GetParam();
+  ScratchDir dir;
+  simulate_shipped(dir, c.scenario, "", "clean.csv");
+  rewrite(dir, "clean.csv", "step.csv", [&](double t) { return t >= c.time_s ? c.size_dph : 0.0; });
+  const Json j = diagnose_json(dir, "step.csv");
+  ASSERT_FALSE(j["events"].empty()) << j["verdict"];
+  const Json& e = j["events"][0];
+  EXPECT_EQ(e["kind"], "step");
+  EXPECT_NEAR(e["time_s"].get<double>(), c.time_s, 3600.0);
+  EXPECT_LE(e["size_interval_dph"][0].get<double>(), c.size_dph);
+  EXPECT_GE(e["size_interval_dph"][1].get<double>(), c.size_dph);
+  EXPECT_TRUE(e["significant"].get<bool>());
+  EXPECT_NE(j["verdict"].get<std::string>().find("step@"), std::string::npos) << j["verdict"];
+  for (const Json& m : j["missing_effects"])
+    if (m["significant"].get<bool>()) {
+      EXPECT_EQ(m["term"].get<std::string>().rfind("step@", 0), 0u) << m;
+    }
+  // The next command's model brings the instability near the floor.
+  const std::string model = j["next_command"].get<std::string>().substr(j["next_command"].get<std::string>().find("--model"));
+  const Json after = diagnose_json(dir, "step.csv " + model);
+  EXPECT_LT(after["instability_dph"].get<double>(), 1.25 * after["noise_floor_dph"].get<double>());
+  // fit takes the step term, and compensate applies it.
+  const auto fit = run_cli(dir, "fit step.csv " + model + " -o fit.json");
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(run_cli(dir, "compensate step.csv --fit fit.json -o comp.csv").exit_code, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(CycleAndRandom, Steps,
+                         ::testing::Values(StepCase{"cycle", 7200, 0.006}, StepCase{"cycle", 19800, 0.006},
+                                           StepCase{"cycle", 25200, -0.006}, StepCase{"random", 19800, -0.006},
+                                           StepCase{"random", 90000, 0.006}),
+                         [](const auto& param_info) {
+                           return fmt::format("{}_{:.0f}_{}", param_info.param.scenario, param_info.param.time_s,
+                                              param_info.param.size_dph > 0 ? "up" : "down");
+                         });
+
+TEST(DiagnoseBeyond, CleanRecordsReportNoStepInNineOfTen) {
+  ScratchDir dir;
+  int with_step = 0, anything = 0;
+  for (int seed = 1; seed <= 10; ++seed) {
+    simulate_shipped(dir, "cycle", "--seed " + std::to_string(seed), "clean.csv");
+    const Json j = diagnose_json(dir, "clean.csv");
+    for (const Json& e : j["events"]) with_step += e["significant"].get<bool>() ? 1 : 0;
+    for (const Json& m : j["missing_effects"]) anything += m["significant"].get<bool>() ? 1 : 0;
+  }
+  EXPECT_LE(with_step, 1);
+  EXPECT_LE(anything, 1);
+}
+
+// A bias that follows a logged supply voltage wandering apart from the
+// temperature: the column is ranked first and significant, and adding it
+// reaches the floor. The gyro columns themselves and the simulator's truth are
+// never candidates.
+TEST(DiagnoseBeyond, ALoggedColumnThatDrivesTheBiasIsFound) {
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", "", "clean.csv");
+  const auto volt = [](double t) {
+    return 28.0 + 0.5 * std::sin(2.0 * M_PI * t / 7000.0) + 0.3 * std::sin(2.0 * M_PI * t / 2900.0 + 1.0);
+  };
+  rewrite(dir, "clean.csv", "volt.csv", [&](double t) { return 0.005 * (volt(t) - 28.0); }, "supply_v", volt);
+  const Json j = diagnose_json(dir, "volt.csv");
+  EXPECT_EQ(j["missing_effects"][0]["term"], "supply_v") << j["verdict"];
+  EXPECT_TRUE(j["missing_effects"][0]["significant"].get<bool>());
+  for (const Json& m : j["missing_effects"]) {
+    EXPECT_NE(m["term"], "bias_true_dph");
+    EXPECT_NE(m["term"], "gyro_dph");
+    EXPECT_NE(m["term"], "time_s");
+  }
+  const Json added = diagnose_json(dir, "volt.csv --model 'T + T^2 + dT + supply_v'");
+  EXPECT_LT(added["instability_dph"].get<double>(), 1.25 * added["noise_floor_dph"].get<double>());
+  // --candidates restricts the set, or trims it.
+  const Json only = diagnose_json(dir, "volt.csv --candidates T^3,grad");
+  EXPECT_EQ(only["missing_effects"].size(), 2u);
+  const Json without = diagnose_json(dir, "volt.csv --candidates -supply_v");
+  for (const Json& m : without["missing_effects"]) EXPECT_NE(m["term"], "supply_v");
+  const auto bad = run_cli(dir, "diagnose volt.csv --candidates nope_v");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("no numeric column 'nope_v'"), std::string::npos) << bad.err;
+}
+
+// A drift on a short monotone warm-up: time and the temperature terms are one
+// group, and none of them is the answer; on the cycle (heating and cooling
+// legs) the same drift is identified.
+TEST(DiagnoseBeyond, DriftOnAMonotoneWarmUpCannotBeToldFromTemperature) {
+  ScratchDir dir;
+  write_text(dir / "warm2.toml",
+             "name = \"warm2\"\nrig = \"" + source_path("scenarios/rig_room.toml") + "\"\ngyro = \"" +
+                 source_path("scenarios/gyro.toml") +
+                 "\"\nseed = 5\nsample_rate_hz = 1.0\nroom_c = 23.0\nchamber = false\ninitial = \"soaked\"\n"
+                 "[[segment]]\nkind = \"free\"\nduration_h = 2\n");
+  ASSERT_EQ(run_cli(dir, "simulate warm2.toml --hidden t=0.01 -o warm.csv").exit_code, 0);
+  const Json j = diagnose_json(dir, "warm.csv");
+  bool grouped = false;
+  for (const Json& g : j["confounded"]) {
+    const auto names = g.get<std::vector<std::string>>();
+    grouped |= std::find(names.begin(), names.end(), "t") != names.end() &&
+               std::find(names.begin(), names.end(), "T") != names.end();
+  }
+  EXPECT_TRUE(grouped) << j["confounding"];
+  for (const Json& m : j["missing_effects"])
+    if (m["term"] == "t") {
+      EXPECT_FALSE(m["significant"].get<bool>() && m["confounded_with"].empty()) << m;
+    }
+  EXPECT_TRUE(j["next_command"].get<std::string>().find("+ t") == std::string::npos) << j["next_command"];
+
+  simulate_shipped(dir, "cycle", "--hidden t=0.002", "cycle.csv");
+  const Json cycle = diagnose_json(dir, "cycle.csv");
+  EXPECT_EQ(cycle["missing_effects"][0]["term"], "t") << cycle["verdict"];
+  EXPECT_TRUE(cycle["missing_effects"][0]["significant"].get<bool>());
+  EXPECT_TRUE(cycle["missing_effects"][0]["confounded_with"].empty());
+}
+
+// When the candidates leave the model well above the floor, the verdict says
+// that structure remains and where (a bump no candidate has the shape of).
+TEST(DiagnoseBeyond, TheVerdictSaysWhenStructureRemains) {
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", "", "clean.csv");
+  // A 40-minute bump of 0.008 °/h centred at 3 h.
+  rewrite(dir, "clean.csv", "bump.csv",
+          [](double t) { return 0.008 * std::exp(-std::pow((t - 10800.0) / 1200.0, 2)); });
+  const Json j = diagnose_json(dir, "bump.csv --candidates -step");
+  EXPECT_FALSE(j["remaining"].get<std::string>().empty()) << j["verdict"];
+  EXPECT_NE(j["verdict"].get<std::string>().find("structure remains"), std::string::npos) << j["verdict"];
+}
+
+}  // namespace
+}  // namespace gyrotherm
