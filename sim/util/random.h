@@ -52,6 +52,8 @@ enum : std::uint64_t {
   afsa = 0xAF5A, iafsa = 0x1AF5A,
   // The sign-flip randomisation test of diagnose (studies/diagnose/diagnosis.h).
   diagnosis_sign_flips = 0x5167,
+  // The bootstrap series of diagnose's step test (studies/diagnose/steps.h).
+  diagnosis_step_bootstrap = 0x57E9,
   // The per-trial [spread] draws of score (studies/score/spread.h).
   score_spread = 0x5C0E,
   // The streaming reader's reservoir samples (fit/data/streaming.h), from a

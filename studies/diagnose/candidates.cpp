@@ -18,7 +18,7 @@ bool contains(const std::vector<const Term*>& v, const Term* t) {
 CandidateSet candidate_set(const PreparedData& data, const std::vector<const Term*>& model,
                            const std::vector<double>& parameters,
                            const std::vector<std::string>& requested,
-                           const std::vector<std::string>& excluded_columns) {
+                           const std::vector<std::string>& excluded_columns, std::uint64_t seed) {
   CandidateSet set;
   std::vector<const Term*> all;
   for (const Term* term : term_registry()) {
@@ -42,14 +42,17 @@ CandidateSet candidate_set(const PreparedData& data, const std::vector<const Ter
     for (const bool rate : {false, true})
       if (const Term* t = column_term(name, rate); !contains(model, t)) all.push_back(t);
   }
-  // Steps where the model's residual bends.
+  // Steps in the model's residual that its noise does not explain.
   std::vector<double> since_start(data.series.size());
   for (std::size_t p = 0; p < since_start.size(); ++p)
     since_start[p] = data.series.time_s[p] - data.series.start_time_s;
   const Eigen::MatrixXd design = design_matrix(data.derived, model, parameters);
+  StepSearch search;
+  search.seed = seed;
   set.steps = find_steps(since_start, design,
                          Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
-                                                           static_cast<Eigen::Index>(data.series.size())));
+                                                           static_cast<Eigen::Index>(data.series.size())),
+                         search);
   std::vector<const Term*> steps;
   for (const StepCandidate& s : set.steps)
     if (const Term* t = step_term(s.time_s); !contains(model, t)) steps.push_back(t);

@@ -14,6 +14,7 @@
 // "step" for the steps found); entries starting with + or − add to or remove
 // from the default set.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,10 +33,11 @@ struct CandidateSet {
 // The columns that are never candidates besides the record's own roles.
 inline const std::vector<std::string> kNeverCandidates = {"bias_true_dph"};
 
-// parameters: the model's fitted nonlinear parameters.
+// parameters: the model's fitted nonlinear parameters; seed: of the step
+// test's bootstrap.
 CandidateSet candidate_set(const PreparedData& data, const std::vector<const Term*>& model,
                            const std::vector<double>& parameters,
                            const std::vector<std::string>& requested,
-                           const std::vector<std::string>& excluded_columns);
+                           const std::vector<std::string>& excluded_columns, std::uint64_t seed);
 
 }  // namespace gyrotherm::fit

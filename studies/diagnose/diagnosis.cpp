@@ -297,7 +297,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   const double excess = after2 > floor2 ? after2 - floor2 : after2;
 
   CandidateSet candidates =
-      candidate_set(data, terms, d.fit.parameters, options.candidates, options.excluded_columns);
+      candidate_set(data, terms, d.fit.parameters, options.candidates, options.excluded_columns, options.seed);
   std::vector<const Term*> untried = std::move(candidates.terms);
   d.skipped = std::move(candidates.skipped);
   const std::vector<StepCandidate> steps = std::move(candidates.steps);
@@ -420,7 +420,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
     const Term* step = step_term(found.time_s);
     StepEvent e;
     e.time_s = found.time_s;
-    e.cusum_p = found.p_value;
+    e.p_value = found.p_value;
     try {
       std::vector<const Term*> with = terms;
       if (std::find(with.begin(), with.end(), step) == with.end()) with.push_back(step);

@@ -75,7 +75,7 @@ struct StepEvent {
   double time_s = 0;          // since the start of the record
   double size_dph = 0;        // least squares with the model
   Interval size_interval_dph;  // 95 %, ols
-  double cusum_p = 1;         // the change-point test that found it
+  double p_value = 1;         // of the bootstrap test that found it (steps.h)
   bool significant = false;   // it passed the candidates' test and joined the suggested model
 };
 

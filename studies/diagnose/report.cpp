@@ -94,7 +94,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
                       {"size_dph", e.size_dph},
                       {"size_interval_dph", {e.size_interval_dph.lower, e.size_interval_dph.upper}},
                       {"significant", e.significant},
-                      {"cusum_p", e.cusum_p}});
+                      {"p_value", e.p_value}});
   j["events"] = events;
   j["remaining"] = d.remaining;
   j["confounded"] = d.confounded;
