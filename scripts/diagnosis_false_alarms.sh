@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates results/diagnosis_false_alarms.md: how often diagnose calls
 # anything significant (a term, a log column, a bias step) on clean simulated
-# records, 100 seeds of the cycle and 10 of the random profile (a few minutes).
+# records, 100 seeds of the cycle and 10 of the random profile (about 40 minutes on 2 cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
