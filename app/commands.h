@@ -21,5 +21,6 @@ void add_registry_commands(CLI::App& app, Run* run);
 void add_diagnose_command(CLI::App& app, Run* run);
 void add_reproduce_command(CLI::App& app, Run* run);
 void add_score_command(CLI::App& app, Run* run);
+void add_allan_command(CLI::App& app, Run* run);
 
 }  // namespace gyrotherm::app

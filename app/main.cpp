@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   gyrotherm::app::add_diagnose_command(app, &run);
   gyrotherm::app::add_reproduce_command(app, &run);
   gyrotherm::app::add_score_command(app, &run);
+  gyrotherm::app::add_allan_command(app, &run);
 
   try {
     app.parse(argc, argv);

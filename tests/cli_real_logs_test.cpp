@@ -285,5 +285,31 @@ INSTANTIATE_TEST_SUITE_P(
         BadLog{"channel_named_twice", "--gyro-col gx,gx", {"'gx' is named twice"}}),
     [](const auto& param_info) { return param_info.param.name; });
 
+
+// allan on the PAN log: three axes in bursts of 5 s every 30 s. It reports
+// what the bursts allow (τ up to half a burst), says that the runs limit it, counts the clusters a gap would cut,
+// and shows the ARW region but not the bias instability.
+TEST(RealLogs, PanAllanReportsWhatTheBurstsAllow) {
+  SKIP_WITHOUT_PAN();
+  ScratchDir dir;
+  const std::string csv = quoted(pan_folder() / "pan_tvac_3axis.csv");
+  const auto r = run_cli(dir, "allan " + csv + " --gyro-col gx_dph,gy_dph,gz_dph --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  ASSERT_EQ(j["channels"].size(), 3u);
+  for (const Json& c : j["channels"]) {
+    const Json& s = c["series"][0];
+    EXPECT_EQ(s["runs"].get<int>(), 25);
+    EXPECT_TRUE(s["limited_by_runs"].get<bool>());
+    EXPECT_LE(s["taus_s"].back().get<double>(), s["longest_run_s"].get<double>() / 2.0);
+    EXPECT_GT(s["gap_terms"].back().get<int>(), 0);
+    EXPECT_TRUE(s["coefficients"]["arw_dpsh"]["shown"].get<bool>()) << c["channel"];
+    EXPECT_FALSE(s["coefficients"]["bias_instability_dph"]["shown"].get<bool>()) << c["channel"];
+  }
+  const auto human = run_cli(dir, "allan " + csv + " --gyro-col gx_dph,gy_dph,gz_dph");
+  ASSERT_EQ(human.exit_code, 0) << human.err;
+  EXPECT_NE(human.out.find("the runs are short"), std::string::npos) << human.out;
+}
+
 }  // namespace
 }  // namespace gyrotherm

@@ -1,0 +1,222 @@
+#include "studies/allan/allan_study.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "fit/compensation.h"
+#include "fit/pipeline.h"
+#include "sim/util/gnuplot.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+nlohmann::ordered_json coefficient_json(const NoiseCoefficient& k) {
+  nlohmann::ordered_json j{{"shown", k.shown}};
+  if (k.shown) {
+    j["value"] = k.value;
+    j["lo"] = k.lo;
+    j["hi"] = k.hi;
+    j["tau_range_s"] = {k.tau_from_s, k.tau_to_s};
+    j["tau_read_s"] = k.tau_read_s;
+  }
+  j["note"] = k.note;
+  return j;
+}
+
+std::string coefficient_text(const NoiseCoefficient& k, const char* unit) {
+  if (!k.shown) return "—";
+  return fmt::format("{:.4g} [{:.4g}, {:.4g}] {}", k.value, k.lo, k.hi, unit);
+}
+
+}  // namespace
+
+std::optional<double> AllanStudy::bias_instability_ratio() const {
+  if (series.size() < 2) return std::nullopt;
+  const auto& a = series.front().coefficients.bias_instability_dph;
+  const auto& b = series.back().coefficients.bias_instability_dph;
+  if (!a.shown || !b.shown || b.value <= 0.0) return std::nullopt;
+  return a.value / b.value;
+}
+
+AllanStudy allan_study(const Measurement& m, const SavedFit* fit, const AllanOptions& options) {
+  AllanStudy s;
+  s.data_file = m.file;
+  AllanSeries raw;
+  raw.curve = allan_curve(m.time_s, m.gyro_dph, options, "raw");
+  raw.coefficients = read_noise_coefficients(raw.curve);
+  s.series.push_back(std::move(raw));
+  if (fit) {
+    s.fit_file = fit->file.string();
+    s.channel = fit->channel;
+    PipelineOptions pipeline = reading_columns_of(fit->pipeline, fit->terms);
+    pipeline.derivative = DerivativeMode::causal;
+    const Compensation c = compensate(m, *fit, pipeline);
+    std::vector<double> compensated(c.gyro_dph.size());
+    for (std::size_t i = 0; i < compensated.size(); ++i) {
+      compensated[i] = c.gyro_dph[i] - c.model_dph[i];
+      s.outliers += c.outlier[i];
+    }
+    AllanSeries comp;
+    comp.curve = allan_curve(c.time_s, compensated, options, "compensated");
+    comp.coefficients = read_noise_coefficients(comp.curve);
+    s.series.push_back(std::move(comp));
+  }
+  return s;
+}
+
+nlohmann::ordered_json allan_json(const AllanStudy& study) {
+  nlohmann::ordered_json j;
+  j["data"] = study.data_file;
+  j["fit"] = study.fit_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(study.fit_file);
+  if (!study.channel.empty()) j["channel"] = study.channel;
+  j["confidence"] = study.series.front().curve.confidence;
+  j["series"] = nlohmann::ordered_json::array();
+  for (const AllanSeries& s : study.series) {
+    const AllanCurve& c = s.curve;
+    nlohmann::ordered_json js{{"name", c.name},       {"tau0_s", c.tau0_s}, {"samples", c.samples},
+                              {"runs", c.runs},       {"gaps", c.gaps},     {"span_s", c.span_s},
+                              {"longest_run_s", c.longest_run_s}, {"limited_by_runs", c.limited_by_runs}};
+    std::vector<double> tau, adev, lo, hi, edf;
+    std::vector<std::string> type, from;
+    std::vector<std::size_t> terms, gap_terms;
+    for (const AllanRow& r : c.rows) {
+      tau.push_back(r.tau_s);
+      adev.push_back(r.adev_dph);
+      lo.push_back(r.lo_dph);
+      hi.push_back(r.hi_dph);
+      edf.push_back(r.edf);
+      type.push_back(noise_type_name(r.alpha));
+      from.push_back(r.alpha_from_acf ? "acf" : "slope");
+      terms.push_back(r.terms);
+      gap_terms.push_back(r.gap_terms);
+    }
+    js["taus_s"] = tau;
+    js["adev_dph"] = adev;
+    js["lo_dph"] = lo;
+    js["hi_dph"] = hi;
+    js["edf"] = edf;
+    js["noise_type"] = type;
+    js["noise_type_from"] = from;
+    js["terms"] = terms;
+    js["gap_terms"] = gap_terms;
+    js["coefficients"] = {{"arw_dpsh", coefficient_json(s.coefficients.arw_dpsh)},
+                          {"bias_instability_dph", coefficient_json(s.coefficients.bias_instability_dph)},
+                          {"rrw_dph_per_sqrt_h", coefficient_json(s.coefficients.rrw_dph_per_sqrt_h)},
+                          {"quantization_arcsec", coefficient_json(s.coefficients.quantization_arcsec)}};
+    j["series"].push_back(std::move(js));
+  }
+  const auto ratio = study.bias_instability_ratio();
+  j["bias_instability_ratio"] = ratio ? nlohmann::ordered_json(*ratio) : nlohmann::ordered_json();
+  if (!study.fit_file.empty()) j["outliers_flagged"] = study.outliers;
+  return j;
+}
+
+std::string allan_text(const AllanStudy& study) {
+  const AllanCurve& first = study.series.front().curve;
+  std::string out = fmt::format(
+      "allan {}{}: {} samples every {:.4g} s over {:.4g} h, {} gap-free run{}; overlapping Allan deviation, "
+      "{:.0f} % intervals (edf of NIST SP 1065 Table 5 for the noise type at each τ)\n",
+      study.data_file, study.channel.empty() ? "" : ", channel " + study.channel, first.samples, first.tau0_s,
+      first.span_s / 3600.0, first.runs, first.runs == 1 ? "" : "s", 100.0 * first.confidence);
+  if (first.gaps > 0)
+    out += fmt::format("  {} gaps: a τ whose clusters would span one uses only those that do not (the 'left out' "
+                       "column); the longest gap-free run is {:.4g} s\n",
+                       first.gaps, first.longest_run_s);
+  if (first.limited_by_runs)
+    out += fmt::format("  the longest τ is {:.4g} s: a τ needs one gap-free stretch of 2τ, and the runs are short "
+                       "(bursts): the record cannot show longer τ, where bias instability and rate random walk sit\n",
+                       first.rows.empty() ? 0.0 : first.rows.back().tau_s);
+  if (!study.fit_file.empty())
+    out += fmt::format("  compensated: {} applied as a real-time compensator (compensate --causal){}\n",
+                       study.fit_file,
+                       study.outliers ? fmt::format("; {} glitch samples flagged, kept in both", study.outliers) : "");
+  for (const AllanSeries& s : study.series) {
+    out += fmt::format("\n{}:\n  {:>10} {:>12} {:>25} {:>9}  {:<26} {:>9}\n", s.curve.name, "tau (s)",
+                       "adev (°/h)", "interval (°/h)", "edf", "noise type", "left out");
+    for (const AllanRow& r : s.curve.rows)
+      out += fmt::format("  {:>10.4g} {:>12.5g} [{:>11.5g}, {:>11.5g}] {:>9.4g}  {:<26} {:>9}\n", r.tau_s,
+                         r.adev_dph, r.lo_dph, r.hi_dph, r.edf,
+                         noise_type_name(r.alpha) + (r.alpha_from_acf ? "" : " (slope)"), r.gap_terms);
+  }
+  out += "\nnoise coefficients (value [interval]):\n";
+  std::string header = fmt::format("  {:<22}", "");
+  for (const AllanSeries& s : study.series) header += fmt::format(" {:<42}", s.curve.name);
+  out += header + "\n";
+  const auto row = [&](const char* label, auto member, const char* unit) {
+    std::string line = fmt::format("  {:<22}", label);
+    for (const AllanSeries& s : study.series) line += fmt::format(" {:<42}", coefficient_text(s.coefficients.*member, unit));
+    out += line + "\n";
+  };
+  row("angle random walk", &NoiseCoefficients::arw_dpsh, "°/√h");
+  row("bias instability", &NoiseCoefficients::bias_instability_dph, "°/h");
+  row("rate random walk", &NoiseCoefficients::rrw_dph_per_sqrt_h, "°/h/√h");
+  row("quantisation", &NoiseCoefficients::quantization_arcsec, "″");
+  out += "how each was read:\n";
+  for (const AllanSeries& s : study.series) {
+    const NoiseCoefficients& k = s.coefficients;
+    out += fmt::format("  {}: ARW: {}\n  {}: bias instability: {}\n  {}: RRW: {}\n", s.curve.name, k.arw_dpsh.note,
+                       s.curve.name, k.bias_instability_dph.note, s.curve.name, k.rrw_dph_per_sqrt_h.note);
+    if (k.quantization_arcsec.shown) out += fmt::format("  {}: quantisation: {}\n", s.curve.name, k.quantization_arcsec.note);
+  }
+  out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664)\n";
+  if (const auto ratio = study.bias_instability_ratio())
+    out += fmt::format("bias instability raw / compensated: {:.3g}\n", *ratio);
+  return out;
+}
+
+void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study) {
+  GnuplotFigure fig(png, 1200, 850);
+  static const char* kColours[] = {"#444444", "#d62728"};
+  static const char* kBands[] = {"#cccccc", "#f4a582"};
+  std::string plot = "plot ";
+  std::string labels;
+  double label_y = 0.95;
+  for (std::size_t i = 0; i < study.series.size(); ++i) {
+    const AllanSeries& s = study.series[i];
+    std::vector<double> tau, adev, lo, hi;
+    for (const AllanRow& r : s.curve.rows) {
+      tau.push_back(r.tau_s);
+      adev.push_back(r.adev_dph);
+      lo.push_back(r.lo_dph);
+      hi.push_back(r.hi_dph);
+    }
+    const std::string name = fmt::format("s{}", i);
+    fig.data(name, {"tau", "adev", "lo", "hi"}, {tau, adev, lo, hi});
+    const char* colour = kColours[i % 2];
+    plot += fmt::format(
+        "${0} using 1:3:4 with filledcurves fc rgb '{1}' fs transparent solid 0.45 notitle, "
+        "${0} using 1:2 with linespoints pt 7 ps 0.7 lw 1.5 lc rgb '{2}' title '{3}', ",
+        name, kBands[i % 2], colour, s.curve.name);
+    // The slope lines of the coefficients read, over their regions (a little wider).
+    const NoiseCoefficients& k = s.coefficients;
+    const auto line = [&](const NoiseCoefficient& c, const std::string& expr, const std::string& text) {
+      if (!c.shown) return;
+      plot += fmt::format("[{}:{}] {} with lines dt 2 lw 1.2 lc rgb '{}' notitle, ", c.tau_from_s / 2.0,
+                          c.tau_to_s * 2.0, expr, colour);
+      labels += fmt::format("set label '{}: {}' at graph 0.02, graph {:.3f} tc rgb '{}'\n", s.curve.name, text,
+                            label_y, colour);
+      label_y -= 0.04;
+    };
+    line(k.arw_dpsh, fmt::format("{:.8g}/sqrt(x/3600.0)", k.arw_dpsh.value),
+         fmt::format("ARW {:.3g} °/√h [{:.3g}, {:.3g}]", k.arw_dpsh.value, k.arw_dpsh.lo, k.arw_dpsh.hi));
+    line(k.bias_instability_dph, fmt::format("{:.8g}+0*x", kFlickerFloor * k.bias_instability_dph.value),
+         fmt::format("bias instability {:.3g} °/h [{:.3g}, {:.3g}]", k.bias_instability_dph.value,
+                     k.bias_instability_dph.lo, k.bias_instability_dph.hi));
+    line(k.rrw_dph_per_sqrt_h, fmt::format("{:.8g}*sqrt(x/3600.0/3.0)", k.rrw_dph_per_sqrt_h.value),
+         fmt::format("RRW {:.3g} °/h/√h [{:.3g}, {:.3g}]", k.rrw_dph_per_sqrt_h.value, k.rrw_dph_per_sqrt_h.lo,
+                     k.rrw_dph_per_sqrt_h.hi));
+    line(k.quantization_arcsec, fmt::format("{:.8g}*sqrt(3.0)/x", k.quantization_arcsec.value),
+         fmt::format("quantisation {:.3g}″", k.quantization_arcsec.value));
+  }
+  plot.resize(plot.size() - 2);
+  fig.commands(fmt::format(
+      "set title 'Overlapping Allan deviation, {:.0f} % intervals; dashed: the noise coefficients read'\n"
+      "set logscale xy\nset xlabel 'averaging time τ (s)'\n"
+      "set ylabel 'Allan deviation (°/h)'\nset grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
+      "set key top right\n{}{}\n",
+      100.0 * study.series.front().curve.confidence, labels, plot));
+  fig.render();
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,58 @@
+#pragma once
+// `gyrotherm allan`: the Allan deviation of a gyro's output, with intervals
+// and noise coefficients, before and after a saved fit's compensation.
+//
+// With a fit the compensated output is the one a real-time compensator gives:
+// the fit's model with backward differences and only windows already complete
+// (fit/compensation.h, as `compensate --causal`), subtracted sample by sample.
+// Compensation takes out what temperature explains, so the bias instability
+// and the rate random walk, where thermal drift shows, should fall; the
+// angle random walk, white noise faster than any window, should not.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fit/data/measurement.h"
+#include "fit/fit_file.h"
+#include "studies/allan/allan_curve.h"
+#include "studies/allan/noise_coefficients.h"
+
+namespace gyrotherm::fit {
+
+struct AllanSeries {
+  AllanCurve curve;
+  NoiseCoefficients coefficients;
+};
+
+struct AllanStudy {
+  std::string data_file, fit_file, channel;
+  std::vector<AllanSeries> series;  // "raw", then "compensated" with a fit
+  std::size_t outliers = 0;         // samples the fit's glitch rule flagged (kept in both series)
+  // Raw over compensated bias instability, when both are shown.
+  std::optional<double> bias_instability_ratio() const;
+};
+
+// `pipeline`: the columns and units the measurement was read with (and, with a
+// fit, the fit's own pipeline is used for the compensation).
+AllanStudy allan_study(const Measurement& m, const SavedFit* fit, const AllanOptions& options);
+
+// --json: data, fit, channel, confidence, and per series name, tau0_s,
+// samples, runs, gaps, taus_s, adev_dph, lo_dph, hi_dph, edf, noise_type,
+// noise_type_from ("acf" or "slope"), terms, gap_terms and coefficients
+// (arw_dpsh, bias_instability_dph, rrw_dph_per_sqrt_h, quantization_arcsec,
+// each {shown, value, lo, hi, tau_range_s, tau_read_s, note});
+// bias_instability_ratio.
+nlohmann::ordered_json allan_json(const AllanStudy& study);
+
+// The report for people: a table per series side by side, the coefficients.
+std::string allan_text(const AllanStudy& study);
+
+// Log-log Allan deviation with the interval bands, the slope lines of the
+// coefficients read and their values, every series on one figure.
+void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,274 @@
+// `gyrotherm allan` (studies/allan): the overlapping Allan deviation against
+// a direct sum over clusters, its intervals' coverage, the noise coefficients
+// of processes whose Allan deviation is known analytically, gaps, and the
+// command line (a fit's compensation, the PAN log, bad input).
+
+#include "studies/allan/allan_study.h"
+
+#include <gtest/gtest.h>
+
+#include <boost/random/mersenne_twister.hpp>
+#include <boost/random/normal_distribution.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+using gyrotherm::testing::run_cli;
+using gyrotherm::testing::ScratchDir;
+using Json = nlohmann::json;
+
+std::vector<double> seconds(std::size_t n, double dt = 1.0) {
+  std::vector<double> t(n);
+  for (std::size_t i = 0; i < n; ++i) t[i] = dt * static_cast<double>(i);
+  return t;
+}
+
+std::vector<double> white(std::size_t n, double sigma, std::uint64_t seed) {
+  boost::random::mt19937_64 rng(seed);
+  boost::random::normal_distribution<double> normal(0.0, sigma);
+  std::vector<double> y(n);
+  for (double& v : y) v = normal(rng);
+  return y;
+}
+
+// The Allan variance at m of a stationary series with autocovariance c(k):
+// half the variance of the difference of two adjacent m-means,
+// Var(mean) − Cov(adjacent means), each a finite sum of c.
+double analytic_avar(const std::function<double(std::size_t)>& c, std::size_t m) {
+  const double md = static_cast<double>(m);
+  double var_mean = md * c(0), cov = 0.0;
+  for (std::size_t k = 1; k < m; ++k) var_mean += 2.0 * (md - static_cast<double>(k)) * c(k);
+  for (std::size_t k = 1; k < 2 * m; ++k) cov += static_cast<double>(std::min(k, 2 * m - k)) * c(k);
+  return (var_mean - cov) / (md * md);
+}
+
+// Direct: every overlapping pair of adjacent m-averages inside one run.
+double direct_adev(const std::vector<std::vector<double>>& runs, std::size_t m) {
+  long double sum = 0.0L;
+  std::size_t count = 0;
+  for (const auto& y : runs)
+    for (std::size_t j = 0; j + 2 * m <= y.size(); ++j) {
+      long double a = 0.0L, b = 0.0L;
+      for (std::size_t i = 0; i < m; ++i) {
+        a += y[j + i];
+        b += y[j + m + i];
+      }
+      const long double d = (b - a) / static_cast<long double>(m);
+      sum += d * d;
+      ++count;
+    }
+  return static_cast<double>(std::sqrt(sum / (2.0L * static_cast<long double>(count))));
+}
+
+TEST(AllanStudy, MatchesADirectSumOverClustersWithAndWithoutGaps) {
+  // An offset far above the noise, as a gyro's bias is, tests the digits.
+  std::vector<double> y = white(3000, 0.01, 4);
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] += 7.0 + 1e-4 * static_cast<double>(i % 17);
+  std::vector<double> t = seconds(y.size(), 0.5);
+  for (std::size_t i = 1200; i < t.size(); ++i) t[i] += 40.0;  // one gap
+  for (std::size_t i = 2500; i < t.size(); ++i) t[i] += 7.0;   // and another
+  AllanOptions all;
+  all.spacing = TauSpacing::all;
+  const AllanCurve c = allan_curve(t, y, all, "raw");
+  EXPECT_EQ(c.runs, 3u);
+  EXPECT_EQ(c.gaps, 2u);
+  EXPECT_DOUBLE_EQ(c.tau0_s, 0.5);
+  const std::vector<std::vector<double>> runs = {{y.begin(), y.begin() + 1200},
+                                                 {y.begin() + 1200, y.begin() + 2500},
+                                                 {y.begin() + 2500, y.end()}};
+  ASSERT_EQ(c.rows.size(), 650u);  // the longest run (1300) allows m ≤ 650; a quarter of the span, 773
+  for (const AllanRow& r : c.rows) {
+    ASSERT_NEAR(r.adev_dph, direct_adev(runs, r.m), 1e-12 * r.adev_dph) << "m = " << r.m;
+    EXPECT_DOUBLE_EQ(r.tau_s, 0.5 * static_cast<double>(r.m));
+    std::size_t terms = 0;
+    for (const auto& run : runs) terms += run.size() >= 2 * r.m ? run.size() - 2 * r.m + 1 : 0;
+    EXPECT_EQ(r.terms, terms);
+    EXPECT_EQ(r.gap_terms, (3000 - 2 * r.m + 1) - terms);
+  }
+  // The same numbers through the single-series function, on one run.
+  EXPECT_NEAR(overlapping_adev(runs[0], 16), direct_adev({runs[0]}, 16), 1e-12 * direct_adev({runs[0]}, 16));
+}
+
+// White rate noise of σ per 1 s sample: σ(τ) = σ/√τ, N = σ·√(1 s / 1 h).
+TEST(AllanStudy, WhiteNoiseGivesItsLineAndTheAngleRandomWalk) {
+  constexpr double kSigma = 0.02;
+  int covered = 0, total = 0;
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    const AllanCurve c = allan_curve(seconds(1 << 16), white(1 << 16, kSigma, seed), {}, "raw");
+    for (const AllanRow& r : c.rows) {
+      const double truth = kSigma / std::sqrt(r.tau_s);
+      covered += r.lo_dph <= truth && truth <= r.hi_dph ? 1 : 0;
+      ++total;
+      if (r.m <= 256) {  // at least 256 block averages: the identification is sure
+        EXPECT_EQ(r.alpha, 0) << "τ = " << r.tau_s;  // white rate noise
+      }
+    }
+    const NoiseCoefficients k = read_noise_coefficients(c);
+    ASSERT_TRUE(k.arw_dpsh.shown);
+    EXPECT_NEAR(k.arw_dpsh.value, kSigma / 60.0, 0.03 * kSigma / 60.0);
+    EXPECT_LE(k.arw_dpsh.lo, k.arw_dpsh.value);
+    EXPECT_GE(k.arw_dpsh.hi, k.arw_dpsh.value);
+    EXPECT_FALSE(k.rrw_dph_per_sqrt_h.shown) << k.rrw_dph_per_sqrt_h.note;
+    EXPECT_FALSE(k.bias_instability_dph.shown) << k.bias_instability_dph.note;  // it falls to the end
+  }
+  // A 68 % interval covers the truth at about two τ in three, not at every τ.
+  const double share = static_cast<double>(covered) / total;
+  EXPECT_GE(share, 0.55) << covered << " of " << total;
+  EXPECT_LE(share, 0.82) << covered << " of " << total;
+}
+
+// Over 200 records the 68 % interval at a mid τ covers the truth in 60–76 %.
+TEST(AllanStudy, IntervalsCoverAsTheySayOverSeeds) {
+  constexpr double kSigma = 1.0;
+  int covered68 = 0, covered95 = 0;
+  AllanOptions wide;
+  wide.confidence = 0.95;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const auto y = white(4096, kSigma, 1000 + seed);
+    const auto t = seconds(y.size());
+    for (const auto& [options, count] : {std::pair<AllanOptions, int*>{AllanOptions{}, &covered68},
+                                         std::pair<AllanOptions, int*>{wide, &covered95}}) {
+      const AllanCurve c = allan_curve(t, y, options, "raw");
+      const auto row = std::find_if(c.rows.begin(), c.rows.end(), [](const AllanRow& r) { return r.m == 32; });
+      ASSERT_NE(row, c.rows.end());
+      const double truth = kSigma / std::sqrt(32.0);
+      *count += row->lo_dph <= truth && truth <= row->hi_dph ? 1 : 0;
+    }
+  }
+  EXPECT_GE(covered68, 120);
+  EXPECT_LE(covered68, 152);
+  EXPECT_GE(covered95, 180);  // 95 % of 200 = 190 ± 3
+}
+
+// A rate random walk y_{k+1} = y_k + q·ε (1 s samples): σ(τ) = q√(τ/3) with
+// q per √s, so K = 60·q in °/h/√h.
+TEST(AllanStudy, ARandomWalkGivesTheRateRandomWalk) {
+  constexpr double kQ = 1e-3;
+  const auto steps = white(1 << 16, kQ, 9);
+  std::vector<double> y(steps.size());
+  double level = 0.0;
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] = level += steps[i];
+  const AllanCurve c = allan_curve(seconds(y.size()), y, {}, "raw");
+  const NoiseCoefficients k = read_noise_coefficients(c);
+  ASSERT_TRUE(k.rrw_dph_per_sqrt_h.shown) << k.rrw_dph_per_sqrt_h.note;
+  EXPECT_NEAR(k.rrw_dph_per_sqrt_h.value, 60.0 * kQ, 0.1 * 60.0 * kQ) << k.rrw_dph_per_sqrt_h.note;
+  EXPECT_FALSE(k.arw_dpsh.shown) << k.arw_dpsh.note;
+  EXPECT_FALSE(k.bias_instability_dph.shown) << k.bias_instability_dph.note;  // it rises from the start
+}
+
+// A first-order Gauss–Markov bias (correlation time 200 s): its Allan
+// deviation rises, tops out near 1.9 T_c, and falls. The bias instability is
+// read at the top; the curve there matches the analytic one within 10 %.
+TEST(AllanStudy, AGaussMarkovBiasGivesItsFlatTopAndBiasInstability) {
+  constexpr double kSigma = 0.01, kTc = 200.0;
+  const double phi = std::exp(-1.0 / kTc);
+  const auto e = white(1 << 18, kSigma * std::sqrt(1.0 - phi * phi), 12);
+  std::vector<double> y(e.size());
+  double x = 0.0;
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] = x = phi * x + e[i];
+  const AllanCurve c = allan_curve(seconds(y.size()), y, {}, "raw");
+  const NoiseCoefficients k = read_noise_coefficients(c);
+  ASSERT_TRUE(k.bias_instability_dph.shown) << k.bias_instability_dph.note;
+  const auto covariance = [&](std::size_t lag) { return kSigma * kSigma * std::pow(phi, static_cast<double>(lag)); };
+  const auto m = static_cast<std::size_t>(k.bias_instability_dph.tau_read_s);
+  const double analytic = std::sqrt(analytic_avar(covariance, m));
+  EXPECT_NEAR(k.bias_instability_dph.value, analytic / kFlickerFloor, 0.1 * analytic / kFlickerFloor);
+  // The top is where the analytic curve tops out (within an octave).
+  double best_tau = 1.0, best = 0.0;
+  for (std::size_t mm = 1; mm < 4096; ++mm)
+    if (const double a = analytic_avar(covariance, mm); a > best) {
+      best = a;
+      best_tau = static_cast<double>(mm);
+    }
+  EXPECT_GT(k.bias_instability_dph.tau_read_s, best_tau / 2.0);
+  EXPECT_LT(k.bias_instability_dph.tau_read_s, best_tau * 2.0);
+  // And the curve follows the analytic one within 10 % up to τ = 20 T_c
+  // (beyond, a few clusters: its 68 % intervals cover it about two times in three).
+  for (const AllanRow& r : c.rows) {
+    if (r.tau_s > 20.0 * kTc) break;
+    const double a = std::sqrt(analytic_avar(covariance, r.m));
+    EXPECT_NEAR(r.adev_dph, a, 0.1 * a) << "τ = " << r.tau_s;
+  }
+}
+
+TEST(AllanStudy, BadInputIsRefused) {
+  const auto t = seconds(100);
+  const auto y = white(100, 1.0, 1);
+  AllanOptions o;
+  o.confidence = 1.5;
+  EXPECT_THROW(allan_curve(t, y, o, "raw"), InputError);
+  o.confidence = 0.68;
+  o.tau_max_s = 60.0;  // needs 120 s gap-free
+  EXPECT_THROW(allan_curve(t, y, o, "raw"), InputError);
+  o.tau_max_s = 50.0;
+  EXPECT_EQ(allan_curve(t, y, o, "raw").rows.back().tau_s, 32.0);  // octaves up to 50 s
+  EXPECT_THROW(allan_curve(seconds(2), std::vector<double>{1.0, 2.0}, {}, "raw"), InputError);
+}
+
+// The command line: a fit's compensation side by side, on the default gyro.
+TEST(CliAllan, CompensationLowersTheBiasInstabilityAndKeepsTheAngleRandomWalk) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + gyrotherm::testing::source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "fit c.csv -o fit.json").exit_code, 0);
+  const auto r = run_cli(dir, "allan c.csv --fit fit.json --json --plot a.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  ASSERT_EQ(j["series"].size(), 2u);
+  EXPECT_EQ(j["series"][0]["name"], "raw");
+  EXPECT_EQ(j["series"][1]["name"], "compensated");
+  for (const Json& s : j["series"]) {
+    const std::size_t n = s["taus_s"].size();
+    EXPECT_GE(n, 10u);
+    for (const char* field : {"adev_dph", "lo_dph", "hi_dph", "edf", "noise_type"}) EXPECT_EQ(s[field].size(), n) << field;
+    for (std::size_t i = 0; i < n; ++i) {
+      EXPECT_LE(s["lo_dph"][i].get<double>(), s["adev_dph"][i].get<double>());
+      EXPECT_GE(s["hi_dph"][i].get<double>(), s["adev_dph"][i].get<double>());
+    }
+  }
+  const Json& raw = j["series"][0]["coefficients"];
+  const Json& comp = j["series"][1]["coefficients"];
+  // The default gyro: ARW 3e-4 °/√h at 20 °C (a little more away from it), bias instability 1e-3 °/h.
+  ASSERT_TRUE(comp["arw_dpsh"]["shown"].get<bool>());
+  EXPECT_NEAR(comp["arw_dpsh"]["value"].get<double>(), 3.3e-4, 0.4e-4);
+  EXPECT_NEAR(comp["arw_dpsh"]["value"].get<double>(), raw["arw_dpsh"]["value"].get<double>(), 0.02e-4);
+  ASSERT_TRUE(comp["bias_instability_dph"]["shown"].get<bool>()) << comp["bias_instability_dph"]["note"];
+  EXPECT_GT(comp["bias_instability_dph"]["hi"].get<double>(), 1e-3 * 0.8);
+  EXPECT_LT(comp["bias_instability_dph"]["lo"].get<double>(), 1e-3 * 1.2);
+  EXPECT_EQ(comp["bias_instability_dph"]["tau_range_s"].size(), 2u);
+  // The thermal drift the fit removes sits in the raw output's long τ.
+  EXPECT_GT(j["bias_instability_ratio"].get<double>(), 1.5);
+  EXPECT_TRUE(std::filesystem::exists(dir / "a.png"));
+  // The table for people.
+  const auto human = run_cli(dir, "allan c.csv --fit fit.json --ci 0.95");
+  ASSERT_EQ(human.exit_code, 0) << human.err;
+  for (const char* fragment : {"95 % intervals", "angle random walk", "bias instability raw / compensated"})
+    EXPECT_NE(human.out.find(fragment), std::string::npos) << fragment << "\n" << human.out;
+}
+
+TEST(CliAllan, BadInputExitsTwoAndSaysWhy) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + gyrotherm::testing::source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  const auto ci = run_cli(dir, "allan c.csv --ci 1.2");
+  EXPECT_EQ(ci.exit_code, 2);
+  EXPECT_NE(ci.err.find("--ci 1.2: the confidence must be between 0 and 1"), std::string::npos) << ci.err;
+  const auto tau = run_cli(dir, "allan c.csv --tau-max 1e6");
+  EXPECT_EQ(tau.exit_code, 2);
+  EXPECT_NE(tau.err.find("the longest τ it can give is"), std::string::npos) << tau.err;
+  const auto taus = run_cli(dir, "allan c.csv --taus weekly");
+  EXPECT_EQ(taus.exit_code, 2);
+  EXPECT_NE(taus.err.find("expected octave, decade or all"), std::string::npos) << taus.err;
+  // A fit that needs a column this log lacks (grad: the far-side temperature).
+  ASSERT_EQ(run_cli(dir, "fit c.csv --add grad -o grad.json").exit_code, 0);
+  gyrotherm::testing::run_shell(dir, "cut -d, -f1,4,6 c.csv | grep -v '^#' | tee narrow.csv");
+  const auto other = run_cli(dir, "allan narrow.csv --fit grad.json");
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("temp2_c"), std::string::npos) << other.err;
+  EXPECT_NE(other.err.find("grad.json"), std::string::npos) << other.err;
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
