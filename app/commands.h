@@ -22,5 +22,6 @@ void add_diagnose_command(CLI::App& app, Run* run);
 void add_reproduce_command(CLI::App& app, Run* run);
 void add_score_command(CLI::App& app, Run* run);
 void add_allan_command(CLI::App& app, Run* run);
+void add_export_command(CLI::App& app, Run* run);
 
 }  // namespace gyrotherm::app

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   gyrotherm::app::add_reproduce_command(app, &run);
   gyrotherm::app::add_score_command(app, &run);
   gyrotherm::app::add_allan_command(app, &run);
+  gyrotherm::app::add_export_command(app, &run);
 
   try {
     app.parse(argc, argv);

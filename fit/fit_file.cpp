@@ -1,5 +1,7 @@
 #include "fit/fit_file.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -88,6 +90,10 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                {"dropped_windows", data.averaging.dropped_windows},
                {"bursts", data.averaging.bursts},
                {"windows_described", describe_windows(data, pipeline)}};
+  if (!data.series.temp_c.empty()) {
+    const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
+    j["data"]["temp_range_c"] = {*lo, *hi};  // of the window means: where the model was fitted
+  }
   j["pipeline"] = {{"avg_s", pipeline.averaging.window_s},
                    {"derivative", to_string(pipeline.derivative)},
                    {"deriv_span_s", pipeline.derivative_span_s},
@@ -224,6 +230,15 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     }
   }
   s.instability_after_dph = number(need(j, "instability_after_dph", "°/h"), "instability_after_dph");
+  // Fit files from before the range was saved have none.
+  if (j.contains("data") && j["data"].is_object() && j["data"].contains("temp_range_c")) {
+    const nlohmann::json& r = j["data"]["temp_range_c"];
+    if (!r.is_array() || r.size() != 2)
+      throw InputError(fmt::format("{}: data.temp_range_c: expected [min, max] in °C", file.string()));
+    s.temp_range_c = {number(r[0], "data.temp_range_c[0]"), number(r[1], "data.temp_range_c[1]")};
+  }
+  if (j.contains("data") && j["data"].is_object() && j["data"].contains("file") && j["data"]["file"].is_string())
+    s.data_file = j["data"]["file"].get<std::string>();
   return s;
 }
 }  // namespace

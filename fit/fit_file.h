@@ -7,7 +7,8 @@
 // `simulate`, truth and coefficient_error. Also saved, for compensate:
 // parameters of nonlinear terms, the pipeline (window, derivative mode,
 // outlier rule, column names), ols intervals, stepwise's kept terms, and a
-// summary of the data (outliers removed, gaps).
+// summary of the data (outliers removed, gaps, the window temperatures
+// range temp_range_c, used by export for the firmware's TMIN/TMAX).
 //
 // With several gyro channels (--gyro-col gx,gy,gz) the file is
 // {"channels": [{"channel": NAME, …the single-channel object…}, …]}.
@@ -45,6 +46,10 @@ struct SavedFit {
   PipelineOptions pipeline;
   double instability_after_dph = 0.0;
   std::string channel;  // the gyro column it was fitted to, in a several-channel file
+  // The range of the window-mean temperatures it was fitted on (°C); absent in
+  // fit files written before it was saved.
+  std::optional<std::pair<double, double>> temp_range_c;
+  std::string data_file;  // the data it was fitted on, as given to fit
 };
 
 // Throws InputError naming the file and the field for anything missing or malformed.

@@ -1,0 +1,98 @@
+#pragma once
+// A saved fit as an autopilot's gyro thermal compensation parameters
+// (`gyrotherm export --format px4|ardupilot`).
+//
+// Both firmwares correct a gyro with a cubic in temperature, in rad/s, the
+// temperature clamped to the calibrated range:
+//
+// PX4 (src/modules/temperature_compensation/TemperatureCompensation.cpp,
+// calc_thermal_offsets_3D; docs "Thermal Calibration and Compensation"):
+//   d = clamp(T, TMIN, TMAX) − TREF,
+//   offset = X0 + X1·d + X2·d² + X3·d³,   corrected = raw − offset,
+// parameters TC_G{n}_X{k}_{axis} (axis 0, 1, 2), TC_G{n}_TREF, _TMIN, _TMAX,
+// TC_G{n}_ID (the gyro's device id) and TC_G_ENABLE, all 32-bit floats
+// except the integers ID and ENABLE.
+//
+// ArduPilot (libraries/AP_InertialSensor/AP_InertialSensor_tempcal.cpp,
+// TCal::correct_sensor and polynomial_eval): a fixed reference of 35 °C, no
+// constant term, coefficients stored ×10⁶,
+//   p(x) = (G1 + (G2 + G3·x)·x)·x · 10⁻⁶,
+//   corrected = raw − p(clamp(T) − 35) + p(clamp(T_cal) − 35),
+// where T_cal is the temperature of the gyro offset calibration at boot
+// (INS_GYR_CALTEMP), whose offsets INS_GYROFFS take out the bias there. So
+// the whole correction is B(T) exactly when p(x) = B(35 + x) − B(35): the
+// model's constant belongs to the boot calibration, not to these parameters.
+// Parameters INS_TCAL{n}_ENABLE, _TMIN, _TMAX, _GYR{1,2,3}_{X,Y,Z}.
+//
+// The model's polynomial B(T) = c0 + c1·T + c2·T² + c3·T³ (°/h, T in °C) is
+// re-expanded about the reference exactly (Taylor: a_k = B⁽ᵏ⁾(T_ref)/k!),
+// not refitted, and converted to rad/s (× π/(180·3600)). Stored as 32-bit
+// floats the coefficients keep 24 bits (a relative 6·10⁻⁸ each): the
+// correction inside the range is the model's to about 10⁻⁷ of the bias.
+//
+// TMIN/TMAX are the range of the window temperatures the model was fitted
+// on (the fit file's data.temp_range_c); outside it the firmwares hold the
+// correction at the edge. A model with any term other than T, T^2, T^3
+// (dT, grad, hyst, a column, a step, …) cannot be expressed; it is refused,
+// naming the terms, unless they are dropped (drop_unsupported), which keeps
+// the other coefficients as fitted (not refitted).
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "fit/fit_file.h"
+
+namespace gyrotherm::fit {
+
+// B(T) = Σ c[k]·T^k in °/h, T in °C.
+struct CubicModel {
+  std::array<double, 4> c{};
+  std::vector<std::string> dropped;  // terms left out (drop_unsupported)
+  double evaluate(double temp_c) const;
+};
+
+// The fit's polynomial in T; throws InputError naming the terms a firmware
+// cannot express (and suggesting --format c or --drop-unsupported) unless
+// drop_unsupported.
+CubicModel cubic_of(const SavedFit& fit, bool drop_unsupported, const std::string& format);
+
+// a[k] with B(t_ref + d) = Σ a[k]·d^k, exactly.
+std::array<double, 4> reexpand(const CubicModel& model, double t_ref_c);
+
+inline constexpr double kRadPerSecPerDegPerHour = 3.14159265358979323846 / (180.0 * 3600.0);
+
+// One autopilot axis: a model and its fitted range, or none (not compensated).
+struct AxisModel {
+  bool present = false;
+  std::string channel;
+  CubicModel model;
+  double temp_min_c = 0.0, temp_max_c = 0.0;
+};
+
+struct ExportHeader {
+  std::string fit_file, fit_sha256, engine, model_text, date_utc;
+};
+
+// The QGroundControl parameter file (vehicle 1, component 1; tab-separated
+// "vehicle component name value type", type 9 a float, 6 an integer).
+std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, long device_id,
+                           const ExportHeader& header);
+
+// A Mission Planner / MAVProxy parameter file ("NAME,VALUE" lines).
+std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, int instance, const ExportHeader& header);
+
+// What dropping terms costs on the data the fit was made on: the instability
+// of the window means with the whole model and with the cubic alone.
+struct DroppedCost {
+  double with_dph = 0.0, without_dph = 0.0;
+};
+DroppedCost dropped_cost(const SavedFit& fit, const CubicModel& cubic, const Measurement& data);
+
+// The TMIN/TMAX/TREF the exports use: the intersection of the axes' ranges.
+struct ExportRange {
+  double tmin_c = 0.0, tmax_c = 0.0, tref_c = 0.0;
+};
+ExportRange export_range(const std::array<AxisModel, 3>& axes);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,234 @@
+// `gyrotherm export --format px4|ardupilot` (fit/firmware_export): the
+// exported parameters re-evaluated with each firmware's own formula, written
+// here from its source, against the fit's model.
+//
+// PX4: src/modules/temperature_compensation/TemperatureCompensation.cpp,
+// calc_thermal_offsets_3D (float arithmetic, temperature clipped to
+// [TMIN, TMAX], offset = x0 + x1 d + x2 d² + x3 d³, subtracted).
+// ArduPilot: libraries/AP_InertialSensor/AP_InertialSensor_tempcal.cpp,
+// TCal::polynomial_eval and correct_sensor (TEMP_REFERENCE 35, ×1e-6,
+// v −= p(T − 35), v += p(T_cal − 35), both temperatures constrained).
+
+#include "fit/firmware_export.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli_runner.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+using gyrotherm::testing::run_cli;
+using gyrotherm::testing::run_shell;
+using gyrotherm::testing::ScratchDir;
+using gyrotherm::testing::slurp;
+using gyrotherm::testing::source_path;
+
+constexpr double kDphToRadS = 3.14159265358979323846 / (180.0 * 3600.0);
+
+// name → value of a QGroundControl .params file (tab-separated, '#' comments).
+std::map<std::string, float> read_qgc(const std::string& text) {
+  std::map<std::string, float> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream f(line);
+    std::string vehicle, component, name, value;
+    std::getline(f, vehicle, '\t');
+    std::getline(f, component, '\t');
+    std::getline(f, name, '\t');
+    std::getline(f, value, '\t');
+    out[name] = std::stof(value);
+  }
+  return out;
+}
+
+// name → value of a NAME,VALUE .param file.
+std::map<std::string, float> read_ap(const std::string& text) {
+  std::map<std::string, float> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto comma = line.find(',');
+    out[line.substr(0, comma)] = std::stof(line.substr(comma + 1));
+  }
+  return out;
+}
+
+// PX4's calc_thermal_offsets_3D for one axis, in float as the firmware does.
+float px4_offset(const std::map<std::string, float>& p, int axis, float temp) {
+  const float tmax = p.at("TC_G0_TMAX"), tmin = p.at("TC_G0_TMIN"), tref = p.at("TC_G0_TREF");
+  float delta_temp;
+  if (temp > tmax) delta_temp = tmax - tref;
+  else if (temp < tmin) delta_temp = tmin - tref;
+  else delta_temp = temp - tref;
+  const float delta_temp_2 = delta_temp * delta_temp;
+  const float delta_temp_3 = delta_temp_2 * delta_temp;
+  const auto x = [&](int k) { return p.at("TC_G0_X" + std::to_string(k) + "_" + std::to_string(axis)); };
+  return x(0) + x(1) * delta_temp + x(2) * delta_temp_2 + x(3) * delta_temp_3;
+}
+
+// ArduPilot's correct_sensor for one axis: what it subtracts from the gyro.
+float ardupilot_subtracted(const std::map<std::string, float>& p, char axis, float temp, float cal_temp) {
+  const float tmin = p.at("INS_TCAL1_TMIN"), tmax = p.at("INS_TCAL1_TMAX");
+  const auto g = [&](int k) { return p.at("INS_TCAL1_GYR" + std::to_string(k) + "_" + axis); };
+  const auto poly = [&](float tdiff) { return (g(1) + (g(2) + g(3) * tdiff) * tdiff) * tdiff * 1.0e-6f; };
+  temp = std::clamp(temp, tmin, tmax);
+  cal_temp = std::clamp(cal_temp, tmin, tmax);
+  return poly(temp - 35.0f) - poly(cal_temp - 35.0f);
+}
+
+struct Fitted {
+  double c[4] = {0, 0, 0, 0};
+  double tmin = 0, tmax = 0;
+  double bias(double t) const { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }  // °/h
+};
+
+Fitted read_fit(const nlohmann::json& j) {
+  Fitted f;
+  f.c[0] = j["coefficients"]["1"];
+  for (const auto& [name, k] : {std::pair<const char*, int>{"T", 1}, {"T^2", 2}, {"T^3", 3}})
+    if (j["coefficients"].contains(name)) f.c[k] = j["coefficients"][name];
+  f.tmin = j["data"]["temp_range_c"][0];
+  f.tmax = j["data"]["temp_range_c"][1];
+  return f;
+}
+
+// A scenario and the polynomial its range supports (the warm-up's narrow,
+// monotone range makes T, T², T³ collinear).
+class FirmwareExport : public ::testing::TestWithParam<std::pair<std::string, std::string>> {};
+
+// Every shipped scenario, a polynomial model: both firmwares give the model's
+// bias inside the range to 1e-6 of it, and hold it at the edge outside.
+TEST_P(FirmwareExport, FirmwareFormulasGiveTheModel) {
+  ScratchDir dir;
+  const auto& [scenario, model] = GetParam();
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/" + scenario + ".toml") + " -o d.csv").exit_code, 0);
+  const auto fitted = run_cli(dir, "fit d.csv --model '" + model + "' -o fit.json");
+  ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
+  const Fitted fit = read_fit(nlohmann::json::parse(slurp(dir / "fit.json")));
+  ASSERT_LT(fit.tmin, fit.tmax);
+
+  const auto px4 = run_cli(dir, "export fit.json --format px4 -o g.params");
+  ASSERT_EQ(px4.exit_code, 0) << px4.err;
+  const auto p = read_qgc(slurp(dir / "g.params"));
+  EXPECT_EQ(p.at("TC_G_ENABLE"), 1.0f);
+  EXPECT_FLOAT_EQ(p.at("TC_G0_TMIN"), static_cast<float>(fit.tmin));
+  EXPECT_FLOAT_EQ(p.at("TC_G0_TMAX"), static_cast<float>(fit.tmax));
+  const auto ap = run_cli(dir, "export fit.json --format ardupilot -o g.param");
+  ASSERT_EQ(ap.exit_code, 0) << ap.err;
+  const auto a = read_ap(slurp(dir / "g.param"));
+  EXPECT_EQ(a.at("INS_TCAL1_ENABLE"), 1.0f);
+
+  for (int i = 0; i <= 200; ++i) {
+    const double t = fit.tmin - 20.0 + (fit.tmax - fit.tmin + 40.0) * i / 200.0;
+    const double inside = std::clamp(t, fit.tmin, fit.tmax);
+    const double truth = fit.bias(inside) * kDphToRadS;  // rad/s
+    EXPECT_NEAR(px4_offset(p, 0, static_cast<float>(t)), truth, 1e-6 * std::abs(truth)) << "T = " << t;
+    EXPECT_EQ(px4_offset(p, 1, static_cast<float>(t)), 0.0f);  // axes without a fit
+    // ArduPilot: the boot calibration takes out the bias at T_cal (its
+    // offsets), the parameters the change from there.
+    for (const double cal : {fit.tmin + 3.0, 0.5 * (fit.tmin + fit.tmax)}) {
+      const double subtracted = ardupilot_subtracted(a, 'X', static_cast<float>(t), static_cast<float>(cal)) +
+                                fit.bias(cal) * kDphToRadS;
+      EXPECT_NEAR(subtracted, truth, 1e-6 * std::abs(truth)) << "T = " << t << ", T_cal = " << cal;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, FirmwareExport,
+                         ::testing::Values(std::pair<std::string, std::string>{"cycle", "T + T^2 + T^3"},
+                                           std::pair<std::string, std::string>{"random", "T + T^2 + T^3"},
+                                           std::pair<std::string, std::string>{"warmup", "T + T^2"}));
+
+TEST(FirmwareExportMath, ReexpansionIsExact) {
+  CubicModel m;
+  m.c = {1.5, -0.25, 3e-3, -2e-5};
+  for (const double r : {-10.0, 0.0, 22.5, 35.0}) {
+    const auto a = reexpand(m, r);
+    for (const double d : {-30.0, -1.0, 0.0, 2.5, 40.0})
+      EXPECT_NEAR(a[0] + d * (a[1] + d * (a[2] + d * a[3])), m.evaluate(r + d), 1e-12 * (1.0 + std::abs(m.evaluate(r + d))));
+  }
+}
+
+// Three channels to three axes, in the order --axes names them.
+TEST(CliExport, AxesMapTheFitsChannels) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
+  run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{next} /^time/{print $1,$4,\"gx\",\"gy\",\"gz\";next} "
+                 "{print $1,$4,$6,-$6+0.001*$4*$4,0.5*$6}' d.csv | tee three.csv");
+  ASSERT_EQ(run_cli(dir, "fit three.csv --gyro-col gx,gy,gz --model 'T + T^2' -o fit.json").exit_code, 0);
+  const nlohmann::json j = nlohmann::json::parse(slurp(dir / "fit.json"));
+  const auto r = run_cli(dir, "export fit.json --format px4 --axes gz,-,gx --instance 1 --device-id 2293768 -o g.params");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = slurp(dir / "g.params");
+  EXPECT_NE(text.find("TC_G1_ID\t2293768\t6"), std::string::npos) << text;
+  std::map<std::string, float> p;
+  for (const auto& [name, value] : read_qgc(text))  // instance 1 read as 0 by px4_offset
+    p[name.rfind("TC_G1_", 0) == 0 ? "TC_G0_" + name.substr(6) : name] = value;
+  const Fitted gx = read_fit(j["channels"][0]), gz = read_fit(j["channels"][2]);
+  const double t = 0.5 * (gx.tmin + gx.tmax) + 7.0;
+  EXPECT_NEAR(px4_offset(p, 0, static_cast<float>(t)), gz.bias(t) * kDphToRadS, 1e-6 * std::abs(gz.bias(t) * kDphToRadS));
+  EXPECT_EQ(px4_offset(p, 1, static_cast<float>(t)), 0.0f);
+  EXPECT_NEAR(px4_offset(p, 2, static_cast<float>(t)), gx.bias(t) * kDphToRadS, 1e-6 * std::abs(gx.bias(t) * kDphToRadS));
+  const auto unknown = run_cli(dir, "export fit.json --format px4 --axes gx,gq,- -o g.params");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("'gq' is not a channel of fit.json (its channels: gx, gy, gz)"), std::string::npos)
+      << unknown.err;
+}
+
+TEST(CliExport, AModelTheFirmwareCannotExpressIsRefusedOrDroppedWithItsCost) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "fit d.csv -o fit.json").exit_code, 0);  // T + T^2 + dT
+  for (const char* format : {"px4", "ardupilot"}) {
+    const auto refused = run_cli(dir, std::string("export fit.json --format ") + format + " -o out.txt");
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_NE(refused.err.find("a term (dT)"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("--drop-unsupported"), std::string::npos) << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
+  }
+  const auto dropped = run_cli(dir, "export fit.json --format px4 --drop-unsupported -o out.params");
+  ASSERT_EQ(dropped.exit_code, 0) << dropped.err;
+  EXPECT_NE(dropped.out.find("dropped dT: the instability on d.csv rises from"), std::string::npos) << dropped.out;
+  // The cubic left is the fit's own coefficients of T and T^2, not refitted.
+  const Fitted fit = read_fit(nlohmann::json::parse(slurp(dir / "fit.json")));
+  const auto p = read_qgc(slurp(dir / "out.params"));
+  const double t = fit.tmin + 10.0;
+  EXPECT_NEAR(px4_offset(p, 0, static_cast<float>(t)), fit.bias(t) * kDphToRadS, 1e-6 * std::abs(fit.bias(t) * kDphToRadS));
+}
+
+TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "fit d.csv --model 'T + T^2' -o fit.json").exit_code, 0);
+  const auto format = run_cli(dir, "export fit.json --format betaflight -o out.txt");
+  EXPECT_EQ(format.exit_code, 2);
+  EXPECT_NE(format.err.find("expected c, px4 or ardupilot"), std::string::npos) << format.err;
+  const auto c = run_cli(dir, "export fit.json --format c -o out.h");
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_NE(c.err.find("not available yet"), std::string::npos) << c.err;
+  // Corrupt, and from a version that did not save the temperature range.
+  gyrotherm::testing::write_text(dir / "corrupt.json", "{\"engine\": \"ols\", \"model\": ");
+  const auto corrupt = run_cli(dir, "export corrupt.json --format px4 -o out.txt");
+  EXPECT_EQ(corrupt.exit_code, 2);
+  EXPECT_NE(corrupt.err.find("corrupt.json: not valid JSON"), std::string::npos) << corrupt.err;
+  nlohmann::json old = nlohmann::json::parse(slurp(dir / "fit.json"));
+  old["data"].erase("temp_range_c");
+  gyrotherm::testing::write_text(dir / "old.json", old.dump());
+  const auto older = run_cli(dir, "export old.json --format ardupilot -o out.txt");
+  EXPECT_EQ(older.exit_code, 2);
+  EXPECT_NE(older.err.find("no data.temp_range_c"), std::string::npos) << older.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
