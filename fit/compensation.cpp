@@ -1,5 +1,6 @@
 #include "fit/compensation.h"
 
+#include "fit/causal_compensator.h"
 #include "fit/model/formula.h"
 
 #include <fmt/format.h>
@@ -50,24 +51,40 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   c.outlier.resize(m.size());
   for (std::size_t k = 0; k < m.size(); ++k) c.outlier[k] = valid[k] ? 0 : 1;
   c.model_dph.resize(m.size());
-  const double half_window = 0.5 * s.window_s;  // a burst's half length with bursts
+  if (pipeline.derivative == DerivativeMode::causal) {
+    // The real-time compensator, sample by sample, with the fit's record
+    // constants (this record's for fit files that lack them).
+    CausalSettings settings;
+    settings.sample_interval_s = fit.sample_interval_s.value_or(c.data.averaging.sample_interval_s);
+    settings.bursts = fit.bursts.value_or(c.data.averaging.bursts);
+    settings.outlier_floor_dph = fit.outlier_floor_dph.value_or(c.data.outliers.floor_dph);
+    std::vector<std::string> names;
+    std::vector<const std::vector<double>*> columns;
+    for (const auto& [name, values] : m.extra) {
+      names.push_back(name);
+      columns.push_back(&values);
+    }
+    CausalCompensator compensator(fit, settings, names);
+    std::vector<double> extra(columns.size());
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      for (std::size_t i = 0; i < extra.size(); ++i) extra[i] = (*columns[i])[k];
+      bool glitch = false;
+      c.model_dph[k] = compensator.update(m.time_s[k], m.temp_c[k], m.has_temp2() ? m.temp2_c[k] : 0.0,
+                                          m.gyro_dph[k], extra, &glitch);
+      c.outlier[k] = glitch ? 1 : 0;
+    }
+    return c;
+  }
   std::size_t p = 0;  // windows are in time order
   for (std::size_t k = 0; k < m.size(); ++k) {
     const double t = m.time_s[k];
-    if (pipeline.derivative == DerivativeMode::causal) {
-      // The latest window complete at t (its end ≈ centre + W/2).
-      while (p + 1 < s.size() && s.time_s[p + 1] + half_window <= t) ++p;
-      c.model_dph[k] = c.window_model_dph[p];
+    while (p + 1 < s.size() && s.time_s[p + 1] <= t) ++p;
+    const bool can_interpolate = p + 1 < s.size() && s.run[p + 1] == s.run[p] && t >= s.time_s[p];
+    if (can_interpolate) {
+      const double f = (t - s.time_s[p]) / (s.time_s[p + 1] - s.time_s[p]);
+      c.model_dph[k] = c.window_model_dph[p] + f * (c.window_model_dph[p + 1] - c.window_model_dph[p]);
     } else {
-      while (p + 1 < s.size() && s.time_s[p + 1] <= t) ++p;
-      const bool can_interpolate =
-          p + 1 < s.size() && s.run[p + 1] == s.run[p] && t >= s.time_s[p];
-      if (can_interpolate) {
-        const double f = (t - s.time_s[p]) / (s.time_s[p + 1] - s.time_s[p]);
-        c.model_dph[k] = c.window_model_dph[p] + f * (c.window_model_dph[p + 1] - c.window_model_dph[p]);
-      } else {
-        c.model_dph[k] = c.window_model_dph[p];
-      }
+      c.model_dph[k] = c.window_model_dph[p];
     }
   }
   return c;

@@ -9,9 +9,13 @@
 // For the full-rate output every sample gets the model of its time:
 //   central mode (offline): B interpolated linearly between window centres of
 //     the same gap-free run (held flat beyond the first and last centre);
-//   causal mode (real time): B of the latest window already complete at that
-//     time (the first window's value before any is complete), so nothing from
-//     the future is used.
+//   causal mode (real time): the real-time compensator of
+//     fit/causal_compensator.h, sample by sample: a trailing glitch rule, B of
+//     the latest window closed before the sample (before any: of the sample
+//     itself), with the fit's sample interval, burst mode and glitch floor.
+//     Nothing from the future is used: a record cut short gives the same
+//     values up to the cut. The instability before/after is still that of the
+//     offline windows, and so is the outlier count in the report.
 // compensated = gyro − B: the residual bias, centred near zero.
 
 #include <filesystem>

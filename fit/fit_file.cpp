@@ -90,6 +90,7 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                {"dropped_windows", data.averaging.dropped_windows},
                {"bursts", data.averaging.bursts},
                {"windows_described", describe_windows(data, pipeline)}};
+  j["data"]["outlier_floor_dph"] = data.outliers.floor_dph;  // the glitch rule's s_floor on this record
   if (!data.series.temp_c.empty()) {
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
     j["data"]["temp_range_c"] = {*lo, *hi};  // of the window means: where the model was fitted
@@ -237,8 +238,13 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
       throw InputError(fmt::format("{}: data.temp_range_c: expected [min, max] in °C", file.string()));
     s.temp_range_c = {number(r[0], "data.temp_range_c[0]"), number(r[1], "data.temp_range_c[1]")};
   }
-  if (j.contains("data") && j["data"].is_object() && j["data"].contains("file") && j["data"]["file"].is_string())
-    s.data_file = j["data"]["file"].get<std::string>();
+  if (j.contains("data") && j["data"].is_object()) {
+    const nlohmann::json& d = j["data"];
+    if (d.contains("file") && d["file"].is_string()) s.data_file = d["file"].get<std::string>();
+    if (d.contains("sample_interval_s")) s.sample_interval_s = number(d["sample_interval_s"], "data.sample_interval_s");
+    if (d.contains("outlier_floor_dph")) s.outlier_floor_dph = number(d["outlier_floor_dph"], "data.outlier_floor_dph");
+    if (d.contains("bursts") && d["bursts"].is_boolean()) s.bursts = d["bursts"].get<bool>();
+  }
   return s;
 }
 }  // namespace

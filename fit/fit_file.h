@@ -50,6 +50,10 @@ struct SavedFit {
   // fit files written before it was saved.
   std::optional<std::pair<double, double>> temp_range_c;
   std::string data_file;  // the data it was fitted on, as given to fit
+  // Of that data, for the real-time compensator (fit/causal_compensator.h):
+  // the sample interval, the burst mode and the glitch rule's floor.
+  std::optional<double> sample_interval_s, outlier_floor_dph;
+  std::optional<bool> bursts;
 };
 
 // Throws InputError naming the file and the field for anything missing or malformed.

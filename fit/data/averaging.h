@@ -97,6 +97,9 @@ class WindowAverager {
   AveragedSeries finish();
 
   const AveragingReport& report() const { return report_; }
+  // The windows closed so far (a window closes when a sample beyond it, or
+  // after a gap, arrives; the last one at finish()).
+  const AveragedSeries& closed() const { return series_; }
   double record_s() const { return started_ ? last_time_s_ - series_.start_time_s : 0.0; }
   double longest_run_s() const { return longest_run_s_; }
 

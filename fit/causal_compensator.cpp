@@ -1,0 +1,93 @@
+#include "fit/causal_compensator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fit/data/derivatives.h"
+#include "fit/model/terms.h"
+#include "fit/pipeline.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+constexpr double kMadToSigma = 1.4826;  // as fit/data/outliers.cpp
+
+double median_of(std::vector<double> v) {
+  const std::size_t half = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(half), v.end());
+  const double upper = v[half];
+  if (v.size() % 2 == 1) return upper;
+  return 0.5 * (*std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(half)) + upper);
+}
+
+}  // namespace
+
+CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& settings,
+                                     std::vector<std::string> extra_names)
+    : fit_(fit),
+      settings_(settings),
+      extra_names_(extra_names),
+      averager_(fit.pipeline.averaging, settings.sample_interval_s, true, settings.bursts, std::move(extra_names)) {}
+
+bool CausalCompensator::judge(double t, double x) {
+  const double width = fit_.pipeline.outliers.window_s;
+  std::size_t drop = 0;
+  while (drop < recent_t_.size() && t - recent_t_[drop] > width) ++drop;
+  recent_t_.erase(recent_t_.begin(), recent_t_.begin() + static_cast<std::ptrdiff_t>(drop));
+  recent_x_.erase(recent_x_.begin(), recent_x_.begin() + static_cast<std::ptrdiff_t>(drop));
+  recent_t_.push_back(t);
+  recent_x_.push_back(x);
+  if (recent_x_.size() < 3) return false;
+  const double median = median_of(recent_x_);
+  const double deviation = std::abs(x - median);
+  const double threshold = fit_.pipeline.outliers.threshold;
+  if (!(deviation > threshold * settings_.outlier_floor_dph)) return false;
+  std::vector<double> spread(recent_x_.size());
+  for (std::size_t i = 0; i < spread.size(); ++i) spread[i] = std::abs(recent_x_[i] - median);
+  const double scale = std::max(kMadToSigma * median_of(std::move(spread)), settings_.outlier_floor_dph);
+  return deviation > threshold * scale;
+}
+
+double CausalCompensator::bias_of(const AveragedSeries& windows) const {
+  const DerivedSeries derived = derive(windows, DerivativeMode::causal, fit_.pipeline.derivative_span_s);
+  return model_values(design_matrix(derived, fit_.terms, fit_.parameters), fit_.coefficients).back();
+}
+
+double CausalCompensator::update(double t, double temp, double temp2, double gyro, std::span<const double> extra,
+                                 bool* glitch) {
+  if (!started_) {
+    started_ = true;
+    start_time_s_ = t;
+  }
+  const bool rejected = fit_.pipeline.remove_outliers && judge(t, gyro);
+  if (glitch) *glitch = rejected;
+  averager_.add(t, temp, gyro, temp2, !rejected, extra);
+  const AveragedSeries& closed = averager_.closed();
+  while (window_bias_.size() < closed.size()) {
+    // The windows up to the next one not yet given a bias.
+    AveragedSeries prefix = closed;
+    const std::size_t keep = window_bias_.size() + 1;
+    prefix.time_s.resize(keep);
+    prefix.temp_c.resize(keep);
+    prefix.gyro_dph.resize(keep);
+    if (!prefix.temp2_c.empty()) prefix.temp2_c.resize(keep);
+    prefix.samples.resize(keep);
+    prefix.run.resize(keep);
+    for (auto& [name, values] : prefix.extra) values.resize(keep);
+    window_bias_.push_back(bias_of(prefix));
+  }
+  if (!window_bias_.empty()) return window_bias_.back();
+  // Before any window closes: this sample as a window of its own.
+  AveragedSeries own;
+  own.start_time_s = start_time_s_;
+  own.time_s = {t};
+  own.temp_c = {temp};
+  own.gyro_dph = {gyro};
+  own.temp2_c = {temp2};
+  own.samples = {1};
+  own.run = {0};
+  for (std::size_t i = 0; i < extra_names_.size() && i < extra.size(); ++i) own.extra[extra_names_[i]] = {extra[i]};
+  return bias_of(own);
+}
+
+}  // namespace gyrotherm::fit

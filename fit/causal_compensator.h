@@ -1,0 +1,69 @@
+#pragma once
+// The real-time compensator (`compensate --causal`, and what `export --format
+// c` writes in C): each sample gets the model's bias from what came before
+// it, nothing after.
+//
+// Per sample, in time order:
+//   1. The glitch rule, trailing: the sample is judged against the samples of
+//      the last W_o seconds (itself included), Hampel's test with the local
+//      MAD and the fit's global floor s_floor (fit/data/outliers.h; the offline
+//      rule centres its window and so looks W_o/2 ahead). With fewer than 3
+//      samples in the window the sample is kept.
+//   2. The windows of the fit (fit/data/averaging.h) with the fit's sample
+//      interval Δ and burst mode, fed one sample at a time; a window closes
+//      when a sample beyond it, or after a gap, arrives.
+//   3. When a window closes: its backward derivatives and every term of the
+//      model over the windows so far, the model's bias B at that window.
+//   4. The sample's bias is B of the latest closed window; before the first
+//      one closes, B of the sample itself taken as a window (its temperature,
+//      rates 0).
+// Δ, the burst mode and s_floor are the fit's (the record it was fitted on),
+// not re-estimated from the record being compensated, so the compensator is
+// the same on any record and needs no look at the whole of it.
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fit/data/averaging.h"
+#include "fit/fit_file.h"
+
+namespace gyrotherm::fit {
+
+struct CausalSettings {
+  double sample_interval_s = 1.0;  // Δ
+  bool bursts = false;             // every gap-free run one window
+  double outlier_floor_dph = 0.0;  // s_floor
+};
+
+class CausalCompensator {
+ public:
+  // extra_names: the log columns the model's column terms read, in the order
+  // update() is given their values.
+  CausalCompensator(const SavedFit& fit, const CausalSettings& settings, std::vector<std::string> extra_names = {});
+
+  // The model's bias (°/h) for this sample; *glitch says whether the glitch
+  // rule rejected it (it then enters no window).
+  double update(double time_s, double temp_c, double temp2_c, double gyro_dph, std::span<const double> extra,
+                bool* glitch);
+
+  std::size_t closed_windows() const { return averager_.closed().size(); }
+  // The bias at each closed window, in order.
+  const std::vector<double>& window_bias_dph() const { return window_bias_; }
+
+ private:
+  bool judge(double time_s, double gyro_dph);
+  double bias_of(const AveragedSeries& windows) const;
+
+  const SavedFit& fit_;
+  CausalSettings settings_;
+  std::vector<std::string> extra_names_;
+  WindowAverager averager_;
+  std::vector<double> recent_t_, recent_x_;  // the glitch rule's trailing window
+  std::vector<double> window_bias_;
+  bool started_ = false;
+  double start_time_s_ = 0.0;
+};
+
+}  // namespace gyrotherm::fit
