@@ -1,5 +1,6 @@
-// gyrotherm export FIT.json --format px4|ardupilot|c [--axes A,B,C] [--instance N]
-//                           [--device-id ID] [--drop-unsupported [--data CSV]] -o FILE
+// gyrotherm export FIT.json --format c|px4|ardupilot [--channel NAME] [--prefix P]
+//                           [--axes A,B,C] [--instance N] [--device-id ID]
+//                           [--drop-unsupported [--data CSV]] -o FILE
 // A saved fit as an autopilot's gyro thermal compensation parameters
 // (fit/firmware_export.h).
 
@@ -12,6 +13,7 @@
 
 #include "app/comma_list.h"
 #include "app/commands.h"
+#include "fit/c_export.h"
 #include "fit/firmware_export.h"
 #include "fit/model/formula.h"
 #include "fit/pipeline.h"
@@ -68,13 +70,41 @@ void report_dropped(const fit::SavedFit& f, const fit::CubicModel& cubic, const 
              fit_name(f), names, data.string(), cost.with_dph, cost.without_dph, cost.without_dph / cost.with_dph);
 }
 
+// --format c: one channel's model as a C99 real-time compensator.
+int export_c(const ExportOptions& o) {
+  const std::vector<fit::SavedFit> fits = fit::load_fits(o.fit_file);
+  const fit::SavedFit* chosen = nullptr;
+  std::string known;
+  for (const fit::SavedFit& f : fits) {
+    known += (known.empty() ? "" : ", ") + fit_name(f);
+    if (o.channel.empty() ? fits.size() == 1 : fit_name(f) == o.channel) chosen = &f;
+  }
+  if (!chosen)
+    throw InputError(o.channel.empty()
+                         ? fmt::format("{} holds {} channels ({}); choose one with --channel", o.fit_file, fits.size(),
+                                       known)
+                         : fmt::format("--channel {}: not a channel of {} (its channels: {})", o.channel, o.fit_file,
+                                       known));
+  const fit::SavedFit& f = *chosen;
+  if (!f.sample_interval_s || !f.bursts || (f.pipeline.remove_outliers && !f.outlier_floor_dph))
+    throw InputError(fmt::format("{}: the fit lacks data.sample_interval_s, data.bursts or data.outlier_floor_dph "
+                                 "(written by an earlier gyrotherm); fit again to export it in C",
+                                 o.fit_file));
+  fit::CausalSettings settings;
+  settings.sample_interval_s = *f.sample_interval_s;
+  settings.bursts = *f.bursts;
+  settings.outlier_floor_dph = f.outlier_floor_dph.value_or(0.0);
+  const fit::ExportHeader header{o.fit_file, sha256_file_hex(o.fit_file), f.engine, fit::formula_text(f.terms),
+                                 utc_now()};
+  write_file_atomically(o.output, fit::c_header(f, settings, o.prefix, header));
+  fmt::print("wrote {}: {}_update() gives B = b0 + {} (°/h) sample by sample, as compensate --causal{}\n", o.output,
+             o.prefix, fit::formula_text(f.terms),
+             f.pipeline.remove_outliers ? fmt::format("; {}_update_gyro() also applies the glitch rule", o.prefix) : "");
+  return 0;
+}
+
 int run_export(const ExportOptions& o) {
-  if (o.format == "c")
-    throw InputError(
-        "--format c: not available yet. The C compensator must reproduce compensate --causal sample by sample, and "
-        "that is not yet strictly causal (its glitch rule looks 30 s ahead and uses a floor from the whole record; "
-        "the first window's model is used before that window is complete); see the README's 'From fit to "
-        "firmware'. Use --format px4 or ardupilot for a polynomial model");
+  if (o.format == "c") return export_c(o);
   if (o.format != "px4" && o.format != "ardupilot")
     throw InputError(fmt::format("--format {}: expected c, px4 or ardupilot", o.format));
   const std::vector<fit::SavedFit> fits = fit::load_fits(o.fit_file);
@@ -149,7 +179,7 @@ void add_export_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<ExportOptions>();
   CLI::App* cmd = app.add_subcommand("export", "Export a saved fit as autopilot parameters (PX4, ArduPilot)");
   cmd->add_option("fit", o->fit_file, "Fit saved by 'gyrotherm fit -o'")->required();
-  cmd->add_option("--format", o->format, "px4 (QGroundControl .params), ardupilot (.param), or c (not yet)")
+  cmd->add_option("--format", o->format, "px4 (QGroundControl .params), ardupilot (.param), or c (a C99 header: the whole model)")
       ->required();
   cmd->add_option("--axes", o->axes,
                   "The fit's channels for the X, Y and Z axes, '-' for none (default: the channels in order)");

@@ -45,8 +45,8 @@ CubicModel cubic_of(const SavedFit& fit, bool drop_unsupported, const std::strin
     for (const std::string& n : unsupported) names += (names.empty() ? "" : ", ") + n;
     throw InputError(fmt::format(
         "{}: the model has {} ({}), which {} cannot express: its gyro thermal compensation is a cubic in "
-        "temperature. Fit a polynomial (--model 'T + T^2 + T^3'), or pass --drop-unsupported to leave {} out "
-        "(export then prints how much the instability rises)",
+        "temperature. Use --format c for the whole model, fit a polynomial (--model 'T + T^2 + T^3'), or pass "
+        "--drop-unsupported to leave {} out (export then prints how much the instability rises)",
         fit.file.string(), unsupported.size() == 1 ? "a term" : "terms", names, format,
         unsupported.size() == 1 ? "it" : "them"));
   }

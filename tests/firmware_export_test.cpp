@@ -213,9 +213,6 @@ TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
   const auto format = run_cli(dir, "export fit.json --format betaflight -o out.txt");
   EXPECT_EQ(format.exit_code, 2);
   EXPECT_NE(format.err.find("expected c, px4 or ardupilot"), std::string::npos) << format.err;
-  const auto c = run_cli(dir, "export fit.json --format c -o out.h");
-  EXPECT_EQ(c.exit_code, 2);
-  EXPECT_NE(c.err.find("not available yet"), std::string::npos) << c.err;
   // Corrupt, and from a version that did not save the temperature range.
   gyrotherm::testing::write_text(dir / "corrupt.json", "{\"engine\": \"ols\", \"model\": ");
   const auto corrupt = run_cli(dir, "export corrupt.json --format px4 -o out.txt");

@@ -1,0 +1,135 @@
+// `gyrotherm export --format c` (fit/c_export): the generated header,
+// compiled by the system's C compiler as strict C99 (and as C++17), run over
+// a simulated record, gives compensate --causal's model sample by sample.
+
+#include "fit/c_export.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "cli_runner.h"
+#include "fit/compensation.h"
+#include "fit/pipeline.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+using gyrotherm::testing::run_cli;
+using gyrotherm::testing::run_shell;
+using gyrotherm::testing::ScratchDir;
+using gyrotherm::testing::slurp;
+using gyrotherm::testing::source_path;
+using gyrotherm::testing::write_text;
+
+// Reads the simulator's CSV (time_s, chamber_c, case_c, temp_c, temp2_c,
+// gyro_dph, …) and prints the header's bias for every sample.
+constexpr const char* kDriver = R"C(
+#include <stdio.h>
+#include <string.h>
+#include "comp.h"
+int main(int argc, char **argv) {
+  char line[4096];
+  gt_comp_state s;
+  FILE *f = fopen(argv[1], "r");
+  const int gyro = argc > 2 && strcmp(argv[2], "gyro") == 0;
+  if (!f) return 2;
+  gt_comp_init(&s);
+  while (fgets(line, sizeof line, f)) {
+    double t, chamber, box, T, T2, g;
+    if (line[0] == '#' || line[0] == 't') continue;
+    if (sscanf(line, "%lf,%lf,%lf,%lf,%lf,%lf", &t, &chamber, &box, &T, &T2, &g) != 6) return 3;
+    printf("%.17g\n", gyro ? gt_comp_update_gyro(&s, t, T, T2, g) : gt_comp_update(&s, t, T, T2));
+  }
+  fclose(f);
+  return 0;
+}
+)C";
+
+std::vector<double> numbers(const std::string& text) {
+  std::vector<double> v;
+  std::istringstream in(text);
+  for (double x; in >> x;) v.push_back(x);
+  return v;
+}
+
+struct Case {
+  std::string scenario, model, fit_options;
+};
+
+class CExport : public ::testing::TestWithParam<Case> {};
+
+TEST_P(CExport, TheHeaderGivesCompensateCausalSampleBySample) {
+  const Case& c = GetParam();
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/" + c.scenario + ".toml") + " -o d.csv").exit_code, 0);
+  const auto fitted = run_cli(dir, "fit d.csv --model '" + c.model + "' " + c.fit_options + " -o fit.json");
+  ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
+  const auto exported = run_cli(dir, "export fit.json --format c -o comp.h");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const std::string header = slurp(dir / "comp.h");
+  EXPECT_NE(header.find("SHA-256"), std::string::npos);
+  EXPECT_NE(header.find("Valid: "), std::string::npos);
+  for (const char* forbidden : {"malloc", "printf", "FILE", "<stdio.h>", "<stdlib.h>"})
+    EXPECT_EQ(header.find(forbidden), std::string::npos) << forbidden;
+  write_text(dir / "drv.c", kDriver);
+  const auto cc = run_shell(dir, "cc -std=c99 -Wall -Wextra -Werror -pedantic -O2 drv.c -o drv -lm");
+  ASSERT_EQ(cc.exit_code, 0) << cc.err;
+  write_text(dir / "drv.cpp", kDriver);
+  const auto cxx = run_shell(dir, "c++ -std=c++17 -Wall -Wextra -Werror -pedantic -c drv.cpp -o drv.o");
+  EXPECT_EQ(cxx.exit_code, 0) << cxx.err;
+
+  const SavedFit fit = load_fit(dir / "fit.json");
+  PipelineOptions pipeline = reading_columns_of(fit.pipeline, fit.terms);
+  pipeline.derivative = DerivativeMode::causal;
+  const Compensation expected = compensate(read_measurement_csv(dir / "d.csv", pipeline.columns), fit, pipeline);
+  const auto run = run_shell(dir, std::string("./drv d.csv ") + (fit.pipeline.remove_outliers ? "gyro" : ""));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::vector<double> got = numbers(run.out);
+  ASSERT_EQ(got.size(), expected.model_dph.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < got.size(); ++k) worst = std::max(worst, std::abs(got[k] - expected.model_dph[k]));
+  EXPECT_LE(worst, 1e-9) << "°/h";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ShippedScenarios, CExport,
+    ::testing::Values(
+        Case{"cycle", "T + T^2 + dT + d2T + T*dT + hyst + warmup + t + lag + grad + step@20000", ""},
+        Case{"cycle", "T + T^2 + dT", "--keep-outliers"},
+        Case{"random", "T + T^2 + T^3 + dT + d2T + T*dT + hyst + warmup + t + lag + grad", ""},
+        Case{"warmup", "T + T^2 + dT + d2T + hyst + warmup + t + grad", ""}),
+    [](const ::testing::TestParamInfo<Case>& param_info) {
+      return param_info.param.scenario + (param_info.param.fit_options.empty() ? "_every_term" : "_no_glitch_rule");
+    });
+
+TEST(CliExportC, BadInputIsRefused) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
+  run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{next} /^time/{print $0,\"supply_v\";next} {print $0,28+0.001*$1%7}' d.csv "
+                 "| tee v.csv");
+  ASSERT_EQ(run_cli(dir, "fit v.csv --model 'T + dT + supply_v' -o col.json").exit_code, 0);
+  const auto column = run_cli(dir, "export col.json --format c -o c.h");
+  EXPECT_EQ(column.exit_code, 2);
+  EXPECT_NE(column.err.find("the term 'supply_v' has no C form (a log column"), std::string::npos) << column.err;
+  ASSERT_EQ(run_cli(dir, "fit d.csv -o fit.json").exit_code, 0);
+  const auto prefix = run_cli(dir, "export fit.json --format c --prefix 9lives -o c.h");
+  EXPECT_EQ(prefix.exit_code, 2);
+  EXPECT_NE(prefix.err.find("expected a C identifier"), std::string::npos) << prefix.err;
+  run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{next} /^time/{print $1,$4,\"gx\",\"gy\";next} {print $1,$4,$6,-$6}' "
+                 "d.csv | tee two.csv");
+  ASSERT_EQ(run_cli(dir, "fit two.csv --gyro-col gx,gy -o two.json").exit_code, 0);
+  const auto which = run_cli(dir, "export two.json --format c -o c.h");
+  EXPECT_EQ(which.exit_code, 2);
+  EXPECT_NE(which.err.find("choose one with --channel"), std::string::npos) << which.err;
+  const auto unknown = run_cli(dir, "export two.json --format c --channel gz -o c.h");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("--channel gz: not a channel of two.json (its channels: gx, gy)"), std::string::npos)
+      << unknown.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "c.h"));
+  EXPECT_EQ(run_cli(dir, "export two.json --format c --channel gy --prefix gyro_y -o c.h").exit_code, 0);
+  EXPECT_NE(slurp(dir / "c.h").find("gyro_y_update_gyro"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
