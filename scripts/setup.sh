@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   g++ cmake make                     # compiler and build
+  gcc                                # cc: the C export test compiles the generated header as C99
   libeigen3-dev                      # linear algebra (QR, eigen-decompositions in tests)
   libsundials-dev                    # CVODE (pulls in OpenMPI and PETSc)
   libgtest-dev libgmock-dev          # tests
