@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "sim/util/atomic_file.h"
+#include "sim/util/fast_number.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -98,11 +99,31 @@ void write_compensated_csv(const std::filesystem::path& file, const Compensation
                  c.before_dph, c.after_dph);
   fmt::format_to(std::back_inserter(out),
                  "time_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n");
-  for (std::size_t k = 0; k < c.time_s.size(); ++k)
-    fmt::format_to(std::back_inserter(out), "{:.10g},{:.6f},{:.6f},{:.9f},{:.9f},{}\n", c.time_s[k],
-                   c.temp_c[k], c.gyro_dph[k], c.model_dph[k], c.gyro_dph[k] - c.model_dph[k],
-                   static_cast<int>(c.outlier[k]));
-  write_file_atomically(file, std::string_view(out.data(), out.size()));
+  // The digits of "{:.10g},{:.6f},{:.6f},{:.9f},{:.9f},{}", formatted by hand
+  // into one buffer (sim/util/fast_number.h).
+  std::string text(out.data(), out.size());
+  constexpr std::size_t kRowRoom = 6 * 350;
+  std::size_t used = text.size();
+  text.resize(used + c.time_s.size() * 80 + kRowRoom);
+  for (std::size_t k = 0; k < c.time_s.size(); ++k) {
+    if (text.size() - used < kRowRoom) text.resize(text.size() + (c.time_s.size() - k) * 80 + kRowRoom);
+    char* p = text.data() + used;
+    p = write_general(p, c.time_s[k], 10);
+    *p++ = ',';
+    p = write_fixed(p, c.temp_c[k], 6);
+    *p++ = ',';
+    p = write_fixed(p, c.gyro_dph[k], 6);
+    *p++ = ',';
+    p = write_fixed(p, c.model_dph[k], 9);
+    *p++ = ',';
+    p = write_fixed(p, c.gyro_dph[k] - c.model_dph[k], 9);
+    *p++ = ',';
+    *p++ = c.outlier[k] ? '1' : '0';
+    *p++ = '\n';
+    used = static_cast<std::size_t>(p - text.data());
+  }
+  text.resize(used);
+  write_file_atomically(file, text);
 }
 
 void write_compensated_csv(const std::filesystem::path& file,
