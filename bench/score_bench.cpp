@@ -8,6 +8,9 @@
 //    and `ceiling`: the same ratio for a pure arithmetic loop split over 1
 //    and 2 threads, measured in the same iteration: what the machine itself
 //    offers at that moment (below 2 when other work shares the cores).
+//  BM_CampaignScaling/<trials>: 100, 1,000 and 10,000 trials on 2 threads,
+//    once each (the largest takes about a minute and a half): ms_per_trial
+//    stays the same if campaign time grows linearly with the trials.
 
 #include <benchmark/benchmark.h>
 
@@ -102,7 +105,31 @@ void BM_CampaignSpeedup(benchmark::State& state) {
   state.counters["ceiling"] = loop_one / loop_two;
 }
 
+// How campaign time grows with the number of trials (the same trial indices
+// as a campaign of that size; the set-up is shared and not timed).
+void BM_CampaignScaling(benchmark::State& state) {
+  static const fit::Campaign large = [] {
+    fit::ScoreOptions o;
+    o.scenario = std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/cycle.toml";
+    o.trials = 10000;
+    return fit::Campaign(o);
+  }();
+  std::vector<std::size_t> k(static_cast<std::size_t>(state.range(0)));
+  std::iota(k.begin(), k.end(), std::size_t{0});
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const auto started = std::chrono::steady_clock::now();
+    const auto outcomes = large.run(k, 2);
+    benchmark::DoNotOptimize(outcomes.data());
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+  state.counters["trials"] = static_cast<double>(k.size());
+  state.counters["ms_per_trial"] = 1e3 * seconds / static_cast<double>(state.iterations()) / static_cast<double>(k.size());
+}
+
 BENCHMARK(BM_Campaign)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_CampaignScaling)->Arg(100)->Arg(1000)->Arg(10000)->Iterations(1)->Repetitions(1)
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_CampaignSpeedup)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

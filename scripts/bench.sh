@@ -83,6 +83,10 @@ campaign1=$(run_seconds results/bench_score_campaign1.json)
 campaign2=$(run_seconds results/bench_score_campaign2.json)
 read_bps=$(bench_field $io BM_ReadMeasurementCsv/real_time_median bytes_per_second)
 write_bps=$(bench_field $io BM_WriteSimulationCsv/real_time_median bytes_per_second)
+declare -A per_trial
+for n in 100 1000 10000; do
+  per_trial[$n]=$(bench_field $score "BM_CampaignScaling/$n/iterations:1/repeats:1/real_time" ms_per_trial)
+done
 
 # The summary page: machine, date, the ratios, and every program's table.
 {
@@ -107,6 +111,7 @@ write_bps=$(bench_field $io BM_WriteSimulationCsv/real_time_median bytes_per_sec
   echo "| seeds reaching the target (of 10): iafsa, pso, cmaes | $(show "${reached[iafsa]}" "%.0f"), $(show "${reached[pso]}" "%.0f"), $(show "${reached[cmaes]}" "%.0f") | \`bench_fit\` BM_EngineToTarget |"
   echo "| campaign speed-up, 1 → 2 threads (10 trials, every engine; aim ≥ 1.8) | $(show "$speedup" "%.2f×") ($(show "$one_thread" "%.2f") s vs $(show "$two_threads" "%.2f") s; the machine's ceiling then, a pure arithmetic loop: $(show "$ceiling" "%.2f×")) | \`bench_score\` BM_CampaignSpeedup |"
   echo "| 100-trial campaign of the cycle, every engine (aim < 60 s) | $(show "$campaign2" "%.1f") s on 2 threads, $(show "$campaign1" "%.1f") s on 1 ($(ratio "$campaign1" "$campaign2" "%.2f×")) | \`gyrotherm score scenarios/cycle.toml --trials 100 --threads N\` |"
+  echo "| campaign time per trial at 100 / 1,000 / 10,000 trials (2 threads, every engine; equal if time grows linearly) | $(show "${per_trial[100]}" "%.1f") / $(show "${per_trial[1000]}" "%.1f") / $(show "${per_trial[10000]}" "%.1f") ms ($(ratio "${per_trial[10000]}" "${per_trial[100]}" "%.2f") from 100 to 10,000) | \`bench_score\` BM_CampaignScaling |"
   echo "| CSV of a 72 h run: reading, writing | $(megabytes "$read_bps"), $(megabytes "$write_bps") | \`bench_io\` |"
   for txt in results/bench_*.txt; do
     area=${txt#results/bench_}; area=${area%.txt}
