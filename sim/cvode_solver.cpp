@@ -177,7 +177,8 @@ void CvodeSolver::step_polynomial(StepPolynomial& out) const {
 
 void CvodeSolver::StepPolynomial::evaluate(double t, std::span<double> y) const {
   const double dt = t - t_n_;
-  for (std::size_t i = 0; i < size_; ++i) {
+  const std::size_t count = std::min(size_, y.size());  // the first y.size() components
+  for (std::size_t i = 0; i < count; ++i) {
     double v = c_[(terms_ - 1) * size_ + i];
     for (std::size_t k = terms_ - 1; k-- > 0;) v = v * dt + c_[k * size_ + i];
     y[i] = v;

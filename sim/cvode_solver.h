@@ -78,6 +78,7 @@ class CvodeSolver {
   // rounding). Call after each step; valid for t inside that step.
   class StepPolynomial {
    public:
+    // The first y.size() components (all of them when y is the state's size).
     void evaluate(double t, std::span<double> y) const;
     double t_n() const { return t_n_; }
 

@@ -54,6 +54,16 @@ RigDynamics::Observation RigDynamics::observe(double t, std::span<const double> 
   return o;
 }
 
+RigDynamics::Sample RigDynamics::sample(double t, std::span<const double> y) const {
+  const std::span<const double> temps = y.first(node_count);
+  const SetPoint sp = profile_.at(t);
+  ChamberController::Output control{0.0, 0.0};
+  if (chamber_present_)
+    control = controller_.evaluate(sp.temp_c, sp.rate_c_per_s, temps[chamber], y[kIntegral], sp.chamber_on);
+  const double anode_power = rig_.power.discharge_w + 0.5 * rig_.power.dither_w;
+  return {network_.rate_of(anode, temps, anode_power), control.power_w, sp.temp_c};
+}
+
 int RigDynamics::rhs(double t, std::span<const double> y, std::span<double> ydot) {
   const Observation o = observe(t, y);
   for (std::size_t i = 0; i < node_count; ++i) ydot[i] = o.rates_k_per_s[i];

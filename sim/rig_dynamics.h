@@ -61,6 +61,13 @@ class RigDynamics : public OdeSystem {
   };
   Observation observe(double t, std::span<const double> y) const;
 
+  // What the simulator records at each sample, bit for bit as observe()
+  // gives it, without the rest (the other nodes' rates, the losses).
+  struct Sample {
+    double anode_rate_k_per_s, heater_w, setpoint_c;
+  };
+  Sample sample(double t, std::span<const double> y) const;
+
   double self_heating_w() const;
   // Σ C_i T_i over the dynamic nodes, J (relative to 0 °C).
   double stored_energy_j(std::span<const double> y) const;

@@ -84,10 +84,10 @@ ThermalTrace Simulator::run_thermal(SolverStatistics* statistics, EnergyBalance*
   trace.heater_w.reserve(samples);
 
   auto record = [&](double t, std::span<const double> state) {
-    const RigDynamics::Observation o = dynamics.observe(t, state);
+    const RigDynamics::Sample o = dynamics.sample(t, state);
     trace.time_s.push_back(t);
     for (std::size_t i = 0; i < RigDynamics::node_count; ++i) trace.node_c[i].push_back(state[i]);
-    trace.anode_rate_c_per_s.push_back(o.rates_k_per_s[N::anode]);
+    trace.anode_rate_c_per_s.push_back(o.anode_rate_k_per_s);
     trace.setpoint_c.push_back(o.setpoint_c);
     trace.heater_w.push_back(o.heater_w);
   };
@@ -105,7 +105,9 @@ ThermalTrace Simulator::run_thermal(SolverStatistics* statistics, EnergyBalance*
       if (k < samples && static_cast<double>(k) * dt <= t) solver.step_polynomial(step);
       for (; k < samples && static_cast<double>(k) * dt <= t; ++k) {
         const double tk = static_cast<double>(k) * dt;
-        step.evaluate(tk, y);
+        // The nodes and the controller's integral: all a sample records.
+        const std::span<double> needed = std::span<double>(y).first(RigDynamics::kIntegral + 1);
+        step.evaluate(tk, needed);
         record(tk, y);
       }
     }

@@ -72,6 +72,17 @@ void ThermalNetwork::rates(std::span<const double> temp_c, std::span<const doubl
     rate_k_per_s[i] = nodes_[i].boundary ? 0.0 : rate_k_per_s[i] / nodes_[i].capacity_j_per_k;
 }
 
+double ThermalNetwork::rate_of(std::size_t node, std::span<const double> temp_c, double power_w) const {
+  double rate = power_w;
+  for (const ThermalLink& link : links_) {
+    if (link.a != node && link.b != node) continue;
+    const double q = flow_w(link, temp_c[link.a], temp_c[link.b]);
+    if (link.a == node) rate -= q;
+    if (link.b == node) rate += q;
+  }
+  return nodes_[node].boundary ? 0.0 : rate / nodes_[node].capacity_j_per_k;
+}
+
 double ThermalNetwork::flow_into_boundaries_w(std::span<const double> temp_c) const {
   double total = 0.0;
   for (const ThermalLink& link : links_) {

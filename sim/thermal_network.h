@@ -72,6 +72,10 @@ class ThermalNetwork {
   void rates(std::span<const double> temp_c, std::span<const double> power_w,
              std::span<double> rate_k_per_s) const;
 
+  // dT/dt of one node (K/s), the same arithmetic in the same order as rates()
+  // gives it, from the links that touch it only.
+  double rate_of(std::size_t node, std::span<const double> temp_c, double power_w) const;
+
   // Total heat flowing into boundary nodes, W (what the system loses).
   double flow_into_boundaries_w(std::span<const double> temp_c) const;
 
