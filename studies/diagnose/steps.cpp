@@ -50,9 +50,9 @@ StepScan scan_steps(const Eigen::VectorXd& e, const Eigen::MatrixXd& q) {
   return s;
 }
 
-// The window where a step removes the most residual variance, and the share
-// of the residual's sum of squares it removes (0 when none can be placed).
-std::pair<Eigen::Index, double> best_step(const Eigen::VectorXd& e, const Eigen::MatrixXd& q) {
+// The window where a step removes the most residual variance (0 when none
+// can be placed).
+Eigen::Index best_step(const Eigen::VectorXd& e, const Eigen::MatrixXd& q) {
   const StepScan s = scan_steps(e, q);
   Eigen::Index best = 0;
   double gain = 0.0;
@@ -61,8 +61,7 @@ std::pair<Eigen::Index, double> best_step(const Eigen::VectorXd& e, const Eigen:
       gain = s.gain[k];
       best = k;
     }
-  const double total = e.squaredNorm();
-  return {best, total > 0.0 ? gain / total : 0.0};
+  return best;
 }
 
 // The local level model y_t = μ_t + ε_t, μ_{t+1} = μ_t + η_t, with
@@ -92,23 +91,20 @@ LevelFilter run_level_filter(const Eigen::VectorXd& y, double q) {
   return r;
 }
 
-// x less its best `count` steps, found one after another (joint least
-// squares with the model q and the steps before).
-Eigen::VectorXd without_best_steps(const Eigen::VectorXd& x, const Eigen::MatrixXd& q, std::size_t count) {
-  Eigen::MatrixXd basis = q;
-  Eigen::VectorXd rest = x;
-  for (std::size_t i = 0; i < count; ++i) {
-    const Eigen::Index best = best_step(rest, basis).first;
-    if (best == 0) break;
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(x.size());
-    u.tail(x.size() - best).setOnes();
-    u -= basis * (basis.transpose() * u);
-    u.normalize();
-    rest -= u * u.dot(rest);
-    basis.conservativeResize(Eigen::NoChange, basis.cols() + 1);
-    basis.col(basis.cols() - 1) = u;
-  }
-  return rest;
+// x less a step before window `at` (joint least squares with the model q);
+// x itself when at = 0 (no step).
+Eigen::VectorXd without_step(const Eigen::VectorXd& x, const Eigen::MatrixXd& q, Eigen::Index at) {
+  if (at == 0) return x;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(x.size());
+  u.tail(x.size() - at).setOnes();
+  u -= q * (q.transpose() * u);
+  u.normalize();
+  return x - u * u.dot(x);
+}
+
+// The largest |t| of a level shift in e, q fitted to `noise` (e less its best step).
+double max_level_shift_t(const Eigen::VectorXd& e, const Eigen::MatrixXd& q, const Eigen::VectorXd& noise) {
+  return level_shift_t(e, q, fit_level_q(noise)).cwiseAbs().maxCoeff();
 }
 
 // The innovations of x under the gains of a filter already run (the filter is
@@ -172,7 +168,7 @@ Eigen::VectorXd level_shift_t(const Eigen::VectorXd& y, const Eigen::MatrixXd& m
 }
 
 double level_shift_statistic(const Eigen::VectorXd& e, const Eigen::MatrixXd& q) {
-  return level_shift_t(e, q, fit_level_q(without_best_steps(e, q, 1))).cwiseAbs().maxCoeff();
+  return max_level_shift_t(e, q, without_step(e, q, best_step(e, q)));
 }
 
 double level_shift_p(const Eigen::VectorXd& noise, const Eigen::MatrixXd& q, double statistic, int replicates,
@@ -219,9 +215,11 @@ std::vector<StepCandidate> find_steps(const std::vector<double>& time_s, const E
   while (out.size() < search.max_steps) {
     const Eigen::MatrixXd q = model_basis(a);
     const Eigen::VectorXd e = y - q * (q.transpose() * y);
-    const Eigen::Index best = best_step(e, q).first;
+    const Eigen::Index best = best_step(e, q);
     if (best == 0) break;
-    const double p = level_shift_p(without_best_steps(e, q, 1), q, level_shift_statistic(e, q), search.replicates, rng);
+    // The noise without the step, found once: for the statistic's q and the bootstrap.
+    const Eigen::VectorXd noise = without_step(e, q, best);
+    const double p = level_shift_p(noise, q, max_level_shift_t(e, q, noise), search.replicates, rng);
     if (p >= search.alpha) break;
     const auto k = static_cast<std::size_t>(best);
     out.push_back({std::round(0.5 * (time_s[k - 1] + time_s[k])), k, p});
