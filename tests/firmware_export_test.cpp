@@ -179,6 +179,13 @@ TEST(CliExport, AxesMapTheFitsChannels) {
   EXPECT_NEAR(px4_offset(p, 0, static_cast<float>(t)), gz.bias(t) * kDphToRadS, 1e-6 * std::abs(gz.bias(t) * kDphToRadS));
   EXPECT_EQ(px4_offset(p, 1, static_cast<float>(t)), 0.0f);
   EXPECT_NEAR(px4_offset(p, 2, static_cast<float>(t)), gx.bias(t) * kDphToRadS, 1e-6 * std::abs(gx.bias(t) * kDphToRadS));
+  const auto two = run_cli(dir, "export fit.json --format px4 --axes gx,gy -o none.params");
+  EXPECT_EQ(two.exit_code, 2);
+  EXPECT_NE(two.err.find("--axes gx,gy: expected three entries"), std::string::npos) << two.err;
+  const auto nothing = run_cli(dir, "export fit.json --format px4 --axes -,-,- -o none.params");
+  EXPECT_EQ(nothing.exit_code, 2);
+  EXPECT_NE(nothing.err.find("every axis is '-'"), std::string::npos) << nothing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "none.params"));
   const auto unknown = run_cli(dir, "export fit.json --format px4 --axes gx,gq,- -o g.params");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.err.find("'gq' is not a channel of fit.json (its channels: gx, gy, gz)"), std::string::npos)
@@ -196,6 +203,13 @@ TEST(CliExport, AModelTheFirmwareCannotExpressIsRefusedOrDroppedWithItsCost) {
     EXPECT_NE(refused.err.find("--drop-unsupported"), std::string::npos) << refused.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
   }
+  // Dropping needs the fitted data to say what it costs.
+  run_shell(dir, "mv d.csv moved.csv");
+  const auto lost = run_cli(dir, "export fit.json --format px4 --drop-unsupported -o out.params");
+  EXPECT_EQ(lost.exit_code, 2);
+  EXPECT_NE(lost.err.find("give it with --data"), std::string::npos) << lost.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.params"));
+  run_shell(dir, "mv moved.csv d.csv");
   const auto dropped = run_cli(dir, "export fit.json --format px4 --drop-unsupported -o out.params");
   ASSERT_EQ(dropped.exit_code, 0) << dropped.err;
   EXPECT_NE(dropped.out.find("dropped dT: the instability on d.csv rises from"), std::string::npos) << dropped.out;
