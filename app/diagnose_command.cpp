@@ -13,6 +13,7 @@
 
 #include "app/comma_list.h"
 #include "app/commands.h"
+#include "fit/data/streaming.h"
 #include "studies/diagnose/diagnose_plots.h"
 #include "app/pipeline_options.h"
 #include "fit/fit_file.h"
@@ -42,6 +43,7 @@ struct ChannelDiagnosis {
   fit::Measurement measurement;
   fit::PreparedData data;
   fit::DiagnoseReport report;
+  bool streamed = false;  // prepared in one pass: no samples held, no log columns as candidates
 };
 
 void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
@@ -55,6 +57,10 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
   fmt::print("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n",
              o.data, fit::formula_text(terms), engine.name, fit::describe_windows(data, pipeline),
              data.outliers.removed);
+  if (channel.streamed)
+    fmt::print("   (over {} MB: read in one pass without holding the samples; the log's other columns are "
+               "not tried as candidates{})\n",
+               fit::kStreamingThresholdBytes >> 20, plots.empty() ? "" : ", and the full-rate Allan figure is left out");
   fmt::print("1. compare: instability {} -> {} °/h; noise floor {} °/h ({}):\n"
              "   the model is {:.2f} times the floor\n",
              human(d.fit.instability_before_dph), human(d.fit.instability_after_dph),
@@ -126,10 +132,17 @@ int run_diagnose(const DiagnoseOptions& o) {
         ChannelDiagnosis c;
         c.channel = channel;
         c.pipeline = p;
-        // Every other numeric column of the log may be a candidate.
-        c.pipeline.columns.other_numeric = true;
-        c.measurement = fit::read_measurement_csv(o.data, c.pipeline.columns);
-        c.data = fit::prepare_data(c.measurement, c.pipeline);
+        // A log too large to hold is prepared in one pass (fit/data/streaming.h),
+        // without its other columns; otherwise every other numeric column of the
+        // log may be a candidate.
+        c.streamed = fit::streams(o.data, c.pipeline);
+        if (c.streamed) {
+          c.data = fit::prepare_data_streaming(o.data, c.pipeline);
+        } else {
+          c.pipeline.columns.other_numeric = true;
+          c.measurement = fit::read_measurement_csv(o.data, c.pipeline.columns);
+          c.data = fit::prepare_data(c.measurement, c.pipeline);
+        }
         c.report = fit::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings,
                                         diagnosis_options);
         if (channels.size() > 1 && !c.report.next_command.empty())

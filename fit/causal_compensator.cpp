@@ -4,23 +4,12 @@
 #include <cmath>
 
 #include "fit/data/derivatives.h"
+#include "fit/data/median.h"
+#include "fit/data/outliers.h"
 #include "fit/model/terms.h"
 #include "fit/pipeline.h"
 
 namespace gyrotherm::fit {
-namespace {
-
-constexpr double kMadToSigma = 1.4826;  // as fit/data/outliers.cpp
-
-double median_of(std::vector<double> v) {
-  const std::size_t half = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(half), v.end());
-  const double upper = v[half];
-  if (v.size() % 2 == 1) return upper;
-  return 0.5 * (*std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(half)) + upper);
-}
-
-}  // namespace
 
 CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& settings,
                                      std::vector<std::string> extra_names)

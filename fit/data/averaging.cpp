@@ -9,26 +9,15 @@
 #include <optional>
 #include <utility>
 
+#include "fit/data/median.h"
 #include "sim/util/format.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
-namespace {
 
-// Rule 1.
 bool is_gap(double step_s, double sample_interval_s, const AveragingOptions& o) {
   return step_s > o.gap_factor * sample_interval_s || step_s > o.window_s;
 }
-
-double median_of(std::vector<double> v) {
-  const std::size_t half = v.size() / 2;
-  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(half);
-  std::nth_element(v.begin(), middle, v.end());
-  if (v.size() % 2 == 1) return *middle;
-  return 0.5 * (*std::max_element(v.begin(), middle) + *middle);
-}
-
-}  // namespace
 
 void AveragingOptions::validate() const {
   if (!(window_s > 0.0) || !std::isfinite(window_s))
@@ -238,16 +227,21 @@ AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned 
     series.window_s = median_run_s;
   }
   if (report != nullptr) *report = r;
-  if (series.size() == 0)
-    throw InputError(located(
-        m.file, 0,
-        fmt::format("no averaging window survives: the record is {} s long (longest gap-free run "
-                    "{} s, {} gap{}) and the window (--avg) is {} s, of which at least {} % must "
-                    "be valid samples",
-                    human(averager->record_s()), human(averager->longest_run_s()),
-                    averager->report().gaps.size(), averager->report().gaps.size() == 1 ? "" : "s",
-                    human(options.window_s), human(100.0 * options.min_fill))));
+  check_windows_survive(m.file, series, *averager, options);
   return series;
+}
+
+void check_windows_survive(const std::string& file, const AveragedSeries& series,
+                           const WindowAverager& averager, const AveragingOptions& options) {
+  if (series.size() > 0) return;
+  throw InputError(located(
+      file, 0,
+      fmt::format("no averaging window survives: the record is {} s long (longest gap-free run "
+                  "{} s, {} gap{}) and the window (--avg) is {} s, of which at least {} % must "
+                  "be valid samples",
+                  human(averager.record_s()), human(averager.longest_run_s()), averager.report().gaps.size(),
+                  averager.report().gaps.size() == 1 ? "" : "s", human(options.window_s),
+                  human(100.0 * options.min_fill))));
 }
 
 }  // namespace gyrotherm::fit

@@ -131,6 +131,15 @@ class WindowAverager {
   std::size_t lag_pairs_ = 0;
 };
 
+// Rule 1: a time step of step_s is a gap.
+bool is_gap(double step_s, double sample_interval_s, const AveragingOptions& options);
+
+// Throws InputError naming `file` if `series` (from `averager`) holds no
+// window, saying how long the record and its longest gap-free run are and what
+// the window is.
+void check_windows_survive(const std::string& file, const AveragedSeries& series,
+                           const WindowAverager& averager, const AveragingOptions& options);
+
 // The median time step of the record, s (Δ above). Needs at least 2 samples.
 double median_sample_interval_s(const std::vector<double>& time_s);
 

@@ -190,9 +190,41 @@ constexpr std::array<const char*, kRoles> kOptionOf = {"--time-col", "--temp-col
 constexpr std::array<const char*, kRoles> kWhatOf = {"time", "temperature", "gyro",
                                                      "second temperature"};
 
+// Clinger's fast path: a plain decimal [-]digits[.digits] with a mantissa m
+// below 2⁵³ and f ≤ 22 fraction digits is m / 10^f, both exact doubles, so the
+// one IEEE division is correctly rounded: the value std::from_chars gives.
+// False for anything else (left to from_chars). Reference: W. D. Clinger, "How
+// to read floating point numbers accurately", PLDI 1990.
+bool parse_plain_decimal(std::string_view text, double& value) {
+  static constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                                    1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                                    1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  const bool negative = p != end && *p == '-';
+  if (negative) ++p;
+  std::uint64_t mantissa = 0;
+  const char* const digits = p;
+  for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
+  const auto whole = p - digits;
+  std::ptrdiff_t fraction = 0;
+  if (p != end && *p == '.') {
+    const char* const first = ++p;
+    for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
+    fraction = p - first;
+    if (fraction == 0) return false;
+  }
+  if (p != end || whole == 0 || whole + fraction > 19 || fraction > 22 || mantissa > (std::uint64_t{1} << 53))
+    return false;
+  const double v = static_cast<double>(mantissa) / kPow10[static_cast<std::size_t>(fraction)];
+  value = negative ? -v : v;
+  return true;
+}
+
 // Parses one needed field; returns an empty string on success, else what is wrong.
 std::string parse_number(std::string_view field, double& value) {
   std::string_view text = trim(field);
+  if (parse_plain_decimal(text, value)) return {};
   if (text.empty()) return "empty field, expected a number";
   std::string_view digits = text;
   if (digits.size() > 1 && digits.front() == '+' && digits[1] != '-' && digits[1] != '+')
@@ -234,11 +266,15 @@ class CsvParser {
  public:
   CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {
     map_.units.validate();
+    time_factor_ = time_factor(map_.units.time);
+    gyro_factor_ = gyro_factor(map_.units.gyro);
+    temp_in_c_ = map_.units.temp == "C" && map_.units.temp_scale == 1.0 && map_.units.temp_offset == 0.0;
   }
 
   Measurement read(const fs::path& file);
   // Streaming: every row goes to `sink` instead of being stored.
   void set_sink(RowSink sink) { sink_ = std::move(sink); }
+  void set_header_sink(HeaderSink sink) { header_sink_ = std::move(sink); }
   bool has_temp2() const { return has_temp2_; }
   std::size_t rows() const { return rows_; }
 
@@ -247,12 +283,13 @@ class CsvParser {
     throw InputError(located(name_, line, message));
   }
   // A value read from the file in the units of map_.units, in s, °C or °/h.
+  // (Units' arithmetic, with the unit names looked up once.)
   double convert(Role role, double v) const {
     switch (role) {
-      case kTime: return map_.units.time_s(v);
-      case kGyro: return map_.units.gyro_dph(v);
+      case kTime: return v * time_factor_;
+      case kGyro: return map_.units.gyro_scale * v * gyro_factor_;
       case kTemp:
-      case kTemp2: return map_.units.temp_c(v);
+      case kTemp2: return temp_in_c_ ? v : map_.units.temp_c(v);
       default: return v;
     }
   }
@@ -262,6 +299,8 @@ class CsvParser {
 
   std::string name_;
   const ColumnMap& map_;
+  double time_factor_ = 1.0, gyro_factor_ = 1.0;
+  bool temp_in_c_ = true;
   std::vector<int> role_of_column_;              // Role of each header column
   // Extra columns: header column → its vector in the measurement, and
   // whether a non-number there is an error (asked for by name) or drops it.
@@ -277,6 +316,7 @@ class CsvParser {
   std::size_t rows_ = 0;
   double last_time_ = 0.0;
   RowSink sink_;
+  HeaderSink header_sink_;
   std::size_t header_line_ = 0, first_row_line_ = 0, previous_line_ = 0;
   std::uintmax_t file_bytes_ = 0, header_end_bytes_ = 0;
 };
@@ -464,6 +504,7 @@ Measurement CsvParser::read(const fs::path& file) {
       parse_header(line, line_number, m);
       std::sort(extras_.begin(), extras_.end(), by_column);
       header_end_bytes_ = reader.consumed_bytes();
+      if (header_sink_) header_sink_(CsvHeader{m.file, m.columns, has_temp2_, 0});
       continue;
     }
     if (rows_ == 0 && !sink_) reserve(m, line.size());
@@ -491,9 +532,10 @@ Measurement read_measurement_csv(const std::filesystem::path& file, const Column
 }
 
 CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
-                       const RowSink& sink) {
+                       const RowSink& sink, const HeaderSink& on_header) {
   CsvParser parser(file, columns);
   parser.set_sink(sink);
+  parser.set_header_sink(on_header);
   const Measurement header_only = parser.read(file);
   CsvHeader h;
   h.file = header_only.file;

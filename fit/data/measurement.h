@@ -109,7 +109,9 @@ struct CsvHeader {
   bool has_temp2 = false;
   std::size_t rows = 0;
 };
+// on_header (if given) is called once, after the header and before the first row.
+using HeaderSink = std::function<void(const CsvHeader& header)>;
 CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
-                       const RowSink& sink);
+                       const RowSink& sink, const HeaderSink& on_header = {});
 
 }  // namespace gyrotherm::fit

@@ -10,13 +10,12 @@
 #include <numbers>
 #include <numeric>
 
+#include "fit/data/median.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {
 
-constexpr double kMadToSigma = 1.4826;  // 1/Φ⁻¹(3/4): MAD of N(0, σ²) is σ/1.4826
-constexpr double kZeroRelative = 1e-9;  // differences below this × max|x| are round-off
 constexpr std::size_t kReportedScales =
     10000;  // OutlierReport::scale_dph is a median of about this many
 
@@ -61,16 +60,6 @@ class RankSet {
   std::size_t top_step_;
 };
 
-double median_of(std::vector<double>& v) {
-  assert(!v.empty());
-  const std::size_t half = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(half), v.end());
-  const double upper = v[half];
-  if (v.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(half));
-  return 0.5 * (lower + upper);
-}
-
 // s_floor of the header, over consecutive samples valid on entry.
 double noise_floor(const std::vector<double>& x, const std::vector<std::size_t>& used,
                    double zero) {
@@ -78,16 +67,20 @@ double noise_floor(const std::vector<double>& x, const std::vector<std::size_t>&
   steps.reserve(used.size());
   for (std::size_t p = 1; p < used.size(); ++p)
     steps.push_back(std::abs(x[used[p]] - x[used[p - 1]]));
-  if (steps.empty()) return 0.0;
-  double smallest = std::numeric_limits<double>::infinity();
-  for (double d : steps)
-    if (d > zero) smallest = std::min(smallest, d);
-  const double median = median_of(steps);
-  if (median > zero) return kMadToSigma * median / std::numbers::sqrt2;
-  return std::isfinite(smallest) ? smallest : 0.0;
+  return noise_floor_from_jumps(std::move(steps), zero);
 }
 
 }  // namespace
+
+double noise_floor_from_jumps(std::vector<double> jumps, double zero_dph) {
+  if (jumps.empty()) return 0.0;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (double d : jumps)
+    if (d > zero_dph) smallest = std::min(smallest, d);
+  const double median = median_in_place(jumps);
+  if (median > zero_dph) return kMadToSigma * median / std::numbers::sqrt2;
+  return std::isfinite(smallest) ? smallest : 0.0;
+}
 
 void OutlierOptions::validate() const {
   if (!(window_s > 0.0) || !std::isfinite(window_s))
@@ -194,7 +187,7 @@ OutlierReport flag_outliers(const Measurement& m, const OutlierOptions& options,
     }
   }
   report.removed = report.times_s.size();
-  report.scale_dph = scales.empty() ? report.floor_dph : median_of(scales);
+  report.scale_dph = scales.empty() ? report.floor_dph : median_in_place(scales);
   return report;
 }
 

@@ -68,6 +68,13 @@ struct OutlierReport {
   double floor_dph = 0;         // the global floor s_floor
 };
 
+inline constexpr double kMadToSigma = 1.4826;  // 1/Φ⁻¹(3/4): MAD of N(0, σ²) is σ/1.4826
+inline constexpr double kZeroRelative = 1e-9;  // differences below this × max|x| are round-off
+
+// s_floor of the header from the jumps |x_k − x_{k−1}| between consecutive
+// samples; jumps up to zero_dph (= kZeroRelative · max|x|) count as 0.
+double noise_floor_from_jumps(std::vector<double> jumps, double zero_dph);
+
 // Marks as invalid (valid[k] = 0) every sample whose gyro value deviates from
 // the moving median of a window of ±window_s/2 around it by more than
 // threshold × scale (see above). `valid` has size m.size(), initialised to 1 by

@@ -4,206 +4,384 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <deque>
-#include <set>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+#include <vector>
 
+#include "fit/data/median.h"
 #include "sim/util/input_error.h"
-#include "sim/util/random.h"
 
 namespace gyrotherm::fit {
 namespace {
 
-constexpr double kMadToSigma = 1.4826;
+struct Row {
+  double t, temp, gyro, temp2;
+};
 
-// Vitter's algorithm R with a fixed seed.
-class Reservoir {
+// The values of a sliding window, kept sorted.
+class SortedWindow {
  public:
-  explicit Reservoir(std::size_t capacity, std::uint64_t stream)
-      : capacity_(capacity), rng_(make_rng(streams::reservoir_seed, stream)) {}
-  void add(double v) {
-    ++seen_;
-    if (values_.size() < capacity_) {
-      values_.push_back(v);
-      return;
-    }
-    const std::uint64_t j = rng_() % seen_;
-    if (j < capacity_) values_[static_cast<std::size_t>(j)] = v;
+  void insert(double v) { values_.insert(std::upper_bound(values_.begin(), values_.end(), v), v); }
+  void erase(double v) { values_.erase(std::lower_bound(values_.begin(), values_.end(), v)); }
+  void clear() { values_.clear(); }
+  template <typename Values>
+  void assign(const Values& values) {
+    values_.assign(values.begin(), values.end());
+    std::sort(values_.begin(), values_.end());
   }
-  std::vector<double>& values() { return values_; }
+  std::size_t size() const { return values_.size(); }
+  // As fit/data/outliers.cpp: the middle value, or the mean of the two middle ones.
+  double median() const {
+    const std::size_t n = values_.size();
+    return n % 2 == 1 ? values_[n / 2] : 0.5 * (values_[n / 2 - 1] + values_[n / 2]);
+  }
+  const std::vector<double>& values() const { return values_; }
 
  private:
-  std::size_t capacity_;
-  Rng rng_;
-  std::uint64_t seen_ = 0;
   std::vector<double> values_;
 };
 
-double median_of(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  if (v.size() % 2 == 1) return *mid;
-  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
-}
-
-// Median of a sliding multiset of values: lower half in `low`, upper in `high`,
-// |low| = |high| or |high| + 1.
-class RollingMedian {
- public:
-  void insert(double v) {
-    if (low_.empty() || v <= *low_.rbegin())
-      low_.insert(v);
-    else
-      high_.insert(v);
-    rebalance();
-  }
-  void erase(double v) {
-    auto it = low_.find(v);
-    if (it != low_.end() && v <= *low_.rbegin()) {
-      low_.erase(it);
-    } else {
-      high_.erase(high_.find(v));
-    }
-    rebalance();
-  }
-  double median() const {
-    if (low_.size() > high_.size()) return *low_.rbegin();
-    return 0.5 * (*low_.rbegin() + *high_.begin());
-  }
-  std::size_t size() const { return low_.size() + high_.size(); }
-
- private:
-  void rebalance() {
-    while (low_.size() > high_.size() + 1) {
-      high_.insert(*low_.rbegin());
-      low_.erase(std::prev(low_.end()));
-    }
-    while (high_.size() > low_.size()) {
-      low_.insert(*high_.begin());
-      high_.erase(high_.begin());
-    }
-  }
-  std::multiset<double> low_, high_;
+// What the prefix fixes for the rest of the record.
+struct RecordRules {
+  double interval_s = 0;  // Δ
+  double floor_dph = 0;   // s_floor
+  double zero_dph = 0;    // round-off level
+  bool judge = false;     // at least 3 samples (fit/data/outliers.cpp judges none otherwise)
+  bool bursts = false;
 };
 
-struct Sample {
-  double t, temp, gyro, temp2;
-  std::size_t run;
+// The one-pass preparation: prefix, then filter and averager, one row at a time.
+class OnePassPreparer {
+ public:
+  OnePassPreparer(const PipelineOptions& options, std::string file) : o_(options) { d_.file = std::move(file); }
+
+  void set_header(const CsvHeader& header) { has_temp2_ = header.has_temp2; }
+
+  void add(const Row& r) {
+    ++d_.raw_samples;
+    if (!averager_) {
+      prefix_.push_back(r);
+      if (prefix_.size() == kPrefixRows) begin_stream(false);
+      return;
+    }
+    stream(r);
+  }
+
+  PreparedData finish() {
+    if (!averager_) begin_stream(true);
+    advance(true);
+    close_run();
+    d_.series = averager_->finish();
+    d_.averaging = averager_->report();
+    d_.averaging.median_run_s = median_of(run_lengths_);
+    if (rules_.bursts) {
+      std::vector<double> spacing;
+      for (std::size_t i = 1; i < run_starts_.size(); ++i) spacing.push_back(run_starts_[i] - run_starts_[i - 1]);
+      d_.averaging.median_spacing_s = median_of(std::move(spacing));
+      d_.series.window_s = d_.averaging.median_run_s;
+    }
+    d_.outliers.removed = d_.outliers.times_s.size();
+    d_.outliers.scale_dph = scales_.empty() ? d_.outliers.floor_dph : median_of(std::move(scales_));
+    check_windows_survive(d_.file, d_.series, *averager_, o_.averaging);
+    d_.derived = derive(d_.series, o_.derivative, o_.derivative_span_s);
+    d_.derivative_span_s = o_.derivative_span_s;
+    return std::move(d_);
+  }
+
+ private:
+  // The rules from the prefix (the whole record if `whole`), then the prefix
+  // replayed through the filter.
+  void begin_stream(bool whole) {
+    const std::size_t n = prefix_.size();
+    if (n < 2)
+      throw InputError(located(d_.file, 0, fmt::format("{} sample{}: averaging needs at least 2", n,
+                                                       n == 1 ? "" : "s")));
+    std::vector<double> steps(n - 1), jumps(n - 1);
+    double largest = std::abs(prefix_[0].gyro);
+    for (std::size_t k = 1; k < n; ++k) {
+      steps[k - 1] = prefix_[k].t - prefix_[k - 1].t;
+      jumps[k - 1] = std::abs(prefix_[k].gyro - prefix_[k - 1].gyro);
+      largest = std::max(largest, std::abs(prefix_[k].gyro));
+    }
+    rules_.interval_s = median_of(steps);
+    rules_.judge = o_.remove_outliers && n >= 3;
+    if (rules_.judge) {
+      rules_.zero_dph = kZeroRelative * largest;
+      rules_.floor_dph = noise_floor_from_jumps(std::move(jumps), rules_.zero_dph);
+    }
+    // Bursts, by the rule of average_windows.
+    std::vector<double> lengths;
+    double run_start = prefix_[0].t;
+    for (std::size_t k = 1; k <= n; ++k)
+      if (k == n || is_gap(prefix_[k].t - prefix_[k - 1].t, rules_.interval_s, o_.averaging)) {
+        lengths.push_back(prefix_[k - 1].t - run_start + rules_.interval_s);
+        if (k < n) run_start = prefix_[k].t;
+      }
+    rules_.bursts = lengths.size() > 1 && median_of(lengths) < o_.averaging.window_s;
+    report_stride_ = whole ? std::max<std::size_t>(1, n / 10000) : 1000;
+
+    d_.outliers.floor_dph = rules_.floor_dph;
+    try {
+      averager_.emplace(o_.averaging, rules_.interval_s, has_temp2_, rules_.bursts);
+    } catch (const InputError& e) {
+      throw InputError(located(d_.file, 0, e.what()));
+    }
+    std::vector<Row> prefix;
+    prefix.swap(prefix_);  // released when replayed
+    for (const Row& r : prefix) stream(r);
+  }
+
+  void stream(const Row& r) {
+    if (rows_seen_ == 0) {
+      run_start_ = r.t;
+    } else if (is_gap(r.t - last_t_, rules_.interval_s, o_.averaging)) {
+      close_run();
+      run_start_ = r.t;
+    }
+    last_t_ = r.t;
+    ++rows_seen_;
+    if (!rules_.judge) {
+      averager_->add(r.t, r.temp, r.gyro, r.temp2, true);
+      return;
+    }
+    window_.push_back(r);
+    advance(false);
+  }
+
+  void close_run() {
+    if (rows_seen_ == 0) return;
+    run_lengths_.push_back(last_t_ - run_start_ + rules_.interval_s);
+    run_starts_.push_back(run_start_);
+  }
+
+  // Judges every sample whose window is complete (all of them if `flush`).
+  // Absolute sample indices: window_ holds base_ … base_ + window_.size() − 1,
+  // the filter window is lo_ … hi_ − 1; lowest_ and highest_ hold the indices
+  // of its running minimum and maximum (monotone queues), sorted_ its values
+  // while sorting_.
+  void advance(bool flush) {
+    const double half = 0.5 * o_.outliers.window_s;
+    const std::size_t end = base_ + window_.size();
+    while (next_ < end) {
+      const double t_k = at(next_).t;
+      for (; hi_ < end && at(hi_).t - t_k <= half; ++hi_) enter(hi_);
+      if (hi_ == end && !flush) return;  // a later sample may still belong
+      for (; t_k - at(lo_).t > half; ++lo_)
+        if (sorting_) sorted_.erase(at(lo_).gyro);
+      while (lowest_.front() < lo_) lowest_.pop_front();
+      while (highest_.front() < lo_) highest_.pop_front();
+      const Row& r = at(next_);
+      averager_->add(r.t, r.temp, r.gyro, r.temp2, judge(next_, r));
+      ++next_;
+      for (; base_ < lo_; ++base_) window_.pop_front();
+    }
+  }
+
+  void enter(std::size_t k) {
+    const double v = at(k).gyro;
+    while (!lowest_.empty() && at(lowest_.back()).gyro >= v) lowest_.pop_back();
+    lowest_.push_back(k);
+    while (!highest_.empty() && at(highest_.back()).gyro <= v) highest_.pop_back();
+    highest_.push_back(k);
+    if (sorting_) sorted_.insert(v);
+  }
+
+  // The rule of fit/data/outliers.cpp; true if the sample is kept.
+  bool judge(std::size_t k, const Row& r) {
+    const std::size_t size = hi_ - lo_;
+    if (size < 3) return true;
+    const double bound = o_.outliers.threshold * rules_.floor_dph;
+    const bool sampled = k % report_stride_ == 0;
+    // Shortcut: if every value of the window is within the bound of this one
+    // (with a margin for rounding), so is their median, and the sample is kept
+    // as the full rule would keep it. Most samples end here, in O(1).
+    if (!sampled) {
+      const double margin = bound * (1.0 - 1e-9);
+      if (at(highest_.front()).gyro - r.gyro <= margin && r.gyro - at(lowest_.front()).gyro <= margin) {
+        if (sorting_ && ++clean_ > size) {  // long clear of any outlier: stop sorting
+          sorting_ = false;
+          sorted_.clear();
+        }
+        return true;
+      }
+    }
+    clean_ = 0;
+    if (!sorting_) {  // near an outlier: keep the window sorted for a while
+      sorting_ = true;
+      scratch_.clear();
+      for (std::size_t j = lo_; j < hi_; ++j) scratch_.push_back(at(j).gyro);
+      sorted_.assign(scratch_);
+    }
+    const double median = sorted_.median();
+    const double deviation = std::abs(r.gyro - median);
+    if (!sampled && !(deviation > bound)) return true;
+    scratch_.clear();
+    for (double v : sorted_.values()) scratch_.push_back(std::abs(v - median));
+    const double scale = std::max(kMadToSigma * median_in_place(scratch_), rules_.floor_dph);
+    if (sampled) scales_.push_back(scale);
+    if (deviation > o_.outliers.threshold * scale && deviation > rules_.zero_dph) {
+      d_.outliers.times_s.push_back(r.t);
+      return false;
+    }
+    return true;
+  }
+
+  const Row& at(std::size_t k) const { return window_[k - base_]; }
+
+  const PipelineOptions& o_;
+  PreparedData d_;
+  bool has_temp2_ = false;
+  std::vector<Row> prefix_;
+  RecordRules rules_;
+  std::optional<WindowAverager> averager_;
+  // The gap-free runs, for the report.
+  std::size_t rows_seen_ = 0;
+  double run_start_ = 0, last_t_ = 0;
+  std::vector<double> run_lengths_, run_starts_;
+  // The filter.
+  std::deque<Row> window_;
+  std::size_t base_ = 0, lo_ = 0, hi_ = 0, next_ = 0;
+  std::deque<std::size_t> lowest_, highest_;
+  SortedWindow sorted_;
+  bool sorting_ = false;
+  std::size_t clean_ = 0;  // samples kept by the shortcut in a row
+  std::size_t report_stride_ = 1;
+  std::vector<double> scratch_, scales_;
+};
+
+// Batches of rows from the reading thread to the preparing one; emptied
+// batches go back to be refilled, so no memory is allocated in the steady state.
+class BatchQueue {
+ public:
+  struct Cancelled {};
+
+  // Reader side.
+  std::vector<Row> empty_batch() {
+    std::unique_lock lock(mutex_);
+    if (spare_.empty()) {
+      std::vector<Row> batch;
+      batch.reserve(kBatchRows);
+      return batch;
+    }
+    std::vector<Row> batch = std::move(spare_.back());
+    spare_.pop_back();
+    return batch;
+  }
+  void set_header(const CsvHeader& header) {
+    std::unique_lock lock(mutex_);
+    header_ = header;
+  }
+  void push(std::vector<Row> batch) {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [&] { return full_.size() < kBatchesInFlight || cancelled_; });
+    if (cancelled_) throw Cancelled{};
+    full_.push_back(std::move(batch));
+    changed_.notify_all();
+  }
+  void close(std::exception_ptr error = nullptr) {
+    std::unique_lock lock(mutex_);
+    closed_ = true;
+    error_ = std::move(error);
+    changed_.notify_all();
+  }
+
+  // Preparer side: false at the end of the file; rethrows the reader's error.
+  bool pop(std::vector<Row>& batch) {
+    std::unique_lock lock(mutex_);
+    if (batch.capacity() > 0) {
+      batch.clear();
+      spare_.push_back(std::move(batch));
+    }
+    changed_.wait(lock, [&] { return !full_.empty() || closed_; });
+    if (!full_.empty()) {
+      batch = std::move(full_.front());
+      full_.pop_front();
+      changed_.notify_all();
+      return true;
+    }
+    if (error_) std::rethrow_exception(error_);
+    return false;
+  }
+  std::optional<CsvHeader> header() {
+    std::unique_lock lock(mutex_);
+    return header_;
+  }
+  void cancel() {
+    std::unique_lock lock(mutex_);
+    cancelled_ = true;
+    changed_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<std::vector<Row>> full_;
+  std::vector<std::vector<Row>> spare_;
+  std::optional<CsvHeader> header_;
+  bool closed_ = false, cancelled_ = false;
+  std::exception_ptr error_;
 };
 
 }  // namespace
 
 PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& o) {
   o.outliers.validate();
-  // Pass 1: sample interval and noise floor.
-  Reservoir steps(20000, streams::reservoir_steps), jumps(20000, streams::reservoir_jumps);
-  double previous_t = 0.0, previous_x = 0.0, largest = 0.0, smallest_jump = INFINITY;
-  bool first = true;
-  const CsvHeader header = for_each_row(csv, o.columns, [&](double t, double, double x, double) {
-    largest = std::max(largest, std::abs(x));
-    if (!first) {
-      steps.add(t - previous_t);
-      const double jump = std::abs(x - previous_x);
-      jumps.add(jump);
-      if (jump > 0.0) smallest_jump = std::min(smallest_jump, jump);
+  o.averaging.validate();
+  OnePassPreparer preparer(o, csv.string());
+  BatchQueue queue;
+  std::thread reader([&] {
+    try {
+      std::vector<Row> batch = queue.empty_batch();
+      for_each_row(
+          csv, o.columns,
+          [&](double t, double temp, double gyro, double temp2) {
+            batch.push_back({t, temp, gyro, temp2});
+            if (batch.size() == kBatchRows) {
+              queue.push(std::move(batch));
+              batch = queue.empty_batch();
+            }
+          },
+          [&](const CsvHeader& header) { queue.set_header(header); });
+      if (!batch.empty()) queue.push(std::move(batch));
+      queue.close();
+    } catch (const BatchQueue::Cancelled&) {
+      queue.close();
+    } catch (...) {
+      queue.close(std::current_exception());
     }
-    first = false;
-    previous_t = t;
-    previous_x = x;
   });
-  const double interval = median_of(steps.values());
-  std::vector<double>& j = jumps.values();
-  for (double& v : j)
-    if (v < 1e-9 * largest) v = 0.0;
-  double floor = kMadToSigma * median_of(j) / std::sqrt(2.0);
-  if (!(floor > 0.0)) floor = std::isfinite(smallest_jump) ? smallest_jump : 0.0;
+  try {
+    std::vector<Row> batch;
+    bool started = false;
+    while (queue.pop(batch)) {
+      if (!started) preparer.set_header(*queue.header());
+      started = true;
+      for (const Row& r : batch) preparer.add(r);
+    }
+    reader.join();
+    return preparer.finish();
+  } catch (...) {
+    queue.cancel();
+    if (reader.joinable()) reader.join();
+    throw;
+  }
+}
 
-  // Pass 2: streaming Hampel filter into the window averager.
-  PreparedData d;
-  d.file = header.file;
-  d.raw_samples = header.rows;
-  d.outliers.floor_dph = floor;
-  WindowAverager averager(o.averaging, interval, header.has_temp2);
-  const double half = 0.5 * o.outliers.window_s;
-  const double gap = o.averaging.gap_factor * interval;
-  std::deque<Sample> window;  // samples from (judged − W/2) to the newest
-  std::size_t next = 0;       // index in `window` of the next sample to judge
-  RollingMedian median;
-  std::size_t run = 0;
-  double last_t = -INFINITY;
-  std::vector<double> scratch;
-  std::vector<double> scales;
-
-  auto judge = [&](std::size_t k) {
-    const Sample& s = window[k];
-    // The window of s: same run, within ±W/2 (the multiset holds exactly those).
-    bool valid = true;
-    if (o.remove_outliers && median.size() >= 3) {
-      const double m = median.median();
-      const double deviation = std::abs(s.gyro - m);
-      if (deviation > o.outliers.threshold * floor) {
-        scratch.clear();
-        for (const Sample& w : window)
-          if (w.run == s.run && std::abs(w.t - s.t) <= half) scratch.push_back(std::abs(w.gyro - m));
-        const double scale = std::max(kMadToSigma * median_of(scratch), floor);
-        valid = deviation <= o.outliers.threshold * scale;
-      }
-    }
-    if (!valid) {
-      ++d.outliers.removed;
-      d.outliers.times_s.push_back(s.t);
-    }
-    averager.add(s.t, s.temp, s.gyro, s.temp2, valid);
-  };
-  // The multiset holds the samples of window[lo, hi) that are within ±W/2 of
-  // window[next] and in its run.
-  std::size_t lo = 0, hi = 0;
-  auto advance = [&](bool flush) {
-    while (next < window.size()) {
-      const Sample& s = window[next];
-      // Add everything up to s.t + W/2 (in its run); stop if not arrived yet.
-      while (hi < window.size() && window[hi].run == s.run && window[hi].t <= s.t + half) {
-        median.insert(window[hi].gyro);
-        ++hi;
-      }
-      if (!flush && hi == window.size()) return;  // a later sample may still belong
-      while (lo < hi && (window[lo].run != s.run || window[lo].t < s.t - half)) {
-        median.erase(window[lo].gyro);
-        ++lo;
-      }
-      judge(next);
-      ++next;
-      // Samples before lo left the multiset and no later window reaches
-      // back to them (lo ≤ next always): drop them.
-      while (lo > 0) {
-        window.pop_front();
-        --lo;
-        --hi;
-        --next;
-      }
-    }
-  };
-  for_each_row(csv, o.columns, [&](double t, double temp, double gyro, double temp2) {
-    if (t - last_t > gap) ++run;
-    last_t = t;
-    window.push_back({t, temp, gyro, temp2, run});
-    advance(false);
-  });
-  advance(true);
-  d.series = averager.finish();
-  d.averaging = averager.report();
-  d.derived = derive(d.series, o.derivative, o.derivative_span_s);
-  d.derivative_span_s = o.derivative_span_s;
-  return d;
+bool streams(const std::filesystem::path& csv, const PipelineOptions& options) {
+  std::error_code size_error;
+  const auto bytes = std::filesystem::file_size(csv, size_error);
+  return !size_error && bytes > kStreamingThresholdBytes && options.columns.extra.empty() &&
+         !options.columns.other_numeric;
 }
 
 PreparedData prepare_csv(const std::filesystem::path& csv, const PipelineOptions& options,
                          bool* streamed) {
-  std::error_code size_error;
-  const auto bytes = std::filesystem::file_size(csv, size_error);
-  // Log columns as model terms need the record in memory.
-  const bool stream = !size_error && bytes > kStreamingThresholdBytes && options.columns.extra.empty() &&
-                      !options.columns.other_numeric;
+  const bool stream = streams(csv, options);
   if (streamed != nullptr) *streamed = stream;
   return stream ? prepare_data_streaming(csv, options) : prepare_data(csv, options);
 }

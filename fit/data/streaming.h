@@ -1,37 +1,60 @@
 #pragma once
-// Preparing a record too large to hold in memory (a 10-day log at 10 Hz is
-// 8.6 million rows): the CSV is read twice and never stored.
+// Preparing a record of any length in one pass over its CSV, in bounded
+// memory: the steps of prepare_data (fit/data/prepare.h), but every row is
+// read and parsed once and only about a filter window of rows is held.
 //
-//  Pass 1: the median time step (the sample interval) and the glitch filter's
-//          noise floor s_floor = 1.4826·median|x_k − x_{k−1}|/√2 (or the
-//          smallest non-zero step), each from a reservoir sample of all steps
-//          (Vitter's algorithm R, 20 000 entries, fixed seed, so the result is
-//          deterministic and exact for records of up to 20 001 samples).
-//  Pass 2: a streaming Hampel filter with the rule of fit/data/outliers.h: a sample
-//          is judged once every sample up to W/2 after it has arrived; its
-//          window is the samples within ±W/2 of the same gap-free run; the
-//          moving median comes from two balanced multisets (O(log w) per
-//          sample), the local MAD is computed only where the floor alone
-//          cannot clear the sample. Judged samples go straight into the
-//          window averager (fit/data/averaging.h).
+//  1. Prefix. The first kPrefixRows rows are held. They give what the later
+//     steps need up front: the sample interval Δ (the median time step), the
+//     glitch filter's floor s_floor and round-off level (fit/data/outliers.h),
+//     and whether the record is bursty (fit/data/averaging.h). A record of up
+//     to kPrefixRows rows (73 h at 1 Hz, 7.3 h at 10 Hz) is therefore prepared
+//     exactly as in memory; a longer one gets the Δ, floor and burst decision
+//     of its first kPrefixRows rows (the run lengths and spacing in the report
+//     still cover the whole record).
+//  2. Filter. The Hampel rule of fit/data/outliers.h with the same window (the
+//     samples within ±W/2), median, MAD and decisions. A sample is judged once
+//     a sample more than W/2 after it has arrived. The window's values are
+//     kept sorted in an array (insert and erase by binary search and a move
+//     of the tail: O(w) bytes moved, but in cache), so the median is read in
+//     O(1); the MAD, a selection over the window, is computed only where the
+//     floor alone cannot clear the sample, and on the samples the report's
+//     scale is taken over (every max(1, n/10⁴)-th sample within the prefix,
+//     every 1000th beyond it).
+//  3. Averaging. Judged samples go straight into the window averager.
 //
-// Memory: the reservoirs, about W/Δ samples of window, and the averaged
-// series; independent of the length of the record.
+// Reading and parsing run on a second thread, which hands the rows over in
+// batches (at most kBatchesInFlight of kBatchRows rows), so parsing and
+// filtering overlap on two cores.
+//
+// Memory: the prefix (kPrefixRows × 32 bytes, 8 MB), the filter's window, the
+// batches (1 MB) and the averaged series; nothing grows with the record but
+// the series, the gaps and the glitch times.
 
+#include <cstddef>
 #include <filesystem>
 
 #include "fit/data/prepare.h"
 
 namespace gyrotherm::fit {
 
+inline constexpr std::size_t kPrefixRows = std::size_t{1} << 18;  // 262 144
+inline constexpr std::size_t kBatchRows = 8192;
+inline constexpr std::size_t kBatchesInFlight = 4;
+
+// Throws InputError (naming the file and line) on bad input, as prepare_data.
+// Log columns as model terms (options.columns.extra, other_numeric) need the
+// in-memory reader.
 PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& options);
 
 // The reader switches to streaming above this file size.
 inline constexpr std::uintmax_t kStreamingThresholdBytes = 64ull << 20;
 
 // prepare_data(), or prepare_data_streaming() for a file larger than
-// kStreamingThresholdBytes; *streamed (if given) says which.
+// kStreamingThresholdBytes (without log columns as terms); *streamed (if
+// given) says which.
 PreparedData prepare_csv(const std::filesystem::path& csv, const PipelineOptions& options,
                          bool* streamed = nullptr);
+// Whether prepare_csv streams this file with these options.
+bool streams(const std::filesystem::path& csv, const PipelineOptions& options);
 
 }  // namespace gyrotherm::fit

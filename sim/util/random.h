@@ -56,9 +56,6 @@ enum : std::uint64_t {
   diagnosis_step_bootstrap = 0x57E9,
   // The per-trial [spread] draws of score (studies/score/spread.h).
   score_spread = 0x5C0E,
-  // The streaming reader's reservoir samples (fit/data/streaming.h), from a
-  // fixed seed so that a record is always prepared the same way.
-  reservoir_seed = 0x5eed, reservoir_steps = 1, reservoir_jumps = 2,
 };
 }  // namespace streams
 

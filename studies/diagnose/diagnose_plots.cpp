@@ -102,7 +102,7 @@ void write_diagnosis_plots(const std::string& dir, const Measurement& m,
         before->fit.instability_after_dph, d.fit.instability_after_dph, floor_text));
     fig.render();
   }
-  {  // 5. Allan deviation of the raw and the compensated output.
+  if (m.size() > 0) {  // 5. Allan deviation of the raw and the compensated output.
     const double dt = data.averaging.sample_interval_s > 0 ? data.averaging.sample_interval_s : 1.0;
     std::vector<double> compensated(m.size());
     std::size_t p = 0;

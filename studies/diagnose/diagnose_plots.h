@@ -7,6 +7,8 @@
 //   before_after.png     the residual without and with the added effect (--add)
 //   allan.png            Allan deviation of the raw and compensated output with
 //                        68 % bands, and the noise floor at the averaging time
+//                        (needs the samples: left out when `measurement` is
+//                        empty, as for a log prepared in one pass)
 
 #include <string>
 
