@@ -192,12 +192,20 @@ int run_compensate(const CompensateOptions& o) {
   // computed before anything is written.
   std::vector<std::pair<std::string, fit::Compensation>> done;
   std::vector<std::pair<std::string, nlohmann::ordered_json>> json;
+  bool streamed = false;
   for (const fit::SavedFit& fit : saved) {
     fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
     if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
     try {
-      const fit::Measurement m = fit::read_measurement_csv(o.data, pipeline.columns);
-      done.emplace_back(fit.channel, fit::compensate(m, fit, pipeline));
+      // A log too large to hold, one channel: never held, the output written
+      // as it is computed (fit/compensation.h).
+      streamed = saved.size() == 1 && fit::streams(o.data, pipeline);
+      if (streamed) {
+        done.emplace_back(fit.channel, fit::compensate_streaming(o.data, fit, pipeline, o.output));
+      } else {
+        const fit::Measurement m = fit::read_measurement_csv(o.data, pipeline.columns);
+        done.emplace_back(fit.channel, fit::compensate(m, fit, pipeline));
+      }
     } catch (const InputError& e) {
       if (saved.size() == 1) throw;
       throw InputError(fmt::format("channel {}: {}", fit.channel, e.what()));
@@ -205,7 +213,7 @@ int run_compensate(const CompensateOptions& o) {
     json.emplace_back(fit.channel, fit::compensation_json(done.back().second, fit, pipeline, o.data,
                                                           o.fit_file, o.output));
   }
-  if (!o.output.empty()) {
+  if (!o.output.empty() && !streamed) {
     if (done.size() == 1)
       fit::write_compensated_csv(o.output, done.front().second);
     else

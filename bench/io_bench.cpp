@@ -6,15 +6,30 @@
 //    compensate and diagnose wait for).
 //  BM_FormatSimulationCsv: sim::simulation_csv, the text in memory.
 //  BM_WriteSimulationCsv: sim::simulation_csv and writing it to a file.
+//
+// With GYROTHERM_LARGE_CSV naming a large log (scripts/large_input.sh: the
+// 557 MB, 10-day record at 10 Hz), three more on that file, from the page
+// cache, one iteration each, so the distance of `fit` to each limit shows:
+//  BM_LargeLog_Read: the bytes read in 1 MB blocks, nothing done with them;
+//  BM_LargeLog_Parse: fit::for_each_row on one thread, the rows summed;
+//  BM_LargeLog_Fit: what `gyrotherm fit` does, fit::prepare_csv (one pass,
+//    two threads, fit/data/streaming.h) and the ols fit of T + T^2 + dT.
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "fit/data/measurement.h"
+#include "fit/data/streaming.h"
+#include "fit/engines/engine.h"
+#include "fit/model/formula.h"
+#include "fit/pipeline.h"
 #include "sim/config_loader.h"
 #include "sim/output.h"
 #include "sim/simulator.h"
@@ -92,10 +107,71 @@ void BM_WriteSimulationCsv(benchmark::State& state) {
   state.counters["rows"] = static_cast<double>(run.result.rows());
 }
 
+void set_large_counters(benchmark::State& state, const std::filesystem::path& csv) {
+  const auto bytes = static_cast<std::int64_t>(std::filesystem::file_size(csv));
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * bytes);
+  state.counters["file_mb"] = static_cast<double>(bytes) / 1e6;
+}
+
+void BM_LargeLog_Read(benchmark::State& state, const std::filesystem::path& csv) {
+  std::vector<char> block(std::size_t{1} << 20);
+  for (auto _ : state) {
+    std::FILE* f = std::fopen(csv.c_str(), "rb");
+    std::size_t total = 0;
+    for (std::size_t got; (got = std::fread(block.data(), 1, block.size(), f)) > 0;) total += got;
+    std::fclose(f);
+    benchmark::DoNotOptimize(total);
+  }
+  set_large_counters(state, csv);
+}
+
+void BM_LargeLog_Parse(benchmark::State& state, const std::filesystem::path& csv) {
+  for (auto _ : state) {
+    double sum = 0.0;
+    const fit::CsvHeader h = fit::for_each_row(csv, fit::ColumnMap{}, [&](double t, double temp, double gyro, double temp2) {
+      sum += t + temp + gyro + temp2;
+    });
+    benchmark::DoNotOptimize(sum);
+    state.counters["rows"] = static_cast<double>(h.rows);
+  }
+  set_large_counters(state, csv);
+}
+
+void BM_LargeLog_Fit(benchmark::State& state, const std::filesystem::path& csv) {
+  const auto terms = fit::parse_formula("T + T^2 + dT");
+  const fit::EngineInfo& ols = fit::find_engine("ols");
+  for (auto _ : state) {
+    bool streamed = false;
+    const fit::PreparedData d = fit::prepare_csv(csv, fit::PipelineOptions{}, &streamed);
+    const fit::ModelFit f = fit::fit_model(d, terms, ols, fit::EngineSettings{});
+    benchmark::DoNotOptimize(f.instability_after_dph);
+    state.counters["windows"] = static_cast<double>(d.series.size());
+    state.counters["streamed"] = streamed ? 1.0 : 0.0;
+  }
+  set_large_counters(state, csv);
+}
+
 BENCHMARK(BM_ReadMeasurementCsv)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FormatSimulationCsv)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_WriteSimulationCsv)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (const char* large = std::getenv("GYROTHERM_LARGE_CSV"); large != nullptr && *large != 0) {
+    const std::filesystem::path csv = large;
+    if (!std::filesystem::exists(csv)) {
+      std::fprintf(stderr, "GYROTHERM_LARGE_CSV=%s: no such file\n", large);
+      return 2;
+    }
+    for (auto [name, fn] : {std::pair{"BM_LargeLog_Read", &BM_LargeLog_Read},
+                            std::pair{"BM_LargeLog_Parse", &BM_LargeLog_Parse},
+                            std::pair{"BM_LargeLog_Fit", &BM_LargeLog_Fit}})
+      benchmark::RegisterBenchmark(name, fn, csv)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

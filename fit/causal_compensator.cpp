@@ -20,20 +20,28 @@ CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& 
 
 bool CausalCompensator::judge(double t, double x) {
   const double width = fit_.pipeline.outliers.window_s;
-  std::size_t drop = 0;
-  while (drop < recent_t_.size() && t - recent_t_[drop] > width) ++drop;
-  recent_t_.erase(recent_t_.begin(), recent_t_.begin() + static_cast<std::ptrdiff_t>(drop));
-  recent_x_.erase(recent_x_.begin(), recent_x_.begin() + static_cast<std::ptrdiff_t>(drop));
-  recent_t_.push_back(t);
-  recent_x_.push_back(x);
-  if (recent_x_.size() < 3) return false;
-  const double median = median_of(recent_x_);
-  const double deviation = std::abs(x - median);
+  while (!recent_.empty() && t - recent_.front().t > width) recent_.pop_front();
+  while (!lowest_.empty() && t - lowest_.front().t > width) lowest_.pop_front();
+  while (!highest_.empty() && t - highest_.front().t > width) highest_.pop_front();
+  recent_.push_back({t, x});
+  while (!lowest_.empty() && lowest_.back().x >= x) lowest_.pop_back();
+  lowest_.push_back({t, x});
+  while (!highest_.empty() && highest_.back().x <= x) highest_.pop_back();
+  highest_.push_back({t, x});
+  if (recent_.size() < 3) return false;
   const double threshold = fit_.pipeline.outliers.threshold;
-  if (!(deviation > threshold * settings_.outlier_floor_dph)) return false;
-  std::vector<double> spread(recent_x_.size());
-  for (std::size_t i = 0; i < spread.size(); ++i) spread[i] = std::abs(recent_x_[i] - median);
-  const double scale = std::max(kMadToSigma * median_of(std::move(spread)), settings_.outlier_floor_dph);
+  const double bound = threshold * settings_.outlier_floor_dph;
+  // Every value of the window within the bound of this one (with a margin for
+  // rounding): so is their median, and the sample is kept, in O(1).
+  const double margin = bound * (1.0 - 1e-9);
+  if (highest_.front().x - x <= margin && x - lowest_.front().x <= margin) return false;
+  std::vector<double> values(recent_.size());
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = recent_[i].x;
+  const double median = median_of(values);
+  const double deviation = std::abs(x - median);
+  if (!(deviation > bound)) return false;
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::abs(recent_[i].x - median);
+  const double scale = std::max(kMadToSigma * median_in_place(values), settings_.outlier_floor_dph);
   return deviation > threshold * scale;
 }
 

@@ -8,7 +8,8 @@
 //      the last W_o seconds (itself included), Hampel's test with the local
 //      MAD and the fit's global floor s_floor (fit/data/outliers.h; the offline
 //      rule centres its window and so looks W_o/2 ahead). With fewer than 3
-//      samples in the window the sample is kept.
+//      samples in the window the sample is kept. A sample within s_floor's
+//      bound of every sample of the window is kept without the median, in O(1).
 //   2. The windows of the fit (fit/data/averaging.h) with the fit's sample
 //      interval Δ and burst mode, fed one sample at a time; a window closes
 //      when a sample beyond it, or after a gap, arrives.
@@ -21,6 +22,7 @@
 // not re-estimated from the record being compensated, so the compensator is
 // the same on any record and needs no look at the whole of it.
 
+#include <deque>
 #include <memory>
 #include <span>
 #include <string>
@@ -60,7 +62,12 @@ class CausalCompensator {
   CausalSettings settings_;
   std::vector<std::string> extra_names_;
   WindowAverager averager_;
-  std::vector<double> recent_t_, recent_x_;  // the glitch rule's trailing window
+  // The glitch rule's trailing window, and the indices of its running minimum
+  // and maximum (monotone queues).
+  struct Sample {
+    double t, x;
+  };
+  std::deque<Sample> recent_, lowest_, highest_;
   std::vector<double> window_bias_;
   bool started_ = false;
   double start_time_s_ = 0.0;

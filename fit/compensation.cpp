@@ -1,12 +1,14 @@
 #include "fit/compensation.h"
 
 #include "fit/causal_compensator.h"
+#include "fit/data/streaming.h"
 #include "fit/model/formula.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "sim/util/atomic_file.h"
 #include "sim/util/fast_number.h"
@@ -23,7 +25,105 @@ double std_dev(const std::vector<double>& v) {
   return std::sqrt(ss / static_cast<double>(v.size() - 1));
 }
 
+// B of every window, the compensated windows, the instability before and after.
+void window_models(Compensation& c, const SavedFit& fit) {
+  const AveragedSeries& s = c.data.series;
+  c.window_model_dph = model_values(design_matrix(c.data.derived, fit.terms, fit.parameters),
+                                    fit.coefficients);
+  for (std::size_t p = 0; p < s.size(); ++p)
+    c.window_compensated_dph.push_back(s.gyro_dph[p] - c.window_model_dph[p]);
+  if (s.size() >= 2) {
+    c.before_dph = std_dev(s.gyro_dph);
+    c.after_dph = std_dev(c.window_compensated_dph);
+  }
+}
+
+// The real-time compensator's record constants: the fit's (this record's for
+// fit files that lack them).
+CausalSettings causal_settings(const SavedFit& fit, const PreparedData& data) {
+  CausalSettings settings;
+  settings.sample_interval_s = fit.sample_interval_s.value_or(data.averaging.sample_interval_s);
+  settings.bursts = fit.bursts.value_or(data.averaging.bursts);
+  settings.outlier_floor_dph = fit.outlier_floor_dph.value_or(data.outliers.floor_dph);
+  return settings;
+}
+
+// Central mode: B at time t, interpolated between window centres of the same
+// run; p is the window at or before t, advanced as t grows.
+double model_at(const AveragedSeries& s, const std::vector<double>& model, double t, std::size_t& p) {
+  while (p + 1 < s.size() && s.time_s[p + 1] <= t) ++p;
+  const bool can_interpolate = p + 1 < s.size() && s.run[p + 1] == s.run[p] && t >= s.time_s[p];
+  if (!can_interpolate) return model[p];
+  const double f = (t - s.time_s[p]) / (s.time_s[p + 1] - s.time_s[p]);
+  return model[p] + f * (model[p + 1] - model[p]);
+}
+
+std::string csv_head(const Compensation& c) {
+  return fmt::format(
+      "# gyrotherm compensate: compensated_dph = gyro_dph - model_dph; instability "
+      "{:.6g} -> {:.6g} deg/h\ntime_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n",
+      c.before_dph, c.after_dph);
+}
+
+// One output row, the digits of "{:.10g},{:.6f},{:.6f},{:.9f},{:.9f},{}",
+// formatted by hand (sim/util/fast_number.h); needs kRowRoom bytes.
+constexpr std::size_t kRowRoom = 6 * 350;
+char* write_row(char* p, double t, double temp, double gyro, double model, bool outlier) {
+  p = write_general(p, t, 10);
+  *p++ = ',';
+  p = write_fixed(p, temp, 6);
+  *p++ = ',';
+  p = write_fixed(p, gyro, 6);
+  *p++ = ',';
+  p = write_fixed(p, model, 9);
+  *p++ = ',';
+  p = write_fixed(p, gyro - model, 9);
+  *p++ = ',';
+  *p++ = outlier ? '1' : '0';
+  *p++ = '\n';
+  return p;
+}
+
 }  // namespace
+
+Compensation compensate_streaming(const std::filesystem::path& csv, const SavedFit& fit,
+                                  const PipelineOptions& pipeline, const std::filesystem::path& output) {
+  Compensation c;
+  c.data = prepare_data_streaming(csv, pipeline);
+  check_columns(fit.terms, c.data, pipeline.columns);
+  window_models(c, fit);
+  if (output.empty()) return c;
+
+  AtomicFile out(output);
+  const std::string head = csv_head(c);
+  out.stream().write(head.data(), static_cast<std::streamsize>(head.size()));
+  std::string buffer(std::size_t{1} << 20, '\0');
+  std::size_t used = 0;
+  std::optional<CausalCompensator> causal;
+  if (pipeline.derivative == DerivativeMode::causal) causal.emplace(fit, causal_settings(fit, c.data));
+  const AveragedSeries& s = c.data.series;
+  const std::vector<double>& glitches = c.data.outliers.times_s;  // increasing
+  std::size_t p = 0, g = 0;
+  for_each_row(csv, pipeline.columns, [&](double t, double temp, double gyro, double temp2) {
+    double model = 0.0;
+    bool outlier = false;
+    if (causal) {
+      model = causal->update(t, temp, temp2, gyro, {}, &outlier);
+    } else {
+      model = model_at(s, c.window_model_dph, t, p);
+      while (g < glitches.size() && glitches[g] < t) ++g;
+      outlier = g < glitches.size() && glitches[g] == t;
+    }
+    used = static_cast<std::size_t>(write_row(buffer.data() + used, t, temp, gyro, model, outlier) - buffer.data());
+    if (buffer.size() - used < kRowRoom) {
+      out.stream().write(buffer.data(), static_cast<std::streamsize>(used));
+      used = 0;
+    }
+  });
+  out.stream().write(buffer.data(), static_cast<std::streamsize>(used));
+  out.commit();
+  return c;
+}
 
 Compensation compensate(const Measurement& m, const SavedFit& fit, const PipelineOptions& pipeline) {
   Compensation c;
@@ -36,15 +136,8 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   c.data.derivative_span_s = pipeline.derivative_span_s;
   check_columns(fit.terms, c.data, pipeline.columns);
 
+  window_models(c, fit);
   const AveragedSeries& s = c.data.series;
-  c.window_model_dph = model_values(design_matrix(c.data.derived, fit.terms, fit.parameters),
-                                    fit.coefficients);
-  for (std::size_t p = 0; p < s.size(); ++p)
-    c.window_compensated_dph.push_back(s.gyro_dph[p] - c.window_model_dph[p]);
-  if (s.size() >= 2) {
-    c.before_dph = std_dev(s.gyro_dph);
-    c.after_dph = std_dev(c.window_compensated_dph);
-  }
 
   c.time_s = m.time_s;
   c.temp_c = m.temp_c;
@@ -55,10 +148,7 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   if (pipeline.derivative == DerivativeMode::causal) {
     // The real-time compensator, sample by sample, with the fit's record
     // constants (this record's for fit files that lack them).
-    CausalSettings settings;
-    settings.sample_interval_s = fit.sample_interval_s.value_or(c.data.averaging.sample_interval_s);
-    settings.bursts = fit.bursts.value_or(c.data.averaging.bursts);
-    settings.outlier_floor_dph = fit.outlier_floor_dph.value_or(c.data.outliers.floor_dph);
+    const CausalSettings settings = causal_settings(fit, c.data);
     std::vector<std::string> names;
     std::vector<const std::vector<double>*> columns;
     for (const auto& [name, values] : m.extra) {
@@ -77,49 +167,18 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
     return c;
   }
   std::size_t p = 0;  // windows are in time order
-  for (std::size_t k = 0; k < m.size(); ++k) {
-    const double t = m.time_s[k];
-    while (p + 1 < s.size() && s.time_s[p + 1] <= t) ++p;
-    const bool can_interpolate = p + 1 < s.size() && s.run[p + 1] == s.run[p] && t >= s.time_s[p];
-    if (can_interpolate) {
-      const double f = (t - s.time_s[p]) / (s.time_s[p + 1] - s.time_s[p]);
-      c.model_dph[k] = c.window_model_dph[p] + f * (c.window_model_dph[p + 1] - c.window_model_dph[p]);
-    } else {
-      c.model_dph[k] = c.window_model_dph[p];
-    }
-  }
+  for (std::size_t k = 0; k < m.size(); ++k) c.model_dph[k] = model_at(s, c.window_model_dph, m.time_s[k], p);
   return c;
 }
 
 void write_compensated_csv(const std::filesystem::path& file, const Compensation& c) {
-  fmt::memory_buffer out;
-  fmt::format_to(std::back_inserter(out),
-                 "# gyrotherm compensate: compensated_dph = gyro_dph - model_dph; instability "
-                 "{:.6g} -> {:.6g} deg/h\n",
-                 c.before_dph, c.after_dph);
-  fmt::format_to(std::back_inserter(out),
-                 "time_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n");
-  // The digits of "{:.10g},{:.6f},{:.6f},{:.9f},{:.9f},{}", formatted by hand
-  // into one buffer (sim/util/fast_number.h).
+  const std::string out = csv_head(c);
   std::string text(out.data(), out.size());
-  constexpr std::size_t kRowRoom = 6 * 350;
   std::size_t used = text.size();
   text.resize(used + c.time_s.size() * 80 + kRowRoom);
   for (std::size_t k = 0; k < c.time_s.size(); ++k) {
     if (text.size() - used < kRowRoom) text.resize(text.size() + (c.time_s.size() - k) * 80 + kRowRoom);
-    char* p = text.data() + used;
-    p = write_general(p, c.time_s[k], 10);
-    *p++ = ',';
-    p = write_fixed(p, c.temp_c[k], 6);
-    *p++ = ',';
-    p = write_fixed(p, c.gyro_dph[k], 6);
-    *p++ = ',';
-    p = write_fixed(p, c.model_dph[k], 9);
-    *p++ = ',';
-    p = write_fixed(p, c.gyro_dph[k] - c.model_dph[k], 9);
-    *p++ = ',';
-    *p++ = c.outlier[k] ? '1' : '0';
-    *p++ = '\n';
+    char* p = write_row(text.data() + used, c.time_s[k], c.temp_c[k], c.gyro_dph[k], c.model_dph[k], c.outlier[k] != 0);
     used = static_cast<std::size_t>(p - text.data());
   }
   text.resize(used);

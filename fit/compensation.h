@@ -42,6 +42,15 @@ struct Compensation {
 Compensation compensate(const Measurement& measurement, const SavedFit& fit,
                         const PipelineOptions& pipeline);
 
+// A log too large to hold, one channel (fit/data/streaming.h): the windows in
+// one pass, then a second pass that writes the full-rate rows of
+// write_compensated_csv to `output` (if not empty) as they are computed, in
+// bounded memory (the full-rate vectors of the result stay empty). The same
+// values as compensate() on the same windows; the output needs B of the
+// windows after each sample (central mode), so the file is read twice.
+Compensation compensate_streaming(const std::filesystem::path& csv, const SavedFit& fit,
+                                  const PipelineOptions& pipeline, const std::filesystem::path& output);
+
 // time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier (atomically).
 void write_compensated_csv(const std::filesystem::path& file, const Compensation& c);
 // Several channels of the same record: time_s, temp_c, then per channel NAME,

@@ -210,18 +210,18 @@ class OnePassPreparer {
         return true;
       }
     }
-    clean_ = 0;
-    if (!sorting_) {  // near an outlier: keep the window sorted for a while
+    scratch_.clear();
+    for (std::size_t j = lo_; j < hi_; ++j) scratch_.push_back(at(j).gyro);
+    if (!sampled && !sorting_) {  // near an outlier: keep the window sorted for a while
       sorting_ = true;
-      scratch_.clear();
-      for (std::size_t j = lo_; j < hi_; ++j) scratch_.push_back(at(j).gyro);
       sorted_.assign(scratch_);
     }
-    const double median = sorted_.median();
+    if (!sampled) clean_ = 0;
+    // (A sample taken for the report's scale alone gets its median by selection.)
+    const double median = sorting_ ? sorted_.median() : median_in_place(scratch_);
     const double deviation = std::abs(r.gyro - median);
     if (!sampled && !(deviation > bound)) return true;
-    scratch_.clear();
-    for (double v : sorted_.values()) scratch_.push_back(std::abs(v - median));
+    for (std::size_t j = lo_, i = 0; j < hi_; ++j, ++i) scratch_[i] = std::abs(at(j).gyro - median);
     const double scale = std::max(kMadToSigma * median_in_place(scratch_), rules_.floor_dph);
     if (sampled) scales_.push_back(scale);
     if (deviation > o_.outliers.threshold * scale && deviation > rules_.zero_dph) {
