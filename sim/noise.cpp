@@ -134,25 +134,46 @@ GyroNoise::GyroNoise(const NoiseConfig& config, double sample_interval_s, std::u
   }
 }
 
+void GyroNoise::draw_ahead(std::size_t samples) {
+  assert(ahead_next_ == ahead_samples_);  // the previous ones are used up
+  const std::size_t processes = flicker_state_dph_.size();
+  ahead_arw_.resize(arw_std_dph_ > 0.0 ? samples : 0);
+  ahead_flicker_.resize(samples * processes);
+  ahead_rrw_.resize(rrw_step_dph_ > 0.0 ? samples : 0);
+  for (double& z : ahead_arw_) z = unit_normal(arw_rng_);
+  for (double& z : ahead_flicker_) z = unit_normal(flicker_rng_);
+  for (double& z : ahead_rrw_) z = unit_normal(rrw_rng_);
+  ahead_samples_ = samples;
+  ahead_next_ = 0;
+}
+
 double GyroNoise::sample(double true_rate_dph, double temp_c) {
   assert(std::isfinite(true_rate_dph) && std::isfinite(temp_c));
   double rate_dph = true_rate_dph;
+  const bool ahead = ahead_next_ < ahead_samples_;
+  const std::size_t k = ahead_next_;
 
   if (arw_std_dph_ > 0.0) {
     const double dtemp_c = temp_c - config_.arw_temp_ref_c;
     const double scale = 1.0 + config_.arw_temp_coeff_per_c2 * dtemp_c * dtemp_c;
-    rate_dph += scale * arw_std_dph_ * unit_normal(arw_rng_);
+    rate_dph += scale * arw_std_dph_ * (ahead ? ahead_arw_[k] : unit_normal(arw_rng_));
   }
 
-  for (std::size_t i = 0; i < flicker_state_dph_.size(); ++i) {
-    flicker_state_dph_[i] = flicker_phi_[i] * flicker_state_dph_[i] +
-                            flicker_innovation_dph_[i] * unit_normal(flicker_rng_);
+  const std::size_t processes = flicker_state_dph_.size();
+  for (std::size_t i = 0; i < processes; ++i) {
+    const double z = ahead ? ahead_flicker_[k * processes + i] : unit_normal(flicker_rng_);
+    flicker_state_dph_[i] = flicker_phi_[i] * flicker_state_dph_[i] + flicker_innovation_dph_[i] * z;
     rate_dph += flicker_state_dph_[i];
   }
 
   if (rrw_step_dph_ > 0.0) {
-    rrw_state_dph_ += rrw_step_dph_ * unit_normal(rrw_rng_);
+    rrw_state_dph_ += rrw_step_dph_ * (ahead ? ahead_rrw_[k] : unit_normal(rrw_rng_));
     rate_dph += rrw_state_dph_;
+  }
+  if (ahead && ++ahead_next_ == ahead_samples_) {  // used up: free them
+    ahead_arw_ = {};
+    ahead_flicker_ = {};
+    ahead_rrw_ = {};
   }
 
   double output_dph = rate_dph;
@@ -195,9 +216,19 @@ ReadingNoise::ReadingNoise(double noise_c, double resolution_c, std::uint64_t se
   assert(noise_c_ >= 0.0 && resolution_c_ >= 0.0);
 }
 
+void ReadingNoise::draw_ahead(std::size_t samples) {
+  assert(ahead_next_ == ahead_.size());
+  ahead_.resize(noise_c_ > 0.0 ? samples : 0);
+  for (double& z : ahead_) z = unit_normal(rng_);
+  ahead_next_ = 0;
+}
+
 double ReadingNoise::read(double true_c) {
   double reading_c = true_c;
-  if (noise_c_ > 0.0) reading_c += noise_c_ * unit_normal(rng_);
+  if (noise_c_ > 0.0) {
+    const double z = ahead_next_ < ahead_.size() ? ahead_[ahead_next_++] : unit_normal(rng_);
+    reading_c += noise_c_ * z;
+  }
   if (resolution_c_ > 0.0) reading_c = resolution_c_ * std::round(reading_c / resolution_c_);
   return reading_c;
 }

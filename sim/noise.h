@@ -70,6 +70,13 @@ class GyroNoise {
   // true noise-free bias (°/h) and the true gyro temperature (°C).
   double sample(double true_rate_dph, double temp_c);
 
+  // Draws now the Gaussian variates of the next `samples` calls of sample()
+  // (ARW, flicker, RRW: each from its own stream, in the order sample() would
+  // draw them), which then takes them from here: the outputs are bit-identical.
+  // None of them depends on the inputs, so a second thread can draw them while
+  // the thermal network is integrated (Simulator::run).
+  void draw_ahead(std::size_t samples);
+
   // The Gauss–Markov correlation times τ_i (s) and their common variance s²
   // ((°/h)²) of the flicker part; empty and 0 when bias instability is off.
   const std::vector<double>& flicker_correlation_times_s() const { return flicker_tau_s_; }
@@ -104,6 +111,10 @@ class GyroNoise {
   double glitch_rate_per_s_ = 0.0;
   double next_glitch_s_ = 0.0;  // time of the next glitch since the start
   std::uint64_t samples_ = 0;   // sample intervals completed
+
+  // draw_ahead's variates, per sample; ahead_next_ is the next sample's index.
+  std::vector<double> ahead_arw_, ahead_flicker_, ahead_rrw_;
+  std::size_t ahead_samples_ = 0, ahead_next_ = 0;
 };
 
 // A temperature reading: white noise of std noise_c (°C), then rounding to the
@@ -114,11 +125,15 @@ class ReadingNoise {
   ReadingNoise(double noise_c, double resolution_c, std::uint64_t seed, std::uint64_t stream);
 
   double read(double true_c);
+  // As GyroNoise::draw_ahead: the variates of the next `samples` reads.
+  void draw_ahead(std::size_t samples);
 
  private:
   double noise_c_;
   double resolution_c_;
   Rng rng_;
+  std::vector<double> ahead_;
+  std::size_t ahead_next_ = 0;
 };
 
 }  // namespace gyrotherm::sim

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "sim/bias_model.h"
 #include "sim/util/input_error.h"
@@ -22,6 +23,32 @@ double largest_rate(const RigDynamics& dynamics, double t, std::span<const doubl
 }
 
 }  // namespace
+
+// The gyro's noise and the four temperature readings,, each from its own stream.
+struct Simulator::NoiseSources {
+  GyroNoise gyro;
+  ReadingNoise chamber, case_, temp, temp2;
+  void draw_ahead(std::size_t samples) {
+    gyro.draw_ahead(samples);
+    for (ReadingNoise* r : {&chamber, &case_, &temp, &temp2}) r->draw_ahead(samples);
+  }
+};
+
+Simulator::NoiseSources Simulator::noise_sources() const {
+  const SensorConfig& sensor = rig_.sensor;
+  const std::uint64_t seed = scenario_.seed;
+  return NoiseSources{GyroNoise(gyro_.noise, 1.0 / scenario_.sample_rate_hz, seed),
+                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 0),
+                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 1),
+                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 2),
+                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 3)};
+}
+
+std::size_t Simulator::sample_count() const {
+  const double dt = 1.0 / scenario_.sample_rate_hz;
+  const double total_s = Profile(scenario_.start_c, scenario_.segments).duration_s();
+  return static_cast<std::size_t>(std::floor(total_s / dt + 1e-9)) + 1;  // as run_thermal
+}
 
 CvodeOptions SimulationOptions::default_solver_options() {
   CvodeOptions o;
@@ -133,31 +160,35 @@ ThermalTrace Simulator::run_thermal(SolverStatistics* statistics, EnergyBalance*
 SimulationResult Simulator::run(SimulationObserver* observer) const {
   SolverStatistics solver;
   EnergyBalance energy;
-  ThermalTrace trace = run_thermal(&solver, &energy, observer);
-  SimulationResult result = record(std::move(trace));
+  NoiseSources noise = noise_sources();
+  ThermalTrace trace;
+  {
+    std::jthread drawer([&] { noise.draw_ahead(std::min(sample_count(), kDrawAheadSamples)); });
+    trace = run_thermal(&solver, &energy, observer);
+  }  // joined here, or on the way out of an error
+  SimulationResult result = record(std::move(trace), noise, true);
   result.solver = solver;
   result.energy = energy;
   return result;
 }
 
 SimulationResult Simulator::record(ThermalTrace trace) const {
+  NoiseSources noise = noise_sources();
+  return record(std::move(trace), noise, false);
+}
+
+SimulationResult Simulator::record(ThermalTrace trace, NoiseSources& sources, bool parallel) const {
   SimulationResult result;
   result.seed = scenario_.seed;
   result.truth = std::move(trace);
   const ThermalTrace& tr = result.truth;
   const std::size_t n = tr.time_s.size();
   const double dt = 1.0 / scenario_.sample_rate_hz;
-
-  GyroNoise noise(gyro_.noise, dt, scenario_.seed);
-  const SensorConfig& sensor = rig_.sensor;
-  ReadingNoise read_chamber(sensor.noise_c, sensor.resolution_c, scenario_.seed,
-                            streams::reading_base + 0);
-  ReadingNoise read_case(sensor.noise_c, sensor.resolution_c, scenario_.seed,
-                         streams::reading_base + 1);
-  ReadingNoise read_temp(sensor.noise_c, sensor.resolution_c, scenario_.seed,
-                         streams::reading_base + 2);
-  ReadingNoise read_temp2(sensor.noise_c, sensor.resolution_c, scenario_.seed,
-                          streams::reading_base + 3);
+  GyroNoise& noise = sources.gyro;
+  ReadingNoise& read_chamber = sources.chamber;
+  ReadingNoise& read_case = sources.case_;
+  ReadingNoise& read_temp = sources.temp;
+  ReadingNoise& read_temp2 = sources.temp2;
 
   for (auto* column : {&result.time_s, &result.chamber_c, &result.case_c, &result.temp_c,
                        &result.temp2_c, &result.gyro_dph})
@@ -183,15 +214,27 @@ SimulationResult Simulator::record(ThermalTrace trace) const {
   }
 
   // 3. The true bias, then the pulse-counted output and the readings.
+  //    The readings depend on nothing the gyro's column does: with `parallel`
+  //    they are made on a second thread (each column from its own stream, so
+  //    the values are the same).
+  auto readings = [&] {
+    for (std::size_t k = 0; k < n; ++k) {
+      result.chamber_c.push_back(read_chamber.read(tr.node_c[N::chamber][k]));
+      result.case_c.push_back(read_case.read(tr.node_c[N::case_][k]));
+      result.temp_c.push_back(read_temp.read(tr.node_c[N::sensor][k]));
+      result.temp2_c.push_back(read_temp2.read(tr.node_c[N::sensor2][k]));
+    }
+  };
+  std::jthread reader;  // joined on the way out, errors included
+  if (parallel) reader = std::jthread(readings);
+  result.time_s = tr.time_s;
   result.bias_true_dph = BiasModel(gyro_).bias_dph(state);
-  for (std::size_t k = 0; k < n; ++k) {
-    result.time_s.push_back(tr.time_s[k]);
+  for (std::size_t k = 0; k < n; ++k)
     result.gyro_dph.push_back(noise.sample(result.bias_true_dph[k], state.temp_c[k]));
-    result.chamber_c.push_back(read_chamber.read(tr.node_c[N::chamber][k]));
-    result.case_c.push_back(read_case.read(tr.node_c[N::case_][k]));
-    result.temp_c.push_back(read_temp.read(tr.node_c[N::sensor][k]));
-    result.temp2_c.push_back(read_temp2.read(tr.node_c[N::sensor2][k]));
-  }
+  if (parallel)
+    reader.join();
+  else
+    readings();
   return result;
 }
 

@@ -73,8 +73,13 @@ class Simulator {
   ThermalTrace run_thermal(SolverStatistics* statistics = nullptr,
                            EnergyBalance* energy = nullptr,
                            SimulationObserver* observer = nullptr) const;
-  // Steps 1–3.
+  // Steps 1–3. The noise's Gaussian variates (which depend on nothing but the
+  // seed) are drawn on a second thread while CVODE integrates, for up to
+  // kDrawAheadSamples samples (the rest as they are needed), and the
+  // temperature readings are made there while the gyro's column is; the
+  // result is bit-identical to drawing and reading sample by sample.
   SimulationResult run(SimulationObserver* observer = nullptr) const;
+  static constexpr std::size_t kDrawAheadSamples = std::size_t{1} << 19;  // 146 h at 1 Hz, 50 MB
   // Steps 2–3 on a trace that run_thermal() gave for this scenario's profile
   // and rig: the trace depends on neither the seed nor the gyro's [truth] and
   // [noise], so a campaign over seeds (studies/score/campaign.h) integrates it once. The
@@ -87,6 +92,11 @@ class Simulator {
 
  private:
   std::vector<double> initial_state(const RigDynamics& dynamics) const;
+  struct NoiseSources;
+  NoiseSources noise_sources() const;
+  // With `parallel`, the temperature readings on a second thread.
+  SimulationResult record(ThermalTrace trace, NoiseSources& noise, bool parallel) const;
+  std::size_t sample_count() const;
 
   Scenario scenario_;
   RigConfig rig_;
