@@ -547,5 +547,29 @@ TEST(ReadingNoise, WhiteNoiseHasTheGivenStdAndIsQuantised) {
   EXPECT_GT(differ, 50);
 }
 
+
+// draw_ahead only moves when the variates are drawn: any number drawn ahead,
+// then sample by sample beyond them, gives the same outputs bit for bit, with
+// every component (ARW, flicker, RRW, quantisation, glitches) on.
+TEST(GyroNoise, DrawingAheadGivesTheSameOutputs) {
+  NoiseConfig c;
+  c.rrw_dph_per_sqrt_h = 1e-3;
+  c.glitch_rate_per_h = 50.0;
+  for (const std::size_t ahead : {std::size_t{0}, std::size_t{1}, std::size_t{700}, std::size_t{3000}}) {
+    GyroNoise plain(c, 1.0, 42), early(c, 1.0, 42);
+    early.draw_ahead(ahead);
+    for (int k = 0; k < 2000; ++k) {
+      const double temp = 20.0 + 0.01 * k;
+      ASSERT_EQ(early.sample(0.5, temp), plain.sample(0.5, temp)) << "ahead " << ahead << ", sample " << k;
+    }
+  }
+}
+
+TEST(ReadingNoise, DrawingAheadGivesTheSameReadings) {
+  ReadingNoise plain(0.01, 0.001, 7, 16), early(0.01, 0.001, 7, 16);
+  early.draw_ahead(500);
+  for (int k = 0; k < 1200; ++k) ASSERT_EQ(early.read(20.0 + 1e-4 * k), plain.read(20.0 + 1e-4 * k)) << k;
+}
+
 }  // namespace
 }  // namespace gyrotherm::sim
