@@ -60,7 +60,7 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
   if (channel.streamed)
     fmt::print("   (over {} MB: read in one pass without holding the samples; the log's other columns are "
                "not tried as candidates{})\n",
-               fit::kStreamingThresholdBytes >> 20, plots.empty() ? "" : ", and the full-rate Allan figure is left out");
+               fit::streaming_threshold_bytes() >> 20, plots.empty() ? "" : ", and the full-rate Allan figure is left out");
   fmt::print("1. compare: instability {} -> {} °/h; noise floor {} °/h ({}):\n"
              "   the model is {:.2f} times the floor\n",
              human(d.fit.instability_before_dph), human(d.fit.instability_after_dph),

@@ -174,5 +174,51 @@ TEST(CliFit, CompensateWithAMalformedFitFile) {
   EXPECT_NE(r.err.find("fit.json: missing field 'coefficients'"), std::string::npos) << r.err;
 }
 
+// Large logs (GYROTHERM_STREAM_ABOVE_MB=0 streams every file): fit, compensate
+// and diagnose take the one-pass path, say so, and give what the in-memory
+// path gives on a record within the streaming prefix.
+TEST(CliFit, LargeLogPathsGiveTheInMemoryResults) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  const std::string stream = "GYROTHERM_STREAM_ABOVE_MB=0 ";
+  const auto held = run_cli(dir, "fit c.csv -o held.json");
+  const auto streamed = run_shell(dir, stream + "'" + GYROTHERM_CLI + "' fit c.csv -o streamed.json");
+  ASSERT_EQ(streamed.exit_code, 0) << streamed.err;
+  EXPECT_NE(streamed.out.find("samples (streamed)"), std::string::npos) << streamed.out;
+  EXPECT_EQ(held.out.find("(streamed)"), std::string::npos);
+  nlohmann::json fit_streamed = nlohmann::json::parse(slurp(dir / "streamed.json"));
+  nlohmann::json fit_held = nlohmann::json::parse(slurp(dir / "held.json"));
+  fit_streamed.erase("seconds");  // wall time
+  fit_held.erase("seconds");
+  EXPECT_EQ(fit_streamed, fit_held);
+
+  for (const std::string mode : {"", " --causal"}) {
+    ASSERT_EQ(run_cli(dir, "compensate c.csv --fit held.json -o held.csv" + mode).exit_code, 0);
+    const auto c = run_shell(dir, stream + "'" + GYROTHERM_CLI + "' compensate c.csv --fit held.json -o streamed.csv" + mode);
+    ASSERT_EQ(c.exit_code, 0) << c.err;
+    EXPECT_EQ(slurp(dir / "streamed.csv"), slurp(dir / "held.csv")) << mode;
+  }
+
+  const auto d = run_shell(dir, stream + "'" + GYROTHERM_CLI + "' diagnose c.csv --json");
+  const auto d_held = run_cli(dir, "diagnose c.csv --json");
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  // The same windows, fit, floor and verdict; only the log's other columns
+  // (chamber_c, case_c) are not tried as candidates.
+  const nlohmann::json ds = nlohmann::json::parse(d.out), dh = nlohmann::json::parse(d_held.out);
+  for (const char* key : {"instability_dph", "instability_before_dph", "noise_floor", "segments", "verdict"})
+    EXPECT_EQ(ds[key], dh[key]) << key;
+  std::size_t logged = 0;
+  for (const auto& e : dh["missing_effects"]) logged += e["term"].get<std::string>().find("_c") != std::string::npos;
+  EXPECT_GT(logged, 0u);
+  EXPECT_EQ(ds["missing_effects"].size() + logged, dh["missing_effects"].size());
+  const auto text = run_shell(dir, stream + "'" + GYROTHERM_CLI + "' diagnose c.csv");
+  EXPECT_NE(text.out.find("read in one pass without holding the samples"), std::string::npos) << text.out;
+
+  const auto bad = run_shell(dir, "GYROTHERM_STREAM_ABOVE_MB=lots '" + std::string(GYROTHERM_CLI) + "' fit c.csv");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("GYROTHERM_STREAM_ABOVE_MB=lots: expected a whole number of MB"), std::string::npos)
+      << bad.err;
+}
+
 }  // namespace
 }  // namespace gyrotherm

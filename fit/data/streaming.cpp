@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdlib>
+#include <cstring>
 #include <cmath>
 #include <condition_variable>
 #include <deque>
@@ -372,10 +375,21 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
   }
 }
 
+std::uintmax_t streaming_threshold_bytes() {
+  const char* text = std::getenv("GYROTHERM_STREAM_ABOVE_MB");
+  if (text == nullptr || *text == '\0') return kStreamingThresholdBytes;
+  std::uintmax_t mb = 0;
+  const char* end = text + std::strlen(text);
+  const auto [ptr, ec] = std::from_chars(text, end, mb);
+  if (ec != std::errc() || ptr != end || mb > (std::uintmax_t{1} << 40))
+    throw InputError(fmt::format("GYROTHERM_STREAM_ABOVE_MB={}: expected a whole number of MB (0 streams every file)", text));
+  return mb << 20;
+}
+
 bool streams(const std::filesystem::path& csv, const PipelineOptions& options) {
   std::error_code size_error;
   const auto bytes = std::filesystem::file_size(csv, size_error);
-  return !size_error && bytes > kStreamingThresholdBytes && options.columns.extra.empty() &&
+  return !size_error && bytes > streaming_threshold_bytes() && options.columns.extra.empty() &&
          !options.columns.other_numeric;
 }
 

@@ -46,8 +46,12 @@ inline constexpr std::size_t kBatchesInFlight = 4;
 // in-memory reader.
 PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& options);
 
-// The reader switches to streaming above this file size.
+// The reader switches to streaming above this file size, or above
+// GYROTHERM_STREAM_ABOVE_MB megabytes (2²⁰ bytes) when that is set (for tests,
+// and for machines short of memory; 0 streams every file); throws InputError
+// if it is not a whole number.
 inline constexpr std::uintmax_t kStreamingThresholdBytes = 64ull << 20;
+std::uintmax_t streaming_threshold_bytes();
 
 // prepare_data(), or prepare_data_streaming() for a file larger than
 // kStreamingThresholdBytes (without log columns as terms); *streamed (if
