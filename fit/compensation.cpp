@@ -8,9 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <unistd.h>
 #include <optional>
 
 #include "sim/util/atomic_file.h"
+#include "sim/util/input_error.h"
 #include "sim/util/fast_number.h"
 
 namespace gyrotherm::fit {
@@ -86,13 +89,53 @@ char* write_row(char* p, double t, double temp, double gyro, double model, bool 
 
 }  // namespace
 
+// The rows of a record kept on disk between the pass that reads the CSV and
+// the one that writes the output: four doubles a row, in a temporary file
+// beside the output (removed on every exit, interrupts included).
+class RowSpill {
+ public:
+  explicit RowSpill(const std::filesystem::path& output)
+      : path_(output.string() + ".rows.tmp." + std::to_string(::getpid())),
+        file_(std::fopen(path_.path().c_str(), "w+b")) {
+    if (file_ == nullptr) throw InputError(path_.path().string() + ": cannot create the temporary file of rows");
+  }
+  ~RowSpill() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  RowSpill(const RowSpill&) = delete;
+  RowSpill& operator=(const RowSpill&) = delete;
+
+  void write(const double* rows, std::size_t count) {
+    if (std::fwrite(rows, 4 * sizeof(double), count, file_) != count)
+      throw InputError(path_.path().string() + ": writing the temporary file of rows failed (disk full?)");
+  }
+  // Every row, in order: f(t, temp, gyro, temp2).
+  template <typename F>
+  void replay(F&& f) {
+    if (std::fflush(file_) != 0 || std::fseek(file_, 0, SEEK_SET) != 0)
+      throw InputError(path_.path().string() + ": cannot read back the temporary file of rows");
+    std::vector<double> block(4 * 8192);
+    for (std::size_t got; (got = std::fread(block.data(), 4 * sizeof(double), 8192, file_)) > 0;)
+      for (std::size_t k = 0; k < got; ++k) f(block[4 * k], block[4 * k + 1], block[4 * k + 2], block[4 * k + 3]);
+    if (std::ferror(file_) != 0) throw InputError(path_.path().string() + ": reading back the temporary file of rows failed");
+  }
+
+ private:
+  TemporaryPath path_;
+  std::FILE* file_;
+};
+
 Compensation compensate_streaming(const std::filesystem::path& csv, const SavedFit& fit,
                                   const PipelineOptions& pipeline, const std::filesystem::path& output) {
   Compensation c;
-  c.data = prepare_data_streaming(csv, pipeline);
+  std::optional<RowSpill> spill;
+  if (!output.empty()) spill.emplace(output);
+  c.data = prepare_data_streaming(csv, pipeline, [&](const double* rows, std::size_t count) {
+    if (spill) spill->write(rows, count);
+  });
   check_columns(fit.terms, c.data, pipeline.columns);
   window_models(c, fit);
-  if (output.empty()) return c;
+  if (!spill) return c;
 
   AtomicFile out(output);
   const std::string head = csv_head(c);
@@ -104,7 +147,7 @@ Compensation compensate_streaming(const std::filesystem::path& csv, const SavedF
   const AveragedSeries& s = c.data.series;
   const std::vector<double>& glitches = c.data.outliers.times_s;  // increasing
   std::size_t p = 0, g = 0;
-  for_each_row(csv, pipeline.columns, [&](double t, double temp, double gyro, double temp2) {
+  spill->replay([&](double t, double temp, double gyro, double temp2) {
     double model = 0.0;
     bool outlier = false;
     if (causal) {

@@ -42,12 +42,13 @@ struct Compensation {
 Compensation compensate(const Measurement& measurement, const SavedFit& fit,
                         const PipelineOptions& pipeline);
 
-// A log too large to hold, one channel (fit/data/streaming.h): the windows in
-// one pass, then a second pass that writes the full-rate rows of
-// write_compensated_csv to `output` (if not empty) as they are computed, in
-// bounded memory (the full-rate vectors of the result stay empty). The same
-// values as compensate() on the same windows; the output needs B of the
-// windows after each sample (central mode), so the file is read twice.
+// A log too large to hold, one channel (fit/data/streaming.h): the CSV is
+// read once, the windows prepared in that pass while the parsed rows go to a
+// temporary binary file beside `output` (32 bytes a row; removed on every
+// exit); then the full-rate rows of write_compensated_csv are written from it
+// as they are computed. Memory stays bounded (the full-rate vectors of the
+// result stay empty); the values are compensate()'s on the same windows.
+// Without an output, nothing is spilled.
 Compensation compensate_streaming(const std::filesystem::path& csv, const SavedFit& fit,
                                   const PipelineOptions& pipeline, const std::filesystem::path& output);
 

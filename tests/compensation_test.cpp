@@ -7,6 +7,7 @@
 
 #include "cli_runner.h"
 #include "fit/pipeline.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -37,6 +38,32 @@ TEST(Compensation, StreamedOutputIsTheInMemoryOutput) {
     EXPECT_EQ(streamed.data.outliers.times_s, held.data.outliers.times_s);
     EXPECT_TRUE(streamed.time_s.empty());  // nothing held at full rate
   }
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_EQ(entry.path().string().find(".rows.tmp"), std::string::npos) << "left behind: " << entry.path();
+}
+
+// A bad row in the middle: the error names it, and neither the output nor the
+// temporary file of rows is left.
+TEST(Compensation, StreamedBadRowLeavesNoFiles) {
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "fit c.csv -o fit.json").exit_code, 0);
+  std::string text = slurp(dir / "c.csv");
+  const std::size_t at = text.find("\n20000,");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at + 1, 5, "abcde");
+  gyrotherm::testing::write_text(dir / "bad.csv", text);
+  const SavedFit fit = load_fit(dir / "fit.json");
+  const PipelineOptions p = reading_columns_of(fit.pipeline, fit.terms);
+  const std::size_t files = dir.file_count();
+  try {
+    compensate_streaming(dir / "bad.csv", fit, p, dir / "out.csv");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'abcde' is not a number"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(dir.file_count(), files);
 }
 
 TEST(Compensation, StreamedRecordWithGlitchesFlagsThemAtTheirRows) {

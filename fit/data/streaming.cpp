@@ -332,7 +332,9 @@ class BatchQueue {
 
 }  // namespace
 
-PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& o) {
+PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& o,
+                                    const RowObserver& observe) {
+  static_assert(sizeof(Row) == 4 * sizeof(double));
   o.outliers.validate();
   o.averaging.validate();
   OnePassPreparer preparer(o, csv.string());
@@ -364,6 +366,7 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
     while (queue.pop(batch)) {
       if (!started) preparer.set_header(*queue.header());
       started = true;
+      if (observe) observe(reinterpret_cast<const double*>(batch.data()), batch.size());
       for (const Row& r : batch) preparer.add(r);
     }
     reader.join();

@@ -32,6 +32,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 
 #include "fit/data/prepare.h"
 
@@ -44,7 +45,13 @@ inline constexpr std::size_t kBatchesInFlight = 4;
 // Throws InputError (naming the file and line) on bad input, as prepare_data.
 // Log columns as model terms (options.columns.extra, other_numeric) need the
 // in-memory reader.
-PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& options);
+//
+// observe (if given) sees every row, on the preparing thread, in order, a
+// batch at a time: `count` rows of four doubles each (time s, temp °C, gyro
+// °/h, temp2 °C, 0 without that column), after the units are applied.
+using RowObserver = std::function<void(const double* rows, std::size_t count)>;
+PreparedData prepare_data_streaming(const std::filesystem::path& csv, const PipelineOptions& options,
+                                    const RowObserver& observe = {});
 
 // The reader switches to streaming above this file size, or above
 // GYROTHERM_STREAM_ABOVE_MB megabytes (2²⁰ bytes) when that is set (for tests,
