@@ -6,7 +6,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <charconv>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -78,6 +81,44 @@ TEST_F(MeasurementTest, ReadsTheNeededColumnsByNameAndIgnoresTheRest) {
   EXPECT_EQ(m.gyro_dph, (std::vector<double>{-7.25, -7.5, -7.0}));
   EXPECT_FALSE(m.has_temp2());
   EXPECT_TRUE(m.temp2_c.empty());
+}
+
+// The reader's fast path for plain decimals (Clinger's) gives the value
+// std::from_chars gives, to the bit, over digits that reach and pass its
+// limits (2^53 mantissas, 22 fraction digits, 19 digits in all), signs,
+// leading zeros and forms it leaves to from_chars (exponents, '+', "5.", ".5").
+TEST_F(MeasurementTest, PlainDecimalsReadAsFromCharsReadsThem) {
+  std::vector<std::string> texts = {"0", "-0", "0.0", "-0.000", "1", "-7.000000", "25.56000", "0.1",
+                                    "9007199254740992", "9007199254740993", "900719925474099.3",
+                                    "0.0000000000000000000001", "0.00000000000000000000012",
+                                    "1234567890123456789", "12345678901234567890", "00000000000000000000001.5",
+                                    "1e3", "-2.5E-3", "+4.25", "5.", ".5", "3.14159265358979323846"};
+  std::uint64_t x = 0x9E3779B97F4A7C15ull;
+  for (int k = 0; k < 3000; ++k) {  // random decimals of 1..19 digits, point anywhere
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    const int digits = 1 + static_cast<int>(x % 19);
+    std::string d;
+    std::uint64_t y = x;
+    for (int i = 0; i < digits; ++i, y = y * 6364136223846793005ull + 1442695040888963407ull)
+      d += static_cast<char>('0' + (y >> 60) % 10);
+    const auto point = static_cast<std::size_t>((x >> 20) % static_cast<std::uint64_t>(digits + 1));
+    std::string text = (x >> 40) % 2 ? "-" : "";
+    text += point > 0 && point < d.size() ? d.substr(0, point) + "." + d.substr(point) : d;
+    texts.push_back(text);
+  }
+  std::string csv = "time_s,temp_c,gyro_dph,v\n";  // v: read as a number, no range to keep
+  for (std::size_t k = 0; k < texts.size(); ++k) csv += fmt::format("{},20,1,{}\n", k, texts[k]);
+  ColumnMap columns;
+  columns.extra = {"v"};
+  const Measurement m = read_measurement_csv(write(csv), columns);
+  ASSERT_EQ(m.size(), texts.size());
+  for (std::size_t k = 0; k < texts.size(); ++k) {
+    std::string_view t = texts[k];
+    if (t.front() == '+') t.remove_prefix(1);
+    double expected = 0.0;
+    std::from_chars(t.data(), t.data() + t.size(), expected);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(m.extra.at("v")[k]), std::bit_cast<std::uint64_t>(expected)) << texts[k];
+  }
 }
 
 TEST_F(MeasurementTest, ReadsTheOptionalSecondTemperature) {
