@@ -87,8 +87,6 @@ char* write_row(char* p, double t, double temp, double gyro, double model, bool 
   return p;
 }
 
-}  // namespace
-
 // The rows of a record kept on disk between the pass that reads the CSV and
 // the one that writes the output: four doubles a row, in a temporary file
 // beside the output (removed on every exit, interrupts included).
@@ -124,6 +122,8 @@ class RowSpill {
   TemporaryPath path_;
   std::FILE* file_;
 };
+
+}  // namespace
 
 Compensation compensate_streaming(const std::filesystem::path& csv, const SavedFit& fit,
                                   const PipelineOptions& pipeline, const std::filesystem::path& output) {

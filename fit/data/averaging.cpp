@@ -157,8 +157,32 @@ void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double t
 
 AveragedSeries WindowAverager::finish() {
   close_window();
-  if (started_) longest_run_s_ = std::max(longest_run_s_, last_time_s_ - run_start_s_);
+  if (!started_) return std::move(series_);
+  longest_run_s_ = std::max(longest_run_s_, last_time_s_ - run_start_s_);
+  // The gap-free runs, from the gaps: lengths (first to last sample, plus Δ)
+  // and start times.
+  const double interval_s = report_.sample_interval_s;
+  std::vector<double> lengths, starts = {series_.start_time_s};
+  for (const Gap& g : report_.gaps) {
+    lengths.push_back(g.from_s - starts.back() + interval_s);
+    starts.push_back(g.to_s);
+  }
+  lengths.push_back(last_time_s_ - starts.back() + interval_s);
+  report_.median_run_s = median_of(lengths);
+  if (whole_runs_) {
+    std::vector<double> spacing;
+    for (std::size_t i = 1; i < starts.size(); ++i) spacing.push_back(starts[i] - starts[i - 1]);
+    report_.median_spacing_s = median_of(std::move(spacing));
+    series_.window_s = report_.median_run_s;
+  }
   return std::move(series_);
+}
+
+bool in_bursts(const std::vector<double>& time_s, double sample_interval_s, const AveragingOptions& options) {
+  const auto runs = gap_free_runs(time_s, sample_interval_s, options);
+  std::vector<double> lengths;
+  for (const auto& [first, last] : runs) lengths.push_back(time_s[last] - time_s[first] + sample_interval_s);
+  return runs.size() > 1 && median_of(std::move(lengths)) < options.window_s;
 }
 
 double median_sample_interval_s(const std::vector<double>& time_s) {
@@ -192,15 +216,7 @@ AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned 
                              fmt::format("{} sample{}: averaging needs at least 2", m.size(),
                                          m.size() == 1 ? "" : "s")));
   const double interval_s = median_sample_interval_s(m.time_s);
-  // Bursts: runs mostly shorter than the window.
-  const auto runs = gap_free_runs(m.time_s, interval_s, options);
-  std::vector<double> lengths, starts;
-  for (const auto& [first, last] : runs) {
-    lengths.push_back(m.time_s[last] - m.time_s[first] + interval_s);
-    starts.push_back(m.time_s[first]);
-  }
-  const double median_run_s = median_of(lengths);
-  const bool bursts = runs.size() > 1 && median_run_s < options.window_s;
+  const bool bursts = in_bursts(m.time_s, interval_s, options);
   std::optional<WindowAverager> averager;
   try {
     std::vector<std::string> names;
@@ -218,15 +234,7 @@ AveragedSeries average_windows(const Measurement& m, const std::vector<unsigned 
                   valid[k] != 0, extra);
   }
   AveragedSeries series = averager->finish();
-  AveragingReport r = averager->report();
-  r.median_run_s = median_run_s;
-  if (bursts) {
-    std::vector<double> spacing;
-    for (std::size_t i = 1; i < starts.size(); ++i) spacing.push_back(starts[i] - starts[i - 1]);
-    r.median_spacing_s = median_of(spacing);
-    series.window_s = median_run_s;
-  }
-  if (report != nullptr) *report = r;
+  if (report != nullptr) *report = averager->report();
   check_windows_survive(m.file, series, *averager, options);
   return series;
 }

@@ -96,6 +96,8 @@ class WindowAverager {
            std::span<const double> extra = {});
   AveragedSeries finish();
 
+  // After finish() it also holds the median run and, with whole runs, the
+  // median spacing of their starts (and the series' window_s is the median run).
   const AveragingReport& report() const { return report_; }
   // The windows closed so far (a window closes when a sample beyond it, or
   // after a gap, arrives; the last one at finish()).
@@ -142,6 +144,10 @@ void check_windows_survive(const std::string& file, const AveragedSeries& series
 
 // The median time step of the record, s (Δ above). Needs at least 2 samples.
 double median_sample_interval_s(const std::vector<double>& time_s);
+
+// Bursts: more than one gap-free run, and the median run (first to last
+// sample, plus Δ) shorter than the window.
+bool in_bursts(const std::vector<double>& time_s, double sample_interval_s, const AveragingOptions& options);
 
 // The gap-free runs of a record by rule 1: [first, last] sample indices.
 std::vector<std::pair<std::size_t, std::size_t>> gap_free_runs(const std::vector<double>& time_s,

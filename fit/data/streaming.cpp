@@ -78,16 +78,8 @@ class OnePassPreparer {
   PreparedData finish() {
     if (!averager_) begin_stream(true);
     advance(true);
-    close_run();
     d_.series = averager_->finish();
     d_.averaging = averager_->report();
-    d_.averaging.median_run_s = median_of(run_lengths_);
-    if (rules_.bursts) {
-      std::vector<double> spacing;
-      for (std::size_t i = 1; i < run_starts_.size(); ++i) spacing.push_back(run_starts_[i] - run_starts_[i - 1]);
-      d_.averaging.median_spacing_s = median_of(std::move(spacing));
-      d_.series.window_s = d_.averaging.median_run_s;
-    }
     d_.outliers.removed = d_.outliers.times_s.size();
     d_.outliers.scale_dph = scales_.empty() ? d_.outliers.floor_dph : median_of(std::move(scales_));
     check_windows_survive(d_.file, d_.series, *averager_, o_.averaging);
@@ -104,28 +96,21 @@ class OnePassPreparer {
     if (n < 2)
       throw InputError(located(d_.file, 0, fmt::format("{} sample{}: averaging needs at least 2", n,
                                                        n == 1 ? "" : "s")));
-    std::vector<double> steps(n - 1), jumps(n - 1);
+    std::vector<double> times(n), jumps(n - 1);
     double largest = std::abs(prefix_[0].gyro);
+    times[0] = prefix_[0].t;
     for (std::size_t k = 1; k < n; ++k) {
-      steps[k - 1] = prefix_[k].t - prefix_[k - 1].t;
+      times[k] = prefix_[k].t;
       jumps[k - 1] = std::abs(prefix_[k].gyro - prefix_[k - 1].gyro);
       largest = std::max(largest, std::abs(prefix_[k].gyro));
     }
-    rules_.interval_s = median_of(steps);
+    rules_.interval_s = median_sample_interval_s(times);
     rules_.judge = o_.remove_outliers && n >= 3;
     if (rules_.judge) {
       rules_.zero_dph = kZeroRelative * largest;
       rules_.floor_dph = noise_floor_from_jumps(std::move(jumps), rules_.zero_dph);
     }
-    // Bursts, by the rule of average_windows.
-    std::vector<double> lengths;
-    double run_start = prefix_[0].t;
-    for (std::size_t k = 1; k <= n; ++k)
-      if (k == n || is_gap(prefix_[k].t - prefix_[k - 1].t, rules_.interval_s, o_.averaging)) {
-        lengths.push_back(prefix_[k - 1].t - run_start + rules_.interval_s);
-        if (k < n) run_start = prefix_[k].t;
-      }
-    rules_.bursts = lengths.size() > 1 && median_of(lengths) < o_.averaging.window_s;
+    rules_.bursts = in_bursts(times, rules_.interval_s, o_.averaging);
     report_stride_ = whole ? std::max<std::size_t>(1, n / 10000) : 1000;
 
     d_.outliers.floor_dph = rules_.floor_dph;
@@ -140,26 +125,12 @@ class OnePassPreparer {
   }
 
   void stream(const Row& r) {
-    if (rows_seen_ == 0) {
-      run_start_ = r.t;
-    } else if (is_gap(r.t - last_t_, rules_.interval_s, o_.averaging)) {
-      close_run();
-      run_start_ = r.t;
-    }
-    last_t_ = r.t;
-    ++rows_seen_;
     if (!rules_.judge) {
       averager_->add(r.t, r.temp, r.gyro, r.temp2, true);
       return;
     }
     window_.push_back(r);
     advance(false);
-  }
-
-  void close_run() {
-    if (rows_seen_ == 0) return;
-    run_lengths_.push_back(last_t_ - run_start_ + rules_.interval_s);
-    run_starts_.push_back(run_start_);
   }
 
   // Judges every sample whose window is complete (all of them if `flush`).
@@ -242,10 +213,6 @@ class OnePassPreparer {
   std::vector<Row> prefix_;
   RecordRules rules_;
   std::optional<WindowAverager> averager_;
-  // The gap-free runs, for the report.
-  std::size_t rows_seen_ = 0;
-  double run_start_ = 0, last_t_ = 0;
-  std::vector<double> run_lengths_, run_starts_;
   // The filter.
   std::deque<Row> window_;
   std::size_t base_ = 0, lo_ = 0, hi_ = 0, next_ = 0;
