@@ -19,25 +19,21 @@ void replace_all(std::string& text, const std::string& from, const std::string& 
     text.replace(at, from.size(), to);
 }
 
-// The C expression of a term's regressor at a window: T, T2, rate, accel,
-// rel (s since the record's first sample), lag.
-std::string c_expression(const Term& term, double parameter) {
-  const std::string name(term.name);
-  if (name == "T") return "T";
-  if (name == "T^2") return "T * T";
-  if (name == "T^3") return "T * T * T";
-  if (name == "dT") return "rate";
-  if (name == "T*dT") return "T * rate";
-  if (name == "d2T") return "accel";
-  if (name == "grad") return "T2 - T";
-  if (name == "hyst")
-    return fmt::format("(rate > {0} ? 1.0 : (rate < -{0} ? -1.0 : 0.0))", number(parameter));
-  if (name == "warmup") return fmt::format("exp(-(rel - 0.0) / {})", number(parameter));
-  if (name == "t") return "rel / 3600.0";
-  if (name == "lag") return "lag";
-  if (name.starts_with("step@")) return fmt::format("(rel >= {} ? 1.0 : 0.0)", number(term.step_time_s));
-  throw InputError(fmt::format("--format c: the term '{}' has no C form{}", name,
-                               term.column.empty() ? "" : " (a log column: the C interface has no such input)"));
+// A term's C form with its parameter written in: {theta} → the value.
+std::string c_text(std::string_view form, double parameter) {
+  return fmt::format(fmt::runtime(form), fmt::arg("theta", number(parameter)));
+}
+
+// The statements that set x[j], the j-th term's regressor at a window
+// (sim/effects/effect.h, CForm).
+std::string c_statement(const Term& term, std::size_t j, double parameter) {
+  if (term.c_form.expression.empty())
+    throw InputError(fmt::format("--format c: the term '{}' has no C form{}", term.name,
+                                 term.column.empty() ? "" : " (a log column: the C interface has no such input)"));
+  if (!term.c_form.stateful()) return fmt::format("  x[{}] = {};\n", j, c_text(term.c_form.expression, parameter));
+  return fmt::format(
+      "  if (first) {{\n    x[{0}] = {1};\n  }} else {{\n    const double prev = x[{0}];\n    x[{0}] = {2};\n  }}\n", j,
+      c_text(term.c_form.initial, parameter), c_text(term.c_form.expression, parameter));
 }
 
 constexpr const char* kTemplate = R"C(
@@ -59,10 +55,11 @@ typedef struct {
   double start_time, last_time, run_start, window_end;
   size_t run, window_samples, window_valid;
   double sum_time, sum_temp, sum_temp2;
-  /* the latest closed window */
+  /* the latest closed window, and each term's regressor there */
   int has_window;
-  double bias, prev_time, prev_rel, prev_temp, prev_rate, prev_lag;
+  double bias, prev_time, prev_rel, prev_temp, prev_rate;
   size_t prev_run;
+  double x[@SLOTS@];
 } @P@_state;
 
 static inline void @P@_init(@P@_state *s) {
@@ -74,8 +71,9 @@ static inline void @P@_init(@P@_state *s) {
   s->run = s->window_samples = s->window_valid = 0;
   s->sum_time = s->sum_temp = s->sum_temp2 = 0.0;
   s->has_window = 0;
-  s->bias = s->prev_time = s->prev_rel = s->prev_temp = s->prev_rate = s->prev_lag = 0.0;
+  s->bias = s->prev_time = s->prev_rel = s->prev_temp = s->prev_rate = 0.0;
   s->prev_run = 0;
+  for (i = 0; i < @SLOTS@; ++i) s->x[i] = 0.0;
 }
 
 /* The k-th smallest of a[0..n) (0-based); a is reordered so that a[0..k) are
@@ -144,34 +142,36 @@ static inline int @P@_glitch(@P@_state *s, double t, double x) {
   return deviation > @THRESHOLD@ * scale;
 }
 
-/* The model at a window (t: its mean time, s; T, T2: its temperatures, °C). */
-static inline double @P@_model(double T, double T2, double rate, double accel, double rel, double lag) {
+/* The model at a window (T, T2: its temperatures, °C; rate, accel: their
+   backward derivatives; rel: s since the first sample). x holds each term's
+   regressor, set here; a term with a state reads its value at the previous
+   window there first (h: s since that window, slope: (T - prev_T) / h;
+   first: there is none). */
+static inline double @P@_model(double *x, int first, double T, double T2, double rate, double accel, double rel,
+                               double h, double slope, double prev_T) {
   double B = @INTERCEPT@;
-  (void)T; (void)T2; (void)rate; (void)accel; (void)rel; (void)lag;
+  (void)x; (void)first; (void)T; (void)T2; (void)rate; (void)accel; (void)rel; (void)h; (void)slope; (void)prev_T;
 @TERMS@  return B;
 }
 
-/* A window closes: its backward derivatives, lag, and bias. */
+/* A window closes: its backward derivatives and bias. */
 static inline void @P@_close(@P@_state *s, double t, double T, double T2, size_t run) {
   const double rel = t - s->start_time;
-  double rate = 0.0, accel = 0.0, lag = T;
+  double rate = 0.0, accel = 0.0, h = 0.0, slope = 0.0;
   if (s->has_window) {
-    const double h = rel - s->prev_rel;
-    const double slope = (T - s->prev_temp) / h;
-    const double e = exp(-h / @LAG_TAU@);
-    lag = T - @LAG_TAU@ * slope + e * (s->prev_lag - s->prev_temp + @LAG_TAU@ * slope);
+    h = rel - s->prev_rel;
+    slope = (T - s->prev_temp) / h;
     if (s->prev_run == run || t - s->prev_time <= @SPAN@) {
       rate = (T - s->prev_temp) / (t - s->prev_time);
       accel = (rate - s->prev_rate) / (t - s->prev_time);
     }
   }
-  s->bias = @P@_model(T, T2, rate, accel, rel, lag);
+  s->bias = @P@_model(s->x, !s->has_window, T, T2, rate, accel, rel, h, slope, s->prev_temp);
   s->has_window = 1;
   s->prev_time = t;
   s->prev_rel = rel;
   s->prev_temp = T;
   s->prev_rate = rate;
-  s->prev_lag = lag;
   s->prev_run = run;
 }
 
@@ -226,7 +226,10 @@ static inline double @P@_step(@P@_state *s, double t, double T, double T2, int v
   }
   if (s->has_window) return s->bias;
   /* Before any window closes: this sample as a window of its own. */
-  return @P@_model(T, T2, 0.0, 0.0, t - s->start_time, T);
+  {
+    double own[@SLOTS@] = {0.0};
+    return @P@_model(own, 1, T, T2, 0.0, 0.0, t - s->start_time, 0.0, 0.0, T);
+  }
 }
 
 /* The model's bias (°/h) for this sample; no glitch rule (no gyro input). */
@@ -252,12 +255,11 @@ std::string c_header(const SavedFit& fit, const CausalSettings& settings, const 
                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }))
     throw InputError(fmt::format("--prefix '{}': expected a C identifier (letters, digits, _)", prefix));
   std::string terms;
-  double lag_tau = 1.0;  // unused without lag; any positive value keeps exp() finite
   std::string coefficients;
   for (std::size_t j = 0; j < fit.terms.size(); ++j) {
     const Term& t = *fit.terms[j];
-    terms += fmt::format("  B += {} * ({});\n", number(fit.coefficients.b[j]), c_expression(t, fit.parameters[j]));
-    if (std::string(t.name) == "lag") lag_tau = fit.parameters[j];
+    terms += c_statement(t, j, fit.parameters[j]);
+    terms += fmt::format("  B += {} * x[{}];\n", number(fit.coefficients.b[j]), j);
     coefficients += fmt::format(" *   {:<10} {:>24} {}{}\n", t.name, number(fit.coefficients.b[j]),
                                 t.coefficient_unit(),
                                 t.parameter ? fmt::format("  ({} = {})", t.parameter->name, number(fit.parameters[j]))
@@ -307,7 +309,7 @@ std::string c_header(const SavedFit& fit, const CausalSettings& settings, const 
   replace_all(out, "@FLOOR@", number(settings.outlier_floor_dph));
   replace_all(out, "@INTERCEPT@", number(fit.coefficients.intercept));
   replace_all(out, "@TERMS@", terms);
-  replace_all(out, "@LAG_TAU@", number(lag_tau));
+  replace_all(out, "@SLOTS@", fmt::format("{}", std::max<std::size_t>(1, fit.terms.size())));
   replace_all(out, "@SPAN@", number(fit.pipeline.derivative_span_s));
   replace_all(out, "@BURSTS@", settings.bursts ? "1" : "0");
   replace_all(out, "@MIN_FILL@", number(a.min_fill));

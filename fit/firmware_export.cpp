@@ -33,8 +33,8 @@ CubicModel cubic_of(const SavedFit& fit, bool drop_unsupported, const std::strin
   std::vector<std::string> unsupported;
   for (std::size_t k = 0; k < fit.terms.size(); ++k) {
     const std::string name(fit.terms[k]->name);
-    const int power = name == "T" ? 1 : name == "T^2" ? 2 : name == "T^3" ? 3 : 0;
-    if (power == 0) {
+    const int power = fit.terms[k]->temperature_power;  // 0: not a power of T
+    if (power < 1 || power > kCubic) {
       unsupported.push_back(name);
       continue;
     }

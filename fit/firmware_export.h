@@ -45,6 +45,9 @@
 
 namespace gyrotherm::fit {
 
+// The highest power of T both firmwares store.
+inline constexpr int kCubic = 3;
+
 // B(T) = Σ c[k]·T^k in °/h, T in °C.
 struct CubicModel {
   std::array<double, 4> c{};

@@ -6,10 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <sstream>
 
 #include "cli_runner.h"
 #include "fit/compensation.h"
+#include "fit/model/terms.h"
 #include "fit/pipeline.h"
 
 namespace gyrotherm::fit {
@@ -53,17 +55,15 @@ std::vector<double> numbers(const std::string& text) {
   return v;
 }
 
-struct Case {
-  std::string scenario, model, fit_options;
-};
-
-class CExport : public ::testing::TestWithParam<Case> {};
-
-TEST_P(CExport, TheHeaderGivesCompensateCausalSampleBySample) {
-  const Case& c = GetParam();
+// The header for `model` fitted to a simulated `scenario`, compiled as C99
+// (and as C++17), run over the record: its bias equals compensate --causal's
+// on every sample.
+void expect_header_gives_causal(const std::string& scenario, const std::string& model,
+                                const std::string& fit_options = "") {
+  SCOPED_TRACE(scenario + ": " + model);
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/" + c.scenario + ".toml") + " -o d.csv").exit_code, 0);
-  const auto fitted = run_cli(dir, "fit d.csv --model '" + c.model + "' " + c.fit_options + " -o fit.json");
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/" + scenario + ".toml") + " -o d.csv").exit_code, 0);
+  const auto fitted = run_cli(dir, "fit d.csv --model '" + model + "' " + fit_options + " -o fit.json");
   ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
   const auto exported = run_cli(dir, "export fit.json --format c -o comp.h");
   ASSERT_EQ(exported.exit_code, 0) << exported.err;
@@ -92,16 +92,42 @@ TEST_P(CExport, TheHeaderGivesCompensateCausalSampleBySample) {
   EXPECT_LE(worst, 1e-9) << "°/h";
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    ShippedScenarios, CExport,
-    ::testing::Values(
-        Case{"cycle", "T + T^2 + dT + d2T + T*dT + hyst + warmup + t + lag + grad + step@20000", ""},
-        Case{"cycle", "T + T^2 + dT", "--keep-outliers"},
-        Case{"random", "T + T^2 + T^3 + dT + d2T + T*dT + hyst + warmup + t + lag + grad", ""},
-        Case{"warmup", "T + T^2 + dT + d2T + hyst + warmup + t + grad", ""}),
-    [](const ::testing::TestParamInfo<Case>& param_info) {
-      return param_info.param.scenario + (param_info.param.fit_options.empty() ? "_every_term" : "_no_glitch_rule");
-    });
+// Every registry term, joined by +.
+std::string every_registry_term() {
+  std::string model;
+  for (const Term* t : term_registry()) model += (model.empty() ? "" : " + ") + std::string(t->name);
+  return model;
+}
+
+// Each effect of the registry in C, beside the paper's terms: a new effect is
+// checked here without a line of this file changing.
+class CExportEffect : public ::testing::TestWithParam<const Term*> {};
+
+TEST_P(CExportEffect, TheHeaderGivesCompensateCausalSampleBySample) {
+  const std::string name(GetParam()->name);
+  const std::string paper = "T + T^2 + dT";
+  const bool in_paper = name == "T" || name == "T^2" || name == "dT";
+  expect_header_gives_causal("cycle", in_paper ? paper : paper + " + " + name);
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, CExportEffect, ::testing::ValuesIn(term_registry()),
+                         [](const ::testing::TestParamInfo<const Term*>& info) {
+                           std::string name;
+                           for (const char c : info.param->name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           return name;
+                         });
+
+// Every term at once, with their states side by side, a step, and without the
+// glitch rule; and the warm-up's timing.
+TEST(CExport, EveryTermAtOnce) {
+  expect_header_gives_causal("cycle", every_registry_term() + " + step@20000");
+  expect_header_gives_causal("random", every_registry_term());
+}
+
+TEST(CExport, WithoutTheGlitchRuleAndOnAWarmUp) {
+  expect_header_gives_causal("cycle", "T + T^2 + dT", "--keep-outliers");
+  expect_header_gives_causal("warmup", "T + T^2 + dT + warmup + t");
+}
 
 TEST(CliExportC, BadInputIsRefused) {
   ScratchDir dir;

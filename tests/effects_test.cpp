@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -60,8 +61,8 @@ TEST(Effects, WarmupStartsAtSwitchOnAndIsGoneForAGyroRunningBefore) {
   for (double r : regressor_values(warmup, s, 1200.0)) EXPECT_EQ(r, 0.0);
 }
 
-TEST(Effects, DesignTermNamesAreRegistered) {
-  // The public contract of DESIGN.md: these names exist and keep their meaning.
+TEST(Effects, ContractTermNamesAreRegistered) {
+  // The public contract (docs/contracts.md): these names exist and keep their meaning.
   for (const char* name : {"T", "T^2", "T^3", "dT", "T*dT", "d2T", "grad", "hyst", "warmup", "t"})
     EXPECT_NE(find(name), nullptr) << name;
   EXPECT_EQ(find("bogus"), nullptr);
@@ -87,6 +88,37 @@ TEST(Effects, EveryEffectKeepsTheContract) {
     EXPECT_EQ(e->hidden(), e->truth_key.empty());
     EXPECT_EQ(e->coefficient_unit().rfind("°/h", 0), 0u);
     EXPECT_FALSE(e->column_names().empty());
+    // Its family: a registry effect is one of the physical ones, not a term
+    // the fit makes.
+    EXPECT_NE(e->family, Family::step);
+    EXPECT_NE(e->family, Family::logged);
+    EXPECT_STRNE(to_string(e->family), "?");
+    // Its C form: an expression, and for a filter its first value too; a
+    // parameter is written into it ({theta}) exactly when there is one.
+    EXPECT_FALSE(e->c_form.expression.empty()) << "no C form: export --format c cannot write it";
+    const bool uses_theta = e->c_form.expression.find("{theta}") != std::string_view::npos ||
+                            e->c_form.initial.find("{theta}") != std::string_view::npos;
+    EXPECT_EQ(uses_theta, e->parameter.has_value()) << e->c_form.expression;
+    EXPECT_EQ(e->c_form.stateful(), e->family == Family::temperature_state);
+    // A rate vanishes in a soak; an effect of another family does not, or not
+    // everywhere (diagnosis reads "a rate" as zero where the temperature holds).
+    EffectSeries soak = s;
+    std::fill(soak.rate_c_per_s.begin(), soak.rate_c_per_s.end(), 0.0);
+    std::fill(soak.accel_c_per_s2.begin(), soak.accel_c_per_s2.end(), 0.0);
+    std::fill(soak.temp_c.begin(), soak.temp_c.end(), 20.0);
+    const std::vector<double> in_soak = regressor_values(*e, soak, e->parameter ? e->parameter->lower : 0.0);
+    const bool all_zero = std::all_of(in_soak.begin(), in_soak.end(), [](double r) { return r == 0.0; });
+    if (e->family == Family::rate) EXPECT_TRUE(all_zero);
+    if (e->family == Family::temperature_power || e->family == Family::temperature_state ||
+        e->family == Family::time)
+      EXPECT_FALSE(all_zero);
+    // Its power of T, exactly for the powers of T, and the regressor is that power.
+    EXPECT_EQ(e->temperature_power > 0, e->family == Family::temperature_power);
+    if (e->temperature_power > 0) {
+      const std::vector<double> r = regressor_values(*e, s, 0.0);
+      for (std::size_t p = 0; p < s.size(); ++p)
+        EXPECT_NEAR(r[p], std::pow(s.temp_c[p], e->temperature_power), 1e-12 * std::abs(r[p])) << p;
+    }
     if (e->parameter) {
       const EffectParameter& p = *e->parameter;
       EXPECT_FALSE(p.name.empty());

@@ -16,6 +16,10 @@
 // stays well below the thermal time constants of a gyro block (tens of
 // minutes), so a difference never reaches across a change of regime.
 
+#include <map>
+#include <string>
+#include <vector>
+
 #include "fit/data/averaging.h"
 #include "sim/effects/effect.h"
 
@@ -25,8 +29,12 @@ enum class DerivativeMode { central, causal };
 // "central" or "causal", as the fit file and reports write it.
 const char* to_string(DerivativeMode mode);
 
-// The fit's name for the effects' state series.
-using DerivedSeries = effects::EffectSeries;
+// The effects' state series, and what only a measured log has: its other
+// columns by name (window means) and their rates, for the terms named after
+// them (fit/model/terms.h).
+struct DerivedSeries : effects::EffectSeries {
+  std::map<std::string, std::vector<double>, std::less<>> extra, extra_rate;
+};
 
 inline constexpr double kDefaultDerivativeSpanS = 600.0;
 

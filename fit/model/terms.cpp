@@ -18,7 +18,7 @@ namespace {
 // Every run-time term made so far, and the strings its views point into.
 struct MadeTerms {
   std::mutex mutex;
-  std::deque<effects::Effect> terms;
+  std::deque<Term> terms;
   std::deque<std::string> text;
   std::string_view keep(std::string s) { return text.emplace_back(std::move(s)); }
 };
@@ -28,18 +28,47 @@ MadeTerms& made() {
   return m;
 }
 
-void column_values(const effects::Effect& self, const DerivedSeries& s, double, std::span<double> out) {
-  const auto& source = self.column_rate ? s.extra_rate : s.extra;
-  const auto it = source.find(self.column);
-  for (std::size_t p = 0; p < out.size(); ++p)
-    out[p] = it == source.end() ? std::numeric_limits<double>::quiet_NaN() : it->second[p];
-}
-
-void step_values(const effects::Effect& self, const DerivedSeries& s, double, std::span<double> out) {
-  for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.time_s[p] >= self.step_time_s ? 1.0 : 0.0;
-}
-
 }  // namespace
+
+const std::vector<const Term*>& term_registry() {
+  static const std::deque<Term> terms = [] {
+    std::deque<Term> all;
+    for (const effects::Effect* e : effects::registry()) {
+      Term t;
+      static_cast<effects::Effect&>(t) = *e;
+      t.effect = e;
+      all.push_back(t);
+    }
+    return all;
+  }();
+  static const std::vector<const Term*> pointers = [] {
+    std::vector<const Term*> all;
+    for (const Term& t : terms) all.push_back(&t);
+    return all;
+  }();
+  return pointers;
+}
+
+const Term* find_term(std::string_view name) {
+  for (const Term* t : term_registry())
+    if (t->name == name) return t;
+  return nullptr;
+}
+
+const Term* term_of(const effects::Effect& effect) { return find_term(effect.name); }
+
+void Term::compute(const DerivedSeries& s, double parameter, std::span<double> out) const {
+  if (effect != nullptr) {
+    effect->compute(s, parameter, out);
+  } else if (family == effects::Family::step) {
+    for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.time_s[p] >= step_time_s ? 1.0 : 0.0;
+  } else {
+    const auto& source = column_rate ? s.extra_rate : s.extra;
+    const auto it = source.find(column);
+    for (std::size_t p = 0; p < out.size(); ++p)
+      out[p] = it == source.end() ? std::numeric_limits<double>::quiet_NaN() : it->second[p];
+  }
+}
 
 bool is_column_name(std::string_view name) {
   if (name.empty() || !(std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_')) return false;
@@ -52,14 +81,15 @@ const Term* step_term(double time_s) {
   const std::string name = fmt::format("step@{:g}", time_s);
   MadeTerms& m = made();
   const std::lock_guard lock(m.mutex);
-  for (const effects::Effect& t : m.terms)
+  for (const Term& t : m.terms)
     if (t.name == name) return &t;
-  effects::Effect t;
+  Term t;
   t.name = m.keep(name);
   t.meaning = m.keep(fmt::format("a bias step at {:g} s (an RLG mode hop)", time_s));
   t.unit = "1";
   t.columns = effects::kTime;
-  t.regressor = &step_values;
+  t.family = effects::Family::step;
+  t.c_form.expression = m.keep(fmt::format("(rel >= {:.17g} ? 1.0 : 0.0)", time_s));
   t.step_time_s = time_s;
   return &m.terms.emplace_back(t);
 }
@@ -68,17 +98,17 @@ const Term* column_term(std::string_view column, bool rate) {
   const std::string name = rate ? fmt::format("d({})", column) : std::string(column);
   MadeTerms& m = made();
   const std::lock_guard lock(m.mutex);
-  for (const effects::Effect& t : m.terms)
+  for (const Term& t : m.terms)
     if (t.name == name) return &t;
-  effects::Effect t;
+  Term t;
   t.name = m.keep(name);
+  t.family = rate ? effects::Family::rate : effects::Family::logged;  // no C form: the C interface has no such input
   t.column = m.keep(std::string(column));
   t.column_rate = rate;
   t.meaning = m.keep(rate ? fmt::format("the rate of the logged column {}", column)
                           : fmt::format("the logged column {}", column));
   t.unit = m.keep(rate ? fmt::format("{} unit/s", column) : fmt::format("{} unit", column));
   t.columns = effects::kTime;
-  t.regressor = &column_values;
   return &m.terms.emplace_back(t);
 }
 

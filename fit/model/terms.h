@@ -1,13 +1,15 @@
 #pragma once
 // A model's terms are the physical effects of the registry shared with the
-// simulator (sim/effects/effect.h; `gyrotherm effects` lists them, DESIGN.md
-// fixes their names). A model is the intercept plus a list of terms; each
-// term turns the window means' state (fit/data/derivatives.h) into one
-// regressor, a column of the design matrix.
+// simulator (sim/effects/effect.h; `gyrotherm effects` lists them,
+// docs/contracts.md fixes their names), and the fit's own terms below. A
+// model is the intercept plus a list of terms; each term turns the window
+// means' state (fit/data/derivatives.h) into one regressor, a column of the
+// design matrix.
 //
 // Terms with a nonlinear parameter (hyst's dead band, warmup's time
 // constant) get it fitted by variable projection (fit/pipeline.h).
 
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,13 +21,27 @@
 
 namespace gyrotherm::fit {
 
-using Term = effects::Effect;
 using TermParameter = effects::EffectParameter;
 
-// Every term, in registry order.
-inline const std::vector<const Term*>& term_registry() { return effects::registry(); }
-// nullptr if unknown.
-inline const Term* find_term(std::string_view name) { return effects::find(name); }
+// A term: a registry effect (its entry copied, `effect` pointing at it), or one
+// of the fit's own terms below, which carry what only a fit knows (a log
+// column, a step time) and compute their regressors here.
+struct Term : effects::Effect {
+  const effects::Effect* effect = nullptr;  // the registry entry; nullptr for the fit's own terms
+  std::string_view column;                  // NAME and d(NAME): the log column
+  bool column_rate = false;                 // d(NAME)
+  double step_time_s = 0.0;                 // step@TIME
+
+  // r at every window; `parameter` is θ (ignored without one).
+  void compute(const DerivedSeries& series, double parameter, std::span<double> out) const;
+};
+
+// Every registry effect as a term, in registry order.
+const std::vector<const Term*>& term_registry();
+// A registry term by name; nullptr if unknown.
+const Term* find_term(std::string_view name);
+// The term of a registry effect.
+const Term* term_of(const effects::Effect& effect);
 
 // Terms beyond the registry, made on first use and kept for the life of the
 // process (so that a name always gives the same pointer):
@@ -42,7 +58,7 @@ const Term* column_term(std::string_view column, bool rate);
 // A registered term or one of the above, by name; nullptr if it is none.
 const Term* term_by_name(std::string_view name);
 inline bool is_column_term(const Term* t) { return !t->column.empty(); }
-inline bool is_step_term(const Term* t) { return t->name.starts_with("step@"); }
+inline bool is_step_term(const Term* t) { return t->family == effects::Family::step; }
 // Whether a log column's name can be written as a term.
 bool is_column_name(std::string_view name);
 // "T, T^2, T^3, dT, ..."

@@ -8,6 +8,8 @@ extern constinit const Effect drift{
     .meaning = "slow drift, ageing",
     .unit = "h",
     .columns = kTime,
+    .family = Family::time,
+    .c_form = {.expression = "rel / 3600.0"},
     .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
       return s.time_s[p] / 3600.0;
     })>,

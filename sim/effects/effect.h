@@ -1,6 +1,7 @@
 #pragma once
 // A physical effect on the gyro bias, defined once for the simulator and the
-// fit (DESIGN.md, "Model formulas and the effect registry").
+// fit (docs/model.md, "Effects"; the term names are a public contract,
+// docs/contracts.md).
 //
 // The bias is linear in the effects' coefficients:
 //
@@ -21,6 +22,14 @@
 // dT) are effects like any other; their true coefficients come from the gyro
 // file's [truth] table, every other effect's from [hidden].
 //
+// An entry holds everything any layer needs to know about the effect: its
+// meaning and unit, the columns it reads, its [truth] key, its parameter, its
+// family (from which diagnosis derives what a record can confound), its C
+// form (from which `export --format c` writes it) and, for a power of T, the
+// power (from which the firmware exports decide whether they can hold it).
+// Nothing outside sim/effects/ decides by an effect's name; a test walks the
+// registry and fails on an incomplete entry (tests/effects_test.cpp).
+//
 // Adding an effect: one file sim/effects/NAME.cpp defining
 // `extern constinit const Effect NAME{...}` in namespace gyrotherm::effects
 // (sim/effects/lag.cpp is a full example, temperature.cpp a pointwise one),
@@ -28,7 +37,6 @@
 // sim/effects/registry.def. The sources are globbed: CMake needs no edit.
 
 #include <cstddef>
-#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -44,17 +52,48 @@ struct EffectSeries {
   std::vector<double> rate_c_per_s;    // dT/dt
   std::vector<double> accel_c_per_s2;  // d²T/dt²
   std::vector<double> temp2_c;         // the far side of the block; empty when not measured
-  // Other columns of a measured log by name (window means) and their rates;
-  // empty for the simulator.
-  std::map<std::string, std::vector<double>, std::less<>> extra, extra_rate;
   // When the gyro was switched on, on the time_s clock: 0 at the start of the
   // record, −∞ for a gyro running long before it.
   double switch_on_s = 0.0;
   std::size_t size() const { return temp_c.size(); }
 };
 
-// The columns of a measurement an effect needs (DESIGN.md's names).
+// The columns of a measurement an effect needs (docs/contracts.md's names).
 enum Column : unsigned { kTime = 1u, kTemp = 2u, kTemp2 = 4u };
+
+// What an effect's regressor follows. Diagnosis derives from it which terms a
+// record can confound (studies/diagnose/confounding.h): powers of T and a
+// filtered temperature move with the temperature, rates vanish in a soak, a
+// time term moves with the clock.
+enum class Family {
+  temperature_power,  // T^k: a static function of the temperature
+  temperature_state,  // the temperature through a filter with memory (lag)
+  rate,               // of the temperature's change: 0 in a soak (dT, T*dT, d2T, hyst)
+  gradient,           // a temperature difference across the block (grad)
+  time,               // the time since the start of the record (t)
+  transient,          // a decay from switch-on (warmup)
+  // Terms the fit makes, not effects (fit/model/terms.h):
+  step,               // step@TIME
+  logged,             // a column of the user's log
+};
+// "temperature power", "rate", ...: for listings.
+const char* to_string(Family family);
+
+// The regressor in C, at a closed averaging window (`export --format c`,
+// studies/export/c_header.cpp). In scope: T and T2 (°C, the window's means of
+// temp_c and temp2_c), rate (°C/s) and accel (°C/s²), its backward
+// derivatives, and rel (s since the record's first sample). {theta} stands for
+// the fitted parameter, printed exactly.
+//
+// An effect whose regressor has memory (a filter) has a state: `initial` is its
+// value at the first window, `expression` its value at every later one, where
+// also prev (its own value at the previous window), prev_T (that window's T),
+// h (s between the two) and slope = (T − prev_T)/h are in scope.
+struct CForm {
+  std::string_view expression;
+  std::string_view initial = {};
+  bool stateful() const { return !initial.empty(); }
+};
 
 // A nonlinear parameter of an effect, e.g. a time constant.
 struct EffectParameter {
@@ -72,7 +111,7 @@ struct EffectParameter {
 struct Effect {
   using Regressor = void (*)(const Effect& self, const EffectSeries& series, double parameter,
                              std::span<double> out);
-  std::string_view name;        // the term name: a public contract (DESIGN.md)
+  std::string_view name;        // the term name: a public contract (docs/contracts.md)
   std::string_view meaning;     // physical meaning, for `gyrotherm effects` and reports
   std::string_view unit;        // of the regressor ("1" when dimensionless)
   unsigned columns = kTemp;     // the Column bits it reads
@@ -81,15 +120,14 @@ struct Effect {
   // coefficient is [hidden] NAME = COEF or --hidden NAME=COEF.
   std::string_view truth_key;
   std::optional<EffectParameter> parameter;
+  Family family = Family::temperature_power;
+  CForm c_form;
+  // k for T^k, the power of a polynomial in T a firmware table can hold; 0
+  // for any other effect.
+  int temperature_power = 0;
   // r(t) at every point of the series; `parameter` is θ (ignored without
   // one). Call it through compute().
   Regressor regressor = nullptr;
-  // Terms made at run time rather than registered (fit/model/terms.h): a
-  // column of the user's log (its value, or its rate), or a bias step at
-  // step_time_s since the start of the record.
-  std::string_view column;
-  bool column_rate = false;
-  double step_time_s = 0.0;
 
   void compute(const EffectSeries& series, double theta, std::span<double> out) const {
     regressor(*this, series, theta, out);
@@ -99,7 +137,7 @@ struct Effect {
   bool hidden() const { return truth_key.empty(); }
   // "°/h per °C", or "°/h" for a dimensionless regressor.
   std::string coefficient_unit() const;
-  // "temp_c, temp2_c": the columns it reads, by DESIGN.md's names.
+  // "temp_c, temp2_c": the columns it reads, by their default names.
   std::string column_names() const;
 };
 

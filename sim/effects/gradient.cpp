@@ -10,6 +10,8 @@ extern constinit const Effect gradient{
     .meaning = "temperature gradient across the block (Langmuir-flow imbalance)",
     .unit = "°C",
     .columns = kTemp | kTemp2,
+    .family = Family::gradient,
+    .c_form = {.expression = "T2 - T"},
     .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
       return s.temp2_c[p] - s.temp_c[p];
     })>,

@@ -16,6 +16,8 @@ extern constinit const Effect hysteresis{
                                  .simulator_default = 2e-4,
                                  .may_be_zero = true,
                                  .differentiable = false},
+    .family = Family::rate,
+    .c_form = {.expression = "(rate > {theta} ? 1.0 : (rate < -{theta} ? -1.0 : 0.0))"},
     .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double dead_band) {
       const double r = s.rate_c_per_s[p];
       return r > dead_band ? 1.0 : (r < -dead_band ? -1.0 : 0.0);

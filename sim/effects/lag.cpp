@@ -43,6 +43,10 @@ extern constinit const Effect lag{
                                  .lower = 60.0,
                                  .upper = 4.0 * 3600.0,
                                  .simulator_default = 1200.0},
+    .family = Family::temperature_state,
+    // The same update in C, on the windows of the real-time compensator.
+    .c_form = {.expression = "T - {theta} * slope + exp(-h / {theta}) * (prev - prev_T + {theta} * slope)",
+               .initial = "T"},
     .regressor = &regressor,
 };
 

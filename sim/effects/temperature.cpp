@@ -9,6 +9,9 @@ extern constinit const Effect temperature{
     .meaning = "temperature sensitivity",
     .unit = "°C",
     .truth_key = "b1_dph_per_c",
+    .family = Family::temperature_power,
+    .c_form = {.expression = "T"},
+    .temperature_power = 1,
     .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
       return s.temp_c[p];
     })>,

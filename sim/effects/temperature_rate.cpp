@@ -10,6 +10,8 @@ extern constinit const Effect temperature_rate{
     .meaning = "temperature-rate effect (cavity bending, gas flow)",
     .unit = "°C/s",
     .truth_key = "b3_dph_per_c_per_s",
+    .family = Family::rate,
+    .c_form = {.expression = "rate"},
     .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
       return s.rate_c_per_s[p];
     })>,

@@ -9,6 +9,9 @@ extern constinit const Effect temperature_squared{
     .meaning = "curvature of the sensitivity",
     .unit = "°C²",
     .truth_key = "b2_dph_per_c2",
+    .family = Family::temperature_power,
+    .c_form = {.expression = "T * T"},
+    .temperature_power = 2,
     .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
       return s.temp_c[p] * s.temp_c[p];
     })>,

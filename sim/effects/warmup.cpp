@@ -18,6 +18,8 @@ extern constinit const Effect warmup{
                                  .lower = 60.0,
                                  .upper = 7200.0,
                                  .simulator_default = 1800.0},
+    .family = Family::transient,
+    .c_form = {.expression = "exp(-rel / {theta})"},
     .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double tau_s) {
       return std::exp(-(s.time_s[p] - s.switch_on_s) / tau_s);
     })>,

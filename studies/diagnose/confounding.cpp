@@ -24,12 +24,11 @@ double correlation(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return den > 0.0 ? (da * db).sum() / den : 0.0;
 }
 
-bool is_temperature(const std::string& name) {
-  return name == "T" || name == "T^2" || name == "T^3" || name == "lag";
+// What a term moves with, from its family (sim/effects/effect.h).
+bool is_temperature(const Term& t) {
+  return t.family == effects::Family::temperature_power || t.family == effects::Family::temperature_state;
 }
-bool is_rate(const std::string& name) {
-  return name == "dT" || name == "T*dT" || name == "d2T" || name == "hyst" || name.starts_with("d(");
-}
+bool is_rate(const Term& t) { return t.family == effects::Family::rate; }
 
 // Smallest root with path halving.
 std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
@@ -60,8 +59,7 @@ Confounding find_confounding(const DerivedSeries& derived, const std::vector<con
     // Only a rate has a natural zero against which "nearly constant" means
     // something (a steady cooling rate); a logged voltage of 28 ± 0.4 V varies.
     const double m = mean_of(xi);
-    const std::string name(terms[i]->name);
-    constant[i] = (is_rate(name) || terms[i]->column_rate) && m != 0.0 &&
+    constant[i] = is_rate(*terms[i]) && m != 0.0 &&
                   sd_of(xi) < kNearlyConstant * std::abs(m);
     if (constant[i]) parent[root(parent, i)] = root(parent, n);
     for (std::size_t j = 0; j < i; ++j)
@@ -89,12 +87,14 @@ Confounding find_confounding(const DerivedSeries& derived, const std::vector<con
     std::vector<std::string> names;
     bool has_time = false, has_temp = false, has_rate = false, has_offset = false;
     for (std::size_t i : group) {
-      const std::string name = i == n ? std::string("1") : std::string(terms[i]->name);
-      names.push_back(name);
-      has_time |= name == "t";
-      has_temp |= is_temperature(name);
-      has_rate |= is_rate(name);
-      has_offset |= i == n;
+      names.push_back(i == n ? std::string("1") : std::string(terms[i]->name));
+      if (i == n) {
+        has_offset = true;
+        continue;
+      }
+      has_time |= terms[i]->family == effects::Family::time;
+      has_temp |= is_temperature(*terms[i]);
+      has_rate |= is_rate(*terms[i]);
     }
     std::string list;
     for (std::size_t k = 0; k < names.size(); ++k)
