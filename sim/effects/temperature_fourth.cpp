@@ -1,0 +1,21 @@
+// T^4: r = T⁴ (°C⁴), a fourth-order term of the temperature sensitivity, for
+// gyros whose bias curve a cubic does not follow over a wide range (a hidden
+// effect: [hidden] T^4 = COEF). PX4 and ArduPilot store cubics: their exports
+// refuse it.
+#include "sim/effects/effect.h"
+
+namespace gyrotherm::effects {
+
+extern constinit const Effect temperature_fourth{
+    .name = "T^4",
+    .meaning = "fourth-order curvature",
+    .unit = "°C⁴",
+    .family = Family::temperature_power,
+    .c_form = {.expression = "T * T * T * T"},
+    .temperature_power = 4,
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
+      return s.temp_c[p] * s.temp_c[p] * s.temp_c[p] * s.temp_c[p];
+    })>,
+};
+
+}  // namespace gyrotherm::effects
