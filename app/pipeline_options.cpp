@@ -46,9 +46,10 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
   cmd->add_option("--temp2-col", o.pipeline.columns.temp2,
                   "Name of the far-side temperature column (°C), for the grad term");
   fit::Units& u = o.pipeline.columns.units;
-  cmd->add_option("--time-unit", u.time, "Unit of the time column: s (default), ms or us");
-  cmd->add_option("--gyro-unit", u.gyro, "Unit of the gyro column: dph (default), dps, rad/s or mdps");
-  cmd->add_option("--temp-unit", u.temp, "Unit of the temperature columns: C (default), K or F");
+  using fit::Quantity;
+  cmd->add_option("--time-unit", u.time, "Unit of the time column: " + fit::unit_names(Quantity::time, " or ") + " (default s)");
+  cmd->add_option("--gyro-unit", u.gyro, "Unit of the gyro column: " + fit::unit_names(Quantity::gyro, " or ") + " (default dph)");
+  cmd->add_option("--temp-unit", u.temp, "Unit of the temperature columns: " + fit::unit_names(Quantity::temperature, " or ") + " (default C)");
   cmd->add_option("--gyro-scale", u.gyro_scale,
                   "Multiply the gyro column by K before its unit (raw counts, a logger's scale)");
   cmd->add_option("--temp-scale", u.temp_scale,

@@ -163,7 +163,7 @@ nlohmann::json read_json(const std::filesystem::path& file) {
 }
 
 SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::json& j) {
-  auto need = [&](const nlohmann::json& obj, const char* key, const char* what) -> const nlohmann::json& {
+  auto need = [&](const nlohmann::json& obj, const char* key, std::string_view what) -> const nlohmann::json& {
     if (!obj.is_object() || !obj.contains(key))
       throw InputError(fmt::format("{}: missing field '{}' ({}); is this a file written by "
                                    "'gyrotherm fit -o'?",
@@ -218,9 +218,9 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
   if (columns.contains("units")) {
     const nlohmann::json& u = columns["units"];
     Units& units = s.pipeline.columns.units;
-    units.time = need(u, "time", "s, ms or us").get<std::string>();
-    units.gyro = need(u, "gyro", "dph, dps, rad/s or mdps").get<std::string>();
-    units.temp = need(u, "temp", "C, K or F").get<std::string>();
+    units.time = need(u, "time", unit_names(Quantity::time, " or ")).get<std::string>();
+    units.gyro = need(u, "gyro", unit_names(Quantity::gyro, " or ")).get<std::string>();
+    units.temp = need(u, "temp", unit_names(Quantity::temperature, " or ")).get<std::string>();
     units.gyro_scale = number(need(u, "gyro_scale", "a number"), "pipeline.columns.units.gyro_scale");
     units.temp_scale = number(need(u, "temp_scale", "a number"), "pipeline.columns.units.temp_scale");
     units.temp_offset = number(need(u, "temp_offset", "a number"), "pipeline.columns.units.temp_offset");

@@ -20,27 +20,6 @@ namespace gyrotherm::fit {
 
 namespace {
 
-constexpr double kDegPerRad = 57.29577951308232;
-
-double time_factor(const std::string& unit) {
-  return unit == "ms" ? 1e-3 : unit == "us" ? 1e-6 : 1.0;
-}
-double gyro_factor(const std::string& unit) {
-  if (unit == "dps") return 3600.0;
-  if (unit == "rad/s") return 3600.0 * kDegPerRad;
-  if (unit == "mdps") return 3.6;
-  return 1.0;
-}
-
-void check_unit(const char* option, const std::string& value, std::initializer_list<const char*> known) {
-  std::string list;
-  for (const char* k : known) {
-    if (value == k) return;
-    list += (list.empty() ? "" : ", ") + std::string(k);
-  }
-  throw InputError(fmt::format("{} {}: unknown unit (expected one of {})", option, value, list));
-}
-
 void check_scale(const char* option, double value, bool zero_allowed) {
   if (!std::isfinite(value) || (!zero_allowed && value == 0.0))
     throw InputError(fmt::format("{} {}: must be a finite number{}", option, value,
@@ -49,44 +28,47 @@ void check_scale(const char* option, double value, bool zero_allowed) {
 
 }  // namespace
 
+const Unit& Units::time_unit() const { return find_unit(Quantity::time, time, "--time-unit"); }
+const Unit& Units::gyro_unit() const { return find_unit(Quantity::gyro, gyro, "--gyro-unit"); }
+const Unit& Units::temp_unit() const { return find_unit(Quantity::temperature, temp, "--temp-unit"); }
+
 void Units::validate() const {
-  check_unit("--time-unit", time, {"s", "ms", "us"});
-  check_unit("--gyro-unit", gyro, {"dph", "dps", "rad/s", "mdps"});
-  check_unit("--temp-unit", temp, {"C", "K", "F"});
+  time_unit();
+  gyro_unit();
+  temp_unit();
   check_scale("--gyro-scale", gyro_scale, false);
   check_scale("--temp-scale", temp_scale, false);
   check_scale("--temp-offset", temp_offset, true);
 }
 
 bool Units::identity() const {
-  return time == "s" && gyro == "dph" && temp == "C" && gyro_scale == 1.0 && temp_scale == 1.0 &&
-         temp_offset == 0.0;
+  return time_unit().is_base() && gyro_unit().is_base() && temp_unit().is_base() && gyro_scale == 1.0 &&
+         temp_scale == 1.0 && temp_offset == 0.0;
 }
 
-double Units::time_s(double t) const { return t * time_factor(time); }
+double Units::time_s(double t) const { return time_unit().to_base(t); }
 
-double Units::gyro_dph(double g) const { return gyro_scale * g * gyro_factor(gyro); }
+double Units::gyro_dph(double g) const { return gyro_scale * g * gyro_unit().factor; }
 
 double Units::temp_c(double x) const {
   // Untouched unless asked (so that −0.0 stays −0.0, as written).
   const double v = temp_scale == 1.0 && temp_offset == 0.0 ? x : temp_scale * x + temp_offset;
-  if (temp == "K") return v - 273.15;
-  if (temp == "F") return (v - 32.0) * 5.0 / 9.0;
-  return v;
+  const Unit& unit = temp_unit();
+  return unit.is_base() ? v : unit.to_base(v);
 }
 
 std::string Units::description() const {
   if (identity()) return "none";
   std::vector<std::string> parts;
-  if (time != "s") parts.push_back(fmt::format("time {} → s (× {:g})", time, time_factor(time)));
-  if (gyro != "dph" || gyro_scale != 1.0)
+  if (!time_unit().is_base()) parts.push_back(fmt::format("time {} → s (× {:g})", time, time_unit().factor));
+  if (!gyro_unit().is_base() || gyro_scale != 1.0)
     parts.push_back(fmt::format("gyro {}{} → °/h (× {:.9g})",
                                 gyro_scale != 1.0 ? fmt::format("{:g} × ", gyro_scale) : "", gyro,
-                                gyro_scale * gyro_factor(gyro)));
-  if (temp != "C" || temp_scale != 1.0 || temp_offset != 0.0) {
+                                gyro_scale * gyro_unit().factor));
+  if (!temp_unit().is_base() || temp_scale != 1.0 || temp_offset != 0.0) {
     std::string raw = temp_scale != 1.0 ? fmt::format("{:g} × column", temp_scale) : "column";
     if (temp_offset != 0.0) raw += fmt::format(" {} {:g}", temp_offset < 0 ? "−" : "+", std::abs(temp_offset));
-    parts.push_back(fmt::format("temp {}{} → °C", raw, temp != "C" ? " in " + temp : std::string()));
+    parts.push_back(fmt::format("temp {}{} → °C", raw, !temp_unit().is_base() ? " in " + temp : std::string()));
   }
   std::string out;
   for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
@@ -266,9 +248,9 @@ class CsvParser {
  public:
   CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {
     map_.units.validate();
-    time_factor_ = time_factor(map_.units.time);
-    gyro_factor_ = gyro_factor(map_.units.gyro);
-    temp_in_c_ = map_.units.temp == "C" && map_.units.temp_scale == 1.0 && map_.units.temp_offset == 0.0;
+    time_factor_ = map_.units.time_unit().factor;
+    gyro_factor_ = map_.units.gyro_unit().factor;
+    temp_in_c_ = map_.units.temp_unit().is_base() && map_.units.temp_scale == 1.0 && map_.units.temp_offset == 0.0;
   }
 
   Measurement read(const fs::path& file);

@@ -1,5 +1,5 @@
 #pragma once
-// Reading a measurement CSV (DESIGN.md, "Measurement CSV").
+// Reading a measurement CSV (docs/contracts.md, "Measurement CSV").
 //
 // Grammar, one physical line at a time (lines end in LF or CRLF; a UTF-8 byte
 // order mark at the start of the file is skipped):
@@ -34,22 +34,27 @@
 #include <string>
 #include <vector>
 
+#include "fit/data/units.h"
 #include "sim/simulator.h"
 
 namespace gyrotherm::fit {
 
 // How the numbers of the needed columns become seconds, °C and °/h (the
-// units every report and JSON uses):
+// units every report and JSON uses), by the units of fit/data/units.h:
 //
-//   time    = t · {1, 10⁻³, 10⁻⁶} for --time-unit s, ms, us;
-//   gyro    = K · g · {1, 3600, 3600·180/π, 3.6} for --gyro-unit dph, dps,
-//             rad/s, mdps, K = --gyro-scale (a logger's counts, or its bug);
+//   time    = t · factor of --time-unit;
+//   gyro    = K · g · factor of --gyro-unit, K = --gyro-scale (a logger's
+//             counts, or its bug);
 //   temp    = c(A · x + B) for temp_c and temp2_c, A = --temp-scale,
-//             B = --temp-offset (raw counts), c the --temp-unit C, K, F → °C.
+//             B = --temp-offset (raw counts), c the --temp-unit → °C.
 struct Units {
   std::string time = "s";
   std::string gyro = "dph";
   std::string temp = "C";
+  // The table's entries (throw InputError naming the option for an unknown name).
+  const Unit& time_unit() const;
+  const Unit& gyro_unit() const;
+  const Unit& temp_unit() const;
   double gyro_scale = 1.0;
   double temp_scale = 1.0;
   double temp_offset = 0.0;

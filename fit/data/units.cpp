@@ -1,0 +1,60 @@
+#include "fit/data/units.h"
+
+#include <fmt/format.h>
+
+#include <vector>
+
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+constexpr double kDegPerRad = 57.29577951308232;
+
+double from_kelvin(double k) { return k - 273.15; }
+double from_fahrenheit(double f) { return (f - 32.0) * 5.0 / 9.0; }
+
+using Q = Quantity;
+
+// clang-format off
+constexpr Unit kUnits[] = {
+  {Q::time, "s", "seconds", {"s", "sec", "seconds"}},
+  {Q::time, "ms", "milliseconds", {"ms", "msec", "milliseconds"}, 1e-3},
+  {Q::time, "us", "microseconds", {"us", "usec", "µs", "microseconds"}, 1e-6},
+  {Q::gyro, "dph", "degrees per hour", {"dph", "deg/h", "°/h"}},
+  {Q::gyro, "dps", "degrees per second", {"dps", "deg/s", "°/s"}, 3600.0},
+  {Q::gyro, "rad/s", "radians per second", {"rad/s", "rps"}, 3600.0 * kDegPerRad},
+  {Q::gyro, "mdps", "millidegrees per second", {"mdps", "mdeg/s"}, 3.6},
+  {Q::temperature, "C", "degrees Celsius", {"c", "degc", "°c"}},
+  {Q::temperature, "K", "kelvin", {"k", "kelvin"}, 1.0, &from_kelvin},
+  {Q::temperature, "F", "degrees Fahrenheit", {"f", "degf", "°f"}, 1.0, &from_fahrenheit},
+};
+// clang-format on
+
+}  // namespace
+
+std::span<const Unit> unit_table() { return kUnits; }
+
+const Unit& find_unit(Quantity quantity, std::string_view name, std::string_view option) {
+  for (const Unit& u : kUnits)
+    if (u.quantity == quantity && u.name == name) return u;
+  throw InputError(fmt::format("{} {}: unknown unit (expected one of {})", option, name, unit_names(quantity)));
+}
+
+std::string unit_names(Quantity quantity, std::string_view last) {
+  std::vector<std::string_view> names;
+  for (const Unit& u : kUnits)
+    if (u.quantity == quantity) names.push_back(u.name);
+  std::string out;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    out += std::string(k == 0 ? "" : k + 1 == names.size() ? last : ", ") + std::string(names[k]);
+  return out;
+}
+
+std::string_view base_unit(Quantity quantity) {
+  for (const Unit& u : kUnits)
+    if (u.quantity == quantity && u.is_base()) return u.name;
+  return {};
+}
+
+}  // namespace gyrotherm::fit

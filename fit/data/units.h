@@ -1,0 +1,45 @@
+#pragma once
+// The units a log's columns may be written in: one table (fit/data/units.cpp),
+// one line a unit. Every report, JSON and fit works in s, °/h and °C; a
+// column in another unit is converted as it is read (fit/data/measurement.h,
+// Units), by the entry's factor, or for a temperature scale with an offset by
+// its affine map. The command line's help, the error messages and the fit
+// file's checks list the names from here.
+//
+// Adding a unit: one line in fit/data/units.cpp and its test in
+// tests/units_test.cpp.
+
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace gyrotherm::fit {
+
+enum class Quantity { time, gyro, temperature };
+
+struct Unit {
+  Quantity quantity;
+  std::string_view name;     // as --time-unit, --gyro-unit, --temp-unit take it and a fit saves it
+  std::string_view meaning;  // "milliseconds"
+  // How a column header may write it, e.g. "time (ms)", "gyro_x [deg/s]",
+  // "T_degC": lower-case spellings, the name first.
+  std::array<std::string_view, 4> header_names{};
+  double factor = 1.0;                  // base = factor · value (s, °/h, °C)
+  double (*affine)(double) = nullptr;   // instead, for a scale with an offset (K, °F)
+  double to_base(double value) const { return affine ? affine(value) : value * factor; }
+  bool is_base() const { return affine == nullptr && factor == 1.0; }
+};
+
+// Every unit, base units first within each quantity.
+std::span<const Unit> unit_table();
+// The unit of `quantity` named `name`; throws InputError naming `option`
+// (e.g. "--gyro-unit") and the known names when there is none.
+const Unit& find_unit(Quantity quantity, std::string_view name, std::string_view option);
+// "s, ms, us": the names of a quantity's units, in table order; with `last`
+// the final separator is that word ("s, ms or us").
+std::string unit_names(Quantity quantity, std::string_view last = ", ");
+// The base unit's name ("s", "dph", "C").
+std::string_view base_unit(Quantity quantity);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,96 @@
+// The unit table (fit/data/units.cpp): every entry complete, each converts a
+// known value exactly as physics says, and every unit is accepted by the
+// reader (a column in that unit gives the same record as one in the base
+// unit).
+
+#include "fit/data/units.h"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include "expect_input_error.h"
+#include "fit/data/measurement.h"
+#include "cli_runner.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+using testing::expect_input_error;
+using testing::ScratchDir;
+using testing::write_text;
+
+TEST(Units, EveryEntryIsComplete) {
+  for (const Quantity q : {Quantity::time, Quantity::gyro, Quantity::temperature}) {
+    std::set<std::string_view> names;
+    int bases = 0;
+    for (const Unit& u : unit_table()) {
+      if (u.quantity != q) continue;
+      SCOPED_TRACE(std::string(u.name));
+      EXPECT_FALSE(u.name.empty());
+      EXPECT_TRUE(names.insert(u.name).second) << "a name used twice";
+      EXPECT_FALSE(u.meaning.empty());
+      std::string lower(u.name);
+      std::transform(lower.begin(), lower.end(), lower.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+      EXPECT_EQ(u.header_names[0], lower) << "the name, in lower case, is the first header spelling";
+      for (std::string_view h : u.header_names)
+        EXPECT_TRUE(std::none_of(h.begin(), h.end(), [](unsigned char c) { return std::isupper(c); })) << h;
+      EXPECT_TRUE(std::isfinite(u.to_base(1.0)));
+      EXPECT_TRUE(u.affine != nullptr || u.factor > 0.0);
+      bases += u.is_base();
+      EXPECT_EQ(&find_unit(q, u.name, "--x"), &u);
+    }
+    EXPECT_EQ(bases, 1) << "one base unit per quantity";
+    EXPECT_TRUE(find_unit(q, base_unit(q), "--x").is_base());
+    EXPECT_EQ(unit_names(q).find(base_unit(q)), 0u) << "the base unit is listed first";
+  }
+}
+
+double in_base(Quantity q, std::string_view name, double value) { return find_unit(q, name, "--x").to_base(value); }
+
+TEST(Units, ConvertKnownValues) {
+  EXPECT_EQ(in_base(Quantity::time, "s", 2.5), 2.5);
+  EXPECT_DOUBLE_EQ(in_base(Quantity::time, "ms", 1500.0), 1.5);
+  EXPECT_DOUBLE_EQ(in_base(Quantity::time, "us", 2e6), 2.0);
+  EXPECT_EQ(in_base(Quantity::gyro, "dph", 7.0), 7.0);
+  EXPECT_DOUBLE_EQ(in_base(Quantity::gyro, "dps", 1.0), 3600.0);
+  EXPECT_DOUBLE_EQ(in_base(Quantity::gyro, "mdps", 1.0), 3.6);
+  EXPECT_NEAR(in_base(Quantity::gyro, "rad/s", 1.0), 3600.0 * 180.0 / std::numbers::pi, 1e-9);
+  EXPECT_EQ(in_base(Quantity::temperature, "C", -5.0), -5.0);
+  EXPECT_DOUBLE_EQ(in_base(Quantity::temperature, "K", 273.15), 0.0);
+  EXPECT_DOUBLE_EQ(in_base(Quantity::temperature, "F", 212.0), 100.0);
+  EXPECT_DOUBLE_EQ(in_base(Quantity::temperature, "F", -40.0), -40.0);
+}
+
+TEST(Units, AnUnknownNameIsRefusedWithTheKnownOnes) {
+  expect_input_error([] { find_unit(Quantity::gyro, "furlong/s", "--gyro-unit"); },
+                     {"--gyro-unit furlong/s: unknown unit (expected one of " + unit_names(Quantity::gyro) + ")"});
+  EXPECT_EQ(unit_names(Quantity::time, " or "), "s, ms or us");
+}
+
+// A gyro column written in each unit reads as the record in °/h.
+TEST(Units, EveryGyroUnitReadsAsDegreesPerHour) {
+  ScratchDir dir;
+  for (const Unit& u : unit_table()) {
+    if (u.quantity != Quantity::gyro) continue;
+    SCOPED_TRACE(std::string(u.name));
+    const double per_unit = u.to_base(1.0);
+    std::string text = "time_s,temp_c,gyro_dph\n";
+    for (int k = 0; k < 5; ++k) text += fmt::format("{},20,{:.17g}\n", k, (7.0 + 0.01 * k) / per_unit);
+    write_text(dir / "g.csv", text);
+    ColumnMap columns;
+    columns.units.gyro = std::string(u.name);
+    const Measurement m = read_measurement_csv(dir / "g.csv", columns);
+    for (int k = 0; k < 5; ++k) EXPECT_NEAR(m.gyro_dph[static_cast<std::size_t>(k)], 7.0 + 0.01 * k, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
