@@ -18,6 +18,7 @@
 #include "expect_input_error.h"
 #include "fit/data/measurement.h"
 #include "cli_runner.h"
+#include <nlohmann/json.hpp>
 
 namespace gyrotherm::fit {
 namespace {
@@ -90,6 +91,30 @@ TEST(Units, EveryGyroUnitReadsAsDegreesPerHour) {
     const Measurement m = read_measurement_csv(dir / "g.csv", columns);
     for (int k = 0; k < 5; ++k) EXPECT_NEAR(m.gyro_dph[static_cast<std::size_t>(k)], 7.0 + 0.01 * k, 1e-12);
   }
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
+
+namespace gyrotherm::fit {
+namespace {
+
+// deg/min: 1 °/min is 60 °/h; a log in °/min fits as the same log in °/h.
+TEST(Units, DegreesPerMinute) {
+  EXPECT_EQ(in_base(Quantity::gyro, "deg/min", 1.0), 60.0);
+  ScratchDir dir;
+  testing::simulate_shipped(dir, "warmup", "", "dph.csv");
+  ASSERT_EQ(testing::run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/||/^time/{print;next} {$6=sprintf(\"%.12g\",$6/60); print}' "
+                                    "dph.csv | tee dpm.csv").exit_code, 0);
+  const auto a = testing::run_cli(dir, "fit dph.csv --json");
+  const auto b = testing::run_cli(dir, "fit dpm.csv --gyro-unit deg/min --json");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  for (const char* term : {"1", "T", "T^2", "dT"})
+    EXPECT_NEAR(jb["coefficients"][term].get<double>(), ja["coefficients"][term].get<double>(),
+                1e-6 * std::abs(ja["coefficients"][term].get<double>()))
+        << term;
+  EXPECT_EQ(jb["pipeline"]["columns"]["units"]["gyro"], "deg/min");
 }
 
 }  // namespace

@@ -25,6 +25,7 @@ constexpr Unit kUnits[] = {
   {Q::gyro, "dps", "degrees per second", {"dps", "deg/s", "°/s"}, 3600.0},
   {Q::gyro, "rad/s", "radians per second", {"rad/s", "rps"}, 3600.0 * kDegPerRad},
   {Q::gyro, "mdps", "millidegrees per second", {"mdps", "mdeg/s"}, 3.6},
+  {Q::gyro, "deg/min", "degrees per minute", {"deg/min", "dpm", "°/min"}, 60.0},
   {Q::temperature, "C", "degrees Celsius", {"c", "degc", "°c"}},
   {Q::temperature, "K", "kelvin", {"k", "kelvin"}, 1.0, &from_kelvin},
   {Q::temperature, "F", "degrees Fahrenheit", {"f", "degf", "°f"}, 1.0, &from_fahrenheit},
