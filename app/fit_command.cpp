@@ -15,6 +15,7 @@
 #include "app/pipeline_options.h"
 #include "fit/compensation.h"
 #include "fit/fit_file.h"
+#include "studies/simulated.h"
 #include "fit/model/formula.h"
 #include "fit/data/streaming.h"
 #include "sim/util/atomic_file.h"
@@ -141,7 +142,8 @@ int run_fit(const FitOptions& o) {
         c.result = fit::fit_model(c.data, terms, engine, settings);
         // The simulator's truth belongs to its one gyro column.
         if (channels.size() == 1) c.truth = fit::load_truth_beside(o.data);
-        c.json = fit::fit_json(c.result, c.data, c.pipeline, settings, c.truth);
+        c.json = fit::fit_json(c.result, c.data, c.pipeline, settings);
+        if (c.truth) fit::add_truth(c.json, c.result, *c.truth);
         return c;
       });
   std::string json;

@@ -19,8 +19,7 @@ using Json = nlohmann::ordered_json;
 }  // namespace
 
 nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
-                                const PipelineOptions& pipeline, const EngineSettings& settings,
-                                const std::optional<Truth>& truth) {
+                                const PipelineOptions& pipeline, const EngineSettings& settings) {
   Json j;
   j["engine"] = fit.engine.engine;
   j["model"] = formula_text(fit.terms);
@@ -114,27 +113,7 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                        {"temp_scale", pipeline.columns.units.temp_scale},
                        {"temp_offset", pipeline.columns.units.temp_offset},
                        {"conversion", pipeline.columns.units.description()}}}}}};
-  if (truth) {
-    Json t;
-    for (const auto& [k, v] : truth->coefficients) t[k] = v;
-    j["truth"] = t;
-    if (!truth->parameters.empty()) {
-      Json p;
-      for (const auto& [k, v] : truth->parameters)
-        p[k] = {{std::string(find_term(k)->parameter->name), v}};
-      j["truth_parameters"] = p;
-    }
-    Json e;
-    for (const auto& [k, v] : coefficient_errors(fit, *truth)) e[k] = v;
-    j["coefficient_error"] = e;
-  }
   return j;
-}
-
-std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
-                          const PipelineOptions& pipeline, const EngineSettings& settings,
-                          const std::optional<Truth>& truth) {
-  return fit_json(fit, data, pipeline, settings, truth).dump(2) + "\n";
 }
 
 nlohmann::ordered_json channels_json(

@@ -1,6 +1,6 @@
 #pragma once
 // The fit's JSON: what `fit --json` prints and `fit -o FIT.json` saves, and
-// what `compensate --fit FIT.json` reads back. Fields (DESIGN.md): engine,
+// what `compensate --fit FIT.json` reads back. Fields (docs/contracts.md): engine,
 // model, coefficients (term → value, the intercept under "1"),
 // instability_before_dph, instability_after_dph, ratio, objective,
 // evaluations, iterations, seconds, termination, history; with data from
@@ -25,12 +25,9 @@
 
 namespace gyrotherm::fit {
 
+// (With data from `simulate`, studies/simulated.h adds the truth.)
 nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
-                                const PipelineOptions& pipeline, const EngineSettings& settings,
-                                const std::optional<Truth>& truth);
-std::string fit_json_text(const ModelFit& fit, const PreparedData& data,
-                          const PipelineOptions& pipeline, const EngineSettings& settings,
-                          const std::optional<Truth>& truth);
+                                const PipelineOptions& pipeline, const EngineSettings& settings);
 
 // {"channels": [{"channel": name, ...object}, ...]}, the object's fields after
 // "channel"; what fit, diagnose and compensate print for several channels.

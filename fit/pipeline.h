@@ -1,5 +1,5 @@
 #pragma once
-// The fitting pipeline (DESIGN.md, "Data flow"):
+// The fitting pipeline (docs/architecture.md, "Data paths"):
 //
 //   1–3. read, clean and average the record (fit/data/prepare.h);
 //   4. build the model's regressors from the averaged series (fit/model/terms.h);
@@ -77,17 +77,5 @@ std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vect
 
 // The model's value B = b0 + Σ b_j x_j at every window.
 std::vector<double> model_values(const Eigen::MatrixXd& design, const Coefficients& c);
-
-// Ground truth written by `gyrotherm simulate` beside the data (run.csv →
-// run.truth.json), if there is one.
-struct Truth {
-  std::filesystem::path file;
-  std::map<std::string, double> coefficients;  // term → value, "1" = intercept
-  std::map<std::string, double> parameters;    // term → its nonlinear parameter (hidden effects)
-};
-std::optional<Truth> load_truth_beside(const std::filesystem::path& csv);
-// Relative error (fit − true)/|true| per model term and "1"; terms whose true
-// value is 0 (absent from the truth) are left out.
-std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Truth& truth);
 
 }  // namespace gyrotherm::fit

@@ -5,6 +5,7 @@
 // model. Then the engine contract: same seed, same run; bad options named;
 // defaults valid; target, budget and observer stops; eq. (5).
 
+#include "studies/simulated.h"
 #include "fit/engines/iafsa.h"
 
 #include <fmt/format.h>

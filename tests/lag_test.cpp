@@ -8,6 +8,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "studies/simulated.h"
 #include "cli_runner.h"
 #include "effect_round_trip.h"
 #include "fit/model/formula.h"

@@ -2,6 +2,7 @@
 // turn-on transient's time constant; adding a missing effect lowers the
 // instability; a term without its column is refused.
 
+#include "studies/simulated.h"
 #include "fit/pipeline.h"
 
 #include <gtest/gtest.h>

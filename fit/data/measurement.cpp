@@ -527,14 +527,4 @@ CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& colum
   return h;
 }
 
-Measurement measurement_of(sim::SimulationResult record, std::string file) {
-  Measurement m;
-  m.file = std::move(file);
-  m.time_s = std::move(record.time_s);
-  m.temp_c = std::move(record.temp_c);
-  m.gyro_dph = std::move(record.gyro_dph);
-  m.temp2_c = std::move(record.temp2_c);
-  return m;
-}
-
 }  // namespace gyrotherm::fit

@@ -35,7 +35,6 @@
 #include <vector>
 
 #include "fit/data/units.h"
-#include "sim/simulator.h"
 
 namespace gyrotherm::fit {
 
@@ -100,10 +99,6 @@ struct Measurement {
 
 // Reads and checks a measurement CSV; throws InputError (see above) on bad input.
 Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns = {});
-
-// A simulated record as a measurement (time, temp_c, temp2_c, gyro_dph), as if
-// read from its CSV without the rounding; `file` names it in messages.
-Measurement measurement_of(sim::SimulationResult record, std::string file);
 
 // Streaming: the same reading and checks, but every row is handed to `sink`
 // (temp2_c is 0 when the file has no such column) and nothing is stored.

@@ -1,3 +1,4 @@
+#include "studies/simulated.h"
 #include "studies/reproduce/reproduce.h"
 
 #include <chrono>

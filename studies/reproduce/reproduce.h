@@ -21,6 +21,7 @@
 
 #include "fit/compensation.h"
 #include "fit/pipeline.h"
+#include "studies/simulated.h"
 #include "sim/simulator.h"
 
 namespace gyrotherm::fit {

@@ -1,3 +1,4 @@
+#include "studies/simulated.h"
 #include "studies/score/campaign.h"
 
 #include <fmt/format.h>

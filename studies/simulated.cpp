@@ -1,0 +1,82 @@
+#include "studies/simulated.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "sim/output.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+
+Measurement measurement_of(sim::SimulationResult record, std::string file) {
+  Measurement m;
+  m.file = std::move(file);
+  m.time_s = std::move(record.time_s);
+  m.temp_c = std::move(record.temp_c);
+  m.gyro_dph = std::move(record.gyro_dph);
+  m.temp2_c = std::move(record.temp2_c);
+  return m;
+}
+
+std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
+  const std::filesystem::path file = sim::truth_path_for(csv);
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  std::ifstream in(file);
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", file.string(), e.what()));
+  }
+  if (!j.contains("coefficients") || !j["coefficients"].is_object())
+    throw InputError(fmt::format("{}: expected an object 'coefficients' (term -> value)",
+                                 file.string()));
+  Truth t;
+  t.file = file;
+  for (const auto& [k, v] : j["coefficients"].items()) {
+    if (!v.is_number())
+      throw InputError(fmt::format("{}: coefficients.{} is not a number", file.string(), k));
+    t.coefficients[k] = v.get<double>();
+  }
+  // The nonlinear parameters of hidden effects: hidden.TERM.PARAMETER_NAME.
+  if (j.contains("hidden") && j["hidden"].is_object())
+    for (const auto& [k, h] : j["hidden"].items()) {
+      const Term* term = find_term(k);
+      if (term == nullptr || !term->parameter || !h.is_object()) continue;
+      const std::string key(term->parameter->name);
+      if (h.contains(key) && h[key].is_number()) t.parameters[k] = h[key].get<double>();
+    }
+  return t;
+}
+
+std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Truth& truth) {
+  std::map<std::string, double> out;
+  auto add = [&](const std::string& name, double value) {
+    const auto it = truth.coefficients.find(name);
+    if (it == truth.coefficients.end() || it->second == 0.0) return;
+    out[name] = (value - it->second) / std::abs(it->second);
+  };
+  add("1", fit.coefficients.intercept);
+  for (std::size_t j = 0; j < fit.terms.size(); ++j) add(std::string(fit.terms[j]->name), fit.coefficients.b[j]);
+  return out;
+}
+
+void add_truth(nlohmann::ordered_json& j, const ModelFit& fit, const Truth& truth) {
+  using Json = nlohmann::ordered_json;
+  Json t;
+  for (const auto& [k, v] : truth.coefficients) t[k] = v;
+  j["truth"] = t;
+  if (!truth.parameters.empty()) {
+    Json p;
+    for (const auto& [k, v] : truth.parameters) p[k] = {{std::string(find_term(k)->parameter->name), v}};
+    j["truth_parameters"] = p;
+  }
+  Json e;
+  for (const auto& [k, v] : coefficient_errors(fit, truth)) e[k] = v;
+  j["coefficient_error"] = e;
+}
+
+}  // namespace gyrotherm::fit
