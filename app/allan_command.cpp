@@ -30,12 +30,12 @@ struct AllanCommandOptions {
 };
 
 int run_allan(const AllanCommandOptions& o) {
-  static const std::map<std::string, fit::TauSpacing> kSpacing = {
-      {"octave", fit::TauSpacing::octave}, {"decade", fit::TauSpacing::decade}, {"all", fit::TauSpacing::all}};
+  static const std::map<std::string, studies::TauSpacing> kSpacing = {
+      {"octave", studies::TauSpacing::octave}, {"decade", studies::TauSpacing::decade}, {"all", studies::TauSpacing::all}};
   const auto spacing = kSpacing.find(o.taus);
   if (spacing == kSpacing.end())
     throw InputError(fmt::format("--taus {}: expected octave, decade or all", o.taus));
-  fit::AllanOptions options;
+  studies::AllanOptions options;
   options.spacing = spacing->second;
   options.confidence = o.ci;
   options.tau_max_s = o.tau_max;
@@ -43,14 +43,14 @@ int run_allan(const AllanCommandOptions& o) {
   if (!(o.ci > 0.0 && o.ci < 1.0))
     throw InputError(fmt::format("--ci {}: the confidence must be between 0 and 1 (e.g. 0.68 or 0.95)", o.ci));
 
-  std::vector<fit::AllanStudy> studies;
+  std::vector<studies::AllanStudy> studies;
   if (!o.fit_file.empty()) {
     // Every channel the fit holds, read with the fit's own columns and units.
     for (const fit::SavedFit& fit : fit::load_fits(o.fit_file)) {
       const fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
       try {
         const fit::Measurement m = fit::read_measurement_csv(o.data, pipeline.columns);
-        studies.push_back(fit::allan_study(m, &fit, options));
+        studies.push_back(studies::allan_study(m, &fit, options));
       } catch (const InputError& e) {
         throw InputError(fmt::format("{}{} with the fit {}: {}", o.data,
                                      fit.channel.empty() ? "" : ", channel " + fit.channel, o.fit_file, e.what()));
@@ -60,8 +60,8 @@ int run_allan(const AllanCommandOptions& o) {
     const auto channels = o.data_options.channels();
     studies = for_each_channel(channels, o.data_options.resolved(),
                                [&](const std::string& channel, const fit::PipelineOptions& p) {
-                                 fit::AllanStudy s =
-                                     fit::allan_study(fit::read_measurement_csv(o.data, p.columns), nullptr, options);
+                                 studies::AllanStudy s =
+                                     studies::allan_study(fit::read_measurement_csv(o.data, p.columns), nullptr, options);
                                  if (channels.size() > 1) s.channel = channel;
                                  return s;
                                });
@@ -71,20 +71,20 @@ int run_allan(const AllanCommandOptions& o) {
       std::filesystem::path png = o.plot;
       if (studies.size() > 1)
         png.replace_filename(png.stem().string() + "_" + studies[i].channel + png.extension().string());
-      fit::write_allan_plot(png, studies[i]);
+      studies::write_allan_plot(png, studies[i]);
     }
   }
   if (o.json) {
     if (studies.size() == 1) {
-      fmt::print("{}\n", fit::allan_json(studies.front()).dump());
+      fmt::print("{}\n", studies::allan_json(studies.front()).dump());
     } else {
       nlohmann::ordered_json all = nlohmann::ordered_json::array();
-      for (const auto& s : studies) all.push_back(fit::allan_json(s));
+      for (const auto& s : studies) all.push_back(studies::allan_json(s));
       fmt::print("{}\n", nlohmann::ordered_json{{"channels", all}}.dump());
     }
     return 0;
   }
-  for (std::size_t i = 0; i < studies.size(); ++i) fmt::print("{}{}", i ? "\n" : "", fit::allan_text(studies[i]));
+  for (std::size_t i = 0; i < studies.size(); ++i) fmt::print("{}{}", i ? "\n" : "", studies::allan_text(studies[i]));
   if (!o.plot.empty()) fmt::print("plot: {}\n", o.plot);
   return 0;
 }

@@ -42,7 +42,7 @@ struct ChannelDiagnosis {
   fit::PipelineOptions pipeline;
   fit::Measurement measurement;
   fit::PreparedData data;
-  fit::DiagnoseReport report;
+  studies::DiagnoseReport report;
   bool streamed = false;  // prepared in one pass: no samples held, no log columns as candidates
 };
 
@@ -51,8 +51,8 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
                      const std::string& plots) {
   const fit::PipelineOptions& pipeline = channel.pipeline;
   const fit::PreparedData& data = channel.data;
-  const fit::Diagnosis& d = channel.report.diagnosis;
-  const std::optional<fit::Diagnosis>& before = channel.report.before;
+  const studies::Diagnosis& d = channel.report.diagnosis;
+  const std::optional<studies::Diagnosis>& before = channel.report.before;
   const std::string& next = channel.report.next_command;
   fmt::print("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n",
              o.data, fit::formula_text(terms), engine.name, fit::describe_windows(data, pipeline),
@@ -72,7 +72,7 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
   fmt::print("2. where it fails (residual RMS over the floor, worst first):\n");
   const auto worst = d.worst_segments();
   for (std::size_t k = 0; k < worst.size() && k < 6; ++k) {
-    const fit::SegmentReport& s = d.segments[worst[k]];
+    const studies::SegmentReport& s = d.segments[worst[k]];
     fmt::print("   {:<8} {:>8} – {:<8} {:6.1f} .. {:5.1f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
                hours(s.end_s), s.temp_min_c, s.temp_max_c, s.ratio_to_floor);
   }
@@ -83,7 +83,7 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
   fmt::print("   by temperature: {}\n", bands);
   fmt::print("3. missing effects (share of the excess removed; block cross-validation p):\n");
   for (std::size_t k = 0; k < d.candidates.size(); ++k) {
-    const fit::CandidateReport& c = d.candidates[k];
+    const studies::CandidateReport& c = d.candidates[k];
     fmt::print("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n", c.significant ? "*" : " ",
                c.term->name, c.reduction_pct, c.p_value, c.significant ? "significant" : "",
                c.term->meaning);
@@ -97,13 +97,13 @@ void print_diagnosis(const DiagnoseOptions& o, const ChannelDiagnosis& channel,
     fmt::print("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",
                fmt::join(o.model.add, ", "), before->fit.instability_after_dph,
                d.fit.instability_after_dph, d.noise_floor_dph);
-    const auto rows = fit::segment_rms(*before, before->residual_dph);
+    const auto rows = studies::segment_rms(*before, before->residual_dph);
     for (std::size_t i = 0; i < rows.size() && i < d.segments.size(); ++i)
       fmt::print("   {:<8} {:>8} – {:<8} {:5.2f}x -> {:5.2f}x\n", rows[i].kind, hours(rows[i].start_s),
                  hours(rows[i].end_s), rows[i].ratio_to_floor, d.segments[i].ratio_to_floor);
   }
   for (const std::string& w : d.fit.warnings) fmt::print("warning: {}\n", w);
-  for (const fit::StepEvent& e : d.events)
+  for (const studies::StepEvent& e : d.events)
     fmt::print("event: a bias step at {} of {:+.3g} °/h (95 % [{:.3g}, {:.3g}]){}\n", hours(e.time_s),
                e.size_dph, e.size_interval_dph.lower, e.size_interval_dph.upper,
                e.significant ? ", significant" : ", not significant against the other candidates");
@@ -123,7 +123,7 @@ int run_diagnose(const DiagnoseOptions& o) {
   engine.make(settings);  // validates the settings before any work
   const fit::PipelineOptions pipeline = o.data_options.resolved();
   const std::vector<std::string> channels = o.data_options.channels();
-  fit::DiagnosisOptions diagnosis_options;
+  studies::DiagnosisOptions diagnosis_options;
   diagnosis_options.candidates = split_commas(o.candidates);
   diagnosis_options.excluded_columns = channels;  // no gyro channel explains another
   const fit::PipelineOptions with_columns = fit::reading_columns_of(pipeline, terms);
@@ -143,7 +143,7 @@ int run_diagnose(const DiagnoseOptions& o) {
           c.measurement = fit::read_measurement_csv(o.data, c.pipeline.columns);
           c.data = fit::prepare_data(c.measurement, c.pipeline);
         }
-        c.report = fit::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings,
+        c.report = studies::diagnose_record(c.data, c.pipeline.columns, base_terms, terms, engine, settings,
                                         diagnosis_options);
         if (channels.size() > 1 && !c.report.next_command.empty())
           c.report.next_command += " --gyro-col " + channel;
@@ -153,17 +153,17 @@ int run_diagnose(const DiagnoseOptions& o) {
   std::vector<std::string> plots(all.size(), o.plots);
   for (std::size_t i = 0; i < all.size() && !o.plots.empty(); ++i) {
     if (all.size() > 1) plots[i] = (std::filesystem::path(o.plots) / all[i].channel).string();
-    const fit::Diagnosis& d = all[i].report.diagnosis;
-    const std::optional<fit::Diagnosis>& before = all[i].report.before;
-    fit::write_diagnosis_plots(plots[i], all[i].measurement, all[i].data, d,
+    const studies::Diagnosis& d = all[i].report.diagnosis;
+    const std::optional<studies::Diagnosis>& before = all[i].report.before;
+    studies::write_diagnosis_plots(plots[i], all[i].measurement, all[i].data, d,
                                before ? &*before : nullptr);
   }
   if (o.json) {
     if (all.size() == 1) {
-      fmt::print("{}\n", fit::diagnosis_json(all.front().report).dump());
+      fmt::print("{}\n", studies::diagnosis_json(all.front().report).dump());
     } else {
       std::vector<std::pair<std::string, nlohmann::ordered_json>> list;
-      for (const ChannelDiagnosis& c : all) list.emplace_back(c.channel, fit::diagnosis_json(c.report));
+      for (const ChannelDiagnosis& c : all) list.emplace_back(c.channel, studies::diagnosis_json(c.report));
       fmt::print("{}\n", fit::channels_json(list).dump());
     }
     return 0;
@@ -177,10 +177,10 @@ int run_diagnose(const DiagnoseOptions& o) {
     fmt::print("  {:<14} {:>12} {:>12} {:>8}  {}\n", "channel", "after °/h", "floor °/h", "x floor",
                "best candidate");
     for (const ChannelDiagnosis& c : all) {
-      const fit::Diagnosis& d = c.report.diagnosis;
+      const studies::Diagnosis& d = c.report.diagnosis;
       std::string best = "none";
       if (!d.candidates.empty()) {
-        const fit::CandidateReport& b = d.candidates.front();
+        const studies::CandidateReport& b = d.candidates.front();
         best = fmt::format("{} ({:.0f} %{})", b.term->name, b.reduction_pct,
                            b.significant ? (b.confounded_with.empty() ? ", significant" : ", significant, not alone")
                                          : "");

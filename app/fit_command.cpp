@@ -58,7 +58,7 @@ struct ChannelFit {
   fit::PipelineOptions pipeline;
   fit::PreparedData data;
   fit::ModelFit result;
-  std::optional<fit::Truth> truth;
+  std::optional<studies::Truth> truth;
   bool streamed = false;
   nlohmann::ordered_json json;
 };
@@ -67,7 +67,7 @@ void print_fit(const ChannelFit& c, const std::vector<const fit::Term*>& terms,
                const fit::EngineInfo& engine, const fit::EngineSettings& settings) {
   const fit::PreparedData& data = c.data;
   const fit::ModelFit& result = c.result;
-  const std::optional<fit::Truth>& truth = c.truth;
+  const std::optional<studies::Truth>& truth = c.truth;
   fmt::print("data: {}: {} samples{} every {:g} s, {} glitches removed, {} gaps, {}\n", data.file,
              data.raw_samples, c.streamed ? " (streamed)" : "", data.averaging.sample_interval_s,
              data.outliers.removed, data.averaging.gaps.size(), fit::describe_windows(data, c.pipeline));
@@ -82,7 +82,7 @@ void print_fit(const ChannelFit& c, const std::vector<const fit::Term*>& terms,
   fmt::print("model: B = b0 + {}   engine: {}{}\n", fit::formula_text(terms), engine.name,
              engine.stochastic ? fmt::format(" (seed {})", settings.seed) : "");
   std::map<std::string, double> errors;
-  if (truth) errors = fit::coefficient_errors(result, *truth);
+  if (truth) errors = studies::coefficient_errors(result, *truth);
   auto print_row = [&](const std::string& name, double value, const std::string& unit, std::size_t k) {
     std::string extra;
     if (k < result.engine.intervals.size())
@@ -141,9 +141,9 @@ int run_fit(const FitOptions& o) {
         fit::check_columns(terms, c.data, c.pipeline.columns);
         c.result = fit::fit_model(c.data, terms, engine, settings);
         // The simulator's truth belongs to its one gyro column.
-        if (channels.size() == 1) c.truth = fit::load_truth_beside(o.data);
+        if (channels.size() == 1) c.truth = studies::load_truth_beside(o.data);
         c.json = fit::fit_json(c.result, c.data, c.pipeline, settings);
-        if (c.truth) fit::add_truth(c.json, c.result, *c.truth);
+        if (c.truth) studies::add_truth(c.json, c.result, *c.truth);
         return c;
       });
   std::string json;

@@ -32,7 +32,7 @@ std::string default_scenarios_dir() {
 
 int run_reproduce(const ReproduceCli& o) {
   const std::string dir = o.scenarios.empty() ? default_scenarios_dir() : o.scenarios;
-  fit::ReproduceOptions options;
+  studies::ReproduceOptions options;
   options.cycle = dir + "/cycle.toml";
   options.test1 = dir + "/random.toml";
   options.test2 = dir + "/warmup.toml";
@@ -47,17 +47,17 @@ int run_reproduce(const ReproduceCli& o) {
     if (tty && f >= 1.0) fmt::print(stderr, "\n");
   };
   const auto started = std::chrono::steady_clock::now();
-  const fit::ReproduceResult r = fit::reproduce(options);
+  const studies::ReproduceResult r = studies::reproduce(options);
 
   options.progress("drawing the figures", 1.0);
-  const nlohmann::ordered_json j = fit::write_reproduce_report(o.out, r, started);
+  const nlohmann::ordered_json j = studies::write_reproduce_report(o.out, r, started);
   const double total = j["total_seconds"].get<double>();
 
   if (o.json) {
     fmt::print("{}\n", j.dump());
     return 0;
   }
-  const fit::PaperFigures paper;
+  const studies::PaperFigures paper;
   fmt::print("Table 1, side by side (instability of 100 s means, °/h):\n");
   fmt::print("  cycle  raw      paper {:.5f}  ours {:.5f}\n", paper.cycle_raw, r.cycle_raw_dph);
   for (const auto& e : r.engines)
@@ -66,7 +66,7 @@ int run_reproduce(const ReproduceCli& o) {
                : e.engine == "iafsa"  ? fmt::format("paper {:.5f}", paper.cycle_iafsa)
                                       : std::string(17, ' '),
                e.fit.instability_after_dph, e.fit.ratio());
-  const std::string best = fit::shown_engine(r);
+  const std::string best = studies::shown_engine(r);
   fmt::print("  test 1 paper {:.5f} -> {:.5f} ({:.2f}x)  ours ({}) {:.5f} -> {:.5f} ({:.2f}x)\n", paper.test1_before,
              paper.test1_after, paper.test1_times, best, r.test1.before_dph, r.test1.by_engine.at(best).after_dph,
              r.test1.by_engine.at(best).ratio());

@@ -54,8 +54,8 @@ long parse_count(const std::string& text, const std::string& what) {
   return v;
 }
 
-fit::ScoreOptions score_options(const ScoreCli& o) {
-  fit::ScoreOptions s;
+studies::ScoreOptions score_options(const ScoreCli& o) {
+  studies::ScoreOptions s;
   s.scenario = o.scenario;
   s.engines = split_commas(o.engines);
   s.model = o.model;
@@ -81,7 +81,7 @@ fit::ScoreOptions score_options(const ScoreCli& o) {
 }
 
 // A bar with an ETA on a terminal; a plain line every 10 % otherwise.
-class Progress final : public fit::ScoreObserver {
+class Progress final : public studies::ScoreObserver {
  public:
   explicit Progress(std::string label) : label_(std::move(label)), tty_(::isatty(2) != 0) {}
 
@@ -113,14 +113,14 @@ class Progress final : public fit::ScoreObserver {
 };
 
 // Rank 0's part after the trials: files, the baseline check, the report.
-int report(const fit::Scoreboard& board, const std::optional<fit::Baseline>& baseline, const ScoreCli& o) {
-  const std::string json = fit::scoreboard_json(board);
+int report(const studies::Scoreboard& board, const std::optional<studies::Baseline>& baseline, const ScoreCli& o) {
+  const std::string json = studies::scoreboard_json(board);
   std::vector<std::string> written;
   if (!o.out.empty()) {
-    written = fit::write_score_files(o.out, board);
+    written = studies::write_score_files(o.out, board);
   }
-  fit::BaselineComparison check;
-  if (baseline) check = fit::compare_to_baseline(board, *baseline);
+  studies::BaselineComparison check;
+  if (baseline) check = studies::compare_to_baseline(board, *baseline);
 
   if (o.json) {
     fmt::print("{}", json);
@@ -131,7 +131,7 @@ int report(const fit::Scoreboard& board, const std::optional<fit::Baseline>& bas
     fmt::print("median raw instability {:.6g} °/h, median least-squares optimum {:.6g} °/h; "
                "medians over the trials, coefficient errors |fit - truth|/|truth|\n",
                board.before_median_dph, board.optimum_median_dph);
-    fmt::print("{}", fit::scoreboard_text(board));
+    fmt::print("{}", studies::scoreboard_text(board));
     fmt::print("{:.2f} s on {} thread(s) x {} process(es)\n", board.seconds, board.threads, board.processes);
     for (const std::string& f : written) fmt::print("wrote {}\n", f);
   }
@@ -141,7 +141,7 @@ int report(const fit::Scoreboard& board, const std::optional<fit::Baseline>& bas
     if (!o.json) fmt::print("baseline {}: no engine is worse beyond Monte Carlo noise\n", o.baseline);
     return 0;
   }
-  for (const fit::Regression& r : check.regressions)
+  for (const studies::Regression& r : check.regressions)
     fmt::print(stderr, "gyrotherm: score: worse than the baseline {}: {}\n", o.baseline, r.message);
   return 1;
 }
@@ -157,14 +157,14 @@ int run_score(const ScoreCli& o) {
   const ScoreMpi& mpi = *mpi_holder;
 
   // Set-up, identical on every rank: a bad input fails everywhere at once.
-  std::optional<fit::Campaign> campaign;
-  std::optional<fit::Baseline> baseline;
+  std::optional<studies::Campaign> campaign;
+  std::optional<studies::Baseline> baseline;
   int threads = o.threads;
   try {
     if (o.threads < 0 || o.threads > 1024)
       throw InputError(fmt::format("--threads {}: must be from 1 to 1024 (0: one per core)", o.threads));
     campaign.emplace(score_options(o));
-    if (!o.baseline.empty()) baseline = fit::load_baseline(o.baseline);
+    if (!o.baseline.empty()) baseline = studies::load_baseline(o.baseline);
     if (threads == 0)
       threads = mpi.size() > 1 ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   } catch (...) {
@@ -178,17 +178,17 @@ int run_score(const ScoreCli& o) {
     mine.push_back(k);
   Progress progress(mpi.size() > 1 ? fmt::format("score (rank 0 of {})", mpi.size()) : std::string("score"));
   const auto started = std::chrono::steady_clock::now();
-  const std::vector<fit::TrialOutcome> outcomes = campaign->run(mine, threads, mpi.root() ? &progress : nullptr);
-  const std::vector<std::string> parts = mpi.gather(fit::pack_outcomes(outcomes));
+  const std::vector<studies::TrialOutcome> outcomes = campaign->run(mine, threads, mpi.root() ? &progress : nullptr);
+  const std::vector<std::string> parts = mpi.gather(studies::pack_outcomes(outcomes));
 
   int code = 0;
   std::exception_ptr failure;
   if (mpi.root()) {
     try {
-      std::vector<fit::TrialOutcome> all;
+      std::vector<studies::TrialOutcome> all;
       for (const std::string& part : parts)
-        for (fit::TrialOutcome& t : fit::unpack_outcomes(part)) all.push_back(std::move(t));
-      fit::Scoreboard board = campaign->summarize(std::move(all));
+        for (studies::TrialOutcome& t : studies::unpack_outcomes(part)) all.push_back(std::move(t));
+      studies::Scoreboard board = campaign->summarize(std::move(all));
       board.threads = threads;
       board.processes = mpi.size();
       board.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -55,17 +55,17 @@ struct Variant {
 };
 constexpr double kStepTimeS = 19800;  // 5.5 h, the example
 
-void count(Tally& t, const fit::Diagnosis& d) {
+void count(Tally& t, const studies::Diagnosis& d) {
   ++t.records;
   t.floor_sum += d.noise_floor_dph;
-  for (const fit::StepEvent& e : d.events) {
+  for (const studies::StepEvent& e : d.events) {
     if (e.significant && std::abs(e.time_s - kStepTimeS) <= 3600) {
       ++t.found;
       break;
     }
   }
   bool any = false, step = false, column = false, term = false, alone = false;
-  for (const fit::CandidateReport& c : d.candidates) {
+  for (const studies::CandidateReport& c : d.candidates) {
     if (!c.significant) continue;
     any = true;
     alone |= c.confounded_with.empty();
@@ -135,10 +135,10 @@ int main(int argc, char** argv) {
         pipeline.columns.other_numeric = variants[v].columns;
         const fit::Measurement m = fit::read_measurement_csv(csv, pipeline.columns);
         const fit::PreparedData data = fit::prepare_data(m, pipeline);
-        fit::DiagnosisOptions options;
+        studies::DiagnosisOptions options;
         options.candidates = variants[v].candidates;
-        const fit::DiagnoseReport report =
-            fit::diagnose_record(data, pipeline.columns, base_terms, base_terms, engine, {}, options);
+        const studies::DiagnoseReport report =
+            studies::diagnose_record(data, pipeline.columns, base_terms, base_terms, engine, {}, options);
         count(tallies[v], report.diagnosis);
       }
       if (seed % 10 == 0 || seed == seeds)

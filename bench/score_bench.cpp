@@ -37,12 +37,12 @@ constexpr std::size_t kTrials = 10;
 // (about 20 ms for the cycle, serial). What is timed below is running the
 // trials, the part threads share; results/benchmarks.md also times whole
 // 100-trial `gyrotherm score` commands, set-up included.
-const fit::Campaign& campaign() {
-  static const fit::Campaign c = [] {
-    fit::ScoreOptions o;
+const studies::Campaign& campaign() {
+  static const studies::Campaign c = [] {
+    studies::ScoreOptions o;
     o.scenario = std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/cycle.toml";
     o.trials = static_cast<int>(kTrials);
-    return fit::Campaign(o);
+    return studies::Campaign(o);
   }();
   return c;
 }
@@ -108,11 +108,11 @@ void BM_CampaignSpeedup(benchmark::State& state) {
 // How campaign time grows with the number of trials (the same trial indices
 // as a campaign of that size; the set-up is shared and not timed).
 void BM_CampaignScaling(benchmark::State& state) {
-  static const fit::Campaign large = [] {
-    fit::ScoreOptions o;
+  static const studies::Campaign large = [] {
+    studies::ScoreOptions o;
     o.scenario = std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/cycle.toml";
     o.trials = 10000;
-    return fit::Campaign(o);
+    return studies::Campaign(o);
   }();
   std::vector<std::size_t> k(static_cast<std::size_t>(state.range(0)));
   std::iota(k.begin(), k.end(), std::size_t{0});

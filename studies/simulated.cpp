@@ -8,10 +8,10 @@
 #include "sim/output.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
-Measurement measurement_of(sim::SimulationResult record, std::string file) {
-  Measurement m;
+fit::Measurement measurement_of(sim::SimulationResult record, std::string file) {
+  fit::Measurement m;
   m.file = std::move(file);
   m.time_s = std::move(record.time_s);
   m.temp_c = std::move(record.temp_c);
@@ -44,7 +44,7 @@ std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
   // The nonlinear parameters of hidden effects: hidden.TERM.PARAMETER_NAME.
   if (j.contains("hidden") && j["hidden"].is_object())
     for (const auto& [k, h] : j["hidden"].items()) {
-      const Term* term = find_term(k);
+      const fit::Term* term = fit::find_term(k);
       if (term == nullptr || !term->parameter || !h.is_object()) continue;
       const std::string key(term->parameter->name);
       if (h.contains(key) && h[key].is_number()) t.parameters[k] = h[key].get<double>();
@@ -52,7 +52,7 @@ std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
   return t;
 }
 
-std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Truth& truth) {
+std::map<std::string, double> coefficient_errors(const fit::ModelFit& fit, const Truth& truth) {
   std::map<std::string, double> out;
   auto add = [&](const std::string& name, double value) {
     const auto it = truth.coefficients.find(name);
@@ -64,14 +64,14 @@ std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Trut
   return out;
 }
 
-void add_truth(nlohmann::ordered_json& j, const ModelFit& fit, const Truth& truth) {
+void add_truth(nlohmann::ordered_json& j, const fit::ModelFit& fit, const Truth& truth) {
   using Json = nlohmann::ordered_json;
   Json t;
   for (const auto& [k, v] : truth.coefficients) t[k] = v;
   j["truth"] = t;
   if (!truth.parameters.empty()) {
     Json p;
-    for (const auto& [k, v] : truth.parameters) p[k] = {{std::string(find_term(k)->parameter->name), v}};
+    for (const auto& [k, v] : truth.parameters) p[k] = {{std::string(fit::find_term(k)->parameter->name), v}};
     j["truth_parameters"] = p;
   }
   Json e;
@@ -79,4 +79,4 @@ void add_truth(nlohmann::ordered_json& j, const ModelFit& fit, const Truth& trut
   j["coefficient_error"] = e;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -14,11 +14,11 @@
 #include "fit/pipeline.h"
 #include "sim/simulator.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 // A simulated record as a measurement (time, temp_c, temp2_c, gyro_dph), as
 // if read from its CSV without the rounding; `file` names it in messages.
-Measurement measurement_of(sim::SimulationResult record, std::string file);
+fit::Measurement measurement_of(sim::SimulationResult record, std::string file);
 
 struct Truth {
   std::filesystem::path file;
@@ -29,8 +29,8 @@ struct Truth {
 std::optional<Truth> load_truth_beside(const std::filesystem::path& csv);
 // Relative error (fit − true)/|true| per model term and "1"; terms whose true
 // value is 0 (absent from the truth) are left out.
-std::map<std::string, double> coefficient_errors(const ModelFit& fit, const Truth& truth);
+std::map<std::string, double> coefficient_errors(const fit::ModelFit& fit, const Truth& truth);
 // Appends truth, truth_parameters and coefficient_error to a fit's JSON.
-void add_truth(nlohmann::ordered_json& fit_json, const ModelFit& fit, const Truth& truth);
+void add_truth(nlohmann::ordered_json& fit_json, const fit::ModelFit& fit, const Truth& truth);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

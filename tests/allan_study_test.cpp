@@ -14,7 +14,7 @@
 
 #include "cli_runner.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 using gyrotherm::testing::run_cli;
@@ -271,4 +271,4 @@ TEST(CliAllan, BadInputExitsTwoAndSaysWhy) {
 }
 
 }  // namespace
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -21,7 +21,7 @@
 #include "sim/config_loader.h"
 #include "sim/simulator.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 using gyrotherm::testing::source_path;
@@ -47,8 +47,8 @@ SimPair simulate(const std::vector<Hidden>& hidden, std::uint64_t seed, const st
   return r;
 }
 
-Measurement measured(const sim::SimulationResult& r, const std::vector<double>& gyro) {
-  Measurement m;
+fit::Measurement measured(const sim::SimulationResult& r, const std::vector<double>& gyro) {
+  fit::Measurement m;
   m.file = "cycle";
   m.time_s = r.time_s;
   m.temp_c = r.temp_c;
@@ -57,20 +57,20 @@ Measurement measured(const sim::SimulationResult& r, const std::vector<double>& 
   return m;
 }
 
-const std::vector<const Term*>& paper_model() {
-  static const auto terms = parse_formula("T + T^2 + dT");
+const std::vector<const fit::Term*>& paper_model() {
+  static const auto terms = fit::parse_formula("T + T^2 + dT");
   return terms;
 }
 
 // Per window, the part of the hidden effect the paper's model cannot absorb.
-std::vector<double> visible_part(const SimPair& run, const PreparedData& data) {
+std::vector<double> visible_part(const SimPair& run, const fit::PreparedData& data) {
   std::vector<double> effect(run.with.rows());
   for (std::size_t k = 0; k < effect.size(); ++k)
     effect[k] = run.with.bias_true_dph[k] - run.without.bias_true_dph[k];
-  PipelineOptions quiet;
+  fit::PipelineOptions quiet;
   quiet.remove_outliers = false;
-  const PreparedData e = prepare_data(measured(run.with, effect), quiet);
-  const Eigen::MatrixXd x = design_matrix(data.derived, paper_model(), {NAN, NAN, NAN});
+  const fit::PreparedData e = fit::prepare_data(measured(run.with, effect), quiet);
+  const Eigen::MatrixXd x = fit::design_matrix(data.derived, paper_model(), {NAN, NAN, NAN});
   Eigen::MatrixXd a(x.rows(), x.cols() + 1);
   a << Eigen::VectorXd::Ones(x.rows()), x;
   const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(e.series.gyro_dph.data(), x.rows());
@@ -83,8 +83,8 @@ class HiddenEffectTest : public ::testing::TestWithParam<Hidden> {};
 TEST_P(HiddenEffectTest, RankedFirstSignificantAndAddingItReachesTheFloor) {
   const Hidden h = GetParam();
   const SimPair run = simulate({h}, 2014);
-  const PreparedData data = prepare_data(measured(run.with, run.with.gyro_dph), PipelineOptions{});
-  const Diagnosis d = diagnose(data, paper_model(), find_engine("ols"), {});
+  const fit::PreparedData data = fit::prepare_data(measured(run.with, run.with.gyro_dph), fit::PipelineOptions{});
+  const Diagnosis d = diagnose(data, paper_model(), fit::find_engine("ols"), {});
   ASSERT_FALSE(d.candidates.empty());
   EXPECT_EQ(d.candidates.front().term->name, h.term) << d.verdict;
   EXPECT_TRUE(d.candidates.front().significant) << d.verdict;
@@ -92,9 +92,9 @@ TEST_P(HiddenEffectTest, RankedFirstSignificantAndAddingItReachesTheFloor) {
   EXPECT_NE(d.verdict.find("adding " + h.term), std::string::npos) << d.verdict;
 
   // Refitting with it brings the instability within 25 % of the noise floor.
-  std::vector<const Term*> with = paper_model();
-  with.push_back(find_term(h.term));
-  const Diagnosis after = diagnose(data, with, find_engine("ols"), {});
+  std::vector<const fit::Term*> with = paper_model();
+  with.push_back(fit::find_term(h.term));
+  const Diagnosis after = diagnose(data, with, fit::find_engine("ols"), {});
   EXPECT_LE(after.excess_ratio(), 1.25) << h.term;
 
   // The worst segment named is where the effect acts: the unabsorbable part of
@@ -132,8 +132,8 @@ TEST(Diagnosis, CleanDataHasNoSignificantCandidateInNineOfTenSeeds) {
   int clean = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const SimPair run = simulate({}, seed);
-    const PreparedData data = prepare_data(measured(run.with, run.with.gyro_dph), PipelineOptions{});
-    const Diagnosis d = diagnose(data, paper_model(), find_engine("ols"), {});
+    const fit::PreparedData data = fit::prepare_data(measured(run.with, run.with.gyro_dph), fit::PipelineOptions{});
+    const Diagnosis d = diagnose(data, paper_model(), fit::find_engine("ols"), {});
     bool any = false;
     for (const CandidateReport& c : d.candidates) any = any || c.significant;
     clean += !any;
@@ -146,23 +146,23 @@ TEST(Diagnosis, CleanDataHasNoSignificantCandidateInNineOfTenSeeds) {
 
 TEST(Diagnosis, TwoHiddenEffectsAreBothFoundAndBothReachTheFloor) {
   const SimPair run = simulate({{"grad", 0.0533}, {"warmup", 0.0285}}, 2014);
-  const PreparedData data = prepare_data(measured(run.with, run.with.gyro_dph), PipelineOptions{});
-  const Diagnosis d = diagnose(data, paper_model(), find_engine("ols"), {});
+  const fit::PreparedData data = fit::prepare_data(measured(run.with, run.with.gyro_dph), fit::PipelineOptions{});
+  const Diagnosis d = diagnose(data, paper_model(), fit::find_engine("ols"), {});
   ASSERT_GE(d.candidates.size(), 2u);
   std::set<std::string> top = {std::string(d.candidates[0].term->name), std::string(d.candidates[1].term->name)};
   EXPECT_EQ(top, (std::set<std::string>{"grad", "warmup"})) << d.verdict;
   EXPECT_TRUE(d.candidates[0].significant && d.candidates[1].significant) << d.verdict;
   EXPECT_TRUE(d.suggested_model.find("grad") != std::string::npos &&
               d.suggested_model.find("warmup") != std::string::npos);
-  std::vector<const Term*> both = paper_model();
-  both.push_back(find_term("grad"));
-  both.push_back(find_term("warmup"));
-  const Diagnosis after = diagnose(data, both, find_engine("ols"), {});
+  std::vector<const fit::Term*> both = paper_model();
+  both.push_back(fit::find_term("grad"));
+  both.push_back(fit::find_term("warmup"));
+  const Diagnosis after = diagnose(data, both, fit::find_engine("ols"), {});
   EXPECT_LE(after.excess_ratio(), 1.25);
 }
 
 TEST(Diagnosis, NoiseFloorIsTheStdOfWhiteWindowMeansAndIgnoresTrendsAndSteps) {
-  AveragedSeries s;
+  fit::AveragedSeries s;
   boost::random::mt19937_64 rng(4);
   boost::random::normal_distribution<double> normal(0.0, 0.002);
   for (int p = 0; p < 2000; ++p) {
@@ -177,11 +177,11 @@ TEST(Diagnosis, NoiseFloorIsTheStdOfWhiteWindowMeansAndIgnoresTrendsAndSteps) {
 // (On the random profile, whose range and rates let a model hold every term.)
 TEST(Diagnosis, ModelWithEveryTermHasNothingLeftToTry) {
   const SimPair run = simulate({}, 3, "random");
-  const PreparedData data = prepare_data(measured(run.with, run.with.gyro_dph), PipelineOptions{});
-  const Diagnosis d = diagnose(data, term_registry(), find_engine("ols"), {});
+  const fit::PreparedData data = fit::prepare_data(measured(run.with, run.with.gyro_dph), fit::PipelineOptions{});
+  const Diagnosis d = diagnose(data, fit::term_registry(), fit::find_engine("ols"), {});
   EXPECT_TRUE(d.candidates.empty());
   EXPECT_NE(d.verdict.find("nothing left to try"), std::string::npos) << d.verdict;
 }
 
 }  // namespace
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -140,7 +140,7 @@ TEST(Iafsa, MatchesLeastSquaresOnTheSimulatedCycle) {
   const sim::Scenario sc = sim::load_scenario(testing::source_path("scenarios/cycle.toml"));
   const sim::Simulator simulator(sc, sim::load_rig(sc.rig_file), sim::load_gyro(sc.gyro_file));
   const sim::SimulationResult run = simulator.run();
-  const Measurement m = measurement_of(run, "cycle");
+  const Measurement m = studies::measurement_of(run, "cycle");
   const PreparedData data = prepare_data(m, PipelineOptions{});
   const auto terms = parse_formula("T + T^2 + dT");
   EngineSettings s;

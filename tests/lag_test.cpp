@@ -118,14 +118,14 @@ TEST(Lag, RecoveryOverSeeds) {
   for (int seed = 1; seed <= kSeeds; ++seed) {
     sc.seed = static_cast<std::uint64_t>(seed);
     const fit::PreparedData data = fit::prepare_data(
-        fit::measurement_of(sim::Simulator(sc, rig, gyro).record(trace), "lag"), fit::PipelineOptions{});
+        studies::measurement_of(sim::Simulator(sc, rig, gyro).record(trace), "lag"), fit::PipelineOptions{});
     const fit::ModelFit f = fit::fit_model(data, with_lag, ols, {});
     EXPECT_NEAR(f.coefficients.b[3] / 0.003, 1.0, 0.2) << "seed " << seed;
     EXPECT_NEAR(f.parameters[3] / 1200.0, 1.0, 0.2) << "seed " << seed;
     c_covered += f.engine.intervals[3].lower <= 0.003 && 0.003 <= f.engine.intervals[3].upper;
     ASSERT_TRUE(f.parameter_intervals[3].has_value());
     tau_covered += f.parameter_intervals[3]->lower <= 1200.0 && 1200.0 <= f.parameter_intervals[3]->upper;
-    const fit::Diagnosis d = fit::diagnose(data, fit::parse_formula("T + T^2 + dT"), ols, {});
+    const studies::Diagnosis d = studies::diagnose(data, fit::parse_formula("T + T^2 + dT"), ols, {});
     first += !d.candidates.empty() && d.candidates[0].term->name == "lag" && d.candidates[0].significant;
   }
   EXPECT_GE(tau_covered, 10) << "of " << kSeeds;

@@ -23,7 +23,7 @@ PreparedData simulate_cycle(sim::GyroConfig gyro, std::uint64_t seed = 1) {
   sim::Scenario sc = sim::load_scenario(source_path("scenarios/cycle.toml"));
   sc.seed = seed;
   const sim::SimulationResult r = sim::Simulator(sc, sim::load_rig(sc.rig_file), gyro).run();
-  const Measurement m = measurement_of(r, "cycle");
+  const Measurement m = studies::measurement_of(r, "cycle");
   return prepare_data(m, PipelineOptions{});
 }
 

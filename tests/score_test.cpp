@@ -27,7 +27,7 @@
 #include "sim/util/input_error.h"
 #include "sim/simulator.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 using gyrotherm::testing::expect_input_error;
@@ -176,12 +176,12 @@ TEST(ScoreCampaign, TrialZeroIsTheScenarioSimulatedWithTheCampaignSeed) {
 
   const sim::Scenario sc = sim::load_scenario(file);
   const sim::SimulationResult r = sim::Simulator(sc, sim::load_rig(sc.rig_file), sim::load_gyro(sc.gyro_file)).run();
-  Measurement m;
+  fit::Measurement m;
   m.time_s = r.time_s;
   m.temp_c = r.temp_c;
   m.gyro_dph = r.gyro_dph;
   m.temp2_c = r.temp2_c;
-  const ModelFit ols = fit_model(prepare_data(m, {}), parse_formula(kDefaultModel), find_engine("ols"), {});
+  const fit::ModelFit ols = fit::fit_model(fit::prepare_data(m, {}), fit::parse_formula(fit::kDefaultModel), fit::find_engine("ols"), {});
   EXPECT_EQ(t.optimum_dph, ols.optimum_dph);
   EXPECT_EQ(t.before_dph, ols.instability_before_dph);
 
@@ -192,7 +192,7 @@ TEST(ScoreCampaign, TrialZeroIsTheScenarioSimulatedWithTheCampaignSeed) {
   EXPECT_NEAR(t.engines[0].gap, 0.0, 1e-12);
   EXPECT_DOUBLE_EQ(t.engines[0].ratio, ols.ratio());
   EXPECT_TRUE(t.engines[1].reached);
-  EXPECT_EQ(t.engines[1].termination, Termination::target_reached);
+  EXPECT_EQ(t.engines[1].termination, fit::Termination::target_reached);
   EXPECT_EQ(t.engines[1].evaluations_to_target, t.engines[1].evaluations);
   EXPECT_LE(t.engines[1].gap, 1.1e-6);
   EXPECT_GE(t.engines[1].gap, -1e-12);
@@ -440,4 +440,4 @@ TEST_F(ScoreBaseline, MalformedOrIncomparableBaselinesAreInputErrors) {
 }
 
 }  // namespace
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

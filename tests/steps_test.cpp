@@ -13,7 +13,7 @@
 #include <boost/random/normal_distribution.hpp>
 #include <cmath>
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 constexpr Eigen::Index kWindows = 200;
@@ -242,4 +242,4 @@ TEST(Steps, TooShortAResidualHasNoSteps) {
 }
 
 }  // namespace
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -8,7 +8,7 @@
 
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 // A gap-free run: its rates and its angle x_k = Σ_{i<k} (y_i − ȳ) (in rate ×
@@ -240,4 +240,4 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
   return c;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

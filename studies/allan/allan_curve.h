@@ -43,7 +43,7 @@
 #include <string>
 #include <vector>
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 enum class TauSpacing { octave, decade, all };
 
@@ -95,4 +95,4 @@ std::string noise_type_name(int alpha);
 // m (no intervals; NaN when the series is shorter than 2m).
 double overlapping_adev(std::span<const double> rate, std::size_t m);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

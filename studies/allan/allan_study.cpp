@@ -8,7 +8,7 @@
 #include "fit/pipeline.h"
 #include "sim/util/gnuplot.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 nlohmann::ordered_json coefficient_json(const NoiseCoefficient& k) {
@@ -39,7 +39,7 @@ std::optional<double> AllanStudy::bias_instability_ratio() const {
   return a.value / b.value;
 }
 
-AllanStudy allan_study(const Measurement& m, const SavedFit* fit, const AllanOptions& options) {
+AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, const AllanOptions& options) {
   AllanStudy s;
   s.data_file = m.file;
   AllanSeries raw;
@@ -49,9 +49,9 @@ AllanStudy allan_study(const Measurement& m, const SavedFit* fit, const AllanOpt
   if (fit) {
     s.fit_file = fit->file.string();
     s.channel = fit->channel;
-    PipelineOptions pipeline = reading_columns_of(fit->pipeline, fit->terms);
-    pipeline.derivative = DerivativeMode::causal;
-    const Compensation c = compensate(m, *fit, pipeline);
+    fit::PipelineOptions pipeline = fit::reading_columns_of(fit->pipeline, fit->terms);
+    pipeline.derivative = fit::DerivativeMode::causal;
+    const fit::Compensation c = fit::compensate(m, *fit, pipeline);
     std::vector<double> compensated(c.gyro_dph.size());
     for (std::size_t i = 0; i < compensated.size(); ++i) {
       compensated[i] = c.gyro_dph[i] - c.model_dph[i];
@@ -219,4 +219,4 @@ void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study)
   fig.render();
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -21,7 +21,7 @@
 #include "studies/allan/allan_curve.h"
 #include "studies/allan/noise_coefficients.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct AllanSeries {
   AllanCurve curve;
@@ -38,7 +38,7 @@ struct AllanStudy {
 
 // `pipeline`: the columns and units the measurement was read with (and, with a
 // fit, the fit's own pipeline is used for the compensation).
-AllanStudy allan_study(const Measurement& m, const SavedFit* fit, const AllanOptions& options);
+AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, const AllanOptions& options);
 
 // --json: data, fit, channel, confidence, and per series name, tau0_s,
 // samples, runs, gaps, taus_s, adev_dph, lo_dph, hi_dph, edf, noise_type,
@@ -55,4 +55,4 @@ std::string allan_text(const AllanStudy& study);
 // coefficients read and their values, every series on one figure.
 void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

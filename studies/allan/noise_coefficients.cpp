@@ -6,7 +6,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/format.h>
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 // The local log-log slope of σ(τ) at row i (to both neighbours, or the one).
@@ -131,4 +131,4 @@ NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {
   return k;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

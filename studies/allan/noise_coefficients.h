@@ -31,7 +31,7 @@
 
 #include "studies/allan/allan_curve.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct NoiseCoefficient {
   bool shown = false;
@@ -53,4 +53,4 @@ inline constexpr double kFlickerFloor = 0.6642824702679600;
 
 NoiseCoefficients read_noise_coefficients(const AllanCurve& curve);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

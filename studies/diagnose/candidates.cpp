@@ -6,22 +6,22 @@
 
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
-bool contains(const std::vector<const Term*>& v, const Term* t) {
+bool contains(const std::vector<const fit::Term*>& v, const fit::Term* t) {
   return std::find(v.begin(), v.end(), t) != v.end();
 }
 
 }  // namespace
 
-CandidateSet candidate_set(const PreparedData& data, const std::vector<const Term*>& model,
+CandidateSet candidate_set(const fit::PreparedData& data, const std::vector<const fit::Term*>& model,
                            const std::vector<double>& parameters,
                            const std::vector<std::string>& requested,
                            const std::vector<std::string>& excluded_columns, std::uint64_t seed) {
   CandidateSet set;
-  std::vector<const Term*> all;
-  for (const Term* term : term_registry()) {
+  std::vector<const fit::Term*> all;
+  for (const fit::Term* term : fit::term_registry()) {
     if (contains(model, term)) continue;
     if (term->needs_temp2() && !data.has_temp2()) {
       set.skipped.push_back(std::string(term->name) + " (needs temp2_c)");
@@ -33,29 +33,29 @@ CandidateSet candidate_set(const PreparedData& data, const std::vector<const Ter
     if (std::find(excluded_columns.begin(), excluded_columns.end(), name) != excluded_columns.end() ||
         std::find(kNeverCandidates.begin(), kNeverCandidates.end(), name) != kNeverCandidates.end())
       continue;
-    if (!is_column_name(name)) {
+    if (!fit::is_column_name(name)) {
       set.skipped.push_back(fmt::format("column '{}' (its name cannot be written in a model: use "
                                         "letters, digits, '_' and '.')",
                                         name));
       continue;
     }
     for (const bool rate : {false, true})
-      if (const Term* t = column_term(name, rate); !contains(model, t)) all.push_back(t);
+      if (const fit::Term* t = fit::column_term(name, rate); !contains(model, t)) all.push_back(t);
   }
   // Steps in the model's residual that its noise does not explain.
   std::vector<double> since_start(data.series.size());
   for (std::size_t p = 0; p < since_start.size(); ++p)
     since_start[p] = data.series.time_s[p] - data.series.start_time_s;
-  const Eigen::MatrixXd design = design_matrix(data.derived, model, parameters);
+  const Eigen::MatrixXd design = fit::design_matrix(data.derived, model, parameters);
   StepSearch search;
   search.seed = seed;
   set.steps = find_steps(since_start, design,
                          Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
                                                            static_cast<Eigen::Index>(data.series.size())),
                          search);
-  std::vector<const Term*> steps;
+  std::vector<const fit::Term*> steps;
   for (const StepCandidate& s : set.steps)
-    if (const Term* t = step_term(s.time_s); !contains(model, t)) steps.push_back(t);
+    if (const fit::Term* t = fit::step_term(s.time_s); !contains(model, t)) steps.push_back(t);
   all.insert(all.end(), steps.begin(), steps.end());
 
   if (requested.empty()) {
@@ -66,25 +66,25 @@ CandidateSet candidate_set(const PreparedData& data, const std::vector<const Ter
   const bool changes = std::all_of(requested.begin(), requested.end(), [](const std::string& r) {
     return !r.empty() && (r[0] == '+' || r[0] == '-');
   });
-  std::vector<const Term*> chosen = changes ? all : std::vector<const Term*>{};
+  std::vector<const fit::Term*> chosen = changes ? all : std::vector<const fit::Term*>{};
   for (const std::string& r : requested) {
     const bool remove = changes && r[0] == '-';
     const std::string name = changes ? r.substr(1) : r;
-    std::vector<const Term*> named;
+    std::vector<const fit::Term*> named;
     if (name == "step") {
       named = steps;
-    } else if (const Term* t = term_by_name(name)) {
+    } else if (const fit::Term* t = fit::term_by_name(name)) {
       named = {t};
     } else {
       throw InputError(fmt::format("--candidates {}: unknown term '{}' (a known term, step, step@TIME "
                                    "or a column of the log)",
                                    r, name));
     }
-    for (const Term* t : named) {
+    for (const fit::Term* t : named) {
       if (remove) {
         std::erase(chosen, t);
       } else if (!contains(chosen, t) && !contains(model, t)) {
-        if (is_column_term(t) && !data.derived.extra.contains(t->column))
+        if (fit::is_column_term(t) && !data.derived.extra.contains(t->column))
           throw InputError(fmt::format("--candidates {}: the log has no numeric column '{}'", r, t->column));
         chosen.push_back(t);
       }
@@ -94,4 +94,4 @@ CandidateSet candidate_set(const PreparedData& data, const std::vector<const Ter
   return set;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -22,10 +22,10 @@
 #include "fit/model/terms.h"
 #include "studies/diagnose/steps.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct CandidateSet {
-  std::vector<const Term*> terms;      // to be tried, registry first, then columns, then steps
+  std::vector<const fit::Term*> terms;      // to be tried, registry first, then columns, then steps
   std::vector<std::string> skipped;    // what could not be a candidate, and why
   std::vector<StepCandidate> steps;    // the steps found in the residual
 };
@@ -35,9 +35,9 @@ inline const std::vector<std::string> kNeverCandidates = {"bias_true_dph"};
 
 // parameters: the model's fitted nonlinear parameters; seed: of the step
 // test's bootstrap.
-CandidateSet candidate_set(const PreparedData& data, const std::vector<const Term*>& model,
+CandidateSet candidate_set(const fit::PreparedData& data, const std::vector<const fit::Term*>& model,
                            const std::vector<double>& parameters,
                            const std::vector<std::string>& requested,
                            const std::vector<std::string>& excluded_columns, std::uint64_t seed);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -8,7 +8,7 @@
 
 #include "sim/util/format.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 double mean_of(const Eigen::VectorXd& v) { return v.mean(); }
@@ -25,10 +25,10 @@ double correlation(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 }
 
 // What a term moves with, from its family (sim/effects/effect.h).
-bool is_temperature(const Term& t) {
+bool is_temperature(const fit::Term& t) {
   return t.family == effects::Family::temperature_power || t.family == effects::Family::temperature_state;
 }
-bool is_rate(const Term& t) { return t.family == effects::Family::rate; }
+bool is_rate(const fit::Term& t) { return t.family == effects::Family::rate; }
 
 // Smallest root with path halving.
 std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
@@ -44,12 +44,12 @@ const std::vector<std::string>* Confounding::group_of(const std::string& term) c
   return nullptr;
 }
 
-Confounding find_confounding(const DerivedSeries& derived, const std::vector<const Term*>& terms,
+Confounding find_confounding(const fit::DerivedSeries& derived, const std::vector<const fit::Term*>& terms,
                              const std::vector<double>& parameters) {
   Confounding out;
   const std::size_t n = terms.size();
   if (derived.size() < 3 || n == 0) return out;
-  const Eigen::MatrixXd x = design_matrix(derived, terms, parameters);
+  const Eigen::MatrixXd x = fit::design_matrix(derived, terms, parameters);
   // Node n stands for the intercept.
   std::vector<std::size_t> parent(n + 1);
   std::iota(parent.begin(), parent.end(), 0);
@@ -132,4 +132,4 @@ Confounding find_confounding(const DerivedSeries& derived, const std::vector<con
   return out;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

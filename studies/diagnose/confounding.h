@@ -21,7 +21,7 @@
 #include "fit/data/derivatives.h"
 #include "fit/model/terms.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct Confounding {
   std::vector<std::vector<std::string>> groups;  // term names ("1": the intercept)
@@ -34,7 +34,7 @@ inline constexpr double kConfoundedCorrelation = 0.99;
 inline constexpr double kNearlyConstant = 0.02;  // sd / |mean|
 
 // terms[i] at parameters[i] (NaN where it has none).
-Confounding find_confounding(const DerivedSeries& derived, const std::vector<const Term*>& terms,
+Confounding find_confounding(const fit::DerivedSeries& derived, const std::vector<const fit::Term*>& terms,
                              const std::vector<double>& parameters);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -10,7 +10,7 @@
 #include "sim/allan.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 const char* colour_of(const std::string& kind) {
@@ -28,13 +28,13 @@ std::vector<double> in_hours(const std::vector<double>& s) {
 
 }  // namespace
 
-void write_diagnosis_plots(const std::string& dir, const Measurement& m,
-                           const PreparedData& data, const Diagnosis& d,
+void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
+                           const fit::PreparedData& data, const Diagnosis& d,
                            const Diagnosis* before) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--plots {}: cannot create the folder ({})", dir, ec.message()));
-  const AveragedSeries& s = data.series;
+  const fit::AveragedSeries& s = data.series;
   const std::vector<double> t_h = in_hours(s.time_s);
   const std::string floor_text = fmt::format("{:.4g}", d.noise_floor_dph);
 
@@ -142,4 +142,4 @@ void write_diagnosis_plots(const std::string& dir, const Measurement& m,
   }
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -14,10 +14,10 @@
 
 #include "studies/diagnose/diagnosis.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
-void write_diagnosis_plots(const std::string& dir, const Measurement& measurement,
-                           const PreparedData& data, const Diagnosis& d,
+void write_diagnosis_plots(const std::string& dir, const fit::Measurement& measurement,
+                           const fit::PreparedData& data, const Diagnosis& d,
                            const Diagnosis* before);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -14,7 +14,7 @@
 #include "sim/util/input_error.h"
 #include "sim/util/random.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 constexpr double kMedianChi2One = 0.454936;
@@ -95,7 +95,7 @@ namespace {
 
 // The squared second differences of equally spaced window means (within
 // 10 %) of one gap-free run, or across gaps no farther apart than span_s.
-std::vector<double> hadamard_squares(const AveragedSeries& s, double span_s) {
+std::vector<double> hadamard_squares(const fit::AveragedSeries& s, double span_s) {
   std::vector<double> h2;
   for (std::size_t p = 1; p + 1 < s.size(); ++p) {
     const double before = s.time_s[p] - s.time_s[p - 1], after = s.time_s[p + 1] - s.time_s[p];
@@ -109,7 +109,7 @@ std::vector<double> hadamard_squares(const AveragedSeries& s, double span_s) {
 }
 
 // The root mean square of the windows' standard errors (header, step 1).
-double within_window_floor(const AveragedSeries& s) {
+double within_window_floor(const fit::AveragedSeries& s) {
   double sum = 0.0;
   std::size_t n = 0;
   for (std::size_t p = 0; p < s.size() && p < s.gyro_sd_dph.size(); ++p) {
@@ -124,7 +124,7 @@ double within_window_floor(const AveragedSeries& s) {
 
 }  // namespace
 
-double robust_noise_floor(const AveragedSeries& s) {
+double robust_noise_floor(const fit::AveragedSeries& s) {
   const std::vector<double> h2 = hadamard_squares(s, std::numeric_limits<double>::infinity());
   if (h2.size() < 5)
     throw InputError(fmt::format("only {} usable windows: too few to estimate the noise floor",
@@ -132,7 +132,7 @@ double robust_noise_floor(const AveragedSeries& s) {
   return std::sqrt(median(h2) / (6.0 * kMedianChi2One));
 }
 
-NoiseFloor estimate_noise_floor(const AveragedSeries& s, double span_s) {
+NoiseFloor estimate_noise_floor(const fit::AveragedSeries& s, double span_s) {
   NoiseFloor f;
   const std::vector<double> h2 = hadamard_squares(s, span_s);
   f.triples = h2.size();
@@ -184,11 +184,11 @@ std::vector<SegmentReport> segment_rms(const Diagnosis& d, const std::vector<dou
   return out;
 }
 
-Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& terms,
-                   const EngineInfo& engine, const EngineSettings& settings,
+Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
+                   const fit::EngineInfo& engine, const fit::EngineSettings& settings,
                    const DiagnosisOptions& options) {
   Diagnosis d;
-  const AveragedSeries& s = data.series;
+  const fit::AveragedSeries& s = data.series;
   const std::size_t l = s.size();
   if (l < kMinBlocks)
     throw InputError(fmt::format(
@@ -197,11 +197,11 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
         data.file, l, kMinBlocks));
 
   // 1. Compare.
-  d.fit = fit_model(data, terms, engine, settings);
+  d.fit = fit::fit_model(data, terms, engine, settings);
   d.floor = estimate_noise_floor(s, data.derivative_span_s);
   d.noise_floor_dph = d.floor.dph;
-  const Eigen::MatrixXd x = design_matrix(data.derived, terms, d.fit.parameters);
-  d.model_dph = model_values(x, d.fit.coefficients);
+  const Eigen::MatrixXd x = fit::design_matrix(data.derived, terms, d.fit.parameters);
+  d.model_dph = fit::model_values(x, d.fit.coefficients);
   d.residual_dph.resize(l);
   for (std::size_t p = 0; p < l; ++p) d.residual_dph[p] = s.gyro_dph[p] - d.model_dph[p];
 
@@ -298,7 +298,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
 
   CandidateSet candidates =
       candidate_set(data, terms, d.fit.parameters, options.candidates, options.excluded_columns, options.seed);
-  std::vector<const Term*> untried = std::move(candidates.terms);
+  std::vector<const fit::Term*> untried = std::move(candidates.terms);
   d.skipped = std::move(candidates.skipped);
   const std::vector<StepCandidate> steps = std::move(candidates.steps);
   // What the record can support: the smallest p of a sign-flip test on B
@@ -308,8 +308,8 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   const std::size_t supported = std::min<std::size_t>(
       untried.size(), static_cast<std::size_t>(std::floor(
                           options.alpha * std::pow(2.0, static_cast<double>(std::min<std::size_t>(blocks, 30))))));
-  std::stable_partition(untried.begin(), untried.end(), [](const Term* t) { return !t->parameter; });
-  std::vector<const Term*> tried;
+  std::stable_partition(untried.begin(), untried.end(), [](const fit::Term* t) { return !t->parameter; });
+  std::vector<const fit::Term*> tried;
   for (std::size_t i = 0; i < untried.size(); ++i) {
     const std::size_t parameters = terms.size() + 2 + (untried[i]->parameter ? 1 : 0);
     const bool no_dof = l < parameters + 3;
@@ -327,25 +327,25 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   untried = std::move(tried);
   const double corrected =
       options.alpha / static_cast<double>(std::max<std::size_t>(1, untried.size()));
-  std::vector<const Term*> current = terms;
+  std::vector<const fit::Term*> current = terms;
   std::vector<double> current_params = d.fit.parameters;
   double current_sigma2 = after2;
   std::vector<std::string> failed;
   while (!untried.empty()) {
-    const Eigen::MatrixXd xc = design_matrix(data.derived, current, current_params);
+    const Eigen::MatrixXd xc = fit::design_matrix(data.derived, current, current_params);
     const std::vector<double> base_sse = block_sse(xc, y, block, blocks);
     double base_cv = 0.0;
     for (double v : base_sse) base_cv += v;
     std::vector<CandidateReport> round;
     std::vector<std::vector<double>> round_params;
-    for (const Term* term : untried) {
-      std::vector<const Term*> with = current;
+    for (const fit::Term* term : untried) {
+      std::vector<const fit::Term*> with = current;
       with.push_back(term);
       try {
-        const std::vector<double> params = fit_parameters(data.derived, s.gyro_dph, with);
-        const Eigen::MatrixXd xw = design_matrix(data.derived, with, params);
-        const LinearProblem problem(xw, y, term_names(with));
-        const double sigma = problem.sigma_two_pass(problem.physical(least_squares_optimum(problem)));
+        const std::vector<double> params = fit::fit_parameters(data.derived, s.gyro_dph, with);
+        const Eigen::MatrixXd xw = fit::design_matrix(data.derived, with, params);
+        const fit::LinearProblem problem(xw, y, fit::term_names(with));
+        const double sigma = problem.sigma_two_pass(problem.physical(fit::least_squares_optimum(problem)));
         const std::vector<double> sse = block_sse(xw, y, block, blocks);
         std::vector<double> gains(blocks);
         double cv = 0.0;
@@ -398,7 +398,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   // What the record cannot tell apart: the model's terms and every candidate
   // tried, at their fitted parameters.
   {
-    std::vector<const Term*> all = terms;
+    std::vector<const fit::Term*> all = terms;
     std::vector<double> params = d.fit.parameters;
     for (const CandidateReport& c : d.candidates) {
       all.push_back(c.term);
@@ -417,18 +417,18 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   // The steps found, each sized with the model (ols) and judged by the
   // candidates' test.
   for (const StepCandidate& found : steps) {
-    const Term* step = step_term(found.time_s);
+    const fit::Term* step = fit::step_term(found.time_s);
     StepEvent e;
     e.time_s = found.time_s;
     e.p_value = found.p_value;
     try {
-      std::vector<const Term*> with = terms;
+      std::vector<const fit::Term*> with = terms;
       if (std::find(with.begin(), with.end(), step) == with.end()) with.push_back(step);
-      const ModelFit f = fit_model(data, with, find_engine("ols"), {});
+      const fit::ModelFit f = fit::fit_model(data, with, fit::find_engine("ols"), {});
       e.size_dph = f.coefficients.b.back();
       // The wider of ols's interval and ±1.96 placebo spreads (steps.h).
-      const double placebo = placebo_step_sd(design_matrix(data.derived, with, f.parameters), y, found.index);
-      const Interval ols = f.engine.intervals.back();
+      const double placebo = placebo_step_sd(fit::design_matrix(data.derived, with, f.parameters), y, found.index);
+      const fit::Interval ols = f.engine.intervals.back();
       const double half = std::max(0.5 * (ols.upper - ols.lower), 1.96 * placebo);
       e.size_interval_dph = {e.size_dph - half, e.size_dph + half};
     } catch (const InputError&) {
@@ -441,18 +441,18 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
 
   // What is left: the model with every significant candidate, against the floor.
   {
-    std::vector<const Term*> final_terms = terms;
+    std::vector<const fit::Term*> final_terms = terms;
     for (const CandidateReport& c : d.candidates) {
       if (!c.significant || !c.confounded_with.empty()) break;
       final_terms.push_back(c.term);
     }
     try {
-      const ModelFit f = fit_model(data, final_terms, find_engine("ols"), {});
+      const fit::ModelFit f = fit::fit_model(data, final_terms, fit::find_engine("ols"), {});
       if (f.instability_after_dph > kStructureRemains * d.noise_floor_dph) {
         Diagnosis at_end = d;
         at_end.fit = f;
-        const Eigen::MatrixXd xf = design_matrix(data.derived, final_terms, f.parameters);
-        const std::vector<double> mf = model_values(xf, f.coefficients);
+        const Eigen::MatrixXd xf = fit::design_matrix(data.derived, final_terms, f.parameters);
+        const std::vector<double> mf = fit::model_values(xf, f.coefficients);
         std::vector<double> rf(l);
         for (std::size_t p = 0; p < l; ++p) rf[p] = s.gyro_dph[p] - mf[p];
         const std::vector<SegmentReport> rows = segment_rms(at_end, rf);
@@ -494,7 +494,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
         ratio, c.term->name, c.term->meaning, c.reduction_pct, others,
         d.confounding_notes.empty() ? std::string() : d.confounding_notes.front());
   } else if (d.candidates.front().significant) {
-    std::vector<const Term*> suggested = terms;
+    std::vector<const fit::Term*> suggested = terms;
     std::string found;
     double removed = 0.0;
     for (const CandidateReport& c : d.candidates) {
@@ -503,7 +503,7 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
       found += fmt::format("{}{} ({})", found.empty() ? "" : " and then ", c.term->name, c.term->meaning);
       removed += c.reduction_pct;
     }
-    d.suggested_model = formula_text(suggested);
+    d.suggested_model = fit::formula_text(suggested);
     d.verdict = fmt::format(
         "The model is {:.2f} times the noise floor; adding {} removes {:.0f} % of the excess, "
         "significant under block cross-validation.",
@@ -518,4 +518,4 @@ Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& ter
   return d;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -49,7 +49,7 @@
 
 #include "fit/pipeline.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 // A record with fewer windows cannot be diagnosed: a sign-flip test on fewer
 // blocks cannot reach significance.
@@ -74,7 +74,7 @@ struct DiagnosisOptions {
 struct StepEvent {
   double time_s = 0;          // since the start of the record
   double size_dph = 0;        // least squares with the model
-  Interval size_interval_dph;  // 95 %, ols
+  fit::Interval size_interval_dph;  // 95 %, ols
   double p_value = 1;         // of the bootstrap test that found it (steps.h)
   bool significant = false;   // it passed the candidates' test and joined the suggested model
 };
@@ -89,7 +89,7 @@ struct SegmentReport {
 };
 
 struct CandidateReport {
-  const Term* term = nullptr;
+  const fit::Term* term = nullptr;
   double parameter = 0;                // NaN when the term has none
   double instability_after_dph = 0;    // in-sample, with the term added
   double reduction_pct = 0;            // of the excess variance over the floor
@@ -111,7 +111,7 @@ struct NoiseFloor {
 inline constexpr std::size_t kMinHadamardTriples = 10;
 
 struct Diagnosis {
-  ModelFit fit;                           // the model as given
+  fit::ModelFit fit;                           // the model as given
   double noise_floor_dph = 0;
   NoiseFloor floor;                       // how noise_floor_dph was estimated
   double excess_ratio() const { return fit.instability_after_dph / noise_floor_dph; }
@@ -134,15 +134,15 @@ struct Diagnosis {
 };
 
 
-NoiseFloor estimate_noise_floor(const AveragedSeries& series, double span_s);
+NoiseFloor estimate_noise_floor(const fit::AveragedSeries& series, double span_s);
 // The Hadamard estimate alone (throws InputError with fewer than 5 triples).
-double robust_noise_floor(const AveragedSeries& series);
+double robust_noise_floor(const fit::AveragedSeries& series);
 
-Diagnosis diagnose(const PreparedData& data, const std::vector<const Term*>& terms,
-                   const EngineInfo& engine, const EngineSettings& settings,
+Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
+                   const fit::EngineInfo& engine, const fit::EngineSettings& settings,
                    const DiagnosisOptions& options = {});
 
 // Per-segment RMS of a residual, for before/after tables.
 std::vector<SegmentReport> segment_rms(const Diagnosis& d, const std::vector<double>& residual);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

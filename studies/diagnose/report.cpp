@@ -7,7 +7,7 @@
 #include "fit/model/formula.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 nlohmann::ordered_json segment_json(const SegmentReport& s) {
@@ -18,25 +18,25 @@ nlohmann::ordered_json segment_json(const SegmentReport& s) {
 
 }  // namespace
 
-void check_something_left_to_try(const std::vector<const Term*>& terms, const PreparedData& data) {
+void check_something_left_to_try(const std::vector<const fit::Term*>& terms, const fit::PreparedData& data) {
   std::size_t available = 0;
-  for (const Term* t : term_registry()) available += !t->needs_temp2() || data.has_temp2();
+  for (const fit::Term* t : fit::term_registry()) available += !t->needs_temp2() || data.has_temp2();
   if (terms.size() >= available)
     throw InputError(fmt::format(
         "model '{}' already contains every term that can be tried on this data{}: there is "
         "nothing left to try (see 'gyrotherm effects'; drop terms with --model to test them)",
-        formula_text(terms), data.has_temp2() ? "" : " (grad needs a temp2_c column)"));
+        fit::formula_text(terms), data.has_temp2() ? "" : " (grad needs a temp2_c column)"));
 }
 
-DiagnoseReport diagnose_record(const PreparedData& data, const ColumnMap& columns,
-                               const std::vector<const Term*>& base_terms,
-                               const std::vector<const Term*>& terms, const EngineInfo& engine,
-                               const EngineSettings& settings, const DiagnosisOptions& options) {
+DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnMap& columns,
+                               const std::vector<const fit::Term*>& base_terms,
+                               const std::vector<const fit::Term*>& terms, const fit::EngineInfo& engine,
+                               const fit::EngineSettings& settings, const DiagnosisOptions& options) {
   DiagnoseReport r;
   r.base_terms = base_terms;
   r.terms = terms;
   r.engine = engine.name;
-  check_columns(terms, data, columns);
+  fit::check_columns(terms, data, columns);
   check_something_left_to_try(terms, data);
   r.diagnosis = diagnose(data, terms, engine, settings, options);
   // Step 5: with --add, the model without the added terms is the "before".
@@ -51,7 +51,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   const Diagnosis& d = report.diagnosis;
   const std::optional<Diagnosis>& before = report.before;
   nlohmann::ordered_json j;
-  j["model"] = formula_text(report.terms);
+  j["model"] = fit::formula_text(report.terms);
   j["engine"] = report.engine;
   j["instability_dph"] = d.fit.instability_after_dph;
   j["instability_before_dph"] = d.fit.instability_before_dph;
@@ -102,11 +102,11 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   j["verdict"] = d.verdict;
   j["next_command"] = report.next_command;
   if (before) {
-    j["before_after"] = {{"model_before", formula_text(report.base_terms)},
+    j["before_after"] = {{"model_before", fit::formula_text(report.base_terms)},
                          {"instability_before_dph", before->fit.instability_after_dph},
                          {"instability_after_dph", d.fit.instability_after_dph}};
   }
   return j;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -12,11 +12,11 @@
 
 #include "studies/diagnose/diagnosis.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct DiagnoseReport {
-  std::vector<const Term*> base_terms;  // the model without --add
-  std::vector<const Term*> terms;       // the model diagnosed
+  std::vector<const fit::Term*> base_terms;  // the model without --add
+  std::vector<const fit::Term*> terms;       // the model diagnosed
   std::string engine;
   Diagnosis diagnosis;
   std::optional<Diagnosis> before;      // with --add: the model without the added terms
@@ -25,15 +25,15 @@ struct DiagnoseReport {
 
 // Throws InputError when the model already holds every term that could be
 // tried on this data (nothing would be left to rank).
-void check_something_left_to_try(const std::vector<const Term*>& terms, const PreparedData& data);
+void check_something_left_to_try(const std::vector<const fit::Term*>& terms, const fit::PreparedData& data);
 
 // `terms` is `base_terms` followed by the terms --add names (the caller
 // parsed the whole formula, which refuses a term given twice).
-DiagnoseReport diagnose_record(const PreparedData& data, const ColumnMap& columns,
-                               const std::vector<const Term*>& base_terms,
-                               const std::vector<const Term*>& terms, const EngineInfo& engine,
-                               const EngineSettings& settings, const DiagnosisOptions& options = {});
+DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnMap& columns,
+                               const std::vector<const fit::Term*>& base_terms,
+                               const std::vector<const fit::Term*>& terms, const fit::EngineInfo& engine,
+                               const fit::EngineSettings& settings, const DiagnosisOptions& options = {});
 
 nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

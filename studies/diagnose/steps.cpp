@@ -9,7 +9,7 @@
 
 #include "sim/util/random.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 constexpr Eigen::Index kMinSide = 4;  // windows on each side of a step
@@ -232,4 +232,4 @@ std::vector<StepCandidate> find_steps(const std::vector<double>& time_s, const E
   return out;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

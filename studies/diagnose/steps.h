@@ -79,7 +79,7 @@
 
 #include "sim/util/random.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct StepCandidate {
   double time_s = 0;       // between the last window before and the first after, since the record's start
@@ -127,4 +127,4 @@ double level_shift_p(const Eigen::VectorXd& noise, const Eigen::MatrixXd& q, dou
 // standard error admits; the placebos measure it on the record itself.
 double placebo_step_sd(const Eigen::MatrixXd& design, const Eigen::VectorXd& y, std::size_t step_index);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -8,7 +8,7 @@
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 using Json = nlohmann::ordered_json;
 
@@ -29,7 +29,7 @@ nlohmann::ordered_json table_json(const ReproduceResult& r) {
                                {"coefficient_error", errors},
                                {"evaluations", e.fit.engine.evaluations},
                                {"seconds", e.fit.engine.seconds},
-                               {"termination", to_string(e.fit.engine.termination)},
+                               {"termination", fit::to_string(e.fit.engine.termination)},
                                {"gap_to_least_squares", e.fit.instability_after_dph / e.fit.optimum_dph - 1.0}};
   }
   j["cycle"] = {{"raw_dph", r.cycle_raw_dph}, {"windows", r.cycle_data.series.size()},
@@ -173,7 +173,7 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r) {
                  "$d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'temperature'\n");
     fig.render();
   }
-  const AveragedSeries& s = r.cycle_data.series;
+  const fit::AveragedSeries& s = r.cycle_data.series;
   {
     GnuplotFigure fig(dir / "fig3_cycle_100s.png", 1400, 700);
     fig.data("d", {"t_h", "gyro", "temp"}, {hours(s.time_s), s.gyro_dph, s.temp_c});
@@ -191,8 +191,8 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r) {
     int n = 0;
     for (const auto& e : r.engines) {
       if (e.engine != "stepwise" && e.engine != "iafsa" && e.engine != "ols") continue;
-      const Eigen::MatrixXd x = design_matrix(r.cycle_data.derived, e.fit.terms, e.fit.parameters);
-      const std::vector<double> model = model_values(x, e.fit.coefficients);
+      const Eigen::MatrixXd x = fit::design_matrix(r.cycle_data.derived, e.fit.terms, e.fit.parameters);
+      const std::vector<double> model = fit::model_values(x, e.fit.coefficients);
       std::vector<double> comp(s.size());
       for (std::size_t p = 0; p < s.size(); ++p) comp[p] = s.gyro_dph[p] - model[p];
       fig.data(fmt::format("e{}", n), {"t_h", "compensated"}, {hours(s.time_s), comp});
@@ -207,8 +207,8 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r) {
   for (const TestOutcome* t : {&r.test1, &r.test2}) {
     if (t->by_engine.empty()) continue;
     const std::string best = t->by_engine.count("iafsa") ? "iafsa" : t->by_engine.begin()->first;
-    const Compensation& comp = t->by_engine.at(best);
-    const AveragedSeries& ts = comp.data.series;
+    const fit::Compensation& comp = t->by_engine.at(best);
+    const fit::AveragedSeries& ts = comp.data.series;
     const bool one = t->name == "test1";
     GnuplotFigure fig(dir / (one ? "fig6_7_test1.png" : "fig8_9_test2.png"), 1400, 1000);
     fig.data("d", {"t_h", "gyro", "temp", "comp"}, {hours(ts.time_s), ts.gyro_dph, ts.temp_c, comp.window_compensated_dph});
@@ -248,4 +248,4 @@ nlohmann::ordered_json write_reproduce_report(const std::filesystem::path& dir,
   return j;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -12,7 +12,7 @@
 
 #include "studies/reproduce/reproduce.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 nlohmann::ordered_json table_json(const ReproduceResult& r);
 std::string table_markdown(const ReproduceResult& r, double total_seconds);
@@ -29,4 +29,4 @@ nlohmann::ordered_json write_reproduce_report(const std::filesystem::path& dir,
 // iafsa (the paper's) when it ran, else the first.
 std::string shown_engine(const ReproduceResult& r);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -7,7 +7,7 @@
 #include "fit/model/formula.h"
 #include "sim/config_loader.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 sim::SimulationResult simulate(const std::filesystem::path& file, std::uint64_t* seed) {
@@ -37,8 +37,8 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
   ReproduceResult r;
   std::vector<std::string> engines = o.engines;
   if (engines.empty())
-    for (const EngineInfo& e : engine_registry()) engines.push_back(e.name);
-  for (const std::string& e : engines) find_engine(e);  // fail early on a bad name
+    for (const fit::EngineInfo& e : fit::engine_registry()) engines.push_back(e.name);
+  for (const std::string& e : engines) fit::find_engine(e);  // fail early on a bad name
 
   progress("simulating the -40..60 degC cycle", 0.0);
   r.cycle_run = simulate(o.cycle, &r.cycle_seed);
@@ -48,35 +48,35 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
   r.test2_run = simulate(o.test2, &r.test2.seed);
   r.truth = truth_of(o.cycle);
 
-  const PipelineOptions pipeline;  // the paper's: glitches removed, 100 s, central differences
-  r.cycle_data = prepare_data(measurement_of(r.cycle_run, "cycle"), pipeline);
-  const std::vector<const Term*> terms = parse_formula(kDefaultModel);
-  const Measurement test1 = measurement_of(r.test1_run, "test1");
-  const Measurement test2 = measurement_of(r.test2_run, "test2");
-  PipelineOptions causal = pipeline;
-  causal.derivative = DerivativeMode::causal;
+  const fit::PipelineOptions pipeline;  // the paper's: glitches removed, 100 s, central differences
+  r.cycle_data = fit::prepare_data(measurement_of(r.cycle_run, "cycle"), pipeline);
+  const std::vector<const fit::Term*> terms = fit::parse_formula(fit::kDefaultModel);
+  const fit::Measurement test1 = measurement_of(r.test1_run, "test1");
+  const fit::Measurement test2 = measurement_of(r.test2_run, "test2");
+  fit::PipelineOptions causal = pipeline;
+  causal.derivative = fit::DerivativeMode::causal;
   r.test1.name = "test1";
   r.test2.name = "test2";
 
   for (std::size_t i = 0; i < engines.size(); ++i) {
     progress(fmt::format("fitting the cycle with {}", engines[i]),
              0.25 + 0.75 * static_cast<double>(i) / static_cast<double>(engines.size()));
-    EngineSettings settings;
+    fit::EngineSettings settings;
     settings.seed = o.engine_seed;
     EngineOnCycle e;
     e.engine = engines[i];
-    e.fit = fit_model(r.cycle_data, terms, find_engine(engines[i]), settings);
+    e.fit = fit::fit_model(r.cycle_data, terms, fit::find_engine(engines[i]), settings);
     e.coefficient_error = coefficient_errors(e.fit, r.truth);
     r.cycle_raw_dph = e.fit.instability_before_dph;
 
-    SavedFit saved;
+    fit::SavedFit saved;
     saved.engine = e.engine;
     saved.terms = terms;
     saved.parameters = e.fit.parameters;
     saved.coefficients = e.fit.coefficients;
     saved.pipeline = causal;
-    r.test1.by_engine[e.engine] = compensate(test1, saved, causal);
-    r.test2.by_engine[e.engine] = compensate(test2, saved, causal);
+    r.test1.by_engine[e.engine] = fit::compensate(test1, saved, causal);
+    r.test2.by_engine[e.engine] = fit::compensate(test2, saved, causal);
     r.test1.before_dph = r.test1.by_engine[e.engine].before_dph;
     r.test2.before_dph = r.test2.by_engine[e.engine].before_dph;
     r.engines.push_back(std::move(e));
@@ -86,4 +86,4 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
   return r;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

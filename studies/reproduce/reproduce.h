@@ -24,7 +24,7 @@
 #include "studies/simulated.h"
 #include "sim/simulator.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct ReproduceOptions {
   std::filesystem::path cycle, test1, test2;  // scenario files
@@ -36,7 +36,7 @@ struct ReproduceOptions {
 
 struct EngineOnCycle {
   std::string engine;
-  ModelFit fit;
+  fit::ModelFit fit;
   std::map<std::string, double> coefficient_error;  // relative, against the truth
 };
 
@@ -44,13 +44,13 @@ struct TestOutcome {
   std::string name;               // "test1" or "test2"
   std::uint64_t seed = 0;
   double before_dph = 0.0;
-  std::map<std::string, Compensation> by_engine;  // causal compensation with each engine's cycle fit
+  std::map<std::string, fit::Compensation> by_engine;  // causal compensation with each engine's cycle fit
 };
 
 struct ReproduceResult {
   std::uint64_t cycle_seed = 0;
   sim::SimulationResult cycle_run, test1_run, test2_run;
-  PreparedData cycle_data;
+  fit::PreparedData cycle_data;
   Truth truth;
   double cycle_raw_dph = 0.0;
   std::vector<EngineOnCycle> engines;
@@ -67,4 +67,4 @@ struct PaperFigures {
   double test2_before = 0.0025, test2_after = 0.0016, test2_times = 1.56;
 };
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -10,7 +10,7 @@
 
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 namespace {
 
@@ -174,4 +174,4 @@ BaselineComparison compare_to_baseline(const Scoreboard& current, const Baseline
   return out;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

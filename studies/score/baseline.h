@@ -19,7 +19,7 @@
 
 #include "studies/score/campaign.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 // A saved scoreboard (`score --json`) as the baseline check needs it: per
 // engine, each checked metric's value and 95 % interval.
@@ -59,4 +59,4 @@ struct BaselineComparison {
 // for another model or target (its numbers would not be comparable).
 BaselineComparison compare_to_baseline(const Scoreboard& current, const Baseline& baseline);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -18,7 +18,7 @@
 #include "sim/util/sha256.h"
 #include "studies/score/spread.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 namespace {
 
@@ -47,14 +47,14 @@ Campaign::Campaign(ScoreOptions options) : options_(std::move(options)) {
   gyro_ = sim::load_gyro(scenario_.gyro_file);
   sim::check_scenario_against_rig(scenario_, rig_, scenario_.rig_file);
   seed_ = options_.seed.value_or(scenario_.seed);
-  terms_ = parse_formula(options_.model);
+  terms_ = fit::parse_formula(options_.model);
 
   std::vector<std::string> names = options_.engines;
   if (names.empty())
-    for (const EngineInfo& e : engine_registry()) names.push_back(e.name);
+    for (const fit::EngineInfo& e : fit::engine_registry()) names.push_back(e.name);
   std::set<std::string> seen;
   for (const std::string& name : names) {
-    const EngineInfo& info = find_engine(name);
+    const fit::EngineInfo& info = fit::find_engine(name);
     if (!seen.insert(name).second)
       throw InputError(fmt::format("--engines: '{}' is named twice", name));
     infos_.push_back(&info);
@@ -70,7 +70,7 @@ Campaign::Campaign(ScoreOptions options) : options_(std::move(options)) {
   // Budgets, and each engine's settings checked once before any trial.
   long largest = 10;
   for (std::size_t e = 0; e < infos_.size(); ++e) {
-    const EngineInfo& info = *infos_[e];
+    const fit::EngineInfo& info = *infos_[e];
     const auto it = options_.engine_budget.find(info.name);
     const long given = it != options_.engine_budget.end() ? it->second : info.stochastic ? options_.budget : 0;
     budgets_.push_back(given > 0 ? given : info.default_evaluations);
@@ -81,7 +81,7 @@ Campaign::Campaign(ScoreOptions options) : options_(std::move(options)) {
   // Coefficient errors: the intercept and every model term with a true value.
   const std::map<std::string, double> truth = sim::true_coefficients(gyro_);
   error_terms_.push_back("1");
-  for (const Term* t : terms_)
+  for (const fit::Term* t : terms_)
     if (truth.count(std::string(t->name))) error_terms_.emplace_back(t->name);
 
   // The convergence grid: log-spaced evaluation counts 1 … the largest budget.
@@ -99,9 +99,9 @@ Campaign::Campaign(ScoreOptions options) : options_(std::move(options)) {
   trace_ = sim::Simulator(scenario_, rig_, gyro_).run_thermal();
 }
 
-EngineSettings Campaign::settings(std::size_t e, std::size_t k, double target_objective) const {
-  const EngineInfo& info = *infos_[e];
-  EngineSettings s;
+fit::EngineSettings Campaign::settings(std::size_t e, std::size_t k, double target_objective) const {
+  const fit::EngineInfo& info = *infos_[e];
+  fit::EngineSettings s;
   s.seed = trial_seed(k);
   const auto it = options_.engine_budget.find(info.name);
   s.max_evaluations = it != options_.engine_budget.end() ? it->second : info.stochastic ? options_.budget : 0;
@@ -124,16 +124,16 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
     // optimum once.
     sim::SimulationResult record =
         sim::Simulator(std::move(scenario), rig_, gyro).record(trace_);
-    const Measurement m = measurement_of(std::move(record), fmt::format("{} (trial {}, seed {})", scenario_.name, k, out.seed));
-    const PreparedData data = prepare_data(m, options_.pipeline);
-    check_columns(terms_, data, options_.pipeline.columns);
-    const std::vector<double> parameters = fit_parameters(data.derived, data.series.gyro_dph, terms_);
-    const LinearProblem problem(
-        design_matrix(data.derived, terms_, parameters),
+    const fit::Measurement m = measurement_of(std::move(record), fmt::format("{} (trial {}, seed {})", scenario_.name, k, out.seed));
+    const fit::PreparedData data = fit::prepare_data(m, options_.pipeline);
+    fit::check_columns(terms_, data, options_.pipeline.columns);
+    const std::vector<double> parameters = fit::fit_parameters(data.derived, data.series.gyro_dph, terms_);
+    const fit::LinearProblem problem(
+        fit::design_matrix(data.derived, terms_, parameters),
         Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
                                           static_cast<Eigen::Index>(data.series.size())),
-        term_names(terms_));
-    const std::vector<double> z_optimum = least_squares_optimum(problem);
+        fit::term_names(terms_));
+    const std::vector<double> z_optimum = fit::least_squares_optimum(problem);
     const double optimum_gram = problem.objective(z_optimum);  // what engines see
     out.optimum_dph = problem.sigma_two_pass(problem.physical(z_optimum));
     out.before_dph = problem.sigma_y();
@@ -142,18 +142,18 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
 
     // 4. Every engine on the same problem.
     for (std::size_t e = 0; e < infos_.size(); ++e) {
-      const FitResult f = infos_[e]->make(settings(e, k, target))->fit(problem);
+      const fit::FitResult f = infos_[e]->make(settings(e, k, target))->fit(problem);
       EngineTrial t;
       t.evaluations = f.evaluations;
       t.seconds = f.seconds;
       t.termination = f.termination;
-      for (const HistoryPoint& h : f.history)
+      for (const fit::HistoryPoint& h : f.history)
         if (h.best_objective <= target) {
           t.reached = true;
           t.evaluations_to_target = h.evaluations;
           break;
         }
-      const Coefficients c = problem.physical(f.z);
+      const fit::Coefficients c = problem.physical(f.z);
       const double after = problem.sigma_two_pass(c);
       t.gap = after / out.optimum_dph - 1.0;
       t.ratio = out.before_dph / after;
@@ -226,7 +226,7 @@ Scoreboard Campaign::summarize(std::vector<TrialOutcome> outcomes) const {
   b.file_sha256 = {{"scenario", sha256_file_hex(options_.scenario)},
                    {"rig", sha256_file_hex(scenario_.rig_file)},
                    {"gyro", sha256_file_hex(scenario_.gyro_file)}};
-  b.model = formula_text(terms_);
+  b.model = fit::formula_text(terms_);
   b.trials = n;
   b.seed = seed_;
   b.target_relative = options_.target_relative;
@@ -260,7 +260,7 @@ Scoreboard Campaign::summarize(std::vector<TrialOutcome> outcomes) const {
       gap.push_back(t.gap);
       ratio.push_back(t.ratio);
       for (std::size_t j = 0; j < errors.size(); ++j) errors[j].push_back(t.coefficient_error[j]);
-      ++s.terminations[to_string(t.termination)];
+      ++s.terminations[fit::to_string(t.termination)];
       most_evaluations = std::max(most_evaluations, t.evaluations);
     }
     s.success_rate = static_cast<double>(s.reached) / static_cast<double>(n);
@@ -284,4 +284,4 @@ Scoreboard Campaign::summarize(std::vector<TrialOutcome> outcomes) const {
   return b;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -49,19 +49,19 @@
 #include "sim/simulator.h"
 #include "studies/score/statistics.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct ScoreOptions {
   std::filesystem::path scenario;             // SCENARIO.toml (its rig and gyro files)
   std::vector<std::string> engines;           // empty: every registered engine
-  std::string model = std::string(kDefaultModel);  // formula of the fitted model
+  std::string model = std::string(fit::kDefaultModel);  // formula of the fitted model
   long trials = 100;                          // N, at least 1
   std::optional<std::uint64_t> seed;          // S; absent: the scenario's seed
   long budget = 0;                            // evaluations of every seeded engine (0: its default)
   std::map<std::string, long> engine_budget;  // per engine, overrides `budget`
   std::map<std::string, std::map<std::string, std::string>> engine_options;  // engine → KEY=VALUE
   double target_relative = 1e-6;              // ε: the target is σ*·(1 + ε)
-  PipelineOptions pipeline;                   // preparation of the simulated record
+  fit::PipelineOptions pipeline;                   // preparation of the simulated record
   int curve_points_per_decade = 10;           // density of the convergence curves' grid
   // Throws InputError naming the field, the value and the rule.
   void validate() const;
@@ -75,7 +75,7 @@ struct EngineTrial {
   double seconds = 0.0;               // the engine's run time (it stops at the target)
   double gap = 0.0;                   // σ/σ* − 1 at the end, two-pass σ
   double ratio = 0.0;                 // instability before / after
-  Termination termination = Termination::budget_exhausted;
+  fit::Termination termination = fit::Termination::budget_exhausted;
   std::vector<double> coefficient_error;  // |relative error| per Campaign::error_terms()
   std::vector<double> curve_gap;          // best-so-far gap at Campaign::curve_evaluations(); +∞ before the first
 };
@@ -155,7 +155,7 @@ class Campaign {
   const std::vector<long>& curve_evaluations() const { return curve_grid_; }
   const ScoreOptions& options() const { return options_; }
   // The settings engine e gets in trial k.
-  EngineSettings settings(std::size_t e, std::size_t k, double target_objective) const;
+  fit::EngineSettings settings(std::size_t e, std::size_t k, double target_objective) const;
 
   // Steps 1–4 for trial k. A failure is reported in TrialOutcome::error.
   TrialOutcome run_trial(std::size_t k) const;
@@ -172,8 +172,8 @@ class Campaign {
   sim::Scenario scenario_;
   sim::RigConfig rig_;
   sim::GyroConfig gyro_;
-  std::vector<const Term*> terms_;
-  std::vector<const EngineInfo*> infos_;
+  std::vector<const fit::Term*> terms_;
+  std::vector<const fit::EngineInfo*> infos_;
   std::vector<std::string> engine_names_;
   std::vector<long> budgets_;
   std::vector<std::string> error_terms_;
@@ -182,4 +182,4 @@ class Campaign {
   sim::ThermalTrace trace_;  // the temperatures every trial shares
 };
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 namespace {
 
@@ -109,7 +109,7 @@ std::vector<TrialOutcome> unpack_outcomes(std::string_view bytes) {
       e.seconds = r.get<double>();
       e.gap = r.get<double>();
       e.ratio = r.get<double>();
-      e.termination = static_cast<Termination>(r.get<std::int32_t>());
+      e.termination = static_cast<fit::Termination>(r.get<std::int32_t>());
       e.coefficient_error = r.get_doubles();
       e.curve_gap = r.get_doubles();
     }
@@ -118,4 +118,4 @@ std::vector<TrialOutcome> unpack_outcomes(std::string_view bytes) {
   return out;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -10,9 +10,9 @@
 
 #include "studies/score/campaign.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 std::string pack_outcomes(std::span<const TrialOutcome> outcomes);
 std::vector<TrialOutcome> unpack_outcomes(std::string_view bytes);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

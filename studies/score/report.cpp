@@ -9,7 +9,7 @@
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 namespace {
 
@@ -203,4 +203,4 @@ std::vector<std::string> write_score_files(const std::filesystem::path& dir, con
   return written;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -9,7 +9,7 @@
 
 #include "studies/score/campaign.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 // The scoreboard as one JSON object (the `score --json` contract of
 // DESIGN.md, and more); +∞ ("not reached") is written as null.
@@ -28,4 +28,4 @@ void plot_convergence(const std::filesystem::path& png, const Scoreboard& board)
 // `dir` (created if need be), each atomically; returns the paths written.
 std::vector<std::string> write_score_files(const std::filesystem::path& dir, const Scoreboard& board);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

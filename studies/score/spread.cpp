@@ -9,7 +9,7 @@
 #include "sim/config_loader.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 namespace {
 
@@ -52,4 +52,4 @@ sim::GyroConfig apply_spread(const sim::GyroConfig& gyro, const std::map<std::st
   return g;
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

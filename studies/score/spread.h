@@ -11,11 +11,11 @@
 #include "sim/gyro_config.h"
 #include "sim/util/random.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 // Per-trial spread of the gyro's parameters (step 2 above).
 sim::GyroConfig apply_spread(const sim::GyroConfig& gyro, const std::map<std::string, double>& spread,
                              std::uint64_t trial_seed);
 
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

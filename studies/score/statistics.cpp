@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 double quantile(std::span<const double> sorted, double p) {
   assert(!sorted.empty() && p >= 0.0 && p <= 1.0);
@@ -58,4 +58,4 @@ std::string format_value(double v, const char* spec) {
   return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : std::string("not reached");
 }
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 struct Range {
   double low = 0.0;
@@ -49,4 +49,4 @@ Summary summary_of(std::vector<double> values);
 // A value for people: formatted with `spec`, or "not reached" when it is +∞.
 std::string format_value(double v, const char* spec = "{:.4g}");
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies
