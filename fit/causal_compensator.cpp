@@ -4,8 +4,6 @@
 #include <cmath>
 
 #include "fit/data/derivatives.h"
-#include "fit/data/median.h"
-#include "fit/data/outliers.h"
 #include "fit/model/terms.h"
 #include "fit/pipeline.h"
 
@@ -16,34 +14,8 @@ CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& 
     : fit_(fit),
       settings_(settings),
       extra_names_(extra_names),
-      averager_(fit.pipeline.averaging, settings.sample_interval_s, true, settings.bursts, std::move(extra_names)) {}
-
-bool CausalCompensator::judge(double t, double x) {
-  const double width = fit_.pipeline.outliers.window_s;
-  while (!recent_.empty() && t - recent_.front().t > width) recent_.pop_front();
-  while (!lowest_.empty() && t - lowest_.front().t > width) lowest_.pop_front();
-  while (!highest_.empty() && t - highest_.front().t > width) highest_.pop_front();
-  recent_.push_back({t, x});
-  while (!lowest_.empty() && lowest_.back().x >= x) lowest_.pop_back();
-  lowest_.push_back({t, x});
-  while (!highest_.empty() && highest_.back().x <= x) highest_.pop_back();
-  highest_.push_back({t, x});
-  if (recent_.size() < 3) return false;
-  const double threshold = fit_.pipeline.outliers.threshold;
-  const double bound = threshold * settings_.outlier_floor_dph;
-  // Every value of the window within the bound of this one (with a margin for
-  // rounding): so is their median, and the sample is kept, in O(1).
-  const double margin = bound * (1.0 - 1e-9);
-  if (highest_.front().x - x <= margin && x - lowest_.front().x <= margin) return false;
-  std::vector<double> values(recent_.size());
-  for (std::size_t i = 0; i < values.size(); ++i) values[i] = recent_[i].x;
-  const double median = median_of(values);
-  const double deviation = std::abs(x - median);
-  if (!(deviation > bound)) return false;
-  for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::abs(recent_[i].x - median);
-  const double scale = std::max(kMadToSigma * median_in_place(values), settings_.outlier_floor_dph);
-  return deviation > threshold * scale;
-}
+      averager_(fit.pipeline.averaging, settings.sample_interval_s, true, settings.bursts, std::move(extra_names)),
+      glitches_(HampelRule{fit.pipeline.outliers.threshold, settings.outlier_floor_dph}, fit.pipeline.outliers.window_s) {}
 
 double CausalCompensator::bias_of(const AveragedSeries& windows) const {
   const DerivedSeries derived = derive(windows, DerivativeMode::causal, fit_.pipeline.derivative_span_s);
@@ -56,7 +28,7 @@ double CausalCompensator::update(double t, double temp, double temp2, double gyr
     started_ = true;
     start_time_s_ = t;
   }
-  const bool rejected = fit_.pipeline.remove_outliers && judge(t, gyro);
+  const bool rejected = fit_.pipeline.remove_outliers && glitches_.is_glitch(t, gyro);
   if (glitch) *glitch = rejected;
   averager_.add(t, temp, gyro, temp2, !rejected, extra);
   const AveragedSeries& closed = averager_.closed();

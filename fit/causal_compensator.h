@@ -6,10 +6,8 @@
 // Per sample, in time order:
 //   1. The glitch rule, trailing: the sample is judged against the samples of
 //      the last W_o seconds (itself included), Hampel's test with the local
-//      MAD and the fit's global floor s_floor (fit/data/outliers.h; the offline
-//      rule centres its window and so looks W_o/2 ahead). With fewer than 3
-//      samples in the window the sample is kept. A sample within s_floor's
-//      bound of every sample of the window is kept without the median, in O(1).
+//      MAD and the fit's global floor s_floor (fit/data/hampel.h; the offline
+//      rule centres its window and so looks W_o/2 ahead).
 //   2. The windows of the fit (fit/data/averaging.h) with the fit's sample
 //      interval Δ and burst mode, fed one sample at a time; a window closes
 //      when a sample beyond it, or after a gap, arrives.
@@ -22,13 +20,13 @@
 // not re-estimated from the record being compensated, so the compensator is
 // the same on any record and needs no look at the whole of it.
 
-#include <deque>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "fit/data/averaging.h"
+#include "fit/data/hampel.h"
 #include "fit/fit_file.h"
 
 namespace gyrotherm::fit {
@@ -55,19 +53,13 @@ class CausalCompensator {
   const std::vector<double>& window_bias_dph() const { return window_bias_; }
 
  private:
-  bool judge(double time_s, double gyro_dph);
   double bias_of(const AveragedSeries& windows) const;
 
   const SavedFit& fit_;
   CausalSettings settings_;
   std::vector<std::string> extra_names_;
   WindowAverager averager_;
-  // The glitch rule's trailing window, and the indices of its running minimum
-  // and maximum (monotone queues).
-  struct Sample {
-    double t, x;
-  };
-  std::deque<Sample> recent_, lowest_, highest_;
+  TrailingHampel glitches_;  // the glitch rule's trailing window
   std::vector<double> window_bias_;
   bool started_ = false;
   double start_time_s_ = 0.0;

@@ -111,9 +111,9 @@ TEST_P(CExportEffect, TheHeaderGivesCompensateCausalSampleBySample) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, CExportEffect, ::testing::ValuesIn(term_registry()),
-                         [](const ::testing::TestParamInfo<const Term*>& info) {
+                         [](const ::testing::TestParamInfo<const Term*>& param_info) {
                            std::string name;
-                           for (const char c : info.param->name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           for (const char c : param_info.param->name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
                            return name;
                          });
 

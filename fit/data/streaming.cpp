@@ -26,29 +26,6 @@ struct Row {
   double t, temp, gyro, temp2;
 };
 
-// The values of a sliding window, kept sorted.
-class SortedWindow {
- public:
-  void insert(double v) { values_.insert(std::upper_bound(values_.begin(), values_.end(), v), v); }
-  void erase(double v) { values_.erase(std::lower_bound(values_.begin(), values_.end(), v)); }
-  void clear() { values_.clear(); }
-  template <typename Values>
-  void assign(const Values& values) {
-    values_.assign(values.begin(), values.end());
-    std::sort(values_.begin(), values_.end());
-  }
-  std::size_t size() const { return values_.size(); }
-  // As fit/data/outliers.cpp: the middle value, or the mean of the two middle ones.
-  double median() const {
-    const std::size_t n = values_.size();
-    return n % 2 == 1 ? values_[n / 2] : 0.5 * (values_[n / 2 - 1] + values_[n / 2]);
-  }
-  const std::vector<double>& values() const { return values_; }
-
- private:
-  std::vector<double> values_;
-};
-
 // What the prefix fixes for the rest of the record.
 struct RecordRules {
   double interval_s = 0;  // Δ
@@ -77,11 +54,12 @@ class OnePassPreparer {
 
   PreparedData finish() {
     if (!averager_) begin_stream(true);
-    advance(true);
+    if (filter_) filter_->finish([this](const Row& r, bool kept) { judged(r, kept); });
     d_.series = averager_->finish();
     d_.averaging = averager_->report();
     d_.outliers.removed = d_.outliers.times_s.size();
-    d_.outliers.scale_dph = scales_.empty() ? d_.outliers.floor_dph : median_of(std::move(scales_));
+    d_.outliers.scale_dph =
+        !filter_ || filter_->scales().empty() ? d_.outliers.floor_dph : median_in_place(filter_->scales());
     check_windows_survive(d_.file, d_.series, *averager_, o_.averaging);
     d_.derived = derive(d_.series, o_.derivative, o_.derivative_span_s);
     d_.derivative_span_s = o_.derivative_span_s;
@@ -111,7 +89,9 @@ class OnePassPreparer {
       rules_.floor_dph = noise_floor_from_jumps(std::move(jumps), rules_.zero_dph);
     }
     rules_.bursts = in_bursts(times, rules_.interval_s, o_.averaging);
-    report_stride_ = whole ? std::max<std::size_t>(1, n / 10000) : 1000;
+    if (rules_.judge)  // the report's scale over about 10⁴ samples of the prefix, as in memory; every 1000th beyond
+      filter_.emplace(HampelRule{o_.outliers.threshold, rules_.floor_dph, rules_.zero_dph}, o_.outliers.window_s,
+                      whole ? std::max<std::size_t>(1, n / 10000) : 1000);
 
     d_.outliers.floor_dph = rules_.floor_dph;
     try {
@@ -129,83 +109,14 @@ class OnePassPreparer {
       averager_->add(r.t, r.temp, r.gyro, r.temp2, true);
       return;
     }
-    window_.push_back(r);
-    advance(false);
+    filter_->add(r.t, r.gyro, r, [this](const Row& row, bool kept) { judged(row, kept); });
   }
 
-  // Judges every sample whose window is complete (all of them if `flush`).
-  // Absolute sample indices: window_ holds base_ … base_ + window_.size() − 1,
-  // the filter window is lo_ … hi_ − 1; lowest_ and highest_ hold the indices
-  // of its running minimum and maximum (monotone queues), sorted_ its values
-  // while sorting_.
-  void advance(bool flush) {
-    const double half = 0.5 * o_.outliers.window_s;
-    const std::size_t end = base_ + window_.size();
-    while (next_ < end) {
-      const double t_k = at(next_).t;
-      for (; hi_ < end && at(hi_).t - t_k <= half; ++hi_) enter(hi_);
-      if (hi_ == end && !flush) return;  // a later sample may still belong
-      for (; t_k - at(lo_).t > half; ++lo_)
-        if (sorting_) sorted_.erase(at(lo_).gyro);
-      while (lowest_.front() < lo_) lowest_.pop_front();
-      while (highest_.front() < lo_) highest_.pop_front();
-      const Row& r = at(next_);
-      averager_->add(r.t, r.temp, r.gyro, r.temp2, judge(next_, r));
-      ++next_;
-      for (; base_ < lo_; ++base_) window_.pop_front();
-    }
+  // A sample the glitch rule has judged goes to the averager.
+  void judged(const Row& r, bool kept) {
+    if (!kept) d_.outliers.times_s.push_back(r.t);
+    averager_->add(r.t, r.temp, r.gyro, r.temp2, kept);
   }
-
-  void enter(std::size_t k) {
-    const double v = at(k).gyro;
-    while (!lowest_.empty() && at(lowest_.back()).gyro >= v) lowest_.pop_back();
-    lowest_.push_back(k);
-    while (!highest_.empty() && at(highest_.back()).gyro <= v) highest_.pop_back();
-    highest_.push_back(k);
-    if (sorting_) sorted_.insert(v);
-  }
-
-  // The rule of fit/data/outliers.cpp; true if the sample is kept.
-  bool judge(std::size_t k, const Row& r) {
-    const std::size_t size = hi_ - lo_;
-    if (size < 3) return true;
-    const double bound = o_.outliers.threshold * rules_.floor_dph;
-    const bool sampled = k % report_stride_ == 0;
-    // Shortcut: if every value of the window is within the bound of this one
-    // (with a margin for rounding), so is their median, and the sample is kept
-    // as the full rule would keep it. Most samples end here, in O(1).
-    if (!sampled) {
-      const double margin = bound * (1.0 - 1e-9);
-      if (at(highest_.front()).gyro - r.gyro <= margin && r.gyro - at(lowest_.front()).gyro <= margin) {
-        if (sorting_ && ++clean_ > size) {  // long clear of any outlier: stop sorting
-          sorting_ = false;
-          sorted_.clear();
-        }
-        return true;
-      }
-    }
-    scratch_.clear();
-    for (std::size_t j = lo_; j < hi_; ++j) scratch_.push_back(at(j).gyro);
-    if (!sampled && !sorting_) {  // near an outlier: keep the window sorted for a while
-      sorting_ = true;
-      sorted_.assign(scratch_);
-    }
-    if (!sampled) clean_ = 0;
-    // (A sample taken for the report's scale alone gets its median by selection.)
-    const double median = sorting_ ? sorted_.median() : median_in_place(scratch_);
-    const double deviation = std::abs(r.gyro - median);
-    if (!sampled && !(deviation > bound)) return true;
-    for (std::size_t j = lo_, i = 0; j < hi_; ++j, ++i) scratch_[i] = std::abs(at(j).gyro - median);
-    const double scale = std::max(kMadToSigma * median_in_place(scratch_), rules_.floor_dph);
-    if (sampled) scales_.push_back(scale);
-    if (deviation > o_.outliers.threshold * scale && deviation > rules_.zero_dph) {
-      d_.outliers.times_s.push_back(r.t);
-      return false;
-    }
-    return true;
-  }
-
-  const Row& at(std::size_t k) const { return window_[k - base_]; }
 
   const PipelineOptions& o_;
   PreparedData d_;
@@ -213,15 +124,7 @@ class OnePassPreparer {
   std::vector<Row> prefix_;
   RecordRules rules_;
   std::optional<WindowAverager> averager_;
-  // The filter.
-  std::deque<Row> window_;
-  std::size_t base_ = 0, lo_ = 0, hi_ = 0, next_ = 0;
-  std::deque<std::size_t> lowest_, highest_;
-  SortedWindow sorted_;
-  bool sorting_ = false;
-  std::size_t clean_ = 0;  // samples kept by the shortcut in a row
-  std::size_t report_stride_ = 1;
-  std::vector<double> scratch_, scales_;
+  std::optional<CentredHampel<Row>> filter_;  // the glitch rule (fit/data/hampel.h)
 };
 
 // Batches of rows from the reading thread to the preparing one; emptied
