@@ -64,6 +64,26 @@ double direct_adev(const std::vector<std::vector<double>>& runs, std::size_t m) 
   return static_cast<double>(std::sqrt(sum / (2.0L * static_cast<long double>(count))));
 }
 
+// y_k = offset + a·t_k, t_k = k·Δt: adjacent τ-averages differ by exactly aτ,
+// so σ²(τ) = (aτ)²/2 at every τ = mΔt (an analytic Allan variance).
+TEST(AllanStudy, ARampGivesItsExactAllanVariance) {
+  const double dt_s = 0.5, slope = 0.37;
+  std::vector<double> t(1000), y(1000);
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    t[k] = static_cast<double>(k) * dt_s;
+    y[k] = 1.0e3 + slope * t[k];
+  }
+  for (std::size_t m : {1u, 2u, 10u, 100u, 499u}) {
+    const double expected = slope * static_cast<double>(m) * dt_s / std::sqrt(2.0);
+    EXPECT_NEAR(overlapping_adev(y, m), expected, 1e-9 * expected) << "m = " << m;
+  }
+  AllanOptions all;
+  all.spacing = TauSpacing::all;
+  const AllanCurve c = allan_curve(t, y, all, "ramp");
+  ASSERT_FALSE(c.rows.empty());
+  for (const AllanRow& row : c.rows) EXPECT_NEAR(row.adev_dph, slope * row.tau_s / std::sqrt(2.0), 1e-9 * row.adev_dph);
+}
+
 TEST(AllanStudy, MatchesADirectSumOverClustersWithAndWithoutGaps) {
   // An offset far above the noise, as a gyro's bias is, tests the digits.
   std::vector<double> y = white(3000, 0.01, 4);

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "sim/util/gnuplot.h"
-#include "sim/allan.h"
+#include "studies/allan/allan_curve.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
@@ -103,7 +103,6 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     fig.render();
   }
   if (m.size() > 0) {  // 5. Allan deviation of the raw and the compensated output.
-    const double dt = data.averaging.sample_interval_s > 0 ? data.averaging.sample_interval_s : 1.0;
     std::vector<double> compensated(m.size());
     std::size_t p = 0;
     for (std::size_t k = 0; k < m.size(); ++k) {
@@ -115,21 +114,22 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
       }
       compensated[k] = m.gyro_dph[k] - model;
     }
-    const std::vector<double> taus = sim::octave_taus(m.size(), dt, 8);
-    const auto raw = sim::allan_deviation(m.gyro_dph, dt, taus);
-    const auto comp = sim::allan_deviation(compensated, dt, taus);
+    // The Allan deviation of studies/allan, with its intervals for the noise
+    // type identified at each τ.
+    const AllanCurve raw = allan_curve(m.time_s, m.gyro_dph, {}, "raw");
+    const AllanCurve comp = allan_curve(m.time_s, compensated, {}, "compensated");
     std::vector<double> tr, r, rl, ru, tc, c, cl, cu;
-    for (const auto& a : raw) {
-      tr.push_back(a.tau_s); r.push_back(a.deviation); rl.push_back(a.lower); ru.push_back(a.upper);
+    for (const AllanRow& a : raw.rows) {
+      tr.push_back(a.tau_s); r.push_back(a.adev_dph); rl.push_back(a.lo_dph); ru.push_back(a.hi_dph);
     }
-    for (const auto& a : comp) {
-      tc.push_back(a.tau_s); c.push_back(a.deviation); cl.push_back(a.lower); cu.push_back(a.upper);
+    for (const AllanRow& a : comp.rows) {
+      tc.push_back(a.tau_s); c.push_back(a.adev_dph); cl.push_back(a.lo_dph); cu.push_back(a.hi_dph);
     }
     GnuplotFigure fig(dir + "/allan.png", 1000, 750);
     fig.data("raw", {"tau", "adev", "lo", "hi"}, {tr, r, rl, ru});
     fig.data("comp", {"tau", "adev", "lo", "hi"}, {tc, c, cl, cu});
     fig.commands(fmt::format(
-        "set title 'Allan deviation of the raw and compensated output (68 % bands)'\n"
+        "set title 'Allan deviation of the raw and compensated output (68 % bands for the noise type at each τ)'\n"
         "set logscale xy\nset xlabel 'averaging time τ (s)'\nset ylabel 'Allan deviation (°/h)'\n"
         "set key outside right\nset arrow from {0}, graph 0 to {0}, graph 1 nohead dt 3 lc rgb '#888888'\n"
         "set label 'floor {1}' at {0}, {2} point pt 9 ps 2 lc rgb '#2ca02c' offset 1,1\n"
