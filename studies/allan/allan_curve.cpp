@@ -6,6 +6,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/format.h>
 
+#include "fit/data/median.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
@@ -151,11 +152,9 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
     throw InputError(fmt::format("{}: {} samples; the Allan deviation needs at least 3", name, n));
   std::vector<double> steps(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i) steps[i] = time_s[i + 1] - time_s[i];
-  std::vector<double> sorted = steps;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
   AllanCurve c;
   c.name = std::move(name);
-  c.tau0_s = sorted[sorted.size() / 2];
+  c.tau0_s = fit::median_of(steps);
   c.samples = n;
   c.span_s = time_s[n - 1] - time_s[0];
   c.confidence = options.confidence;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "fit/data/median.h"
 #include "fit/model/formula.h"
 #include "studies/diagnose/candidates.h"
 #include "studies/diagnose/confounding.h"
@@ -18,14 +19,6 @@ namespace gyrotherm::studies {
 namespace {
 
 constexpr double kMedianChi2One = 0.454936;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  if (v.size() % 2 == 1) return *mid;
-  return 0.5 * (*mid + *std::max_element(v.begin(), mid));
-}
 
 // Least-squares fit of y on the design with an intercept, on the rows where
 // `use` is true; returns the coefficients (intercept first). Empty if singular.
@@ -129,14 +122,14 @@ double robust_noise_floor(const fit::AveragedSeries& s) {
   if (h2.size() < 5)
     throw InputError(fmt::format("only {} usable windows: too few to estimate the noise floor",
                                  s.size()));
-  return std::sqrt(median(h2) / (6.0 * kMedianChi2One));
+  return std::sqrt(fit::median_of(h2) / (6.0 * kMedianChi2One));
 }
 
 NoiseFloor estimate_noise_floor(const fit::AveragedSeries& s, double span_s) {
   NoiseFloor f;
   const std::vector<double> h2 = hadamard_squares(s, span_s);
   f.triples = h2.size();
-  if (!h2.empty()) f.hadamard_dph = std::sqrt(median(h2) / (6.0 * kMedianChi2One));
+  if (!h2.empty()) f.hadamard_dph = std::sqrt(fit::median_of(h2) / (6.0 * kMedianChi2One));
   f.within_dph = within_window_floor(s);
   if (f.triples >= kMinHadamardTriples) {
     f.method = "hadamard";
