@@ -9,7 +9,7 @@
 namespace gyrotherm::fit {
 
 LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
-                             std::vector<std::string> term_names)
+                             std::vector<std::string> term_names, Collinear collinear)
     : design_(std::move(design)), y_(std::move(y)), names_(std::move(term_names)) {
   const Eigen::Index l = design_.rows();
   const Eigen::Index m = design_.cols();
@@ -57,7 +57,7 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
     for (Eigen::Index j = 0; j < m; ++j)
       if (std::abs(v[j]) > 0.1)
         terms += (terms.empty() ? "" : ", ") + names_[static_cast<std::size_t>(j)];
-    if (condition_ > kIllConditioned)
+    if (condition_ > kIllConditioned && (collinear == Collinear::refuse || !std::isfinite(condition_)))
       throw InputError(fmt::format(
           "the model's terms are collinear on this data ({}; condition number {:.3g} of the "
           "scaled design, above {:.0e}): their coefficients would be set by the noise, not by "

@@ -42,6 +42,12 @@ struct Coefficients {
   std::vector<double> b;
 };
 
+// What a LinearProblem does with nearly collinear terms: refuse them (a fit
+// the user will read), or keep them unless exactly singular (a fit on part of
+// the data, e.g. a cross-validation fold, whose predictions are all that is
+// used).
+enum class Collinear { refuse, keep };
+
 class LinearProblem {
  public:
   // design: l × m regressors in physical units; y: the l averaged outputs.
@@ -49,8 +55,10 @@ class LinearProblem {
   // design is ill-conditioned: the condition number of G above
   // kIllConditioned means some terms are so nearly collinear on this data that
   // their coefficients would be set by the noise (the message names the terms
-  // and what to do). Above kPoorlyConditioned a warning is kept instead.
-  LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y, std::vector<std::string> term_names);
+  // and what to do); with Collinear::keep only a singular G is refused. Above
+  // kPoorlyConditioned a warning is kept instead.
+  LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y, std::vector<std::string> term_names,
+                Collinear collinear = Collinear::refuse);
 
   std::size_t dimension() const { return static_cast<std::size_t>(design_.cols()); }
   std::size_t points() const { return static_cast<std::size_t>(design_.rows()); }

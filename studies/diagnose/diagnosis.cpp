@@ -20,47 +20,31 @@ namespace {
 
 constexpr double kMedianChi2One = 0.454936;
 
-// Least-squares fit of y on the design with an intercept, on the rows where
-// `use` is true; returns the coefficients (intercept first). Empty if singular.
-Eigen::VectorXd ls_fit(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
-                       const std::vector<bool>& use) {
-  const Eigen::Index n = static_cast<Eigen::Index>(std::count(use.begin(), use.end(), true));
-  Eigen::MatrixXd a(n, x.cols() + 1);
-  Eigen::VectorXd b(n);
-  Eigen::Index r = 0;
-  for (Eigen::Index p = 0; p < x.rows(); ++p) {
-    if (!use[static_cast<std::size_t>(p)]) continue;
-    a(r, 0) = 1.0;
-    a.row(r).tail(x.cols()) = x.row(p);
-    b[r] = y[p];
-    ++r;
-  }
-  // Scale columns for conditioning.
-  Eigen::VectorXd scale = a.colwise().norm().transpose();
-  for (Eigen::Index j = 0; j < scale.size(); ++j)
-    if (scale[j] == 0.0) scale[j] = 1.0;
-  const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(as);
-  if (qr.rank() < as.cols()) return {};
-  return qr.solve(b).cwiseQuotient(scale);
-}
-
-// Cross-validated SSE per block: each block predicted by the model fitted without it.
+// Cross-validated SSE per block: each block predicted by the model fitted
+// without it, by the fitter's own least squares (fit/model/linear_problem.h,
+// nearly collinear terms kept: only the predictions count); +∞ where the rows
+// left cannot be fitted.
 std::vector<double> block_sse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
-                              const std::vector<std::size_t>& block, std::size_t blocks) {
+                              const std::vector<std::size_t>& block, std::size_t blocks,
+                              const std::vector<std::string>& names) {
   std::vector<double> sse(blocks, 0.0);
   for (std::size_t k = 0; k < blocks; ++k) {
-    std::vector<bool> use(static_cast<std::size_t>(y.size()));
-    for (std::size_t p = 0; p < use.size(); ++p) use[p] = block[p] != k;
-    const Eigen::VectorXd c = ls_fit(x, y, use);
-    if (c.size() == 0) {
+    std::vector<Eigen::Index> train;
+    for (std::size_t p = 0; p < block.size(); ++p)
+      if (block[p] != k) train.push_back(static_cast<Eigen::Index>(p));
+    fit::Coefficients c;
+    try {
+      const fit::LinearProblem problem(x(train, Eigen::all), y(train), names, fit::Collinear::keep);
+      c = problem.physical(fit::least_squares_optimum(problem));
+    } catch (const InputError&) {
       sse[k] = std::numeric_limits<double>::infinity();
       continue;
     }
-    for (std::size_t p = 0; p < use.size(); ++p) {
-      if (use[p]) continue;
+    for (std::size_t p = 0; p < block.size(); ++p) {
+      if (block[p] != k) continue;
       const auto pp = static_cast<Eigen::Index>(p);
-      const double r = y[pp] - c[0] - x.row(pp).dot(c.tail(x.cols()));
+      double r = y[pp] - c.intercept;
+      for (Eigen::Index j = 0; j < x.cols(); ++j) r -= c.b[static_cast<std::size_t>(j)] * x(pp, j);
       sse[k] += r * r;
     }
   }
@@ -326,7 +310,7 @@ Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::T
   std::vector<std::string> failed;
   while (!untried.empty()) {
     const Eigen::MatrixXd xc = fit::design_matrix(data.derived, current, current_params);
-    const std::vector<double> base_sse = block_sse(xc, y, block, blocks);
+    const std::vector<double> base_sse = block_sse(xc, y, block, blocks, fit::term_names(current));
     double base_cv = 0.0;
     for (double v : base_sse) base_cv += v;
     std::vector<CandidateReport> round;
@@ -339,7 +323,7 @@ Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::T
         const Eigen::MatrixXd xw = fit::design_matrix(data.derived, with, params);
         const fit::LinearProblem problem(xw, y, fit::term_names(with));
         const double sigma = problem.sigma_two_pass(problem.physical(fit::least_squares_optimum(problem)));
-        const std::vector<double> sse = block_sse(xw, y, block, blocks);
+        const std::vector<double> sse = block_sse(xw, y, block, blocks, fit::term_names(with));
         std::vector<double> gains(blocks);
         double cv = 0.0;
         for (std::size_t k = 0; k < blocks; ++k) {
