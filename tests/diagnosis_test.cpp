@@ -185,3 +185,28 @@ TEST(Diagnosis, ModelWithEveryTermHasNothingLeftToTry) {
 
 }  // namespace
 }  // namespace gyrotherm::studies
+
+namespace gyrotherm::studies {
+namespace {
+
+// A first candidate that cannot be told from others is explained by the note
+// of its own group, not by another group's (the random profile has several:
+// T with the case temperature, dT with grad, and the powers of T).
+TEST(Diagnosis, AConfoundedCandidateIsExplainedByItsOwnGroup) {
+  const SimPair run = simulate({{"T^4", 5e-9}}, 2014, "random");
+  const fit::PreparedData data = fit::prepare_data(measured(run.with, run.with.gyro_dph), fit::PipelineOptions{});
+  const Diagnosis d = diagnose(data, fit::parse_formula("T + T^2 + dT"), fit::find_engine("ols"), {});
+  ASSERT_FALSE(d.candidates.empty());
+  const CandidateReport& first = d.candidates.front();
+  ASSERT_TRUE(first.significant);
+  ASSERT_FALSE(first.confounded_with.empty());
+  ASSERT_GE(d.confounded.size(), 2u) << "the case needs another group beside the candidate's";
+  for (std::size_t g = 0; g < d.confounded.size(); ++g) {
+    const bool own = std::find(d.confounded[g].begin(), d.confounded[g].end(), std::string(first.term->name)) !=
+                     d.confounded[g].end();
+    EXPECT_EQ(d.verdict.find(d.confounding_notes[g]) != std::string::npos, own) << d.verdict;
+  }
+}
+
+}  // namespace
+}  // namespace gyrotherm::studies
