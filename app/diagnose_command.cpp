@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "app/comma_list.h"
+#include "sim/util/comma_list.h"
 #include "app/commands.h"
 #include "fit/data/streaming.h"
 #include "studies/diagnose/diagnose_plots.h"

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "app/comma_list.h"
+#include "sim/util/comma_list.h"
 #include "app/commands.h"
 #include "studies/reproduce/report.h"
 #include "sim/util/input_error.h"

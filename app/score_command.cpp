@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <thread>
 
-#include "app/comma_list.h"
+#include "sim/util/comma_list.h"
 #include "app/commands.h"
 #include "app/score_mpi.h"
 #include "studies/score/baseline.h"

@@ -2,7 +2,7 @@
 // compiled by the system's C compiler as strict C99 (and as C++17), run over
 // a simulated record, gives compensate --causal's model sample by sample.
 
-#include "fit/c_export.h"
+#include "studies/export/c_header.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "fit/model/terms.h"
 #include "fit/pipeline.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 using gyrotherm::testing::run_cli;
@@ -79,10 +79,10 @@ void expect_header_gives_causal(const std::string& scenario, const std::string& 
   const auto cxx = run_shell(dir, "c++ -std=c++17 -Wall -Wextra -Werror -pedantic -c drv.cpp -o drv.o");
   EXPECT_EQ(cxx.exit_code, 0) << cxx.err;
 
-  const SavedFit fit = load_fit(dir / "fit.json");
-  PipelineOptions pipeline = reading_columns_of(fit.pipeline, fit.terms);
-  pipeline.derivative = DerivativeMode::causal;
-  const Compensation expected = compensate(read_measurement_csv(dir / "d.csv", pipeline.columns), fit, pipeline);
+  const fit::SavedFit fit = fit::load_fit(dir / "fit.json");
+  fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
+  pipeline.derivative = fit::DerivativeMode::causal;
+  const fit::Compensation expected = fit::compensate(fit::read_measurement_csv(dir / "d.csv", pipeline.columns), fit, pipeline);
   const auto run = run_shell(dir, std::string("./drv d.csv ") + (fit.pipeline.remove_outliers ? "gyro" : ""));
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const std::vector<double> got = numbers(run.out);
@@ -95,13 +95,13 @@ void expect_header_gives_causal(const std::string& scenario, const std::string& 
 // Every registry term, joined by +.
 std::string every_registry_term() {
   std::string model;
-  for (const Term* t : term_registry()) model += (model.empty() ? "" : " + ") + std::string(t->name);
+  for (const fit::Term* t : fit::term_registry()) model += (model.empty() ? "" : " + ") + std::string(t->name);
   return model;
 }
 
 // Each effect of the registry in C, beside the paper's terms: a new effect is
 // checked here without a line of this file changing.
-class CExportEffect : public ::testing::TestWithParam<const Term*> {};
+class CExportEffect : public ::testing::TestWithParam<const fit::Term*> {};
 
 TEST_P(CExportEffect, TheHeaderGivesCompensateCausalSampleBySample) {
   const std::string name(GetParam()->name);
@@ -110,8 +110,8 @@ TEST_P(CExportEffect, TheHeaderGivesCompensateCausalSampleBySample) {
   expect_header_gives_causal("cycle", in_paper ? paper : paper + " + " + name);
 }
 
-INSTANTIATE_TEST_SUITE_P(Registry, CExportEffect, ::testing::ValuesIn(term_registry()),
-                         [](const ::testing::TestParamInfo<const Term*>& param_info) {
+INSTANTIATE_TEST_SUITE_P(Registry, CExportEffect, ::testing::ValuesIn(fit::term_registry()),
+                         [](const ::testing::TestParamInfo<const fit::Term*>& param_info) {
                            std::string name;
                            for (const char c : param_info.param->name) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
                            return name;
@@ -156,4 +156,4 @@ TEST(CliExportC, BadInputIsRefused) {
 }
 
 }  // namespace
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

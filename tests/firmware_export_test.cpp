@@ -9,7 +9,7 @@
 // TCal::polynomial_eval and correct_sensor (TEMP_REFERENCE 35, ×1e-6,
 // v −= p(T − 35), v += p(T_cal − 35), both temperatures constrained).
 
-#include "fit/firmware_export.h"
+#include "studies/export/firmware.h"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@
 
 #include "cli_runner.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 using gyrotherm::testing::run_cli;
@@ -242,4 +242,4 @@ TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
 }
 
 }  // namespace
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

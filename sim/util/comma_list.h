@@ -1,11 +1,12 @@
 #pragma once
-// "a,b,,c" → {"a", "b", "c"}: the comma-separated lists of --engines.
+// "a,b,,c" → {"a", "b", "c"}: the comma-separated lists of the command line
+// (--engines, --candidates, --axes).
 
 #include <sstream>
 #include <string>
 #include <vector>
 
-namespace gyrotherm::app {
+namespace gyrotherm {
 
 inline std::vector<std::string> split_commas(const std::string& list) {
   std::vector<std::string> out;
@@ -16,4 +17,4 @@ inline std::vector<std::string> split_commas(const std::string& list) {
   return out;
 }
 
-}  // namespace gyrotherm::app
+}  // namespace gyrotherm

@@ -27,13 +27,13 @@
 #include <string>
 
 #include "fit/causal_compensator.h"
-#include "fit/firmware_export.h"
+#include "studies/export/exporter.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 // Throws InputError when the prefix is not a C identifier or a term has no C
 // form.
-std::string c_header(const SavedFit& fit, const CausalSettings& settings, const std::string& prefix,
+std::string c_header(const fit::SavedFit& fit, const fit::CausalSettings& settings, const std::string& prefix,
                      const ExportHeader& header);
 
-}  // namespace gyrotherm::fit
+}  // namespace gyrotherm::studies

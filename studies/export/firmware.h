@@ -1,6 +1,7 @@
 #pragma once
 // A saved fit as an autopilot's gyro thermal compensation parameters
-// (`gyrotherm export --format px4|ardupilot`).
+// (`gyrotherm export --format px4|ardupilot`): the parts both formats share
+// (studies/export/px4.cpp and ardupilot.cpp write the files).
 //
 // Both firmwares correct a gyro with a cubic in temperature, in rad/s, the
 // temperature clamped to the calibrated range:
@@ -32,18 +33,20 @@
 //
 // TMIN/TMAX are the range of the window temperatures the model was fitted
 // on (the fit file's data.temp_range_c); outside it the firmwares hold the
-// correction at the edge. A model with any term other than T, T^2, T^3
-// (dT, grad, hyst, a column, a step, …) cannot be expressed; it is refused,
-// naming the terms, unless they are dropped (drop_unsupported), which keeps
-// the other coefficients as fitted (not refitted).
+// correction at the edge. A model with any term other than a power of T up
+// to the third (by the effect registry's temperature_power: dT, grad, T^4, a
+// column, a step, … cannot be expressed) is refused, naming the terms, unless
+// they are dropped (drop_unsupported), which keeps the other coefficients as
+// fitted (not refitted).
 
 #include <array>
 #include <string>
 #include <vector>
 
 #include "fit/fit_file.h"
+#include "studies/export/exporter.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 
 // The highest power of T both firmwares store.
 inline constexpr int kCubic = 3;
@@ -58,7 +61,7 @@ struct CubicModel {
 // The fit's polynomial in T; throws InputError naming the terms a firmware
 // cannot express (and suggesting --format c or --drop-unsupported) unless
 // drop_unsupported.
-CubicModel cubic_of(const SavedFit& fit, bool drop_unsupported, const std::string& format);
+CubicModel cubic_of(const fit::SavedFit& fit, bool drop_unsupported, const std::string& format);
 
 // a[k] with B(t_ref + d) = Σ a[k]·d^k, exactly.
 std::array<double, 4> reexpand(const CubicModel& model, double t_ref_c);
@@ -68,13 +71,10 @@ inline constexpr double kRadPerSecPerDegPerHour = 3.14159265358979323846 / (180.
 // One autopilot axis: a model and its fitted range, or none (not compensated).
 struct AxisModel {
   bool present = false;
+  const fit::SavedFit* fit = nullptr;  // the fit it came from
   std::string channel;
   CubicModel model;
   double temp_min_c = 0.0, temp_max_c = 0.0;
-};
-
-struct ExportHeader {
-  std::string fit_file, fit_sha256, engine, model_text, date_utc;
 };
 
 // The QGroundControl parameter file (vehicle 1, component 1; tab-separated
@@ -90,7 +90,7 @@ std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, int insta
 struct DroppedCost {
   double with_dph = 0.0, without_dph = 0.0;
 };
-DroppedCost dropped_cost(const SavedFit& fit, const CubicModel& cubic, const Measurement& data);
+DroppedCost dropped_cost(const fit::SavedFit& fit, const CubicModel& cubic, const fit::Measurement& data);
 
 // The TMIN/TMAX/TREF the exports use: the intersection of the axes' ranges.
 struct ExportRange {
@@ -98,4 +98,30 @@ struct ExportRange {
 };
 ExportRange export_range(const std::array<AxisModel, 3>& axes);
 
-}  // namespace gyrotherm::fit
+// The axes of a firmware export from the request: the fit's channels in
+// order, or --axes X,Y,Z ('-' for none), each as its cubic; terms dropped
+// (--drop-unsupported) are reported in *lines with their cost. `format` is
+// the firmware's name for messages ("PX4").
+std::array<AxisModel, 3> firmware_axes(const ExportRequest& request, const std::vector<fit::SavedFit>& fits,
+                                       const std::string& format, std::vector<std::string>* lines);
+
+// What both firmware formats write: the axes, the file's header (from the
+// first axis's fit), the range, and export's lines so far (dropped terms).
+struct FirmwareFile {
+  std::array<AxisModel, 3> axes;
+  ExportHeader header;
+  ExportRange range;
+  ExportOutput out;
+};
+FirmwareFile firmware_file(const ExportRequest& request, const std::vector<fit::SavedFit>& fits,
+                           const std::string& format);
+// "wrote FILE: PX4 gyro thermal compensation (X: gx, Y: -, Z: gz); valid A to B °C"
+std::string firmware_wrote(const ExportRequest& request, const FirmwareFile& file, const std::string& format);
+
+// A value as the firmware stores it (a 32-bit float), written so that it
+// reads back to the same float.
+std::string as_float(double v);
+// The file's opening comment lines, each after `comment`.
+std::string provenance(const ExportHeader& header, const char* comment);
+
+}  // namespace gyrotherm::studies

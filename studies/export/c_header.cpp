@@ -1,4 +1,4 @@
-#include "fit/c_export.h"
+#include "studies/export/c_header.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include "fit/model/formula.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::fit {
+namespace gyrotherm::studies {
 namespace {
 
 std::string number(double v) { return fmt::format("{:.17g}", v); }
@@ -26,7 +26,7 @@ std::string c_text(std::string_view form, double parameter) {
 
 // The statements that set x[j], the j-th term's regressor at a window
 // (sim/effects/effect.h, CForm).
-std::string c_statement(const Term& term, std::size_t j, double parameter) {
+std::string c_statement(const fit::Term& term, std::size_t j, double parameter) {
   if (term.c_form.expression.empty())
     throw InputError(fmt::format("--format c: the term '{}' has no C form{}", term.name,
                                  term.column.empty() ? "" : " (a log column: the C interface has no such input)"));
@@ -248,7 +248,7 @@ static inline double @P@_update_gyro(@P@_state *s, double time_s, double temp_c,
 
 }  // namespace
 
-std::string c_header(const SavedFit& fit, const CausalSettings& settings, const std::string& prefix,
+std::string c_header(const fit::SavedFit& fit, const fit::CausalSettings& settings, const std::string& prefix,
                      const ExportHeader& header) {
   if (prefix.empty() || !(std::isalpha(static_cast<unsigned char>(prefix[0])) || prefix[0] == '_') ||
       !std::all_of(prefix.begin(), prefix.end(),
@@ -257,7 +257,7 @@ std::string c_header(const SavedFit& fit, const CausalSettings& settings, const 
   std::string terms;
   std::string coefficients;
   for (std::size_t j = 0; j < fit.terms.size(); ++j) {
-    const Term& t = *fit.terms[j];
+    const fit::Term& t = *fit.terms[j];
     terms += c_statement(t, j, fit.parameters[j]);
     terms += fmt::format("  B += {} * x[{}];\n", number(fit.coefficients.b[j]), j);
     coefficients += fmt::format(" *   {:<10} {:>24} {}{}\n", t.name, number(fit.coefficients.b[j]),
@@ -265,7 +265,7 @@ std::string c_header(const SavedFit& fit, const CausalSettings& settings, const 
                                 t.parameter ? fmt::format("  ({} = {})", t.parameter->name, number(fit.parameters[j]))
                                             : "");
   }
-  const AveragingOptions& a = fit.pipeline.averaging;
+  const fit::AveragingOptions& a = fit.pipeline.averaging;
   const double buffer = std::ceil(2.0 * fit.pipeline.outliers.window_s / settings.sample_interval_s) + 8.0;
   std::string range = "not saved in the fit";
   if (fit.temp_range_c)
@@ -290,7 +290,7 @@ std::string c_header(const SavedFit& fit, const CausalSettings& settings, const 
       " * Start with @P@_init(&state) on a @P@_state.\n"
       " * Compensated output = gyro - B. Time in s, temperatures in °C; C99, no allocation, no I/O.\n"
       " */\n",
-      header.fit_file, header.fit_sha256, header.engine, header.date_utc, formula_text(fit.terms),
+      header.fit_file, header.fit_sha256, header.engine, header.date_utc, fit::formula_text(fit.terms),
       number(fit.coefficients.intercept), coefficients, range, a.window_s, a.gap_factor,
       number(settings.sample_interval_s), a.window_s, settings.bursts ? "half" : fmt::format("{:g} %", 100.0 * a.min_fill),
       fit.pipeline.derivative_span_s, settings.bursts ? "bursts (each gap-free run one window), " : "",
@@ -322,4 +322,28 @@ std::string c_header(const SavedFit& fit, const CausalSettings& settings, const 
   return out;
 }
 
-}  // namespace gyrotherm::fit
+ExporterInfo c_exporter() {
+  return {"c", "a C99 header (the whole model, as compensate --causal runs it, sample by sample)",
+          [](const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
+            const fit::SavedFit& f = chosen_channel(r, fits);
+            if (!f.sample_interval_s || !f.bursts || (f.pipeline.remove_outliers && !f.outlier_floor_dph))
+              throw InputError(fmt::format("{}: the fit lacks data.sample_interval_s, data.bursts or "
+                                           "data.outlier_floor_dph (written by an earlier gyrotherm); fit again to "
+                                           "export it in C",
+                                           r.fit_file));
+            fit::CausalSettings settings;
+            settings.sample_interval_s = *f.sample_interval_s;
+            settings.bursts = *f.bursts;
+            settings.outlier_floor_dph = f.outlier_floor_dph.value_or(0.0);
+            ExportOutput out;
+            out.text = c_header(f, settings, r.prefix, export_header(r, f));
+            out.lines.push_back(fmt::format(
+                "wrote {}: {}_update() gives B = b0 + {} (°/h) sample by sample, as compensate --causal{}", r.output,
+                r.prefix, fit::formula_text(f.terms),
+                f.pipeline.remove_outliers ? fmt::format("; {}_update_gyro() also applies the glitch rule", r.prefix)
+                                           : ""));
+            return out;
+          }};
+}
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,78 @@
+#include "studies/export/exporter.h"
+
+#include <fmt/format.h>
+
+#include <ctime>
+
+#include "fit/model/formula.h"
+#include "sim/util/atomic_file.h"
+#include "sim/util/input_error.h"
+#include "sim/util/sha256.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+}  // namespace
+
+const std::vector<ExporterInfo>& exporter_registry() {
+  static const std::vector<ExporterInfo> all = {
+#define EXPORTER(name) name##_exporter(),
+#include "studies/export/exporters.def"
+#undef EXPORTER
+  };
+  return all;
+}
+
+std::string exporter_names(std::string_view last) {
+  std::string out;
+  const auto& all = exporter_registry();
+  for (std::size_t k = 0; k < all.size(); ++k)
+    out += std::string(k == 0 ? "" : k + 1 == all.size() ? last : ", ") + all[k].name;
+  return out;
+}
+
+const ExporterInfo& find_exporter(std::string_view name) {
+  for (const ExporterInfo& e : exporter_registry())
+    if (e.name == name) return e;
+  throw InputError(fmt::format("--format {}: expected {}", name, exporter_names()));
+}
+
+std::string channel_name(const fit::SavedFit& f) { return f.channel.empty() ? f.pipeline.columns.gyro : f.channel; }
+
+ExportHeader export_header(const ExportRequest& r, const fit::SavedFit& f) {
+  return {r.fit_file, sha256_file_hex(r.fit_file), f.engine, fit::formula_text(f.terms), utc_now()};
+}
+
+const fit::SavedFit& chosen_channel(const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
+  const fit::SavedFit* chosen = nullptr;
+  std::string known;
+  for (const fit::SavedFit& f : fits) {
+    known += (known.empty() ? "" : ", ") + channel_name(f);
+    if (r.channel.empty() ? fits.size() == 1 : channel_name(f) == r.channel) chosen = &f;
+  }
+  if (!chosen)
+    throw InputError(r.channel.empty()
+                         ? fmt::format("{} holds {} channels ({}); choose one with --channel", r.fit_file, fits.size(),
+                                       known)
+                         : fmt::format("--channel {}: not a channel of {} (its channels: {})", r.channel, r.fit_file,
+                                       known));
+  return *chosen;
+}
+
+std::vector<std::string> run_export(const ExportRequest& request) {
+  const ExporterInfo& exporter = find_exporter(request.format);
+  const ExportOutput out = exporter.write(request, fit::load_fits(request.fit_file));
+  write_file_atomically(request.output, out.text);
+  return out.lines;
+}
+
+}  // namespace gyrotherm::studies

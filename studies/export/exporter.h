@@ -1,0 +1,79 @@
+#pragma once
+// `gyrotherm export`: a saved fit as something a gyro's firmware loads. One
+// registry entry per format, shaped like the engines' (fit/engines/engine.h):
+// a name, a description and the function that writes it; each format is one
+// file (defining `ExporterInfo NAME_exporter()`), one test and one line
+// EXPORTER(NAME) in studies/export/exporters.def.
+//
+//   c          a C99 header: the whole model as the real-time compensator
+//              (studies/export/c_header.h)
+//   px4        PX4's TC_G* parameters, a QGroundControl .params file
+//   ardupilot  ArduPilot's INS_TCAL* parameters, a .param file
+//              (both: studies/export/firmware.h)
+//
+// run_export() loads the fit, lets the format write its text, and writes the
+// file atomically only once all of it is known: a refusal leaves no file.
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fit/fit_file.h"
+
+namespace gyrotherm::studies {
+
+// What `export` was asked (the command line's options).
+struct ExportRequest {
+  std::string fit_file;
+  std::string format;
+  std::string axes;     // firmware: the fit's channels for X, Y, Z, '-' for none
+  std::string channel;  // C: the channel to export
+  std::string prefix = "gt_comp";
+  int instance = -1;    // the firmware's gyro instance; -1: its default
+  long device_id = 0;   // PX4's TC_G{n}_ID
+  bool drop_unsupported = false;
+  std::string data;     // the fitted data, for the cost of dropping terms
+  std::string output;
+};
+
+// What a format writes, and what export prints about it.
+struct ExportOutput {
+  std::string text;                // the file
+  std::vector<std::string> lines;  // for the terminal, in order
+};
+
+// Where the exported file came from (the file's opening comment).
+struct ExportHeader {
+  std::string fit_file, fit_sha256, engine, model_text, date_utc;
+};
+
+struct ExporterInfo {
+  std::string name;
+  std::string description;  // for --help
+  std::function<ExportOutput(const ExportRequest&, const std::vector<fit::SavedFit>&)> write;
+};
+
+const std::vector<ExporterInfo>& exporter_registry();
+// Throws InputError listing the known formats.
+const ExporterInfo& find_exporter(std::string_view name);
+// "c, px4 or ardupilot"
+std::string exporter_names(std::string_view last = " or ");
+
+// Loads the fit, writes request.output with the chosen format, returns the
+// lines to print. Throws InputError (no file written) on bad input.
+std::vector<std::string> run_export(const ExportRequest& request);
+
+// Shared by the formats: a fit's channel name, the header of the file
+// exported from `fit` (its SHA-256 and the time now), and the fit a
+// single-channel format exports (--channel, or the only one).
+std::string channel_name(const fit::SavedFit& fit);
+ExportHeader export_header(const ExportRequest& request, const fit::SavedFit& fit);
+const fit::SavedFit& chosen_channel(const ExportRequest& request, const std::vector<fit::SavedFit>& fits);
+
+// The registry entries, one function per format file.
+#define EXPORTER(name) ExporterInfo name##_exporter();
+#include "studies/export/exporters.def"
+#undef EXPORTER
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,178 @@
+#include "studies/export/firmware.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "fit/compensation.h"
+#include "fit/pipeline.h"
+#include "sim/util/comma_list.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+// With terms dropped: the instability of the fitted data with the whole
+// model and with the cubic alone (the same coefficients, not refitted).
+std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, const std::string& data_option) {
+  std::filesystem::path data = data_option;
+  if (data.empty()) {
+    const std::filesystem::path named = f.data_file;
+    if (!named.empty() && std::filesystem::exists(named)) data = named;
+    else if (!named.empty() && std::filesystem::exists(f.file.parent_path() / named)) data = f.file.parent_path() / named;
+    else
+      throw InputError(fmt::format("--drop-unsupported: the data {} was fitted on ('{}') is not here; give it with "
+                                   "--data so that export can say how much dropping {} costs",
+                                   f.file.string(), f.data_file, cubic.dropped.front()));
+  }
+  const fit::PipelineOptions pipeline = fit::reading_columns_of(f.pipeline, f.terms);
+  const DroppedCost cost = dropped_cost(f, cubic, fit::read_measurement_csv(data, pipeline.columns));
+  std::string names;
+  for (const std::string& n : cubic.dropped) names += (names.empty() ? "" : ", ") + n;
+  return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); a polynomial "
+                     "refitted alone (fit --model 'T + T^2') would do better than these coefficients",
+                     channel_name(f), names, data.string(), cost.with_dph, cost.without_dph,
+                     cost.without_dph / cost.with_dph);
+}
+
+}  // namespace
+
+std::string as_float(double v) { return fmt::format("{:.9g}", static_cast<float>(v)); }
+
+std::string provenance(const ExportHeader& h, const char* comment) {
+  return fmt::format(
+      "{0} gyrotherm export: gyro thermal compensation from {1}\n"
+      "{0}   fit file SHA-256 {2}\n"
+      "{0}   engine {3}, model B = b0 + {4} (°/h, T in °C), exported {5}\n",
+      comment, h.fit_file, h.fit_sha256, h.engine, h.model_text, h.date_utc);
+}
+
+double CubicModel::evaluate(double t) const { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }
+
+CubicModel cubic_of(const fit::SavedFit& fit, bool drop_unsupported, const std::string& format) {
+  CubicModel m;
+  m.c[0] = fit.coefficients.intercept;
+  std::vector<std::string> unsupported;
+  for (std::size_t k = 0; k < fit.terms.size(); ++k) {
+    const std::string name(fit.terms[k]->name);
+    const int power = fit.terms[k]->temperature_power;  // 0: not a power of T
+    if (power < 1 || power > kCubic) {
+      unsupported.push_back(name);
+      continue;
+    }
+    m.c[static_cast<std::size_t>(power)] += fit.coefficients.b[k];
+  }
+  if (!unsupported.empty() && !drop_unsupported) {
+    std::string names;
+    for (const std::string& n : unsupported) names += (names.empty() ? "" : ", ") + n;
+    throw InputError(fmt::format(
+        "{}: the model has {} ({}), which {} cannot express: its gyro thermal compensation is a cubic in "
+        "temperature. Use --format c for the whole model, fit a polynomial (--model 'T + T^2 + T^3'), or pass "
+        "--drop-unsupported to leave {} out (export then prints how much the instability rises)",
+        fit.file.string(), unsupported.size() == 1 ? "a term" : "terms", names, format,
+        unsupported.size() == 1 ? "it" : "them"));
+  }
+  m.dropped = unsupported;
+  return m;
+}
+
+DroppedCost dropped_cost(const fit::SavedFit& fit, const CubicModel& cubic, const fit::Measurement& data) {
+  const fit::Compensation c = fit::compensate(data, fit, fit::reading_columns_of(fit.pipeline, fit.terms));
+  std::vector<double> residual;
+  for (std::size_t p = 0; p < c.data.series.size(); ++p)
+    residual.push_back(c.data.series.gyro_dph[p] - cubic.evaluate(c.data.series.temp_c[p]));
+  double mean = 0.0, ss = 0.0;
+  for (const double x : residual) mean += x;
+  mean /= static_cast<double>(residual.size());
+  for (const double x : residual) ss += (x - mean) * (x - mean);
+  return {c.after_dph, std::sqrt(ss / static_cast<double>(residual.size() - 1))};
+}
+
+std::array<double, 4> reexpand(const CubicModel& m, double r) {
+  const auto& c = m.c;
+  return {m.evaluate(r), c[1] + r * (2.0 * c[2] + 3.0 * c[3] * r), c[2] + 3.0 * c[3] * r, c[3]};
+}
+
+ExportRange export_range(const std::array<AxisModel, 3>& axes) {
+  ExportRange r{-1e300, 1e300, 0.0};
+  bool any = false;
+  for (const AxisModel& a : axes) {
+    if (!a.present) continue;
+    any = true;
+    r.tmin_c = std::max(r.tmin_c, a.temp_min_c);
+    r.tmax_c = std::min(r.tmax_c, a.temp_max_c);
+  }
+  if (!any) throw InputError("export: no axis has a fit (--axes names none of the fit's channels)");
+  if (!(r.tmax_c > r.tmin_c))
+    throw InputError(fmt::format("export: the axes' fitted temperature ranges do not overlap ({:.2f} to {:.2f} °C)",
+                                 r.tmin_c, r.tmax_c));
+  r.tref_c = 0.5 * (r.tmin_c + r.tmax_c);
+  return r;
+}
+
+std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector<fit::SavedFit>& fits,
+                                       const std::string& format, std::vector<std::string>* lines) {
+  // Which fit serves which axis.
+  std::array<const fit::SavedFit*, 3> chosen{};
+  if (o.axes.empty()) {
+    if (fits.size() > 3)
+      throw InputError(fmt::format("{} holds {} channels; choose three with --axes X,Y,Z", o.fit_file, fits.size()));
+    for (std::size_t i = 0; i < fits.size(); ++i) chosen[i] = &fits[i];
+  } else {
+    const std::vector<std::string> names = split_commas(o.axes);
+    if (names.size() != 3)
+      throw InputError(fmt::format("--axes {}: expected three entries, for X, Y and Z (a channel of the fit, or - "
+                                   "for an axis without compensation)",
+                                   o.axes));
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (names[i] == "-") continue;
+      std::string known;
+      for (const fit::SavedFit& f : fits) {
+        if (channel_name(f) == names[i]) chosen[i] = &f;
+        known += (known.empty() ? "" : ", ") + channel_name(f);
+      }
+      if (!chosen[i])
+        throw InputError(fmt::format("--axes: '{}' is not a channel of {} (its channels: {})", names[i], o.fit_file,
+                                     known));
+    }
+  }
+  std::array<AxisModel, 3> axes;
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!chosen[i]) continue;
+    const fit::SavedFit& f = *chosen[i];
+    if (!f.temp_range_c)
+      throw InputError(fmt::format("{}: no data.temp_range_c, the temperature range the model was fitted on (the "
+                                   "file was written by an earlier gyrotherm); fit again to export it",
+                                   o.fit_file));
+    axes[i].present = true;
+    axes[i].fit = &f;
+    axes[i].channel = channel_name(f);
+    axes[i].model = cubic_of(f, o.drop_unsupported, format);
+    axes[i].temp_min_c = f.temp_range_c->first;
+    axes[i].temp_max_c = f.temp_range_c->second;
+    if (!axes[i].model.dropped.empty()) lines->push_back(dropped_report(f, axes[i].model, o.data));
+  }
+  if (std::none_of(axes.begin(), axes.end(), [](const AxisModel& a) { return a.present; }))
+    throw InputError("--axes: every axis is '-': nothing to export");
+  return axes;
+}
+
+FirmwareFile firmware_file(const ExportRequest& r, const std::vector<fit::SavedFit>& fits, const std::string& format) {
+  FirmwareFile f;
+  f.axes = firmware_axes(r, fits, format, &f.out.lines);
+  const auto first = std::find_if(f.axes.begin(), f.axes.end(), [](const AxisModel& a) { return a.present; });
+  f.header = export_header(r, *first->fit);
+  f.range = export_range(f.axes);
+  return f;
+}
+
+std::string firmware_wrote(const ExportRequest& r, const FirmwareFile& f, const std::string& format) {
+  std::string used;
+  for (std::size_t i = 0; i < 3; ++i)
+    used += fmt::format("{}{}: {}", i ? ", " : "", "XYZ"[i], f.axes[i].present ? f.axes[i].channel : "-");
+  return fmt::format("wrote {}: {} gyro thermal compensation ({}); valid {:.2f} to {:.2f} °C", r.output, format, used,
+                     f.range.tmin_c, f.range.tmax_c);
+}
+
+}  // namespace gyrotherm::studies

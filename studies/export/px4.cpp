@@ -1,0 +1,59 @@
+// --format px4: PX4's gyro thermal compensation parameters (TC_G*), a
+// QGroundControl .params file (studies/export/firmware.h).
+#include <fmt/format.h>
+
+#include "studies/export/firmware.h"
+
+namespace gyrotherm::studies {
+
+std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, long device_id,
+                           const ExportHeader& header) {
+  const ExportRange r = export_range(axes);
+  const float tref = static_cast<float>(r.tref_c);
+  std::string out = provenance(header, "#");
+  out += fmt::format(
+      "#   PX4 gyro thermal compensation (TemperatureCompensation::calc_thermal_offsets_3D):\n"
+      "#   offset = X0 + X1 d + X2 d^2 + X3 d^3 (rad/s), d = clamp(T, TMIN, TMAX) - TREF; corrected = raw - offset\n"
+      "#   TMIN/TMAX: the window temperatures the model was fitted on. TC_G{0}_ID must be your gyro's device id\n"
+      "#   (CAL_GYRO{0}_ID){1}.\n"
+      "#   X0 carries the whole bias at TREF: if CAL_GYRO{0}_XOFF/YOFF/ZOFF are also applied, zero them, or the\n"
+      "#   bias is taken out twice.\n",
+      instance, device_id == 0 ? "; it is 0 here: set it, or pass --device-id" : "");
+  for (std::size_t i = 0; i < 3; ++i)
+    out += fmt::format("#   axis {}: {}{}\n", i, axes[i].present ? axes[i].channel : "not compensated (zeros)",
+                       axes[i].present && !axes[i].model.dropped.empty() ? " (dropped: see export's report)" : "");
+  out += "#\n# Vehicle-Id\tComponent-Id\tName\tValue\tType\n";
+  const auto line = [&](const std::string& name, const std::string& value, int type) {
+    out += fmt::format("1\t1\t{}\t{}\t{}\n", name, value, type);
+  };
+  line("TC_G_ENABLE", "1", 6);
+  line(fmt::format("TC_G{}_ID", instance), std::to_string(device_id), 6);
+  line(fmt::format("TC_G{}_TMAX", instance), as_float(r.tmax_c), 9);
+  line(fmt::format("TC_G{}_TMIN", instance), as_float(r.tmin_c), 9);
+  line(fmt::format("TC_G{}_TREF", instance), as_float(tref), 9);
+  for (int k = 0; k <= 3; ++k)
+    for (std::size_t i = 0; i < 3; ++i) {
+      // Re-expanded about the float TREF the firmware will use.
+      const double v = axes[i].present ? reexpand(axes[i].model, tref)[static_cast<std::size_t>(k)] * kRadPerSecPerDegPerHour
+                                       : 0.0;
+      line(fmt::format("TC_G{}_X{}_{}", instance, k, i), as_float(v), 9);
+    }
+  return out;
+}
+
+ExporterInfo px4_exporter() {
+  return {"px4", "PX4 (QGroundControl .params): the TC_G* gyro thermal compensation, a cubic in T",
+          [](const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
+            FirmwareFile f = firmware_file(r, fits, "PX4");
+            const int instance = r.instance < 0 ? 0 : r.instance;
+            f.out.text = px4_parameters(f.axes, instance, r.device_id, f.header);
+            f.out.lines.push_back(firmware_wrote(r, f, "PX4") +
+                                  fmt::format(", TREF {:.2f} °C", static_cast<float>(f.range.tref_c)));
+            if (r.device_id == 0)
+              f.out.lines.push_back(fmt::format(
+                  "set TC_G{0}_ID to your gyro's device id (CAL_GYRO{0}_ID), or pass --device-id", instance));
+            return f.out;
+          }};
+}
+
+}  // namespace gyrotherm::studies
