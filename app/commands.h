@@ -1,10 +1,12 @@
 #pragma once
-// Each subcommand lives in its own file and registers itself on the CLI11 app.
-// When the user picks it, *run is set to what executes it; run returns the
-// process exit code (0 success, 1 failed check, 2 bad input; InputError thrown
-// from inside is turned into 2 by main).
+// Each subcommand lives in its own file, app/NAME_command.cpp, and registers
+// itself on the CLI11 app; app/commands.def lists them. When the user picks
+// one, *run is set to what executes it; run returns the process exit code
+// (0 success, 1 failed check, 2 bad input; InputError thrown from inside is
+// turned into 2 by main).
 
 #include <functional>
+#include <string>
 
 namespace CLI {
 class App;
@@ -14,14 +16,12 @@ namespace gyrotherm::app {
 
 using Run = std::function<int()>;
 
-void add_simulate_command(CLI::App& app, Run* run);
-void add_fit_command(CLI::App& app, Run* run);
-void add_compensate_command(CLI::App& app, Run* run);
-void add_registry_commands(CLI::App& app, Run* run);
-void add_diagnose_command(CLI::App& app, Run* run);
-void add_reproduce_command(CLI::App& app, Run* run);
-void add_score_command(CLI::App& app, Run* run);
-void add_allan_command(CLI::App& app, Run* run);
-void add_export_command(CLI::App& app, Run* run);
+#define COMMAND(name) void add_##name##_command(CLI::App& app, Run* run);
+#include "app/commands.def"
+#undef COMMAND
+
+// A command that lists a registry: NAME [--json], printing text() or json().
+void add_listing_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
+                         std::function<std::string()> text, std::function<std::string()> json);
 
 }  // namespace gyrotherm::app

@@ -1,6 +1,6 @@
 // gyrotherm — thermal-test simulator and benchmark suite for the temperature
-// compensation of ring laser gyro bias. See README.md and ../shared/DESIGN.md
-// for the command-line contract.
+// compensation of gyro bias. README.md shows the commands; docs/contracts.md
+// is the command-line contract.
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -9,24 +9,35 @@
 #include <exception>
 
 #include "app/commands.h"
-#include "sim/util/atomic_file.h"
 #include "sim/cvode_solver.h"
+#include "sim/util/atomic_file.h"
 #include "sim/util/input_error.h"
 
+namespace gyrotherm::app {
+
+void add_listing_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
+                         std::function<std::string()> text, std::function<std::string()> json) {
+  auto as_json = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand(name, description);
+  cmd->add_flag("--json", *as_json, "Print one JSON object");
+  cmd->callback([=] {
+    *run = [=] {
+      fmt::print("{}", *as_json ? json() : text());
+      return 0;
+    };
+  });
+}
+
+}  // namespace gyrotherm::app
+
 int main(int argc, char** argv) {
-  CLI::App app{"gyrotherm: thermal-test simulator and fitting benchmark for RLG bias "
-               "temperature compensation"};
+  CLI::App app{"gyrotherm: thermal-test simulator and fitting benchmark for the temperature compensation of gyro "
+               "bias"};
   app.require_subcommand(1);
   gyrotherm::app::Run run;
-  gyrotherm::app::add_simulate_command(app, &run);
-  gyrotherm::app::add_fit_command(app, &run);
-  gyrotherm::app::add_compensate_command(app, &run);
-  gyrotherm::app::add_registry_commands(app, &run);
-  gyrotherm::app::add_diagnose_command(app, &run);
-  gyrotherm::app::add_reproduce_command(app, &run);
-  gyrotherm::app::add_score_command(app, &run);
-  gyrotherm::app::add_allan_command(app, &run);
-  gyrotherm::app::add_export_command(app, &run);
+#define COMMAND(name) gyrotherm::app::add_##name##_command(app, &run);
+#include "app/commands.def"
+#undef COMMAND
 
   try {
     app.parse(argc, argv);
@@ -37,8 +48,7 @@ int main(int argc, char** argv) {
     std::fputs(app.help("", CLI::AppFormatMode::All).c_str(), stdout);
     return 0;
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "gyrotherm: {}\nRun 'gyrotherm --help' for the commands and options.\n",
-               e.what());
+    fmt::print(stderr, "gyrotherm: {}\nRun 'gyrotherm --help' for the commands and options.\n", e.what());
     return 2;
   }
 
@@ -51,8 +61,7 @@ int main(int argc, char** argv) {
   } catch (const gyrotherm::sim::SolverError& e) {
     fmt::print(stderr,
                "gyrotherm: error: the thermal simulation failed: {}\n"
-               "Check the rig's capacities and conductances for values far outside the "
-               "physical range.\n",
+               "Check the rig's capacities and conductances for values far outside the physical range.\n",
                e.what());
     return 2;
   } catch (const std::exception& e) {

@@ -57,30 +57,6 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
   cmd->add_option("--temp-offset", u.temp_offset, "Temperature = A x column + B: B (default 0)");
 }
 
-std::vector<std::string> DataOptions::channels() const {
-  std::vector<std::string> out;
-  const std::string& list = pipeline.columns.gyro;
-  for (std::size_t from = 0;;) {
-    const std::size_t comma = list.find(',', from);
-    std::string name = list.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
-    const auto first = name.find_first_not_of(" \t"), last = name.find_last_not_of(" \t");
-    name = first == std::string::npos ? std::string() : name.substr(first, last - first + 1);
-    if (name.empty())
-      throw InputError(fmt::format("--gyro-col {}: an empty channel name (expected NAME or NAME,NAME,...)", list));
-    if (std::find(out.begin(), out.end(), name) != out.end())
-      throw InputError(fmt::format("--gyro-col {}: channel '{}' is named twice", list, name));
-    out.push_back(name);
-    if (comma == std::string::npos) break;
-    from = comma + 1;
-  }
-  return out;
-}
-
-fit::PipelineOptions for_channel(fit::PipelineOptions pipeline, const std::string& channel) {
-  pipeline.columns.gyro = channel;
-  return pipeline;
-}
-
 std::vector<const fit::Term*> ModelOptions::base_terms() const { return fit::parse_formula(model); }
 
 std::vector<const fit::Term*> ModelOptions::terms() const {

@@ -1,7 +1,7 @@
 #pragma once
 // Command-line options shared by the commands that read measurements (fit,
-// compensate, diagnose): column mapping, averaging window, derivative mode,
-// outlier rule.
+// diagnose, allan): column mapping, units, averaging window, derivative mode,
+// outlier rule; and the model options of fit and diagnose.
 
 #include <optional>
 
@@ -10,10 +10,8 @@
 #include <vector>
 
 #include "fit/model/formula.h"
-#include <fmt/format.h>
 
 #include "fit/pipeline.h"
-#include "sim/util/input_error.h"
 
 namespace CLI {
 class App;
@@ -28,30 +26,7 @@ struct DataOptions {
   std::optional<double> outlier_threshold;
   // Applies the flags to pipeline (call after parsing).
   fit::PipelineOptions resolved() const;
-  // The gyro channels of --gyro-col (a comma list), each a column name.
-  std::vector<std::string> channels() const;
 };
-
-// `pipeline` reading one gyro channel.
-fit::PipelineOptions for_channel(fit::PipelineOptions pipeline, const std::string& channel);
-
-// work(channel, pipeline) for every channel in order, each with its own
-// pipeline, all before the caller prints or writes anything; with several
-// channels an error names its channel.
-template <class Work>
-auto for_each_channel(const std::vector<std::string>& channels, const fit::PipelineOptions& pipeline,
-                      Work work) {
-  std::vector<decltype(work(channels.front(), pipeline))> results;
-  for (const std::string& channel : channels) {
-    try {
-      results.push_back(work(channel, for_channel(pipeline, channel)));
-    } catch (const InputError& e) {
-      if (channels.size() == 1) throw;
-      throw InputError(fmt::format("channel {}: {}", channel, e.what()));
-    }
-  }
-  return results;
-}
 
 void add_data_options(CLI::App* command, DataOptions& options, bool with_avg = true);
 

@@ -4,15 +4,14 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "sim/util/comma_list.h"
 #include "app/commands.h"
+#include "app/progress.h"
+#include "sim/util/comma_list.h"
 #include "studies/reproduce/report.h"
-#include "sim/util/input_error.h"
 
 namespace gyrotherm::app {
 namespace {
@@ -38,42 +37,12 @@ int run_reproduce(const ReproduceCli& o) {
   options.test2 = dir + "/warmup.toml";
   options.engines = split_commas(o.engines);
   options.engine_seed = o.seed;
-  const bool tty = ::isatty(2) != 0;
-  options.progress = [tty](const std::string& step, double f) {
-    if (tty)
-      fmt::print(stderr, "\r[{:3.0f}%] {:<50}", 100.0 * f, step);
-    else
-      fmt::print(stderr, "[{:3.0f}%] {}\n", 100.0 * f, step);
-    if (tty && f >= 1.0) fmt::print(stderr, "\n");
-  };
+  options.progress = step_progress();
   const auto started = std::chrono::steady_clock::now();
   const studies::ReproduceResult r = studies::reproduce(options);
-
   options.progress("drawing the figures", 1.0);
   const nlohmann::ordered_json j = studies::write_reproduce_report(o.out, r, started);
-  const double total = j["total_seconds"].get<double>();
-
-  if (o.json) {
-    fmt::print("{}\n", j.dump());
-    return 0;
-  }
-  const studies::PaperFigures paper;
-  fmt::print("Table 1, side by side (instability of 100 s means, °/h):\n");
-  fmt::print("  cycle  raw      paper {:.5f}  ours {:.5f}\n", paper.cycle_raw, r.cycle_raw_dph);
-  for (const auto& e : r.engines)
-    fmt::print("  cycle  {:<8} {}  ours {:.5f} ({:.2f}x)\n", e.engine,
-               e.engine == "stepwise" ? fmt::format("paper {:.5f}", paper.cycle_stepwise)
-               : e.engine == "iafsa"  ? fmt::format("paper {:.5f}", paper.cycle_iafsa)
-                                      : std::string(17, ' '),
-               e.fit.instability_after_dph, e.fit.ratio());
-  const std::string best = studies::shown_engine(r);
-  fmt::print("  test 1 paper {:.5f} -> {:.5f} ({:.2f}x)  ours ({}) {:.5f} -> {:.5f} ({:.2f}x)\n", paper.test1_before,
-             paper.test1_after, paper.test1_times, best, r.test1.before_dph, r.test1.by_engine.at(best).after_dph,
-             r.test1.by_engine.at(best).ratio());
-  fmt::print("  test 2 paper {:.5f} -> {:.5f} ({:.2f}x)  ours ({}) {:.5f} -> {:.5f} ({:.2f}x)\n", paper.test2_before,
-             paper.test2_after, paper.test2_times, best, r.test2.before_dph, r.test2.by_engine.at(best).after_dph,
-             r.test2.by_engine.at(best).ratio());
-  fmt::print("wrote {0}/table1.md, {0}/table1.json and figures in {1:.1f} s\n", o.out, total);
+  fmt::print("{}", o.json ? j.dump() + "\n" : studies::reproduce_text(r, o.out, j["total_seconds"].get<double>()));
   return 0;
 }
 
@@ -86,7 +55,7 @@ void add_reproduce_command(CLI::App& app, Run* run) {
   cmd->add_option("--scenarios", o->scenarios, "Folder with cycle.toml, random.toml, warmup.toml (default scenarios/)");
   cmd->add_option("--engines", o->engines, "Comma-separated engines (default: all)");
   cmd->add_option("--seed", o->seed, "Seed of the stochastic engines (default 1)");
-  cmd->add_flag("--json", o->json, "Print table1.json on stdout");
+  cmd->add_flag("--json", o->json, "Print table1.json, with the run times, on stdout");
   cmd->callback([o, run] { *run = [o] { return run_reproduce(*o); }; });
 }
 

@@ -6,7 +6,6 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "app/progress.h"
 #include "sim/util/comma_list.h"
 #include "app/commands.h"
 #include "app/score_mpi.h"
@@ -41,19 +41,6 @@ struct ScoreCli {
   bool json = false;
 };
 
-long parse_count(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  long v = -1;
-  try {
-    v = std::stol(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || v < 0)
-    throw InputError(fmt::format("{}: '{}' is not a whole number >= 0", what, text));
-  return v;
-}
-
 studies::ScoreOptions score_options(const ScoreCli& o) {
   studies::ScoreOptions s;
   s.scenario = o.scenario;
@@ -61,56 +48,10 @@ studies::ScoreOptions score_options(const ScoreCli& o) {
   s.model = o.model;
   s.trials = o.trials;
   if (o.seed_option != nullptr && o.seed_option->count() > 0) s.seed = o.seed;
-  for (const std::string& b : o.budgets) {
-    const auto eq = b.find('=');
-    if (eq == std::string::npos)
-      s.budget = parse_count(b, "--budget " + b);
-    else if (eq == 0)
-      throw InputError(fmt::format("--budget {}: expected N or ENGINE=N", b));
-    else
-      s.engine_budget[b.substr(0, eq)] = parse_count(b.substr(eq + 1), "--budget " + b);
-  }
-  for (const std::string& kv : o.engine_options) {
-    const auto colon = kv.find(':');
-    const auto eq = kv.find('=');
-    if (colon == std::string::npos || colon == 0 || eq == std::string::npos || eq < colon + 2)
-      throw InputError(fmt::format("--option {}: expected ENGINE:KEY=VALUE (see 'gyrotherm engines')", kv));
-    s.engine_options[kv.substr(0, colon)][kv.substr(colon + 1, eq - colon - 1)] = kv.substr(eq + 1);
-  }
+  for (const std::string& b : o.budgets) s.add_budget(b);
+  for (const std::string& kv : o.engine_options) s.add_engine_option(kv);
   return s;
 }
-
-// A bar with an ETA on a terminal; a plain line every 10 % otherwise.
-class Progress final : public studies::ScoreObserver {
- public:
-  explicit Progress(std::string label) : label_(std::move(label)), tty_(::isatty(2) != 0) {}
-
-  void on_trial_done(std::size_t done, std::size_t total) override {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
-    const double eta = elapsed / static_cast<double>(done) * static_cast<double>(total - done);
-    if (tty_) {
-      if (done != total && elapsed - last_draw_s_ < 0.1) return;  // at most ten redraws a second
-      last_draw_s_ = elapsed;
-      constexpr int kWidth = 30;
-      const auto filled = static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total));
-      fmt::print(stderr, "\r{} [{}{}] {}/{} trials, {:.1f} s, ETA {:.1f} s   ", label_, std::string(filled, '#'),
-                 std::string(kWidth - filled, '.'), done, total, elapsed, eta);
-      if (done == total) fmt::print(stderr, "\n");
-      return;
-    }
-    const std::size_t decile = 10 * done / total;
-    if (decile == last_decile_ && done != total) return;
-    last_decile_ = decile;
-    fmt::print(stderr, "{}: {}/{} trials, {:.1f} s, ETA {:.1f} s\n", label_, done, total, elapsed, eta);
-  }
-
- private:
-  std::string label_;
-  bool tty_;
-  std::size_t last_decile_ = 0;
-  double last_draw_s_ = -1.0;
-  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-};
 
 // Rank 0's part after the trials: files, the baseline check, the report.
 int report(const studies::Scoreboard& board, const std::optional<studies::Baseline>& baseline, const ScoreCli& o) {
@@ -125,14 +66,7 @@ int report(const studies::Scoreboard& board, const std::optional<studies::Baseli
   if (o.json) {
     fmt::print("{}", json);
   } else {
-    fmt::print("score: {}, {} trials (seeds {}..{}), model B = b0 + {}, target sigma <= optimum*(1 + {:g})\n",
-               board.scenario, board.trials, board.seed, board.seed + (board.trials - 1), board.model,
-               board.target_relative);
-    fmt::print("median raw instability {:.6g} °/h, median least-squares optimum {:.6g} °/h; "
-               "medians over the trials, coefficient errors |fit - truth|/|truth|\n",
-               board.before_median_dph, board.optimum_median_dph);
-    fmt::print("{}", studies::scoreboard_text(board));
-    fmt::print("{:.2f} s on {} thread(s) x {} process(es)\n", board.seconds, board.threads, board.processes);
+    fmt::print("{}", studies::score_text(board));
     for (const std::string& f : written) fmt::print("wrote {}\n", f);
   }
   for (const std::string& note : check.notes) fmt::print(stderr, "gyrotherm: score: note: {}\n", note);
@@ -176,7 +110,7 @@ int run_score(const ScoreCli& o) {
   std::vector<std::size_t> mine;
   for (auto k = static_cast<std::size_t>(mpi.rank()); k < campaign->trials(); k += static_cast<std::size_t>(mpi.size()))
     mine.push_back(k);
-  Progress progress(mpi.size() > 1 ? fmt::format("score (rank 0 of {})", mpi.size()) : std::string("score"));
+  TrialProgress progress(mpi.size() > 1 ? fmt::format("score (rank 0 of {})", mpi.size()) : std::string("score"));
   const auto started = std::chrono::steady_clock::now();
   const std::vector<studies::TrialOutcome> outcomes = campaign->run(mine, threads, mpi.root() ? &progress : nullptr);
   const std::vector<std::string> parts = mpi.gather(studies::pack_outcomes(outcomes));

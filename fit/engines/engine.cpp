@@ -10,6 +10,41 @@
 
 namespace gyrotherm::fit {
 
+KeyValue parse_key_value(const std::string& text, const std::string& option, bool scoped) {
+  KeyValue kv;
+  std::size_t from = 0;
+  if (scoped) {
+    const auto colon = text.find(':');
+    if (colon != std::string::npos && colon > 0) {
+      kv.scope = text.substr(0, colon);
+      from = colon + 1;
+    }
+  }
+  const auto eq = text.find('=', from);
+  if ((scoped && kv.scope.empty()) || eq == std::string::npos || eq == from)
+    throw InputError(fmt::format("{} {}: expected {}KEY=VALUE (see 'gyrotherm engines')", option, text,
+                                 scoped ? "ENGINE:" : ""));
+  kv.key = text.substr(from, eq - from);
+  kv.value = text.substr(eq + 1);
+  return kv;
+}
+
+EngineSettings engine_settings(std::uint64_t seed, long budget, double target,
+                               const std::vector<std::string>& key_values) {
+  EngineSettings s;
+  s.seed = seed;
+  if (budget < 0) throw InputError(fmt::format("--budget {}: must be >= 0", budget));
+  s.max_evaluations = budget;
+  if (!(target >= 0.0) || !std::isfinite(target))
+    throw InputError(fmt::format("--target {}: must be a finite sigma >= 0", target));
+  s.target_objective = target;
+  for (const std::string& text : key_values) {
+    const KeyValue kv = parse_key_value(text, "--option", false);
+    s.options[kv.key] = kv.value;
+  }
+  return s;
+}
+
 const char* to_string(Termination t) {
   switch (t) {
     case Termination::exact: return "exact";

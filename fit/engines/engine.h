@@ -74,6 +74,20 @@ struct EngineSettings {
   std::map<std::string, std::string> options;
 };
 
+// An engine option as the command line gives it: KEY=VALUE, or with a scope
+// ENGINE:KEY=VALUE (score, several engines). The one parser of both; throws
+// InputError naming `option` ("--option") and the expected form.
+struct KeyValue {
+  std::string scope;  // ENGINE, or "" unscoped
+  std::string key, value;
+};
+KeyValue parse_key_value(const std::string& text, const std::string& option, bool scoped);
+
+// The settings of one fit from the command line: --seed, --budget (≥ 0),
+// --target (finite, ≥ 0) and the --option KEY=VALUE list.
+EngineSettings engine_settings(std::uint64_t seed, long budget, double target,
+                               const std::vector<std::string>& key_values);
+
 class FitObserver {
  public:
   virtual ~FitObserver() = default;

@@ -4,9 +4,11 @@
 
 #include <fmt/format.h>
 
+#include "fit/channels.h"
 #include "fit/compensation.h"
 #include "fit/pipeline.h"
 #include "sim/util/gnuplot.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -217,6 +219,52 @@ void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study)
       "set key top right\n{}{}\n",
       100.0 * study.series.front().curve.confidence, labels, plot));
   fig.render();
+}
+
+std::vector<AllanStudy> run_allan(const AllanRequest& r) {
+  std::vector<AllanStudy> studies;
+  if (!r.fit_file.empty()) {
+    // Every channel the fit holds, read with the fit's own columns and units.
+    for (const fit::SavedFit& fit : fit::load_fits(r.fit_file)) {
+      const fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
+      try {
+        studies.push_back(allan_study(fit::read_measurement_csv(r.data, pipeline.columns), &fit, r.options));
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}{} with the fit {}: {}", r.data,
+                                     fit.channel.empty() ? "" : ", channel " + fit.channel, r.fit_file, e.what()));
+      }
+    }
+  } else {
+    const std::vector<std::string> channels = fit::parse_channels(r.pipeline.columns.gyro);
+    studies = fit::for_each_channel(channels, r.pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
+      AllanStudy s = allan_study(fit::read_measurement_csv(r.data, p.columns), nullptr, r.options);
+      if (channels.size() > 1) s.channel = channel;
+      return s;
+    });
+  }
+  for (std::size_t i = 0; i < studies.size() && !r.plot.empty(); ++i) {
+    std::filesystem::path png = r.plot;
+    if (studies.size() > 1) png.replace_filename(png.stem().string() + "_" + studies[i].channel + png.extension().string());
+    write_allan_plot(png, studies[i]);
+  }
+  return studies;
+}
+
+nlohmann::ordered_json allan_json(const std::vector<AllanStudy>& studies) {
+  if (studies.size() == 1) return allan_json(studies.front());
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const AllanStudy& s : studies) all.push_back(allan_json(s));
+  return {{"channels", all}};
+}
+
+std::string allan_text(const std::vector<AllanStudy>& studies, const std::string& plot) {
+  std::string out;
+  for (std::size_t i = 0; i < studies.size(); ++i) {
+    if (i > 0) out += "\n";
+    out += allan_text(studies[i]);
+  }
+  if (!plot.empty()) out += fmt::format("plot: {}\n", plot);
+  return out;
 }
 
 }  // namespace gyrotherm::studies

@@ -51,6 +51,23 @@ nlohmann::ordered_json allan_json(const AllanStudy& study);
 // The report for people: a table per series side by side, the coefficients.
 std::string allan_text(const AllanStudy& study);
 
+// `gyrotherm allan` on a log: every gyro channel (pipeline.columns.gyro, a
+// comma list) raw, or with a fit every channel it holds, each read with the
+// fit's own columns and units, raw and compensated; figures if asked (one per
+// channel, NAME_CHANNEL.png beside `plot` when there are several).
+struct AllanRequest {
+  std::string data;
+  std::string fit_file;           // "" for none
+  AllanOptions options;
+  fit::PipelineOptions pipeline;  // without a fit: the columns and units to read
+  std::string plot;               // a PNG, or ""
+};
+std::vector<AllanStudy> run_allan(const AllanRequest& request);
+// allan --json: one object, or {"channels": [...]}.
+nlohmann::ordered_json allan_json(const std::vector<AllanStudy>& studies);
+// The text of every study, and where the figure went.
+std::string allan_text(const std::vector<AllanStudy>& studies, const std::string& plot);
+
 // Log-log Allan deviation with the interval bands, the slope lines of the
 // coefficients read and their values, every series on one figure.
 void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study);

@@ -12,7 +12,7 @@ namespace gyrotherm::studies {
 
 using Json = nlohmann::ordered_json;
 
-nlohmann::ordered_json table_json(const ReproduceResult& r) {
+nlohmann::ordered_json table_json(const ReproduceResult& r, bool with_times) {
   const PaperFigures paper;
   Json j;
   Json cycle_engines;
@@ -23,14 +23,15 @@ nlohmann::ordered_json table_json(const ReproduceResult& r) {
       coefficients[e.fit.terms[k]->name] = e.fit.coefficients.b[k];
     Json errors;
     for (const auto& [k, v] : e.coefficient_error) errors[k] = v;
-    cycle_engines[e.engine] = {{"after_dph", e.fit.instability_after_dph},
-                               {"ratio", e.fit.ratio()},
-                               {"coefficients", coefficients},
-                               {"coefficient_error", errors},
-                               {"evaluations", e.fit.engine.evaluations},
-                               {"seconds", e.fit.engine.seconds},
-                               {"termination", fit::to_string(e.fit.engine.termination)},
-                               {"gap_to_least_squares", e.fit.instability_after_dph / e.fit.optimum_dph - 1.0}};
+    Json& engine = cycle_engines[e.engine];
+    engine = {{"after_dph", e.fit.instability_after_dph},
+              {"ratio", e.fit.ratio()},
+              {"coefficients", coefficients},
+              {"coefficient_error", errors},
+              {"evaluations", e.fit.engine.evaluations}};
+    if (with_times) engine["seconds"] = e.fit.engine.seconds;
+    engine["termination"] = fit::to_string(e.fit.engine.termination);
+    engine["gap_to_least_squares"] = e.fit.instability_after_dph / e.fit.optimum_dph - 1.0;
   }
   j["cycle"] = {{"raw_dph", r.cycle_raw_dph}, {"windows", r.cycle_data.series.size()},
                 {"engines", cycle_engines}};
@@ -46,7 +47,7 @@ nlohmann::ordered_json table_json(const ReproduceResult& r) {
                 {"test1", {{"before_dph", paper.test1_before}, {"after_dph", paper.test1_after}, {"times", paper.test1_times}}},
                 {"test2", {{"before_dph", paper.test2_before}, {"after_dph", paper.test2_after}, {"times", paper.test2_times}}}};
   j["seeds"] = {{"cycle", r.cycle_seed}, {"test1", r.test1.seed}, {"test2", r.test2.seed}};
-  j["seconds"] = r.seconds;
+  if (with_times) j["seconds"] = r.seconds;
   return j;
 }
 
@@ -56,7 +57,7 @@ std::string pct(double ours, double paper) { return fmt::format("{:+.0f} %", 100
 
 }  // namespace
 
-std::string table_markdown(const ReproduceResult& r, double total_seconds) {
+std::string table_markdown(const ReproduceResult& r) {
   const PaperFigures paper;
   auto find = [&](const std::string& name) -> const EngineOnCycle* {
     for (const auto& e : r.engines)
@@ -65,11 +66,11 @@ std::string table_markdown(const ReproduceResult& r, double total_seconds) {
   };
   std::string md = "# Table 1, side by side\n\n";
   md += fmt::format(
-      "Made by `gyrotherm reproduce` (the README's main command) in {:.1f} s on this machine; seeds: "
-      "cycle {}, Test 1 {}, Test 2 {}. Instability = standard deviation of the 100 s means "
-      "(°/h). The gyro is the default simulated one (`scenarios/gyro.toml`), calibrated as "
-      "`results/calibration.md` describes.\n\n",
-      total_seconds, r.cycle_seed, r.test1.seed, r.test2.seed);
+      "Made by `gyrotherm reproduce` (the README's main command); seeds: cycle {}, Test 1 {}, Test 2 {}. "
+      "Instability = standard deviation of the 100 s means (°/h). The gyro is the default simulated one "
+      "(`scenarios/gyro.toml`), calibrated as `results/calibration.md` describes. The same seeds give the "
+      "same numbers on every run; run times go to the terminal (`reproduce --json` prints them).\n\n",
+      r.cycle_seed, r.test1.seed, r.test2.seed);
 
   md += "## −40..60 °C cycle (the training data)\n\n| | paper | ours | ours vs paper |\n|---|---|---|---|\n";
   md += fmt::format("| raw | {} | {:.5f} | {} |\n", paper.cycle_raw, r.cycle_raw_dph, pct(r.cycle_raw_dph, paper.cycle_raw));
@@ -80,18 +81,18 @@ std::string table_markdown(const ReproduceResult& r, double total_seconds) {
     md += fmt::format("| IAFSA | {} (5.15×) | {:.5f} ({:.2f}×) | {} |\n", paper.cycle_iafsa,
                       s->fit.instability_after_dph, s->fit.ratio(), pct(s->fit.instability_after_dph, paper.cycle_iafsa));
   md += "\nEvery engine on the cycle (the paper's model T + T^2 + dT; errors against the simulator's truth):\n\n"
-        "| engine | after (°/h) | ratio | gap to least squares | b1 (T) | b2 (T^2) | b3 (dT) | error b1 / b2 / b3 | evaluations | seconds |\n"
-        "|---|---|---|---|---|---|---|---|---|---|\n";
+        "| engine | after (°/h) | ratio | gap to least squares | b1 (T) | b2 (T^2) | b3 (dT) | error b1 / b2 / b3 | evaluations |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& e : r.engines) {
     auto err = [&](const char* k) {
       const auto it = e.coefficient_error.find(k);
       return it == e.coefficient_error.end() ? std::string("–") : fmt::format("{:+.1f} %", 100.0 * it->second);
     };
-    md += fmt::format("| {} | {:.5f} | {:.2f} | {:.1e} | {:.4g} | {:.4g} | {:.4g} | {} / {} / {} | {} | {:.4f} |\n", e.engine,
+    md += fmt::format("| {} | {:.5f} | {:.2f} | {:.1e} | {:.4g} | {:.4g} | {:.4g} | {} / {} / {} | {} |\n", e.engine,
                       e.fit.instability_after_dph, e.fit.ratio(),
                       e.fit.instability_after_dph / e.fit.optimum_dph - 1.0, e.fit.coefficients.b[0],
                       e.fit.coefficients.b[1], e.fit.coefficients.b[2], err("T"), err("T^2"), err("dT"),
-                      e.fit.engine.evaluations, e.fit.engine.seconds);
+                      e.fit.engine.evaluations);
   }
   md += fmt::format("\nTruth: b1 = {}, b2 = {}, b3 = {} (the paper's IAFSA model).\n",
                     r.truth.coefficients.at("T"), r.truth.coefficients.at("T^2"), r.truth.coefficients.at("dT"));
@@ -239,13 +240,34 @@ nlohmann::ordered_json write_reproduce_report(const std::filesystem::path& dir,
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", dir.string(), ec.message()));
   plot_figures(dir, r);
-  const double total_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  nlohmann::ordered_json j = table_json(r);
-  j["total_seconds"] = total_seconds;
-  write_file_atomically(dir / "table1.json", j.dump(2) + "\n");
-  write_file_atomically(dir / "table1.md", table_markdown(r, total_seconds));
+  // The files hold what the seeds decide, so a run leaves them as they were;
+  // the run times go to the terminal (the JSON returned).
+  write_file_atomically(dir / "table1.json", table_json(r, false).dump(2) + "\n");
+  write_file_atomically(dir / "table1.md", table_markdown(r));
+  nlohmann::ordered_json j = table_json(r, true);
+  j["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return j;
+}
+
+std::string reproduce_text(const ReproduceResult& r, const std::string& dir, double total_seconds) {
+  const PaperFigures paper;
+  std::string out = "Table 1, side by side (instability of 100 s means, °/h):\n";
+  out += fmt::format("  cycle  raw      paper {:.5f}  ours {:.5f}\n", paper.cycle_raw, r.cycle_raw_dph);
+  for (const auto& e : r.engines)
+    out += fmt::format("  cycle  {:<8} {}  ours {:.5f} ({:.2f}x)\n", e.engine,
+                       e.engine == "stepwise" ? fmt::format("paper {:.5f}", paper.cycle_stepwise)
+                       : e.engine == "iafsa"  ? fmt::format("paper {:.5f}", paper.cycle_iafsa)
+                                              : std::string(17, ' '),
+                       e.fit.instability_after_dph, e.fit.ratio());
+  const std::string best = shown_engine(r);
+  out += fmt::format("  test 1 paper {:.5f} -> {:.5f} ({:.2f}x)  ours ({}) {:.5f} -> {:.5f} ({:.2f}x)\n",
+                     paper.test1_before, paper.test1_after, paper.test1_times, best, r.test1.before_dph,
+                     r.test1.by_engine.at(best).after_dph, r.test1.by_engine.at(best).ratio());
+  out += fmt::format("  test 2 paper {:.5f} -> {:.5f} ({:.2f}x)  ours ({}) {:.5f} -> {:.5f} ({:.2f}x)\n",
+                     paper.test2_before, paper.test2_after, paper.test2_times, best, r.test2.before_dph,
+                     r.test2.by_engine.at(best).after_dph, r.test2.by_engine.at(best).ratio());
+  out += fmt::format("wrote {0}/table1.md, {0}/table1.json and figures in {1:.1f} s\n", dir, total_seconds);
+  return out;
 }
 
 }  // namespace gyrotherm::studies

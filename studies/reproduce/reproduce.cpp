@@ -1,9 +1,9 @@
-#include "studies/simulated.h"
 #include "studies/reproduce/reproduce.h"
 
 #include <chrono>
 #include <fmt/format.h>
 
+#include "studies/simulated.h"
 #include "fit/model/formula.h"
 #include "sim/config_loader.h"
 

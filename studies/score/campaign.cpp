@@ -1,4 +1,3 @@
-#include "studies/simulated.h"
 #include "studies/score/campaign.h"
 
 #include <fmt/format.h>
@@ -12,6 +11,7 @@
 #include <set>
 #include <thread>
 
+#include "studies/simulated.h"
 #include "fit/engines/ols.h"
 #include "sim/config_loader.h"
 #include "sim/util/input_error.h"
@@ -25,6 +25,37 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
+
+namespace {
+
+long parse_count(const std::string& text, const std::string& what) {
+  std::size_t used = 0;
+  long v = -1;
+  try {
+    v = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || v < 0) throw InputError(fmt::format("{}: '{}' is not a whole number >= 0", what, text));
+  return v;
+}
+
+}  // namespace
+
+void ScoreOptions::add_budget(const std::string& text) {
+  if (text.find('=') == std::string::npos) {
+    budget = parse_count(text, "--budget " + text);
+    return;
+  }
+  if (text.front() == '=') throw InputError(fmt::format("--budget {}: expected N or ENGINE=N", text));
+  const fit::KeyValue kv = fit::parse_key_value(text, "--budget", false);
+  engine_budget[kv.key] = parse_count(kv.value, "--budget " + text);
+}
+
+void ScoreOptions::add_engine_option(const std::string& text) {
+  const fit::KeyValue kv = fit::parse_key_value(text, "--option", true);
+  engine_options[kv.scope][kv.key] = kv.value;
+}
 
 void ScoreOptions::validate() const {
   if (trials < 1 || trials > 10'000'000)

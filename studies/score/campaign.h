@@ -65,6 +65,10 @@ struct ScoreOptions {
   int curve_points_per_decade = 10;           // density of the convergence curves' grid
   // Throws InputError naming the field, the value and the rule.
   void validate() const;
+  // The command line's --budget N or ENGINE=N, and --option ENGINE:KEY=VALUE
+  // (fit/engines/engine.h parses the pair); throw InputError naming the text.
+  void add_budget(const std::string& text);
+  void add_engine_option(const std::string& text);
 };
 
 // One engine on one trial.

@@ -34,7 +34,7 @@ std::string scoreboard_json(const Scoreboard& b) {
   Json engines = Json::object();
   for (const EngineScore& e : b.engines) {
     Json x;
-    // The fields of DESIGN.md first.
+    // The fields of the contract (docs/contracts.md) first.
     x["success_rate"] = e.success_rate;
     x["evals_to_target_median"] = number(e.evaluations_to_target.median);
     x["seconds_median"] = number(e.seconds_to_target.median);
@@ -201,6 +201,18 @@ std::vector<std::string> write_score_files(const std::filesystem::path& dir, con
   for (const char* f : {"scoreboard.json", "scoreboard.md", "convergence.csv", "convergence.png"})
     written.push_back((dir / f).string());
   return written;
+}
+
+std::string score_text(const Scoreboard& board) {
+  std::string out = fmt::format(
+      "score: {}, {} trials (seeds {}..{}), model B = b0 + {}, target sigma <= optimum*(1 + {:g})\n", board.scenario,
+      board.trials, board.seed, board.seed + (board.trials - 1), board.model, board.target_relative);
+  out += fmt::format("median raw instability {:.6g} °/h, median least-squares optimum {:.6g} °/h; "
+                     "medians over the trials, coefficient errors |fit - truth|/|truth|\n",
+                     board.before_median_dph, board.optimum_median_dph);
+  out += scoreboard_text(board);
+  out += fmt::format("{:.2f} s on {} thread(s) x {} process(es)\n", board.seconds, board.threads, board.processes);
+  return out;
 }
 
 }  // namespace gyrotherm::studies

@@ -1,0 +1,47 @@
+#pragma once
+// `gyrotherm simulate`: a scenario with its rig and gyro (each file may be
+// overridden), the hidden effects of --hidden, run and written beside its
+// truth (sim/output.h), with an optional figure; and the run's summary for
+// the terminal and for --json.
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sim/simulator.h"
+
+namespace gyrotherm::sim {
+
+struct SimulateRequest {
+  std::string scenario;              // SCENARIO.toml
+  std::string rig, gyro;             // override the scenario's files ("" keeps them)
+  std::optional<std::uint64_t> seed;  // overrides the scenario's
+  std::vector<std::string> hidden;   // TERM=COEF
+  std::string output;                // OUT.csv (the truth goes beside it)
+  std::string plot;                  // a PNG, or ""
+};
+
+struct SimulationRun {
+  SimulateRequest request;
+  Scenario scenario;
+  std::string truth_file;
+  std::size_t rows = 0;
+  double duration_s = 0.0;
+  double gyro_temp_min_c = 0.0, gyro_temp_max_c = 0.0;
+  double soak_control_error_c = 0.0;
+  SolverStatistics solver;
+  double energy_residual_j = 0.0;
+  std::string hidden;  // "grad=0.02, T^3=1e-07", or "" for none
+  double seconds = 0.0;
+};
+
+// Throws InputError (nothing written) on a bad file or option.
+SimulationRun simulate_to_files(const SimulateRequest& request);
+// simulate --json: csv, truth, scenario, seed, rows, duration_s, gyro_temp_min_c,
+// gyro_temp_max_c, soak_control_error_c, solver, energy_residual_j, seconds.
+nlohmann::ordered_json simulation_json(const SimulationRun& run);
+std::string simulation_text(const SimulationRun& run);
+
+}  // namespace gyrotherm::sim

@@ -1,0 +1,152 @@
+#include "studies/diagnose/diagnose_run.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <filesystem>
+
+#include "fit/channels.h"
+#include "fit/data/streaming.h"
+#include "fit/fit_file.h"
+#include "fit/model/formula.h"
+#include "sim/util/format.h"
+#include "studies/diagnose/diagnose_plots.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
+
+std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel) {
+  const fit::PipelineOptions& pipeline = channel.pipeline;
+  const fit::PreparedData& data = channel.data;
+  const Diagnosis& d = channel.report.diagnosis;
+  const std::optional<Diagnosis>& before = channel.report.before;
+  std::string out = fmt::format("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n", run.request.data,
+                                fit::formula_text(run.request.terms), run.request.engine,
+                                fit::describe_windows(data, pipeline), data.outliers.removed);
+  if (channel.streamed)
+    out += fmt::format(
+        "   (over {} MB: read in one pass without holding the samples; the log's other columns are not tried as "
+        "candidates{})\n",
+        fit::streaming_threshold_bytes() >> 20, channel.plots.empty() ? "" : ", and the full-rate Allan figure is left out");
+  out += fmt::format("1. compare: instability {} -> {} °/h; noise floor {} °/h ({}):\n"
+                     "   the model is {:.2f} times the floor\n",
+                     human(d.fit.instability_before_dph), human(d.fit.instability_after_dph), human(d.noise_floor_dph),
+                     d.floor.description(), d.excess_ratio());
+  if (d.floor.method == "hadamard" && d.floor.within_dph > 0.0 && d.floor.within_dph < 0.7 * d.floor.dph)
+    out += fmt::format("   (the scatter inside the windows alone gives {} °/h: the rest of the floor is noise "
+                       "slower than a window, bias instability)\n",
+                       human(d.floor.within_dph));
+  out += "2. where it fails (residual RMS over the floor, worst first):\n";
+  const auto worst = d.worst_segments();
+  for (std::size_t k = 0; k < worst.size() && k < 6; ++k) {
+    const SegmentReport& s = d.segments[worst[k]];
+    out += fmt::format("   {:<8} {:>8} – {:<8} {:6.1f} .. {:5.1f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
+                       hours(s.end_s), s.temp_min_c, s.temp_max_c, s.ratio_to_floor);
+  }
+  std::string bands;
+  for (const auto& b : d.bands)
+    bands += fmt::format("{}{:.0f}..{:.0f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c, b.temp_max_c,
+                         b.ratio_to_floor);
+  out += fmt::format("   by temperature: {}\n", bands);
+  out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
+  for (const CandidateReport& c : d.candidates)
+    out += fmt::format("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n", c.significant ? "*" : " ", c.term->name,
+                       c.reduction_pct, c.p_value, c.significant ? "significant" : "", c.term->meaning);
+  if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
+  if (before) {
+    std::vector<std::string> added;
+    for (std::size_t k = run.request.base_terms.size(); k < run.request.terms.size(); ++k)
+      added.emplace_back(run.request.terms[k]->name);
+    out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n", fmt::join(added, ", "),
+                       before->fit.instability_after_dph, d.fit.instability_after_dph, d.noise_floor_dph);
+    const auto rows = segment_rms(*before, before->residual_dph);
+    for (std::size_t i = 0; i < rows.size() && i < d.segments.size(); ++i)
+      out += fmt::format("   {:<8} {:>8} – {:<8} {:5.2f}x -> {:5.2f}x\n", rows[i].kind, hours(rows[i].start_s),
+                         hours(rows[i].end_s), rows[i].ratio_to_floor, d.segments[i].ratio_to_floor);
+  }
+  for (const std::string& w : d.fit.warnings) out += fmt::format("warning: {}\n", w);
+  for (const StepEvent& e : d.events)
+    out += fmt::format("event: a bias step at {} of {:+.3g} °/h (95 % [{:.3g}, {:.3g}]){}\n", hours(e.time_s),
+                       e.size_dph, e.size_interval_dph.lower, e.size_interval_dph.upper,
+                       e.significant ? ", significant" : ", not significant against the other candidates");
+  for (const std::string& n : d.confounding_notes) out += fmt::format("cannot tell: {}\n", n);
+  out += fmt::format("verdict: {}\n", d.verdict);
+  if (!channel.report.next_command.empty()) out += fmt::format("next: {}\n", channel.report.next_command);
+  if (!channel.plots.empty()) out += fmt::format("plots in {}/\n", channel.plots);
+  return out;
+}
+
+}  // namespace
+
+DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
+  DiagnoseRun run;
+  run.request = request;
+  const fit::EngineInfo& engine = fit::find_engine(request.engine);
+  engine.make(request.settings);  // validates the settings before any work
+  const std::vector<std::string> channels = fit::parse_channels(request.pipeline.columns.gyro);
+  DiagnosisOptions options = request.options;
+  options.excluded_columns = channels;  // no gyro channel explains another
+  const fit::PipelineOptions with_columns = fit::reading_columns_of(request.pipeline, request.terms);
+  run.channels =
+      fit::for_each_channel(channels, with_columns, [&](const std::string& channel, const fit::PipelineOptions& p) {
+        ChannelDiagnosis c;
+        c.channel = channel;
+        c.pipeline = p;
+        c.streamed = fit::streams(request.data, c.pipeline);
+        if (c.streamed) {
+          c.data = fit::prepare_data_streaming(request.data, c.pipeline);
+        } else {
+          c.pipeline.columns.other_numeric = true;
+          c.measurement = fit::read_measurement_csv(request.data, c.pipeline.columns);
+          c.data = fit::prepare_data(c.measurement, c.pipeline);
+        }
+        c.report = diagnose_record(c.data, c.pipeline.columns, request.base_terms, request.terms, engine,
+                                   request.settings, options);
+        if (channels.size() > 1 && !c.report.next_command.empty()) c.report.next_command += " --gyro-col " + channel;
+        return c;
+      });
+  // With several channels, each one's figures in a folder of its own.
+  for (ChannelDiagnosis& c : run.channels) {
+    if (request.plots.empty()) continue;
+    c.plots = run.channels.size() > 1 ? (std::filesystem::path(request.plots) / c.channel).string() : request.plots;
+    write_diagnosis_plots(c.plots, c.measurement, c.data, c.report.diagnosis,
+                          c.report.before ? &*c.report.before : nullptr);
+  }
+  return run;
+}
+
+nlohmann::ordered_json diagnose_json(const DiagnoseRun& run) {
+  if (run.channels.size() == 1) return diagnosis_json(run.channels.front().report);
+  std::vector<std::pair<std::string, nlohmann::ordered_json>> list;
+  for (const ChannelDiagnosis& c : run.channels) list.emplace_back(c.channel, diagnosis_json(c.report));
+  return fit::channels_json(list);
+}
+
+std::string diagnose_text(const DiagnoseRun& run) {
+  std::string out;
+  const std::size_t n = run.channels.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (n > 1) out += fmt::format("{}== channel {} ==\n", i ? "\n" : "", run.channels[i].channel);
+    out += channel_text(run, run.channels[i]);
+  }
+  if (n < 2) return out;
+  out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));
+  out += fmt::format("  {:<14} {:>12} {:>12} {:>8}  {}\n", "channel", "after °/h", "floor °/h", "x floor",
+                     "best candidate");
+  for (const ChannelDiagnosis& c : run.channels) {
+    const Diagnosis& d = c.report.diagnosis;
+    std::string best = "none";
+    if (!d.candidates.empty()) {
+      const CandidateReport& b = d.candidates.front();
+      best = fmt::format("{} ({:.0f} %{})", b.term->name, b.reduction_pct,
+                         b.significant ? (b.confounded_with.empty() ? ", significant" : ", significant, not alone") : "");
+    }
+    out += fmt::format("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,
+                       d.noise_floor_dph, d.excess_ratio(), best);
+  }
+  return out;
+}
+
+}  // namespace gyrotherm::studies

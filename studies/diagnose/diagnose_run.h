@@ -1,0 +1,50 @@
+#pragma once
+// `gyrotherm diagnose` over every gyro channel of a log (--gyro-col gx,gy,gz):
+// each read in memory, where every other numeric column of the log may be a
+// candidate, or, for a log too large to hold, in one pass without them
+// (fit/data/streaming.h); diagnosed (studies/diagnose/report.h), with figures
+// if asked; and the report for people.
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "studies/diagnose/report.h"
+
+namespace gyrotherm::studies {
+
+struct DiagnoseRequest {
+  std::string data;
+  std::vector<const fit::Term*> base_terms;  // --model
+  std::vector<const fit::Term*> terms;       // --model and the --add terms
+  std::string engine = "ols";
+  fit::EngineSettings settings;
+  fit::PipelineOptions pipeline;             // columns (gyro: the comma list of channels), units, rules
+  DiagnosisOptions options;                  // --candidates (the channels are never candidates)
+  std::string plots;                         // a folder for the figures, or ""
+};
+
+struct ChannelDiagnosis {
+  std::string channel;
+  fit::PipelineOptions pipeline;
+  fit::Measurement measurement;  // empty when streamed
+  fit::PreparedData data;
+  DiagnoseReport report;
+  bool streamed = false;  // prepared in one pass: no samples held, no log columns as candidates
+  std::string plots;      // this channel's figures' folder, or ""
+};
+
+struct DiagnoseRun {
+  DiagnoseRequest request;
+  std::vector<ChannelDiagnosis> channels;
+};
+
+// Diagnoses every channel, then draws the figures. Throws InputError on bad input.
+DiagnoseRun run_diagnose(const DiagnoseRequest& request);
+// diagnose --json: one object (report.h's diagnosis_json), or {"channels": [...]}.
+nlohmann::ordered_json diagnose_json(const DiagnoseRun& run);
+// The five steps for people, a channel after another, and a summary table.
+std::string diagnose_text(const DiagnoseRun& run);
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,61 @@
+#include "studies/fit/compensate_run.h"
+
+#include <fmt/format.h>
+
+#include "fit/channels.h"
+#include "fit/data/streaming.h"
+#include "fit/model/formula.h"
+
+namespace gyrotherm::studies {
+
+CompensateRun run_compensate(const CompensateRequest& o) {
+  CompensateRun run;
+  run.request = o;
+  run.fits = fit::load_fits(o.fit_file);
+  bool streamed = false;
+  run.channels = fit::for_each_saved_fit(run.fits, [&](const fit::SavedFit& fit) {
+    fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
+    if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
+    // A log too large to hold, one channel: never held, the output written as
+    // it is computed (fit/compensation.h).
+    streamed = run.fits.size() == 1 && fit::streams(o.data, pipeline);
+    fit::Compensation c = streamed ? fit::compensate_streaming(o.data, fit, pipeline, o.output)
+                                   : fit::compensate(fit::read_measurement_csv(o.data, pipeline.columns), fit, pipeline);
+    run.channel_json.push_back(fit::compensation_json(c, fit, pipeline, o.data, o.fit_file, o.output));
+    return c;
+  });
+  if (!o.output.empty() && !streamed) {
+    if (run.channels.size() == 1) {
+      fit::write_compensated_csv(o.output, run.channels.front());
+    } else {
+      std::vector<std::pair<std::string, fit::Compensation>> named;
+      for (std::size_t i = 0; i < run.fits.size(); ++i) named.emplace_back(run.fits[i].channel, run.channels[i]);
+      fit::write_compensated_csv(o.output, named);
+    }
+  }
+  return run;
+}
+
+nlohmann::ordered_json compensate_json(const CompensateRun& run) {
+  if (run.fits.size() == 1) return run.channel_json.front();
+  std::vector<std::pair<std::string, nlohmann::ordered_json>> all;
+  for (std::size_t i = 0; i < run.fits.size(); ++i) all.emplace_back(run.fits[i].channel, run.channel_json[i]);
+  return fit::channels_json(all);
+}
+
+std::string compensate_text(const CompensateRun& run) {
+  std::string out;
+  for (std::size_t i = 0; i < run.fits.size(); ++i) {
+    const fit::SavedFit& fit = run.fits[i];
+    const fit::Compensation& c = run.channels[i];
+    out += fmt::format("compensate {}{} with {} ({}: B = b0 + {}, {} derivatives)\n", run.request.data,
+                       run.fits.size() > 1 ? ", channel " + fit.channel : "", run.request.fit_file, fit.engine,
+                       fit::formula_text(fit.terms), run.channel_json[i]["derivative"].get<std::string>());
+    out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
+                       fit::averages_name(c.data, fit.pipeline), c.before_dph, c.after_dph, c.ratio());
+  }
+  if (!run.request.output.empty()) out += fmt::format("wrote {}\n", run.request.output);
+  return out;
+}
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,36 @@
+#pragma once
+// `gyrotherm compensate`: every channel of a saved fit applied to a log, read
+// with the fit's own columns and units (fit/compensation.h); a log too large
+// to hold, with one channel, in one pass. All channels are computed before
+// the output is written.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fit/compensation.h"
+
+namespace gyrotherm::studies {
+
+struct CompensateRequest {
+  std::string data;
+  std::string fit_file;
+  std::string output;  // the compensated CSV, or ""
+  bool causal = false;
+};
+
+struct CompensateRun {
+  CompensateRequest request;
+  std::vector<fit::SavedFit> fits;
+  std::vector<fit::Compensation> channels;          // one per fit channel
+  std::vector<nlohmann::ordered_json> channel_json;  // compensate --json per channel
+};
+
+CompensateRun run_compensate(const CompensateRequest& request);
+// compensate --json: one object, or {"channels": [...]}.
+nlohmann::ordered_json compensate_json(const CompensateRun& run);
+std::string compensate_text(const CompensateRun& run);
+
+}  // namespace gyrotherm::studies

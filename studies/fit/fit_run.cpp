@@ -1,0 +1,128 @@
+#include "studies/fit/fit_run.h"
+
+#include <fmt/format.h>
+
+#include "fit/channels.h"
+#include "fit/data/streaming.h"
+#include "fit/fit_file.h"
+#include "fit/model/formula.h"
+#include "sim/util/atomic_file.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+std::string channel_text(const ChannelFit& c, const FitRun& run) {
+  const std::vector<const fit::Term*>& terms = run.request.terms;
+  const fit::PreparedData& data = c.data;
+  const fit::ModelFit& result = c.result;
+  std::string out = fmt::format("data: {}: {} samples{} every {:g} s, {} glitches removed, {} gaps, {}\n", data.file,
+                                data.raw_samples, c.streamed ? " (streamed)" : "", data.averaging.sample_interval_s,
+                                data.outliers.removed, data.averaging.gaps.size(),
+                                fit::describe_windows(data, c.pipeline));
+  if (!c.pipeline.columns.units.identity())
+    out += fmt::format("  units converted: {}\n", c.pipeline.columns.units.description());
+  if (!data.outliers.times_s.empty()) {
+    std::string times;
+    for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 8; ++k)
+      times += fmt::format("{}{:g}", k ? ", " : "", data.outliers.times_s[k]);
+    out += fmt::format("  glitches at t = {}{} s\n", times, data.outliers.times_s.size() > 8 ? ", ..." : "");
+  }
+  out += fmt::format("model: B = b0 + {}   engine: {}{}\n", fit::formula_text(terms), run.engine->name,
+                     run.engine->stochastic ? fmt::format(" (seed {})", run.request.settings.seed) : "");
+  std::map<std::string, double> errors;
+  if (c.truth) errors = coefficient_errors(result, *c.truth);
+  auto row = [&](const std::string& name, double value, const std::string& unit, std::size_t k) {
+    std::string extra;
+    if (k < result.engine.intervals.size())
+      extra += fmt::format("  95% [{:.6g}, {:.6g}]", result.engine.intervals[k].lower, result.engine.intervals[k].upper);
+    if (!result.engine.kept.empty() && k < result.engine.kept.size() && !result.engine.kept[k])
+      extra += "  (dropped by stepwise)";
+    if (c.truth) {
+      const auto it = c.truth->coefficients.find(name);
+      if (it != c.truth->coefficients.end())
+        extra += fmt::format("  truth {:.6g} ({:+.2f} %)", it->second, errors.count(name) ? 100.0 * errors[name] : 0.0);
+      else
+        extra += "  truth 0";
+    }
+    out += fmt::format("  {:<7} {:>13.6g} {:<14}{}\n", name, value, unit, extra);
+  };
+  row("1", result.coefficients.intercept, "°/h", std::size_t(-1));
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    row(std::string(terms[k]->name), result.coefficients.b[k], terms[k]->coefficient_unit(), k);
+    if (!terms[k]->parameter) continue;
+    std::string extra;
+    if (const auto& i = result.parameter_intervals[k]) extra += fmt::format("  95% [{:.6g}, {:.6g}]", i->lower, i->upper);
+    if (c.truth && c.truth->parameters.count(std::string(terms[k]->name)))
+      extra += fmt::format("  truth {:.6g}", c.truth->parameters.at(std::string(terms[k]->name)));
+    out += fmt::format("          {} = {:.6g}{}\n", terms[k]->parameter->name, result.parameters[k], extra);
+  }
+  if (!result.engine.interval_method.empty()) out += fmt::format("  intervals: {}\n", result.engine.interval_method);
+  out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n", fit::averages_name(data, c.pipeline),
+                     result.instability_before_dph, result.instability_after_dph, result.ratio());
+  out += fmt::format("engine: {}\n", result.engine.brief_report());
+  for (const std::string& w : result.warnings) out += fmt::format("warning: {}\n", w);
+  out += fmt::format("gap to the least-squares optimum: {:.3g} (relative)\n",
+                     result.instability_after_dph / result.optimum_dph - 1.0);
+  return out;
+}
+
+}  // namespace
+
+FitRun run_fit(const FitRequest& request) {
+  FitRun run;
+  run.request = request;
+  run.engine = &fit::find_engine(request.engine);
+  run.engine->make(request.settings);  // validates the options before any work
+  const std::vector<const fit::Term*>& terms = request.terms;
+  const fit::PipelineOptions pipeline = fit::reading_columns_of(request.pipeline, terms);
+  const std::vector<std::string> channels = fit::parse_channels(pipeline.columns.gyro);
+  run.channels =
+      fit::for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
+        ChannelFit c;
+        c.channel = channel;
+        c.pipeline = p;
+        // Large logs are read once, never held (fit/data/streaming.h).
+        c.data = fit::prepare_csv(request.data, c.pipeline, &c.streamed);
+        fit::check_columns(terms, c.data, c.pipeline.columns);
+        c.result = fit::fit_model(c.data, terms, *run.engine, request.settings);
+        // The simulator's truth belongs to its one gyro column.
+        if (channels.size() == 1) c.truth = load_truth_beside(request.data);
+        c.json = fit::fit_json(c.result, c.data, c.pipeline, request.settings);
+        if (c.truth) add_truth(c.json, c.result, *c.truth);
+        return c;
+      });
+  if (run.channels.size() == 1) {
+    run.json = run.channels.front().json.dump(2) + "\n";
+  } else {
+    std::vector<std::pair<std::string, nlohmann::ordered_json>> all;
+    for (const ChannelFit& c : run.channels) all.emplace_back(c.channel, c.json);
+    run.json = fit::channels_json(all).dump(2) + "\n";
+  }
+  if (!request.output.empty()) write_file_atomically(request.output, run.json);
+  return run;
+}
+
+std::string fit_text(const FitRun& run) {
+  std::string out;
+  const std::size_t n = run.channels.size();
+  for (const ChannelFit& c : run.channels) {
+    if (n > 1) out += fmt::format("== channel {} ==\n", c.channel);
+    out += channel_text(c, run);
+  }
+  if (n > 1) {
+    out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));
+    std::string header = fmt::format("  {:<14} {:>12} {:>12} {:>8}", "channel", "before °/h", "after °/h", "ratio");
+    for (const fit::Term* t : run.request.terms) header += fmt::format(" {:>12}", t->name);
+    out += header + "\n";
+    for (const ChannelFit& c : run.channels) {
+      std::string row = fmt::format("  {:<14} {:>12.6g} {:>12.6g} {:>8.2f}", c.channel, c.result.instability_before_dph,
+                                    c.result.instability_after_dph, c.result.ratio());
+      for (double b : c.result.coefficients.b) row += fmt::format(" {:>12.5g}", b);
+      out += row + "\n";
+    }
+  }
+  if (!run.request.output.empty()) out += fmt::format("wrote {}\n", run.request.output);
+  return out;
+}
+
+}  // namespace gyrotherm::studies

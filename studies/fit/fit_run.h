@@ -1,0 +1,54 @@
+#pragma once
+// `gyrotherm fit`: a model fitted to every gyro channel of a log, each read in
+// memory or, for a log too large to hold, in one pass (fit/data/streaming.h);
+// against the simulator's truth when the log is one `simulate` wrote
+// (studies/simulated.h). Every channel is fitted before anything is written:
+// a bad one leaves no file.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fit/pipeline.h"
+#include "studies/simulated.h"
+
+namespace gyrotherm::studies {
+
+struct FitRequest {
+  std::string data;                       // the log
+  std::vector<const fit::Term*> terms;    // the model
+  std::string engine = "ols";
+  fit::EngineSettings settings;
+  fit::PipelineOptions pipeline;          // columns (gyro: the comma list of channels), units, rules
+  std::string output;                     // -o FIT.json, or ""
+};
+
+struct ChannelFit {
+  std::string channel;
+  fit::PipelineOptions pipeline;
+  fit::PreparedData data;
+  fit::ModelFit result;
+  std::optional<Truth> truth;
+  bool streamed = false;
+  nlohmann::ordered_json json;
+};
+
+struct FitRun {
+  FitRequest request;
+  const fit::EngineInfo* engine = nullptr;
+  std::vector<ChannelFit> channels;
+  std::string json;  // what -o saved and --json prints (one object, or {"channels": [...]})
+};
+
+// Fits every channel, then writes request.output (atomically) if named.
+// Throws InputError (nothing written) on bad input.
+FitRun run_fit(const FitRequest& request);
+
+// The report for people: per channel the data, the coefficients with their
+// intervals (and the truth), the instability and the engine's summary; with
+// several channels, a summary table.
+std::string fit_text(const FitRun& run);
+
+}  // namespace gyrotherm::studies
