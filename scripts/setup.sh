@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages gyrotherm needs (DESIGN.md, "Dependencies"),
+# Installs the Debian 12 packages gyrotherm needs (the list below),
 # only those that are missing; safe to run again. Needs root (or sudo).
 set -euo pipefail
 

@@ -6,7 +6,8 @@
 // summed over the effects of the registry that are on (c_k ≠ 0), in registry
 // order, each r_k the effect's own regressor (sim/effects/effect.h) evaluated
 // on the true physical state. With the default gyro these are the paper's
-// eq. (6) terms b1·T + b2·T² + b3·dT/dt (../shared/PAPER.md).
+// eq. (6) terms b1·T + b2·T² + b3·dT/dt (Yu, Xu, Wei, Long, Infrared and
+// Laser Engineering 43(1):81-87, 2014).
 
 #include <vector>
 

@@ -1,5 +1,5 @@
 #pragma once
-// The simulator's files (DESIGN.md, "Simulator output"):
+// The simulator's files (docs/contracts.md, "Simulator output"):
 //
 //   OUT.csv         time_s, chamber_c, case_c, temp_c, temp2_c, gyro_dph, bias_true_dph
 //                   (a few '#' comment lines first; no time stamps, so the same

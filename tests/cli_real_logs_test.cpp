@@ -1,5 +1,6 @@
 // Real measurement logs (issue 12): bursts, short records, units, several gyro
-// channels; the PAN cubesat's thermal-vacuum log when ../shared holds it.
+// channels; the PAN cubesat's thermal-vacuum log when the shared real-data folder beside the
+// repository holds it.
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The contract every registered engine keeps (STYLE.md rule 10), one suite
+// The contract every registered engine keeps (docs/architecture.md, "House rules"), one suite
 // run over the whole registry: a new engine is checked by registering it.
 //
 //  * known answer: noise-free data give σ → 0 (ols: the coefficients to

@@ -1,6 +1,6 @@
 #pragma once
 // Averaging the samples into windows of W seconds that never span a gap (the
-// paper's 100 s averages; DESIGN.md, "Numerical rules").
+// paper's 100 s averages).
 //
 // With Δ the sample interval (the median time step of the record):
 //
@@ -27,8 +27,7 @@
 // nominal rate). average_windows is the in-memory driver.
 //
 // Reference: Yu, Xu, Wei, Long, Infrared and Laser Engineering 43(1):81-87
-// (2014) (1 s samples averaged over 100 s; ../shared/PAPER.md, "Data
-// handling"); IEEE Std 952-1997, Annex C (averages of rate data over clusters
+// (2014) (1 s samples averaged over 100 s); IEEE Std 952-1997, Annex C (averages of rate data over clusters
 // of length τ).
 
 #include <cstddef>

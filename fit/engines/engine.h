@@ -1,5 +1,5 @@
 #pragma once
-// One interface for every fitting engine (STYLE.md, "One engine shape").
+// One interface for every fitting engine (docs/architecture.md, "House rules").
 //
 // An engine minimises LinearProblem::objective (σ of the residual, the paper's
 // eq. 6) over the unit box z ∈ [−1, 1]^m. It takes a seed, a budget of

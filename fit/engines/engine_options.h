@@ -1,5 +1,5 @@
 #pragma once
-// Engine options, declared once (STYLE.md, "One engine shape").
+// Engine options, declared once (docs/architecture.md, "House rules").
 //
 // Each engine lists its own options in one table: the key a user writes
 // (`--option KEY=VALUE`), the field of its Options aggregate, the rule the

@@ -2,7 +2,7 @@
 // The whole `gyrotherm diagnose` job and its report, above the five steps of
 // studies/diagnose/diagnosis.h: the model as given, and with --add the model
 // without the added terms as the "before" of step 5; the `diagnose --json`
-// object (DESIGN.md's fields: model, instability_dph, noise_floor_dph,
+// object (docs/contracts.md's fields: model, instability_dph, noise_floor_dph,
 // segments, missing_effects, verdict; and more) and the next command to run.
 
 #include <nlohmann/json.hpp>
