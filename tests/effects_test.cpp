@@ -108,10 +108,13 @@ TEST(Effects, EveryEffectKeepsTheContract) {
     std::fill(soak.temp_c.begin(), soak.temp_c.end(), 20.0);
     const std::vector<double> in_soak = regressor_values(*e, soak, e->parameter ? e->parameter->lower : 0.0);
     const bool all_zero = std::all_of(in_soak.begin(), in_soak.end(), [](double r) { return r == 0.0; });
-    if (e->family == Family::rate) EXPECT_TRUE(all_zero);
+    if (e->family == Family::rate) {
+      EXPECT_TRUE(all_zero);
+    }
     if (e->family == Family::temperature_power || e->family == Family::temperature_state ||
-        e->family == Family::time)
+        e->family == Family::time) {
       EXPECT_FALSE(all_zero);
+    }
     // Its power of T, exactly for the powers of T, and the regressor is that power.
     EXPECT_EQ(e->temperature_power > 0, e->family == Family::temperature_power);
     if (e->temperature_power > 0) {

@@ -57,9 +57,9 @@ const Term* find_term(std::string_view name) {
 
 const Term* term_of(const effects::Effect& effect) { return find_term(effect.name); }
 
-void Term::compute(const DerivedSeries& s, double parameter, std::span<double> out) const {
+void Term::compute(const DerivedSeries& s, double theta, std::span<double> out) const {
   if (effect != nullptr) {
-    effect->compute(s, parameter, out);
+    effect->compute(s, theta, out);
   } else if (family == effects::Family::step) {
     for (std::size_t p = 0; p < out.size(); ++p) out[p] = s.time_s[p] >= step_time_s ? 1.0 : 0.0;
   } else {

@@ -158,6 +158,24 @@ void pointwise(const Effect&, const EffectSeries& series, double parameter, std:
   for (std::size_t p = 0; p < out.size(); ++p) out[p] = f(series, p, parameter);
 }
 
+// T^k at a point: T·T·…·T, multiplied left to right.
+template <int k>
+double temperature_power(const EffectSeries& series, std::size_t p, double) {
+  double r = series.temp_c[p];
+  for (int i = 1; i < k; ++i) r *= series.temp_c[p];
+  return r;
+}
+
+// A power of T as an effect: the entry's family, power and regressor from k;
+// the file gives its name, meaning, unit, [truth] key and C form.
+template <int k>
+constexpr Effect power_of_temperature(Effect entry) {
+  entry.family = Family::temperature_power;
+  entry.temperature_power = k;
+  entry.regressor = pointwise<&temperature_power<k>>;
+  return entry;
+}
+
 // r at every point of a series, as a new vector.
 std::vector<double> regressor_values(const Effect& effect, const EffectSeries& series,
                                      double parameter);

@@ -6,15 +6,8 @@
 namespace gyrotherm::effects {
 
 extern constinit const Effect gradient{
-    .name = "grad",
-    .meaning = "temperature gradient across the block (Langmuir-flow imbalance)",
-    .unit = "°C",
-    .columns = kTemp | kTemp2,
-    .family = Family::gradient,
-    .c_form = {.expression = "T2 - T"},
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.temp2_c[p] - s.temp_c[p];
-    })>,
-};
+    .name = "grad", .meaning = "temperature gradient across the block (Langmuir-flow imbalance)", .unit = "°C",
+    .columns = kTemp | kTemp2, .family = Family::gradient, .c_form = {"T2 - T"},
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) { return s.temp2_c[p] - s.temp_c[p]; })>};
 
 }  // namespace gyrotherm::effects

@@ -5,14 +5,8 @@
 namespace gyrotherm::effects {
 
 extern constinit const Effect rate_times_temperature{
-    .name = "T*dT",
-    .meaning = "rate sensitivity that changes with temperature",
-    .unit = "°C²/s",
-    .family = Family::rate,
-    .c_form = {.expression = "T * rate"},
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.temp_c[p] * s.rate_c_per_s[p];
-    })>,
-};
+    .name = "T*dT", .meaning = "rate sensitivity that changes with temperature", .unit = "°C²/s",
+    .family = Family::rate, .c_form = {"T * rate"},
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) { return s.temp_c[p] * s.rate_c_per_s[p]; })>};
 
 }  // namespace gyrotherm::effects

@@ -4,17 +4,7 @@
 
 namespace gyrotherm::effects {
 
-extern constinit const Effect temperature{
-    .name = "T",
-    .meaning = "temperature sensitivity",
-    .unit = "°C",
-    .truth_key = "b1_dph_per_c",
-    .family = Family::temperature_power,
-    .c_form = {.expression = "T"},
-    .temperature_power = 1,
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.temp_c[p];
-    })>,
-};
+extern constinit const Effect temperature = power_of_temperature<1>(
+    {.name = "T", .meaning = "temperature sensitivity", .unit = "°C", .truth_key = "b1_dph_per_c", .c_form = {"T"}});
 
 }  // namespace gyrotherm::effects

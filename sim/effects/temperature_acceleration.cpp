@@ -5,14 +5,7 @@
 namespace gyrotherm::effects {
 
 extern constinit const Effect temperature_acceleration{
-    .name = "d2T",
-    .meaning = "sensor-to-cavity thermal lag",
-    .unit = "°C/s²",
-    .family = Family::rate,
-    .c_form = {.expression = "accel"},
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.accel_c_per_s2[p];
-    })>,
-};
+    .name = "d2T", .meaning = "sensor-to-cavity thermal lag", .unit = "°C/s²", .family = Family::rate, .c_form = {"accel"},
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) { return s.accel_c_per_s2[p]; })>};
 
 }  // namespace gyrotherm::effects

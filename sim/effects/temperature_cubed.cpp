@@ -4,16 +4,7 @@
 
 namespace gyrotherm::effects {
 
-extern constinit const Effect temperature_cubed{
-    .name = "T^3",
-    .meaning = "higher-order curvature",
-    .unit = "°C³",
-    .family = Family::temperature_power,
-    .c_form = {.expression = "T * T * T"},
-    .temperature_power = 3,
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.temp_c[p] * s.temp_c[p] * s.temp_c[p];
-    })>,
-};
+extern constinit const Effect temperature_cubed = power_of_temperature<3>(
+    {.name = "T^3", .meaning = "higher-order curvature", .unit = "°C³", .c_form = {"T * T * T"}});
 
 }  // namespace gyrotherm::effects

@@ -6,16 +6,7 @@
 
 namespace gyrotherm::effects {
 
-extern constinit const Effect temperature_fifth{
-    .name = "T^5",
-    .meaning = "fifth-order curvature",
-    .unit = "°C⁵",
-    .family = Family::temperature_power,
-    .c_form = {.expression = "T * T * T * T * T"},
-    .temperature_power = 5,
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.temp_c[p] * s.temp_c[p] * s.temp_c[p] * s.temp_c[p] * s.temp_c[p];
-    })>,
-};
+extern constinit const Effect temperature_fifth = power_of_temperature<5>(
+    {.name = "T^5", .meaning = "fifth-order curvature", .unit = "°C⁵", .c_form = {"T * T * T * T * T"}});
 
 }  // namespace gyrotherm::effects

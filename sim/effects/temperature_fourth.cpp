@@ -6,16 +6,7 @@
 
 namespace gyrotherm::effects {
 
-extern constinit const Effect temperature_fourth{
-    .name = "T^4",
-    .meaning = "fourth-order curvature",
-    .unit = "°C⁴",
-    .family = Family::temperature_power,
-    .c_form = {.expression = "T * T * T * T"},
-    .temperature_power = 4,
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.temp_c[p] * s.temp_c[p] * s.temp_c[p] * s.temp_c[p];
-    })>,
-};
+extern constinit const Effect temperature_fourth = power_of_temperature<4>(
+    {.name = "T^4", .meaning = "fourth-order curvature", .unit = "°C⁴", .c_form = {"T * T * T * T"}});
 
 }  // namespace gyrotherm::effects

@@ -6,15 +6,8 @@
 namespace gyrotherm::effects {
 
 extern constinit const Effect temperature_rate{
-    .name = "dT",
-    .meaning = "temperature-rate effect (cavity bending, gas flow)",
-    .unit = "°C/s",
-    .truth_key = "b3_dph_per_c_per_s",
-    .family = Family::rate,
-    .c_form = {.expression = "rate"},
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.rate_c_per_s[p];
-    })>,
-};
+    .name = "dT", .meaning = "temperature-rate effect (cavity bending, gas flow)", .unit = "°C/s",
+    .truth_key = "b3_dph_per_c_per_s", .family = Family::rate, .c_form = {"rate"},
+    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) { return s.rate_c_per_s[p]; })>};
 
 }  // namespace gyrotherm::effects

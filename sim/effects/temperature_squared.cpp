@@ -4,17 +4,7 @@
 
 namespace gyrotherm::effects {
 
-extern constinit const Effect temperature_squared{
-    .name = "T^2",
-    .meaning = "curvature of the sensitivity",
-    .unit = "°C²",
-    .truth_key = "b2_dph_per_c2",
-    .family = Family::temperature_power,
-    .c_form = {.expression = "T * T"},
-    .temperature_power = 2,
-    .regressor = pointwise<([](const EffectSeries& s, std::size_t p, double) {
-      return s.temp_c[p] * s.temp_c[p];
-    })>,
-};
+extern constinit const Effect temperature_squared = power_of_temperature<2>({.name = "T^2",
+    .meaning = "curvature of the sensitivity", .unit = "°C²", .truth_key = "b2_dph_per_c2", .c_form = {"T * T"}});
 
 }  // namespace gyrotherm::effects
