@@ -58,7 +58,7 @@ void add_allan_command(CLI::App& app, Run* run) {
   cmd->add_option("--plot", o->request.plot, "Write the log-log figure (PNG) with bands and the coefficients read");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   add_data_options(cmd, o->data_options, false);
-  cmd->callback([o, run] { *run = [o] { return run_allan(*o); }; });
+  when_chosen(cmd, run, [o] { return run_allan(*o); });
 }
 
 }  // namespace gyrotherm::app

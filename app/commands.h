@@ -20,6 +20,9 @@ using Run = std::function<int()>;
 #include "app/commands.def"
 #undef COMMAND
 
+// When the user picks `command`, *run becomes `work`.
+void when_chosen(CLI::App* command, Run* run, Run work);
+
 // A command that lists a registry: NAME [--json], printing text() or json().
 void add_listing_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
                          std::function<std::string()> text, std::function<std::string()> json);

@@ -18,12 +18,10 @@ void add_compensate_command(CLI::App& app, Run* run) {
   cmd->add_option("-o,--output", o->output, "Write time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier");
   cmd->add_flag("--causal", o->causal, "Real-time compensation: backward differences and only past windows");
   cmd->add_flag("--json", *json, "Print one JSON object");
-  cmd->callback([o, json, run] {
-    *run = [o, json] {
-      const studies::CompensateRun r = studies::run_compensate(*o);
-      fmt::print("{}", *json ? studies::compensate_json(r).dump() + "\n" : studies::compensate_text(r));
-      return 0;
-    };
+  when_chosen(cmd, run, [o, json] {
+    const studies::CompensateRun r = studies::run_compensate(*o);
+    fmt::print("{}", *json ? studies::compensate_json(r).dump() + "\n" : studies::compensate_text(r));
+    return 0;
   });
 }
 

@@ -51,7 +51,7 @@ void add_diagnose_command(CLI::App& app, Run* run) {
   cmd->add_option("--plots", o->plots, "Write PNG figures into this folder");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   add_data_options(cmd, o->data_options);
-  cmd->callback([o, run] { *run = [o] { return run_diagnose(*o); }; });
+  when_chosen(cmd, run, [o] { return run_diagnose(*o); });
 }
 
 }  // namespace gyrotherm::app

@@ -29,11 +29,9 @@ void add_export_command(CLI::App& app, Run* run) {
                 "Leave out terms the firmware cannot express, and say how much the instability rises");
   cmd->add_option("--data", o->data, "The data the fit was made on, for --drop-unsupported (default: the fit's own)");
   cmd->add_option("-o,--output", o->output, "The parameter file to write")->required();
-  cmd->callback([o, run] {
-    *run = [o] {
-      for (const std::string& line : studies::run_export(*o)) fmt::print("{}\n", line);
-      return 0;
-    };
+  when_chosen(cmd, run, [o] {
+    for (const std::string& line : studies::run_export(*o)) fmt::print("{}\n", line);
+    return 0;
   });
 }
 

@@ -50,7 +50,7 @@ void add_fit_command(CLI::App& app, Run* run) {
   cmd->add_option("-o,--output", o->output, "Save the fit as JSON (for compensate)");
   cmd->add_flag("--json", o->json, "Print the fit as one JSON object");
   add_data_options(cmd, o->data_options);
-  cmd->callback([o, run] { *run = [o] { return run_fit(*o); }; });
+  when_chosen(cmd, run, [o] { return run_fit(*o); });
 }
 
 }  // namespace gyrotherm::app

@@ -15,16 +15,18 @@
 
 namespace gyrotherm::app {
 
+void when_chosen(CLI::App* command, Run* run, Run work) {
+  command->callback([run, work = std::move(work)] { *run = work; });
+}
+
 void add_listing_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
                          std::function<std::string()> text, std::function<std::string()> json) {
   auto as_json = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(name, description);
   cmd->add_flag("--json", *as_json, "Print one JSON object");
-  cmd->callback([=] {
-    *run = [=] {
-      fmt::print("{}", *as_json ? json() : text());
-      return 0;
-    };
+  when_chosen(cmd, run, [=] {
+    fmt::print("{}", *as_json ? json() : text());
+    return 0;
   });
 }
 

@@ -56,7 +56,7 @@ void add_reproduce_command(CLI::App& app, Run* run) {
   cmd->add_option("--engines", o->engines, "Comma-separated engines (default: all)");
   cmd->add_option("--seed", o->seed, "Seed of the stochastic engines (default 1)");
   cmd->add_flag("--json", o->json, "Print table1.json, with the run times, on stdout");
-  cmd->callback([o, run] { *run = [o] { return run_reproduce(*o); }; });
+  when_chosen(cmd, run, [o] { return run_reproduce(*o); });
 }
 
 }  // namespace gyrotherm::app

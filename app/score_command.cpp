@@ -162,7 +162,7 @@ void add_score_command(CLI::App& app, Run* run) {
                   "Write scoreboard.json, scoreboard.md, convergence.csv and convergence.png here "
                   "(default: no files)");
   cmd->add_flag("--json", o->json, "Print the scoreboard as one JSON object");
-  cmd->callback([o, run] { *run = [o] { return run_score(*o); }; });
+  when_chosen(cmd, run, [o] { return run_score(*o); });
 }
 
 }  // namespace gyrotherm::app

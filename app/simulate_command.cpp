@@ -25,12 +25,10 @@ void add_simulate_command(CLI::App& app, Run* run) {
   cmd->add_option("-o,--output", o->output, "Output CSV (a .truth.json goes beside it)")->required();
   cmd->add_option("--plot", o->plot, "Also draw temperatures and 100 s averages of the output into this PNG");
   cmd->add_flag("--json", *json, "Print one JSON object instead of text");
-  cmd->callback([o, json, run] {
-    *run = [o, json] {
-      const sim::SimulationRun r = sim::simulate_to_files(*o);
-      fmt::print("{}", *json ? sim::simulation_json(r).dump() + "\n" : sim::simulation_text(r));
-      return 0;
-    };
+  when_chosen(cmd, run, [o, json] {
+    const sim::SimulationRun r = sim::simulate_to_files(*o);
+    fmt::print("{}", *json ? sim::simulation_json(r).dump() + "\n" : sim::simulation_text(r));
+    return 0;
   });
 }
 

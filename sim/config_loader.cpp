@@ -152,6 +152,17 @@ class TableReader {
   }
 
   // Every key that was not asked for is an error listing the known ones.
+  // The sub-table `key`, if there: read(reader) reads its keys, then any other
+  // key in it is refused.
+  template <class Read>
+  void section(std::string_view key, Read read) {
+    if (const toml::table* t = table(key)) {
+      TableReader c(*t, file_, key_path(key));
+      read(c);
+      c.finish();
+    }
+  }
+
   void finish(const std::string& known_list = "") const {
     for (auto&& [key, node] : table_) {
       if (known_.count(std::string(key.str())) != 0) continue;
@@ -306,8 +317,7 @@ RigConfig load_rig(const std::filesystem::path& file) {
   const toml::table root = parse(file);
   TableReader r(root, file.string(), "");
   RigConfig rig;
-  if (const toml::table* t = r.table("chamber")) {
-    TableReader c(*t, file.string(), "chamber");
+  r.section("chamber", [&](TableReader& c) {
     ChamberConfig& ch = rig.chamber;
     c.number("capacity_j_per_k", ch.capacity_j_per_k, Rule::positive);
     c.number("insulation_w_per_k", ch.insulation_w_per_k, Rule::non_negative);
@@ -319,20 +329,16 @@ RigConfig load_rig(const std::filesystem::path& file) {
     c.number("min_c", ch.min_c);
     c.number("max_c", ch.max_c);
     if (ch.min_c >= ch.max_c) c.fail_here("chamber.min_c must be below chamber.max_c");
-    c.finish();
-  }
-  if (const toml::table* t = r.table("case")) {
-    TableReader c(*t, file.string(), "case");
+  });
+  r.section("case", [&](TableReader& c) {
     CaseConfig& cs = rig.case_;
     c.number("capacity_j_per_k", cs.capacity_j_per_k, Rule::positive);
     c.number("convection_w_per_k", cs.convection_w_per_k, Rule::non_negative);
     c.boolean("natural_convection", cs.natural_convection);
     c.number("emissivity", cs.emissivity, Rule::unit_interval);
     c.number("area_m2", cs.area_m2, Rule::non_negative);
-    c.finish();
-  }
-  if (const toml::table* t = r.table("block")) {
-    TableReader c(*t, file.string(), "block");
+  });
+  r.section("block", [&](TableReader& c) {
     BlockConfig& b = rig.block;
     c.number("anode_capacity_j_per_k", b.anode_capacity_j_per_k, Rule::positive);
     c.number("far_capacity_j_per_k", b.far_capacity_j_per_k, Rule::positive);
@@ -342,24 +348,19 @@ RigConfig load_rig(const std::filesystem::path& file) {
     if (b.anode_case_w_per_k + b.far_case_w_per_k <= 0.0)
       c.fail_here("block: anode_case_w_per_k and far_case_w_per_k cannot both be 0 (the block "
                   "would never exchange heat with the case)");
-    c.finish();
-  }
-  if (const toml::table* t = r.table("sensor")) {
-    TableReader c(*t, file.string(), "sensor");
+  });
+  r.section("sensor", [&](TableReader& c) {
     SensorConfig& s = rig.sensor;
     c.number("time_constant_s", s.time_constant_s, Rule::positive);
     c.number("noise_c", s.noise_c, Rule::non_negative);
     c.number("resolution_c", s.resolution_c, Rule::non_negative);
-    c.finish();
-  }
-  if (const toml::table* t = r.table("power")) {
-    TableReader c(*t, file.string(), "power");
+  });
+  r.section("power", [&](TableReader& c) {
     PowerConfig& p = rig.power;
     c.number("discharge_w", p.discharge_w, Rule::non_negative);
     c.number("dither_w", p.dither_w, Rule::non_negative);
     c.number("electronics_w", p.electronics_w, Rule::non_negative);
-    c.finish();
-  }
+  });
   r.finish();
   return rig;
 }
@@ -371,13 +372,11 @@ GyroConfig load_gyro(const std::filesystem::path& file) {
   // [truth]: b0 and the [truth] key of each of the paper's effects; [hidden]:
   // every other effect by its term name, and each effect's parameter by its
   // gyro key (sim/effects/effect.h).
-  if (const toml::table* t = r.table("truth")) {
-    TableReader c(*t, file.string(), "truth");
+  r.section("truth", [&](TableReader& c) {
     c.number("b0_dph", gyro.b0_dph);
     for (const effects::Effect* e : effects::registry())
       if (!e->hidden()) c.number(e->truth_key, gyro.coefficient[std::string(e->name)]);
-    c.finish();
-  }
+  });
   if (const toml::table* t = r.table("hidden")) {
     TableReader c(*t, file.string(), "hidden");
     std::string parameter_keys;
@@ -397,8 +396,7 @@ GyroConfig load_gyro(const std::filesystem::path& file) {
       }
     c.finish("hidden terms " + effects::hidden_names() + ", and " + parameter_keys);
   }
-  if (const toml::table* t = r.table("noise")) {
-    TableReader c(*t, file.string(), "noise");
+  r.section("noise", [&](TableReader& c) {
     NoiseConfig& n = gyro.noise;
     c.number("arw_deg_per_sqrt_h", n.arw_deg_per_sqrt_h, Rule::non_negative);
     c.number("bias_instability_dph", n.bias_instability_dph, Rule::non_negative);
@@ -413,8 +411,7 @@ GyroConfig load_gyro(const std::filesystem::path& file) {
     c.number("arw_temp_coeff_per_c2", n.arw_temp_coeff_per_c2, Rule::non_negative);
     if (n.flicker_tau_min_s > n.flicker_tau_max_s)
       c.fail_here("noise.flicker_tau_min_s must not exceed noise.flicker_tau_max_s");
-    c.finish();
-  }
+  });
   r.finish();
   return gyro;
 }

@@ -17,8 +17,7 @@
 namespace gyrotherm::studies {
 namespace {
 
-using gyrotherm::testing::run_cli;
-using gyrotherm::testing::ScratchDir;
+using namespace gyrotherm::testing;
 using Json = nlohmann::json;
 
 std::vector<double> seconds(std::size_t n, double dt = 1.0) {

@@ -17,12 +17,7 @@
 namespace gyrotherm::studies {
 namespace {
 
-using gyrotherm::testing::run_cli;
-using gyrotherm::testing::run_shell;
-using gyrotherm::testing::ScratchDir;
-using gyrotherm::testing::slurp;
-using gyrotherm::testing::source_path;
-using gyrotherm::testing::write_text;
+using namespace gyrotherm::testing;
 
 // Reads the simulator's CSV (time_s, chamber_c, case_c, temp_c, temp2_c,
 // gyro_dph, …) and prints the header's bias for every sample.
@@ -62,7 +57,7 @@ void expect_header_gives_causal(const std::string& scenario, const std::string& 
                                 const std::string& fit_options = "") {
   SCOPED_TRACE(scenario + ": " + model);
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/" + scenario + ".toml") + " -o d.csv").exit_code, 0);
+  simulate_shipped(dir, scenario, "", "d.csv");
   const auto fitted = run_cli(dir, "fit d.csv --model '" + model + "' " + fit_options + " -o fit.json");
   ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
   const auto exported = run_cli(dir, "export fit.json --format c -o comp.h");
@@ -129,27 +124,16 @@ TEST(CExport, WithoutTheGlitchRuleAndOnAWarmUp) {
 
 TEST(CliExportC, BadInputIsRefused) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
-  run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{next} /^time/{print $0,\"supply_v\";next} {print $0,28+0.001*$1%7}' d.csv "
-                 "| tee v.csv");
+  simulate_shipped(dir, "cycle", "", "d.csv");
+  write_columns(dir, "d.csv", "v.csv", {{"gyro_dph", "$6"}, {"supply_v", "28+0.001*$1%7"}});
   ASSERT_EQ(run_cli(dir, "fit v.csv --model 'T + dT + supply_v' -o col.json").exit_code, 0);
-  const auto column = run_cli(dir, "export col.json --format c -o c.h");
-  EXPECT_EQ(column.exit_code, 2);
-  EXPECT_NE(column.err.find("the term 'supply_v' has no C form (a log column"), std::string::npos) << column.err;
+  expect_refused(dir, "export col.json --format c -o c.h", "the term 'supply_v' has no C form (a log column");
   ASSERT_EQ(run_cli(dir, "fit d.csv -o fit.json").exit_code, 0);
-  const auto prefix = run_cli(dir, "export fit.json --format c --prefix 9lives -o c.h");
-  EXPECT_EQ(prefix.exit_code, 2);
-  EXPECT_NE(prefix.err.find("expected a C identifier"), std::string::npos) << prefix.err;
-  run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{next} /^time/{print $1,$4,\"gx\",\"gy\";next} {print $1,$4,$6,-$6}' "
-                 "d.csv | tee two.csv");
+  expect_refused(dir, "export fit.json --format c --prefix 9lives -o c.h", "expected a C identifier");
+  write_columns(dir, "d.csv", "two.csv", {{"gx", "$6"}, {"gy", "-$6"}});
   ASSERT_EQ(run_cli(dir, "fit two.csv --gyro-col gx,gy -o two.json").exit_code, 0);
-  const auto which = run_cli(dir, "export two.json --format c -o c.h");
-  EXPECT_EQ(which.exit_code, 2);
-  EXPECT_NE(which.err.find("choose one with --channel"), std::string::npos) << which.err;
-  const auto unknown = run_cli(dir, "export two.json --format c --channel gz -o c.h");
-  EXPECT_EQ(unknown.exit_code, 2);
-  EXPECT_NE(unknown.err.find("--channel gz: not a channel of two.json (its channels: gx, gy)"), std::string::npos)
-      << unknown.err;
+  expect_refused(dir, "export two.json --format c -o c.h", "choose one with --channel");
+  expect_refused(dir, "export two.json --format c --channel gz -o c.h", "--channel gz: not a channel of two.json (its channels: gx, gy)");
   EXPECT_FALSE(std::filesystem::exists(dir / "c.h"));
   EXPECT_EQ(run_cli(dir, "export two.json --format c --channel gy --prefix gyro_y -o c.h").exit_code, 0);
   EXPECT_NE(slurp(dir / "c.h").find("gyro_y_update_gyro"), std::string::npos);

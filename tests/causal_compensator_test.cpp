@@ -15,10 +15,7 @@
 namespace gyrotherm::fit {
 namespace {
 
-using gyrotherm::testing::run_cli;
-using gyrotherm::testing::ScratchDir;
-using gyrotherm::testing::slurp;
-using gyrotherm::testing::source_path;
+using namespace gyrotherm::testing;
 
 Measurement prefix(const Measurement& m, std::size_t n) {
   Measurement p = m;
@@ -40,7 +37,7 @@ PipelineOptions causal(const SavedFit& fit) {
 // kind that looks back (rates, lag, hysteresis, warm-up, drift).
 TEST(CausalCompensator, NothingFromTheFutureIsUsed) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "c.csv");
   ASSERT_EQ(run_cli(dir, "fit c.csv --model 'T + T^2 + dT + d2T + T*dT + hyst + warmup + t + lag + grad' -o fit.json")
                 .exit_code,
             0);
@@ -61,7 +58,7 @@ TEST(CausalCompensator, NothingFromTheFutureIsUsed) {
 // closes gets that window's bias.
 TEST(CausalCompensator, WindowBiasesAreTheOfflineCausalModel) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/random.toml") + " -o r.csv").exit_code, 0);
+  simulate_shipped(dir, "random", "", "r.csv");
   ASSERT_EQ(run_cli(dir, "fit r.csv --model 'T + T^2 + dT + lag' --causal --keep-outliers -o fit.json").exit_code, 0);
   const SavedFit fit = load_fit(dir / "fit.json");
   const Measurement m = read_measurement_csv(dir / "r.csv", causal(fit).columns);
@@ -85,7 +82,7 @@ TEST(CausalCompensator, WindowBiasesAreTheOfflineCausalModel) {
 // on a simulated record with counting glitches, with the fit's floor.
 TEST(CausalCompensator, TheTrailingGlitchRuleFindsTheOfflineGlitches) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/random.toml") + " -o r.csv").exit_code, 0);
+  simulate_shipped(dir, "random", "", "r.csv");
   ASSERT_EQ(run_cli(dir, "fit r.csv -o fit.json").exit_code, 0);
   const nlohmann::json j = nlohmann::json::parse(slurp(dir / "fit.json"));
   const SavedFit fit = load_fit(dir / "fit.json");

@@ -179,7 +179,7 @@ TEST(CliFit, CompensateWithAMalformedFitFile) {
 // path gives on a record within the streaming prefix.
 TEST(CliFit, LargeLogPathsGiveTheInMemoryResults) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "c.csv");
   const std::string stream = "GYROTHERM_STREAM_ABOVE_MB=0 ";
   const auto held = run_cli(dir, "fit c.csv -o held.json");
   const auto streamed = run_shell(dir, stream + "'" + GYROTHERM_CLI + "' fit c.csv -o streamed.json");

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 #include <sys/wait.h>
 
 namespace gyrotherm::testing {
@@ -75,6 +77,13 @@ inline CliResult run_cli(const ScratchDir& dir, const std::string& args) {
   return run_shell(dir, std::string("'") + GYROTHERM_CLI + "' " + args);
 }
 
+// `args` is refused as bad input: exit code 2 and a message holding `expected`.
+inline void expect_refused(const ScratchDir& dir, const std::string& args, const std::string& expected) {
+  const CliResult r = run_cli(dir, args);
+  EXPECT_EQ(r.exit_code, 2) << args;
+  EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+}
+
 inline std::string source_path(const std::string& relative) {
   return std::string(GYROTHERM_SOURCE_DIR) + "/" + relative;
 }
@@ -85,6 +94,21 @@ inline void simulate_shipped(const ScratchDir& dir, const std::string& name, con
                              const std::string& out) {
   const CliResult r = run_cli(dir, "simulate " + source_path("scenarios/" + name + ".toml") + " " +
                                        extra + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
+// A log made from a simulated record `from` (its columns time_s, chamber_c,
+// case_c, temp_c, temp2_c, gyro_dph, … are $1 … in awk): time_s, temp_c and
+// one column per (name, awk expression), e.g. {"gx", "$6"}, {"gy", "-$6"}.
+inline void write_columns(const ScratchDir& dir, const std::string& from, const std::string& to,
+                          const std::vector<std::pair<std::string, std::string>>& columns) {
+  std::string names, values;
+  for (const auto& [name, expression] : columns) {
+    names += ",\"" + name + "\"";
+    values += "," + expression;
+  }
+  const CliResult r = run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{next} /^time/{print $1,$4" + names +
+                                         ";next} {print $1,$4" + values + "}' " + from + " | tee " + to);
   ASSERT_EQ(r.exit_code, 0) << r.err;
 }
 

@@ -12,17 +12,14 @@
 namespace gyrotherm::fit {
 namespace {
 
-using gyrotherm::testing::run_cli;
-using gyrotherm::testing::ScratchDir;
-using gyrotherm::testing::slurp;
-using gyrotherm::testing::source_path;
+using namespace gyrotherm::testing;
 
 // On a record within the streaming prefix the windows are those of the
 // in-memory pipeline, so the output file must be the same, byte for byte, in
 // both modes, and so must the report.
 TEST(Compensation, StreamedOutputIsTheInMemoryOutput) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "c.csv");
   ASSERT_EQ(run_cli(dir, "fit c.csv --model 'T + T^2 + dT' -o fit.json").exit_code, 0);
   const SavedFit fit = load_fit(dir / "fit.json");
   for (const DerivativeMode mode : {DerivativeMode::central, DerivativeMode::causal}) {
@@ -46,7 +43,7 @@ TEST(Compensation, StreamedOutputIsTheInMemoryOutput) {
 // temporary file of rows is left.
 TEST(Compensation, StreamedBadRowLeavesNoFiles) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "c.csv");
   ASSERT_EQ(run_cli(dir, "fit c.csv -o fit.json").exit_code, 0);
   std::string text = slurp(dir / "c.csv");
   const std::size_t at = text.find("\n20000,");
@@ -68,7 +65,7 @@ TEST(Compensation, StreamedBadRowLeavesNoFiles) {
 
 TEST(Compensation, StreamedRecordWithGlitchesFlagsThemAtTheirRows) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "c.csv");
   ASSERT_EQ(run_cli(dir, "fit c.csv -o fit.json").exit_code, 0);
   // Three counting glitches written into the record.
   std::string text = slurp(dir / "c.csv");

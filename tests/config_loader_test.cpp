@@ -17,11 +17,8 @@
 namespace gyrotherm::sim {
 namespace {
 
-using gyrotherm::testing::expect_input_error;
+using namespace gyrotherm::testing;
 
-using gyrotherm::testing::ScratchDir;
-using gyrotherm::testing::source_path;
-using gyrotherm::testing::write_text;
 
 TEST(ConfigLoader, ShippedCycleIsThePapersTrainingTest) {
   const Scenario s = load_scenario(source_path("scenarios/cycle.toml"));

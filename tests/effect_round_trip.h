@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cli_runner.h"
 #include "fit/model/terms.h"
@@ -24,6 +25,22 @@ struct RoundTrip {
   double coefficient = 0.0;  // its hidden coefficient
   double tolerance = 0.2;    // the fitted coefficient within this share of the truth
 };
+
+// The effect's regressor where the temperature is temp_c (at 0, 100, 200, … s,
+// no rate): exactly `expected`.
+inline void expect_regressor_at(const std::string& term, const std::vector<double>& temp_c,
+                                const std::vector<double>& expected) {
+  const fit::Term* t = fit::find_term(term);
+  ASSERT_NE(t, nullptr) << term;
+  fit::DerivedSeries s;
+  for (std::size_t k = 0; k < temp_c.size(); ++k) s.time_s.push_back(100.0 * static_cast<double>(k));
+  s.temp_c = temp_c;
+  s.rate_c_per_s.assign(temp_c.size(), 0.0);
+  s.accel_c_per_s2.assign(temp_c.size(), 0.0);
+  std::vector<double> r(temp_c.size());
+  t->compute(s, 0.0, r);
+  EXPECT_EQ(r, expected) << term;
+}
 
 inline void expect_round_trip(const RoundTrip& r) {
   SCOPED_TRACE(r.scenario + ", hidden " + r.term);

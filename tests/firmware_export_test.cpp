@@ -24,11 +24,7 @@
 namespace gyrotherm::studies {
 namespace {
 
-using gyrotherm::testing::run_cli;
-using gyrotherm::testing::run_shell;
-using gyrotherm::testing::ScratchDir;
-using gyrotherm::testing::slurp;
-using gyrotherm::testing::source_path;
+using namespace gyrotherm::testing;
 
 constexpr double kDphToRadS = 3.14159265358979323846 / (180.0 * 3600.0);
 
@@ -111,7 +107,7 @@ class FirmwareExport : public ::testing::TestWithParam<std::pair<std::string, st
 TEST_P(FirmwareExport, FirmwareFormulasGiveTheModel) {
   ScratchDir dir;
   const auto& [scenario, model] = GetParam();
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/" + scenario + ".toml") + " -o d.csv").exit_code, 0);
+  simulate_shipped(dir, scenario, "", "d.csv");
   const auto fitted = run_cli(dir, "fit d.csv --model '" + model + "' -o fit.json");
   ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
   const Fitted fit = read_fit(nlohmann::json::parse(slurp(dir / "fit.json")));
@@ -162,9 +158,8 @@ TEST(FirmwareExportMath, ReexpansionIsExact) {
 // Three channels to three axes, in the order --axes names them.
 TEST(CliExport, AxesMapTheFitsChannels) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
-  run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{next} /^time/{print $1,$4,\"gx\",\"gy\",\"gz\";next} "
-                 "{print $1,$4,$6,-$6+0.001*$4*$4,0.5*$6}' d.csv | tee three.csv");
+  simulate_shipped(dir, "cycle", "", "d.csv");
+  write_columns(dir, "d.csv", "three.csv", {{"gx", "$6"}, {"gy", "-$6+0.001*$4*$4"}, {"gz", "0.5*$6"}});
   ASSERT_EQ(run_cli(dir, "fit three.csv --gyro-col gx,gy,gz --model 'T + T^2' -o fit.json").exit_code, 0);
   const nlohmann::json j = nlohmann::json::parse(slurp(dir / "fit.json"));
   const auto r = run_cli(dir, "export fit.json --format px4 --axes gz,-,gx --instance 1 --device-id 2293768 -o g.params");
@@ -179,22 +174,15 @@ TEST(CliExport, AxesMapTheFitsChannels) {
   EXPECT_NEAR(px4_offset(p, 0, static_cast<float>(t)), gz.bias(t) * kDphToRadS, 1e-6 * std::abs(gz.bias(t) * kDphToRadS));
   EXPECT_EQ(px4_offset(p, 1, static_cast<float>(t)), 0.0f);
   EXPECT_NEAR(px4_offset(p, 2, static_cast<float>(t)), gx.bias(t) * kDphToRadS, 1e-6 * std::abs(gx.bias(t) * kDphToRadS));
-  const auto two = run_cli(dir, "export fit.json --format px4 --axes gx,gy -o none.params");
-  EXPECT_EQ(two.exit_code, 2);
-  EXPECT_NE(two.err.find("--axes gx,gy: expected three entries"), std::string::npos) << two.err;
-  const auto nothing = run_cli(dir, "export fit.json --format px4 --axes -,-,- -o none.params");
-  EXPECT_EQ(nothing.exit_code, 2);
-  EXPECT_NE(nothing.err.find("every axis is '-'"), std::string::npos) << nothing.err;
+  expect_refused(dir, "export fit.json --format px4 --axes gx,gy -o none.params", "--axes gx,gy: expected three entries");
+  expect_refused(dir, "export fit.json --format px4 --axes -,-,- -o none.params", "every axis is '-'");
   EXPECT_FALSE(std::filesystem::exists(dir / "none.params"));
-  const auto unknown = run_cli(dir, "export fit.json --format px4 --axes gx,gq,- -o g.params");
-  EXPECT_EQ(unknown.exit_code, 2);
-  EXPECT_NE(unknown.err.find("'gq' is not a channel of fit.json (its channels: gx, gy, gz)"), std::string::npos)
-      << unknown.err;
+  expect_refused(dir, "export fit.json --format px4 --axes gx,gq,- -o g.params", "'gq' is not a channel of fit.json (its channels: gx, gy, gz)");
 }
 
 TEST(CliExport, AModelTheFirmwareCannotExpressIsRefusedOrDroppedWithItsCost) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "d.csv");
   ASSERT_EQ(run_cli(dir, "fit d.csv -o fit.json").exit_code, 0);  // T + T^2 + dT
   for (const char* format : {"px4", "ardupilot"}) {
     const auto refused = run_cli(dir, std::string("export fit.json --format ") + format + " -o out.txt");
@@ -205,9 +193,7 @@ TEST(CliExport, AModelTheFirmwareCannotExpressIsRefusedOrDroppedWithItsCost) {
   }
   // Dropping needs the fitted data to say what it costs.
   run_shell(dir, "mv d.csv moved.csv");
-  const auto lost = run_cli(dir, "export fit.json --format px4 --drop-unsupported -o out.params");
-  EXPECT_EQ(lost.exit_code, 2);
-  EXPECT_NE(lost.err.find("give it with --data"), std::string::npos) << lost.err;
+  expect_refused(dir, "export fit.json --format px4 --drop-unsupported -o out.params", "give it with --data");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.params"));
   run_shell(dir, "mv moved.csv d.csv");
   const auto dropped = run_cli(dir, "export fit.json --format px4 --drop-unsupported -o out.params");
@@ -222,22 +208,16 @@ TEST(CliExport, AModelTheFirmwareCannotExpressIsRefusedOrDroppedWithItsCost) {
 
 TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
   ScratchDir dir;
-  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/cycle.toml") + " -o d.csv").exit_code, 0);
+  simulate_shipped(dir, "cycle", "", "d.csv");
   ASSERT_EQ(run_cli(dir, "fit d.csv --model 'T + T^2' -o fit.json").exit_code, 0);
-  const auto format = run_cli(dir, "export fit.json --format betaflight -o out.txt");
-  EXPECT_EQ(format.exit_code, 2);
-  EXPECT_NE(format.err.find("expected c, px4 or ardupilot"), std::string::npos) << format.err;
+  expect_refused(dir, "export fit.json --format betaflight -o out.txt", "expected c, px4 or ardupilot");
   // Corrupt, and from a version that did not save the temperature range.
   gyrotherm::testing::write_text(dir / "corrupt.json", "{\"engine\": \"ols\", \"model\": ");
-  const auto corrupt = run_cli(dir, "export corrupt.json --format px4 -o out.txt");
-  EXPECT_EQ(corrupt.exit_code, 2);
-  EXPECT_NE(corrupt.err.find("corrupt.json: not valid JSON"), std::string::npos) << corrupt.err;
+  expect_refused(dir, "export corrupt.json --format px4 -o out.txt", "corrupt.json: not valid JSON");
   nlohmann::json old = nlohmann::json::parse(slurp(dir / "fit.json"));
   old["data"].erase("temp_range_c");
   gyrotherm::testing::write_text(dir / "old.json", old.dump());
-  const auto older = run_cli(dir, "export old.json --format ardupilot -o out.txt");
-  EXPECT_EQ(older.exit_code, 2);
-  EXPECT_NE(older.err.find("no data.temp_range_c"), std::string::npos) << older.err;
+  expect_refused(dir, "export old.json --format ardupilot -o out.txt", "no data.temp_range_c");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
 }
 

@@ -30,11 +30,8 @@
 namespace gyrotherm::studies {
 namespace {
 
-using gyrotherm::testing::expect_input_error;
+using namespace gyrotherm::testing;
 
-using gyrotherm::testing::ScratchDir;
-using gyrotherm::testing::source_path;
-using gyrotherm::testing::write_text;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 

@@ -17,8 +17,7 @@
 namespace gyrotherm::fit {
 namespace {
 
-using gyrotherm::testing::ScratchDir;
-using gyrotherm::testing::source_path;
+using namespace gyrotherm::testing;
 
 // The first `hours` of the cycle at `rate_hz`, with `glitches_per_h` counting glitches.
 void simulate_to(const std::filesystem::path& csv, double glitches_per_h, double hours,

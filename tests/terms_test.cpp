@@ -11,14 +11,17 @@
 namespace gyrotherm::fit {
 namespace {
 
+// Four windows 100 s apart, warming at 0.01 °C/s, with a logged supply voltage.
 DerivedSeries small_series() {
   DerivedSeries s;
-  s.time_s = {0.0, 100.0, 200.0, 300.0};
-  s.temp_c = {20.0, 21.0, 22.0, 23.0};
-  s.rate_c_per_s = {0.01, 0.01, 0.01, 0.01};
-  s.accel_c_per_s2 = {0.0, 0.0, 0.0, 0.0};
-  s.extra["supply_v"] = {28.0, 28.5, 27.5, 28.0};
-  s.extra_rate["supply_v"] = {0.005, -0.0025, -0.0025, 0.005};
+  for (int k = 0; k < 4; ++k) {
+    s.time_s.push_back(100.0 * k);
+    s.temp_c.push_back(20.0 + k);
+  }
+  s.rate_c_per_s.assign(4, 0.01);
+  s.accel_c_per_s2.assign(4, 0.0);
+  s.extra = {{"supply_v", {28.0, 28.5, 27.5, 28.0}}};
+  s.extra_rate = {{"supply_v", {0.005, -0.0025, -0.0025, 0.005}}};
   return s;
 }
 

@@ -77,39 +77,45 @@ bool is_column_name(std::string_view name) {
   });
 }
 
-const Term* step_term(double time_s) {
-  const std::string name = fmt::format("step@{:g}", time_s);
+namespace {
+
+// The term called `name`, made by fill(term, keep) on first use (keep stores a
+// string for the term's views).
+template <class Fill>
+const Term* made_term(const std::string& name, Fill fill) {
   MadeTerms& m = made();
   const std::lock_guard lock(m.mutex);
   for (const Term& t : m.terms)
     if (t.name == name) return &t;
   Term t;
   t.name = m.keep(name);
-  t.meaning = m.keep(fmt::format("a bias step at {:g} s (an RLG mode hop)", time_s));
-  t.unit = "1";
-  t.columns = effects::kTime;
-  t.family = effects::Family::step;
-  t.c_form.expression = m.keep(fmt::format("(rel >= {:.17g} ? 1.0 : 0.0)", time_s));
-  t.step_time_s = time_s;
+  fill(t, [&m](std::string text) { return m.keep(std::move(text)); });
   return &m.terms.emplace_back(t);
 }
 
+}  // namespace
+
+const Term* step_term(double time_s) {
+  return made_term(fmt::format("step@{:g}", time_s), [&](Term& t, auto keep) {
+    t.meaning = keep(fmt::format("a bias step at {:g} s (an RLG mode hop)", time_s));
+    t.unit = "1";
+    t.columns = effects::kTime;
+    t.family = effects::Family::step;
+    t.c_form.expression = keep(fmt::format("(rel >= {:.17g} ? 1.0 : 0.0)", time_s));
+    t.step_time_s = time_s;
+  });
+}
+
 const Term* column_term(std::string_view column, bool rate) {
-  const std::string name = rate ? fmt::format("d({})", column) : std::string(column);
-  MadeTerms& m = made();
-  const std::lock_guard lock(m.mutex);
-  for (const Term& t : m.terms)
-    if (t.name == name) return &t;
-  Term t;
-  t.name = m.keep(name);
-  t.family = rate ? effects::Family::rate : effects::Family::logged;  // no C form: the C interface has no such input
-  t.column = m.keep(std::string(column));
-  t.column_rate = rate;
-  t.meaning = m.keep(rate ? fmt::format("the rate of the logged column {}", column)
+  return made_term(rate ? fmt::format("d({})", column) : std::string(column), [&](Term& t, auto keep) {
+    t.family = rate ? effects::Family::rate : effects::Family::logged;  // no C form: the C interface has no such input
+    t.column = keep(std::string(column));
+    t.column_rate = rate;
+    t.meaning = keep(rate ? fmt::format("the rate of the logged column {}", column)
                           : fmt::format("the logged column {}", column));
-  t.unit = m.keep(rate ? fmt::format("{} unit/s", column) : fmt::format("{} unit", column));
-  t.columns = effects::kTime;
-  return &m.terms.emplace_back(t);
+    t.unit = keep(rate ? fmt::format("{} unit/s", column) : fmt::format("{} unit", column));
+    t.columns = effects::kTime;
+  });
 }
 
 const Term* term_by_name(std::string_view name) {

@@ -76,8 +76,6 @@ enum class Family {
   step,               // step@TIME
   logged,             // a column of the user's log
 };
-// "temperature power", "rate", ...: for listings.
-const char* to_string(Family family);
 
 // The regressor in C, at a closed averaging window (`export --format c`,
 // studies/export/c_header.cpp). In scope: T and T2 (°C, the window's means of

@@ -41,20 +41,6 @@ std::string join(bool hidden_only) {
 std::string names() { return join(false); }
 std::string hidden_names() { return join(true); }
 
-const char* to_string(Family family) {
-  switch (family) {
-    case Family::temperature_power: return "temperature power";
-    case Family::temperature_state: return "filtered temperature";
-    case Family::rate: return "rate";
-    case Family::gradient: return "gradient";
-    case Family::time: return "time";
-    case Family::transient: return "transient";
-    case Family::step: return "step";
-    case Family::logged: return "logged column";
-  }
-  return "?";
-}
-
 std::string Effect::coefficient_unit() const {
   return unit == "1" ? std::string("°/h") : "°/h per " + std::string(unit);
 }
