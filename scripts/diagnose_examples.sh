@@ -7,6 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh
+top="$PWD"
 gt="$PWD/build/app/gyrotherm"
 out="$PWD/results/diagnose"
 work=$(mktemp -d)
@@ -26,7 +27,8 @@ awk -F, 'BEGIN{OFS=","; pi=3.14159265358979}
 run() {  # name, then diagnose's arguments
   local name=$1; shift
   rm -rf "$out/$name"
-  "$gt" diagnose "$@" --plots "$out/$name" > "$out/$name.txt"
+  # (paths as seen from the repository's top folder, so the transcripts hold no machine's path)
+  "$gt" diagnose "$@" --plots "$out/$name" | sed "s|$top/||" > "$out/$name.txt"
 }
 run hop hop.csv
 run hop_after hop.csv --model "T + T^2 + dT + step@19800"
