@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
@@ -80,22 +81,31 @@ std::string table_markdown(const ReproduceResult& r) {
   if (const auto* s = find("iafsa"))
     md += fmt::format("| IAFSA | {} (5.15×) | {:.5f} ({:.2f}×) | {} |\n", paper.cycle_iafsa,
                       s->fit.instability_after_dph, s->fit.ratio(), pct(s->fit.instability_after_dph, paper.cycle_iafsa));
-  md += "\nEvery engine on the cycle (the paper's model T + T^2 + dT; errors against the simulator's truth):\n\n"
-        "| engine | after (°/h) | ratio | gap to least squares | b1 (T) | b2 (T^2) | b3 (dT) | error b1 / b2 / b3 | evaluations |\n"
-        "|---|---|---|---|---|---|---|---|---|\n";
+  // The model's terms, b1, b2, … as the paper numbers them.
+  const std::vector<const fit::Term*>& terms = r.engines.front().fit.terms;
+  std::string columns, bars, errors_head, truth;
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    columns += fmt::format(" b{} ({}) |", k + 1, terms[k]->name);
+    bars += "---|";
+    errors_head += fmt::format("{}b{}", k ? " / " : "", k + 1);
+    truth += fmt::format("{}b{} = {}", k ? ", " : "", k + 1, r.truth.coefficients.at(std::string(terms[k]->name)));
+  }
+  md += fmt::format("\nEvery engine on the cycle (the paper's model {}; errors against the simulator's truth):\n\n"
+                    "| engine | after (°/h) | ratio | gap to least squares |{} error {} | evaluations |\n|---|---|---|---|{}---|---|\n",
+                    fit::formula_text(terms), columns, errors_head, bars);
   for (const auto& e : r.engines) {
-    auto err = [&](const char* k) {
-      const auto it = e.coefficient_error.find(k);
-      return it == e.coefficient_error.end() ? std::string("–") : fmt::format("{:+.1f} %", 100.0 * it->second);
-    };
-    md += fmt::format("| {} | {:.5f} | {:.2f} | {:.1e} | {:.4g} | {:.4g} | {:.4g} | {} / {} / {} | {} |\n", e.engine,
-                      e.fit.instability_after_dph, e.fit.ratio(),
-                      e.fit.instability_after_dph / e.fit.optimum_dph - 1.0, e.fit.coefficients.b[0],
-                      e.fit.coefficients.b[1], e.fit.coefficients.b[2], err("T"), err("T^2"), err("dT"),
+    std::string values, errors;
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      values += fmt::format(" {:.4g} |", e.fit.coefficients.b[k]);
+      const auto it = e.coefficient_error.find(std::string(terms[k]->name));
+      errors += (k ? " / " : "") +
+                (it == e.coefficient_error.end() ? std::string("–") : fmt::format("{:+.1f} %", 100.0 * it->second));
+    }
+    md += fmt::format("| {} | {:.5f} | {:.2f} | {:.1e} |{} {} | {} |\n", e.engine, e.fit.instability_after_dph,
+                      e.fit.ratio(), e.fit.instability_after_dph / e.fit.optimum_dph - 1.0, values, errors,
                       e.fit.engine.evaluations);
   }
-  md += fmt::format("\nTruth: b1 = {}, b2 = {}, b3 = {} (the paper's IAFSA model).\n",
-                    r.truth.coefficients.at("T"), r.truth.coefficients.at("T^2"), r.truth.coefficients.at("dT"));
+  md += fmt::format("\nTruth: {} (the paper's IAFSA model).\n", truth);
 
   for (const TestOutcome* t : {&r.test1, &r.test2}) {
     const bool one = t->name == "test1";
