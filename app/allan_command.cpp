@@ -35,7 +35,7 @@ int run_allan(AllanCli o) {
   if (!(options.confidence > 0.0 && options.confidence < 1.0))
     throw InputError(
         fmt::format("--ci {}: the confidence must be between 0 and 1 (e.g. 0.68 or 0.95)", options.confidence));
-  o.request.pipeline = o.data_options.resolved();
+  if (o.request.fit_file.empty()) o.request.pipeline = o.data_options.resolved();  // with a fit: the fit's
   const std::vector<studies::AllanStudy> studies = studies::run_allan(o.request);
   fmt::print("{}", o.json ? studies::allan_json(studies).dump() + "\n" : studies::allan_text(studies, o.request.plot));
   return 0;

@@ -27,8 +27,10 @@ int run_diagnose(const DiagnoseCli& o) {
   request.data = o.data;
   request.base_terms = o.model.base_terms();
   request.terms = o.model.terms();
+  request.added = o.model.add;
   request.engine = o.model.engine;
   request.settings.seed = o.model.seed;
+  fit::find_engine(request.engine).make(request.settings);  // the engine's errors before the data options'
   request.pipeline = o.data_options.resolved();
   request.options.candidates = split_commas(o.candidates);
   request.plots = o.plots;

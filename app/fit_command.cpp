@@ -29,7 +29,9 @@ int run_fit(const FitCli& o) {
   request.data = o.data;
   request.terms = o.model.terms();
   request.engine = o.model.engine;
+  const fit::EngineInfo& engine = fit::find_engine(request.engine);  // its errors first, then the options'
   request.settings = fit::engine_settings(o.model.seed, o.budget, o.target, o.engine_options);
+  engine.make(request.settings);
   request.pipeline = o.data_options.resolved();
   request.output = o.output;
   const studies::FitRun run = studies::run_fit(request);

@@ -1,5 +1,5 @@
 #pragma once
-// The fitting pipeline (docs/architecture.md, "Data paths"):
+// The fitting pipeline (docs/architecture.md, "The paths of data"):
 //
 //   1–3. read, clean and average the record (fit/data/prepare.h);
 //   4. build the model's regressors from the averaged series (fit/model/terms.h);
@@ -29,7 +29,6 @@
 // Reference: Golub & Pereyra, "Separable nonlinear least squares: the
 // variable projection method and its applications", Inverse Problems 19 (2003).
 
-#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>

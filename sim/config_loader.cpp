@@ -151,7 +151,6 @@ class TableReader {
     return node->as_table();
   }
 
-  // Every key that was not asked for is an error listing the known ones.
   // The sub-table `key`, if there: read(reader) reads its keys, then any other
   // key in it is refused.
   template <class Read>
@@ -163,6 +162,7 @@ class TableReader {
     }
   }
 
+  // Every key that was not asked for is an error listing the known ones.
   void finish(const std::string& known_list = "") const {
     for (auto&& [key, node] : table_) {
       if (known_.count(std::string(key.str())) != 0) continue;

@@ -1,4 +1,4 @@
-// `gyrotherm export --format c` (fit/c_export): the generated header,
+// `gyrotherm export --format c` (studies/export/c_header): the generated header,
 // compiled by the system's C compiler as strict C99 (and as C++17), run over
 // a simulated record, gives compensate --causal's model sample by sample.
 

@@ -1,6 +1,6 @@
-// `gyrotherm export --format px4|ardupilot` (fit/firmware_export): the
-// exported parameters re-evaluated with each firmware's own formula, written
-// here from its source, against the fit's model.
+// `gyrotherm export --format px4|ardupilot` (studies/export/firmware, px4.cpp,
+// ardupilot.cpp): the exported parameters re-evaluated with each firmware's
+// own formula, written here from its source, against the fit's model.
 //
 // PX4: src/modules/temperature_compensation/TemperatureCompensation.cpp,
 // calc_thermal_offsets_3D (float arithmetic, temperature clipped to

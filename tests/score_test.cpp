@@ -294,6 +294,23 @@ TEST(ScoreCampaign, AFailedTrialIsNamed) {
   expect_input_error([&] { campaign.summarize(v); }, {"1 trial outcomes for a campaign of 2"});
 }
 
+// The command line's --budget and --option strings (one KEY=VALUE parser,
+// fit/engines/engine.h).
+TEST(ScoreOptions, BudgetsAndEngineOptionsFromTheCommandLine) {
+  ScoreOptions o;
+  o.add_budget("300");
+  o.add_budget("iafsa=1200");
+  o.add_engine_option("iafsa:fish=20");
+  EXPECT_EQ(o.budget, 300);
+  EXPECT_EQ(o.engine_budget.at("iafsa"), 1200);
+  EXPECT_EQ(o.engine_options.at("iafsa").at("fish"), "20");
+  expect_input_error([&] { o.add_budget("=5"); }, {"--budget =5: expected N or ENGINE=N"});
+  expect_input_error([&] { o.add_budget("pso=-1"); }, {"--budget pso=-1: '-1' is not a whole number >= 0"});
+  expect_input_error([&] { o.add_engine_option("fish=20"); }, {"--option fish=20: expected ENGINE:KEY=VALUE"});
+  expect_input_error([&] { o.add_engine_option("A=1:B=2"); }, {"--option A=1:B=2: expected ENGINE:KEY=VALUE"});
+  expect_input_error([&] { o.add_engine_option("iafsa:=3"); }, {"expected ENGINE:KEY=VALUE"});
+}
+
 TEST(ScoreCampaign, BadOptionsAreRejectedBeforeAnyTrial) {
   ScratchDir dir;
   const auto file = short_scenario(dir.path());

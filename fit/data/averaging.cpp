@@ -172,7 +172,7 @@ AveragedSeries WindowAverager::finish() {
   if (whole_runs_) {
     std::vector<double> spacing;
     for (std::size_t i = 1; i < starts.size(); ++i) spacing.push_back(starts[i] - starts[i - 1]);
-    report_.median_spacing_s = median_of(std::move(spacing));
+    report_.median_spacing_s = spacing.empty() ? 0.0 : median_of(std::move(spacing));
     series_.window_s = report_.median_run_s;
   }
   return std::move(series_);

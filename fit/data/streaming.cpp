@@ -89,7 +89,7 @@ class OnePassPreparer {
       rules_.floor_dph = noise_floor_from_jumps(std::move(jumps), rules_.zero_dph);
     }
     rules_.bursts = in_bursts(times, rules_.interval_s, o_.averaging);
-    if (rules_.judge)  // the report's scale over about 10⁴ samples of the prefix, as in memory; every 1000th beyond
+    if (rules_.judge)  // the report's scale: as in memory for a record within the prefix, every 1000th sample otherwise
       filter_.emplace(HampelRule{o_.outliers.threshold, rules_.floor_dph, rules_.zero_dph}, o_.outliers.window_s,
                       whole ? std::max<std::size_t>(1, n / 10000) : 1000);
 

@@ -11,15 +11,13 @@
 //     exactly as in memory; a longer one gets the Δ, floor and burst decision
 //     of its first kPrefixRows rows (the run lengths and spacing in the report
 //     still cover the whole record).
-//  2. Filter. The Hampel rule of fit/data/outliers.h with the same window (the
-//     samples within ±W/2), median, MAD and decisions. A sample is judged once
-//     a sample more than W/2 after it has arrived. The window's values are
-//     kept sorted in an array (insert and erase by binary search and a move
-//     of the tail: O(w) bytes moved, but in cache), so the median is read in
-//     O(1); the MAD, a selection over the window, is computed only where the
-//     floor alone cannot clear the sample, and on the samples the report's
-//     scale is taken over (every max(1, n/10⁴)-th sample within the prefix,
-//     every 1000th beyond it).
+//  2. Filter. The one glitch rule (fit/data/hampel.h, CentredHampel) with the
+//     offline filter's window (the samples within ±W/2), median, MAD and
+//     decisions. A sample is judged once a sample more than W/2 after it has
+//     arrived; most are kept in O(1) by the window's running minimum and
+//     maximum, the window is kept sorted near glitches. The report's scale is
+//     taken over every max(1, n/10⁴)-th sample of a record that fits in the
+//     prefix (as in memory), over every 1000th sample of a longer one.
 //  3. Averaging. Judged samples go straight into the window averager.
 //
 // Reading and parsing run on a second thread, which hands the rows over in

@@ -18,17 +18,17 @@ using Q = Quantity;
 
 // clang-format off
 constexpr Unit kUnits[] = {
-  {Q::time, "s", "seconds", {"s", "sec", "seconds"}},
-  {Q::time, "ms", "milliseconds", {"ms", "msec", "milliseconds"}, 1e-3},
-  {Q::time, "us", "microseconds", {"us", "usec", "µs", "microseconds"}, 1e-6},
-  {Q::gyro, "dph", "degrees per hour", {"dph", "deg/h", "°/h"}},
-  {Q::gyro, "dps", "degrees per second", {"dps", "deg/s", "°/s"}, 3600.0},
-  {Q::gyro, "rad/s", "radians per second", {"rad/s", "rps"}, 3600.0 * kDegPerRad},
-  {Q::gyro, "mdps", "millidegrees per second", {"mdps", "mdeg/s"}, 3.6},
-  {Q::gyro, "deg/min", "degrees per minute", {"deg/min", "dpm", "°/min"}, 60.0},
-  {Q::temperature, "C", "degrees Celsius", {"c", "degc", "°c"}},
-  {Q::temperature, "K", "kelvin", {"k", "kelvin"}, 1.0, &from_kelvin},
-  {Q::temperature, "F", "degrees Fahrenheit", {"f", "degf", "°f"}, 1.0, &from_fahrenheit},
+  {Q::time, "s", "seconds"},
+  {Q::time, "ms", "milliseconds", 1e-3},
+  {Q::time, "us", "microseconds", 1e-6},
+  {Q::gyro, "dph", "degrees per hour"},
+  {Q::gyro, "dps", "degrees per second", 3600.0},
+  {Q::gyro, "rad/s", "radians per second", 3600.0 * kDegPerRad},
+  {Q::gyro, "mdps", "millidegrees per second", 3.6},
+  {Q::gyro, "deg/min", "degrees per minute", 60.0},
+  {Q::temperature, "C", "degrees Celsius"},
+  {Q::temperature, "K", "kelvin", 1.0, &from_kelvin},
+  {Q::temperature, "F", "degrees Fahrenheit", 1.0, &from_fahrenheit},
 };
 // clang-format on
 

@@ -9,7 +9,6 @@
 // Adding a unit: one line in fit/data/units.cpp and its test in
 // tests/units_test.cpp.
 
-#include <array>
 #include <span>
 #include <string>
 #include <string_view>
@@ -22,9 +21,6 @@ struct Unit {
   Quantity quantity;
   std::string_view name;     // as --time-unit, --gyro-unit, --temp-unit take it and a fit saves it
   std::string_view meaning;  // "milliseconds"
-  // How a column header may write it, e.g. "time (ms)", "gyro_x [deg/s]",
-  // "T_degC": lower-case spellings, the name first.
-  std::array<std::string_view, 4> header_names{};
   double factor = 1.0;                  // base = factor · value (s, °/h, °C)
   double (*affine)(double) = nullptr;   // instead, for a scale with an offset (K, °F)
   double to_base(double value) const { return affine ? affine(value) : value * factor; }

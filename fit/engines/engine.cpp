@@ -15,7 +15,7 @@ KeyValue parse_key_value(const std::string& text, const std::string& option, boo
   std::size_t from = 0;
   if (scoped) {
     const auto colon = text.find(':');
-    if (colon != std::string::npos && colon > 0) {
+    if (colon != std::string::npos && colon > 0 && colon < text.find('=')) {
       kv.scope = text.substr(0, colon);
       from = colon + 1;
     }

@@ -55,8 +55,6 @@ const Term* find_term(std::string_view name) {
   return nullptr;
 }
 
-const Term* term_of(const effects::Effect& effect) { return find_term(effect.name); }
-
 void Term::compute(const DerivedSeries& s, double theta, std::span<double> out) const {
   if (effect != nullptr) {
     effect->compute(s, theta, out);

@@ -40,8 +40,6 @@ struct Term : effects::Effect {
 const std::vector<const Term*>& term_registry();
 // A registry term by name; nullptr if unknown.
 const Term* find_term(std::string_view name);
-// The term of a registry effect.
-const Term* term_of(const effects::Effect& effect);
 
 // Terms beyond the registry, made on first use and kept for the life of the
 // process (so that a name always gives the same pointer):

@@ -56,10 +56,8 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
                        c.reduction_pct, c.p_value, c.significant ? "significant" : "", c.term->meaning);
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
   if (before) {
-    std::vector<std::string> added;
-    for (std::size_t k = run.request.base_terms.size(); k < run.request.terms.size(); ++k)
-      added.emplace_back(run.request.terms[k]->name);
-    out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n", fmt::join(added, ", "),
+    out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",
+                       fmt::join(run.request.added, ", "),
                        before->fit.instability_after_dph, d.fit.instability_after_dph, d.noise_floor_dph);
     const auto rows = segment_rms(*before, before->residual_dph);
     for (std::size_t i = 0; i < rows.size() && i < d.segments.size(); ++i)

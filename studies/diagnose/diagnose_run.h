@@ -18,6 +18,7 @@ struct DiagnoseRequest {
   std::string data;
   std::vector<const fit::Term*> base_terms;  // --model
   std::vector<const fit::Term*> terms;       // --model and the --add terms
+  std::vector<std::string> added;            // the --add texts, as given (for the report)
   std::string engine = "ols";
   fit::EngineSettings settings;
   fit::PipelineOptions pipeline;             // columns (gyro: the comma list of channels), units, rules

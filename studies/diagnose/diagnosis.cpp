@@ -30,22 +30,20 @@ void compare(Diagnosis& d, const fit::PreparedData& data, const std::vector<cons
 // 4. What the record cannot tell apart: the model's terms and every candidate
 // tried, at their fitted parameters.
 void name_confounded(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms) {
-  {
-    std::vector<const fit::Term*> all = terms;
-    std::vector<double> params = d.fit.parameters;
-    for (const CandidateReport& c : d.candidates) {
-      all.push_back(c.term);
-      params.push_back(c.parameter);
-    }
-    const Confounding confounding = find_confounding(data.derived, all, params);
-    d.confounded = confounding.groups;
-    d.confounding_notes = confounding.notes;
-    for (CandidateReport& c : d.candidates)
-      if (const auto* group = confounding.group_of(std::string(c.term->name)); group != nullptr) {
-        c.confounded_with = *group;
-        std::erase(c.confounded_with, std::string(c.term->name));
-      }
+  std::vector<const fit::Term*> all = terms;
+  std::vector<double> params = d.fit.parameters;
+  for (const CandidateReport& c : d.candidates) {
+    all.push_back(c.term);
+    params.push_back(c.parameter);
   }
+  const Confounding confounding = find_confounding(data.derived, all, params);
+  d.confounded = confounding.groups;
+  d.confounding_notes = confounding.notes;
+  for (CandidateReport& c : d.candidates)
+    if (const auto* group = confounding.group_of(std::string(c.term->name)); group != nullptr) {
+      c.confounded_with = *group;
+      std::erase(c.confounded_with, std::string(c.term->name));
+    }
 }
 
 // The bias steps found, each sized with the model (ols) and judged by the
@@ -82,35 +80,33 @@ void size_steps(Diagnosis& d, const fit::PreparedData& data, const std::vector<c
 void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms) {
   const fit::AveragedSeries& s = data.series;
   const std::size_t l = s.size();
-  {
-    std::vector<const fit::Term*> final_terms = terms;
-    for (const CandidateReport& c : d.candidates) {
-      if (!c.significant || !c.confounded_with.empty()) break;
-      final_terms.push_back(c.term);
+  std::vector<const fit::Term*> final_terms = terms;
+  for (const CandidateReport& c : d.candidates) {
+    if (!c.significant || !c.confounded_with.empty()) break;
+    final_terms.push_back(c.term);
+  }
+  try {
+    const fit::ModelFit f = fit::fit_model(data, final_terms, fit::find_engine("ols"), {});
+    if (f.instability_after_dph > kStructureRemains * d.noise_floor_dph) {
+      Diagnosis at_end = d;
+      at_end.fit = f;
+      const Eigen::MatrixXd xf = fit::design_matrix(data.derived, final_terms, f.parameters);
+      const std::vector<double> mf = fit::model_values(xf, f.coefficients);
+      std::vector<double> rf(l);
+      for (std::size_t p = 0; p < l; ++p) rf[p] = s.gyro_dph[p] - mf[p];
+      const std::vector<SegmentReport> rows = segment_rms(at_end, rf);
+      const auto worst = std::max_element(rows.begin(), rows.end(), [](const SegmentReport& a, const SegmentReport& b) {
+        return a.ratio_to_floor < b.ratio_to_floor;
+      });
+      d.remaining = fmt::format(
+          "structure remains that no candidate explains: {} is still {:.2f} times the floor, "
+          "worst in the {} segment at {:.2f}–{:.2f} h ({:.1f} to {:.1f} °C), {:.2f} times the floor",
+          final_terms.size() > terms.size() ? "the model with the significant candidates" : "the model",
+          f.instability_after_dph / d.noise_floor_dph, worst->kind,
+          (worst->start_s - s.start_time_s) / 3600.0, (worst->end_s - s.start_time_s) / 3600.0,
+          worst->temp_min_c, worst->temp_max_c, worst->ratio_to_floor);
     }
-    try {
-      const fit::ModelFit f = fit::fit_model(data, final_terms, fit::find_engine("ols"), {});
-      if (f.instability_after_dph > kStructureRemains * d.noise_floor_dph) {
-        Diagnosis at_end = d;
-        at_end.fit = f;
-        const Eigen::MatrixXd xf = fit::design_matrix(data.derived, final_terms, f.parameters);
-        const std::vector<double> mf = fit::model_values(xf, f.coefficients);
-        std::vector<double> rf(l);
-        for (std::size_t p = 0; p < l; ++p) rf[p] = s.gyro_dph[p] - mf[p];
-        const std::vector<SegmentReport> rows = segment_rms(at_end, rf);
-        const auto worst = std::max_element(rows.begin(), rows.end(), [](const SegmentReport& a, const SegmentReport& b) {
-          return a.ratio_to_floor < b.ratio_to_floor;
-        });
-        d.remaining = fmt::format(
-            "structure remains that no candidate explains: {} is still {:.2f} times the floor, "
-            "worst in the {} segment at {:.2f}–{:.2f} h ({:.1f} to {:.1f} °C), {:.2f} times the floor",
-            final_terms.size() > terms.size() ? "the model with the significant candidates" : "the model",
-            f.instability_after_dph / d.noise_floor_dph, worst->kind,
-            (worst->start_s - s.start_time_s) / 3600.0, (worst->end_s - s.start_time_s) / 3600.0,
-            worst->temp_min_c, worst->temp_max_c, worst->ratio_to_floor);
-      }
-    } catch (const InputError&) {
-    }
+  } catch (const InputError&) {
   }
 }
 
