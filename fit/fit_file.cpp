@@ -63,6 +63,31 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
     j["intervals_95"] = intervals;
     j["interval_method"] = fit.engine.interval_method;
   }
+  if (fit.noise) {
+    const NoiseModel& n = fit.noise->model;
+    Json components = Json::object();
+    for (const NoiseParameter& q : n.parameters())
+      components[q.name] = {{"value", q.value},
+                            {"interval_95", {q.lower, q.upper}},
+                            {"identified", q.identified},
+                            {"unit", q.unit}};
+    j["noise_model"] = {{"method", "REML on the fit's residual: white + flicker + rate random walk, "
+                                   "a Gauss-Markov process where it pays"},
+                        {"blocks", n.blocks},
+                        {"block_s", n.block_s},
+                        {"components", components}};
+  }
+  {
+    const RecordSupport& s = fit.support;
+    Json flags = Json::object();
+    for (std::size_t k = 0; k < fit.terms.size() && k < s.flags.size(); ++k)
+      if (!s.flags[k].empty()) flags[fit.terms[k]->name] = s.flags[k];
+    j["record"] = {{"temp_range_c", {s.temp_min_c, s.temp_max_c}},
+                   {"temperature_levels", s.temperature_levels},
+                   {"level_width_c", s.level_width_c},
+                   {"temp_time_correlation", s.temp_time_correlation},
+                   {"flags", flags}};
+  }
   if (!fit.engine.p_values.empty()) {
     Json p;
     for (std::size_t k = 0; k < fit.terms.size(); ++k) p[fit.terms[k]->name] = fit.engine.p_values[k];

@@ -69,7 +69,8 @@ struct LinearisedIntervals {
 LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eigen::VectorXd& y,
                                          const std::vector<const Term*>& terms,
                                          const std::vector<double>& parameters,
-                                         const Coefficients& c) {
+                                         const Coefficients& c,
+                                         std::shared_ptr<const NoiseContext> noise) {
   LinearisedIntervals out;
   out.parameters.assign(terms.size(), std::nullopt);
   std::vector<std::size_t> nonlinear;
@@ -98,7 +99,8 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
     names.push_back("d ln " + std::string(terms[j]->parameter->name));
   }
   try {
-    const LinearProblem problem(augmented, y, names);
+    LinearProblem problem(augmented, y, names);
+    if (noise) problem.attach_noise(noise);
     out.ols = OlsEngine().fit(problem);
     for (std::size_t i = 0; i < nonlinear.size(); ++i) {
       const Interval& d = out.ols.intervals[static_cast<std::size_t>(x.cols()) + i];
@@ -112,6 +114,26 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
 }
 
 }  // namespace
+
+WindowGrid window_grid(const PreparedData& data) {
+  WindowGrid grid;
+  grid.time_s = data.series.time_s;
+  grid.window_s = data.series.window_s;
+  const double dt = data.averaging.sample_interval_s;
+  for (std::size_t i = 0; i < data.series.size(); ++i)
+    grid.averaging_s.push_back(i < data.series.samples.size() && dt > 0.0
+                                   ? static_cast<double>(data.series.samples[i]) * dt
+                                   : grid.window_s);
+  return grid;
+}
+
+std::shared_ptr<const NoiseContext> identify_record_noise(const PreparedData& data,
+                                                          const LinearProblem& problem) {
+  const WindowGrid grid = window_grid(data);
+  if (grid.size() < problem.dimension() + 5 || !(grid.window_s > 0.0)) return nullptr;
+  return std::make_shared<const NoiseContext>(
+      NoiseContext{identify_noise(grid, problem.design(), problem.y()), grid});
+}
 
 std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vector<double>& y_in,
                                    const std::vector<const Term*>& terms) {
@@ -172,8 +194,10 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.parameters = fit_parameters(data.derived, data.series.gyro_dph, terms);
   const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(
       data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size()));
-  const LinearProblem problem(design_matrix(data.derived, terms, fit.parameters), y,
-                              term_names(terms));
+  LinearProblem problem(design_matrix(data.derived, terms, fit.parameters), y, term_names(terms));
+  fit.support = record_support(data, terms);
+  fit.noise = identify_record_noise(data, problem);
+  if (fit.noise) problem.attach_noise(fit.noise);
   const std::unique_ptr<Engine> e = engine.make(settings);
   fit.engine = e->fit(problem, observer);
   fit.coefficients = problem.physical(fit.engine.z);
@@ -185,7 +209,7 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.parameter_intervals.assign(terms.size(), std::nullopt);
   if (!fit.engine.intervals.empty()) {
     LinearisedIntervals li =
-        linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients);
+        linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients, fit.noise);
     fit.parameter_intervals = std::move(li.parameters);
     if (!li.ols.intervals.empty()) {
       // The coefficients' intervals with the parameters' uncertainty in them.

@@ -30,6 +30,7 @@
 // variable projection method and its applications", Inverse Problems 19 (2003).
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,7 +39,9 @@
 
 #include "fit/engines/engine.h"
 #include "fit/data/prepare.h"
+#include "fit/model/noise_model.h"
 #include "fit/model/terms.h"
+#include "fit/record_support.h"
 
 namespace gyrotherm::fit {
 
@@ -62,6 +65,10 @@ struct ModelFit {
   double optimum_dph = 0.0;            // the exact least-squares σ for the same terms and parameters
   std::size_t points = 0;
   std::vector<std::string> warnings;   // e.g. poorly conditioned terms
+  // The record's noise, identified by REML on this model's residual (absent
+  // when the record has too few windows); ols's intervals come from it.
+  std::shared_ptr<const NoiseContext> noise;
+  RecordSupport support;  // what the record can tell these terms
   double ratio() const { return instability_before_dph / instability_after_dph; }
 };
 
@@ -69,6 +76,12 @@ struct ModelFit {
 ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& terms,
                    const EngineInfo& engine, const EngineSettings& settings,
                    FitObserver* observer = nullptr);
+
+// The windows of a prepared record as the noise model sees them.
+WindowGrid window_grid(const PreparedData& data);
+// The noise of `problem`'s residual on the record's windows (nullptr: too few windows).
+std::shared_ptr<const NoiseContext> identify_record_noise(const PreparedData& data,
+                                                          const LinearProblem& problem);
 
 // Variable projection only: the parameters minimising the least-squares σ.
 std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vector<double>& y,

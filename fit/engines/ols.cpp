@@ -1,10 +1,13 @@
 #include "fit/engines/ols.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+
+#include "fit/model/noise_model.h"
 
 namespace gyrotherm::fit {
 
@@ -122,14 +125,30 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   r.termination = Termination::exact;
   r.history = {{1, r.objective}};
 
-  const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
-  const LongRunVariance lrv = options_.intervals == "ewc"
-                                  ? equal_weighted_cosine(u, options_.ewc_terms)
-                                  : prewhitened_newey_west(u);
-  const Eigen::MatrixXd xtx_inv =
-      (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
-  const Eigen::MatrixXd V = xtx_inv * lrv.S * xtx_inv;
-  const double dof = lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1);
+  Eigen::MatrixXd V;
+  std::vector<double> dofs;
+  std::string description;
+  if (options_.intervals == "model" && problem.noise()) {
+    // The identified noise's covariance (fit/model/noise_model.h).
+    const NoiseContext& noise = *problem.noise();
+    NoiseSandwich sandwich = noise_sandwich(noise.model, noise.grid, X);
+    V = std::move(sandwich.covariance);
+    dofs = std::move(sandwich.dof);
+    description = fmt::format("least-squares covariance under the identified noise ({}); Student t "
+                              "with Satterthwaite dof {:.3g}",
+                              noise.model.description(),
+                              *std::min_element(dofs.begin(), dofs.end()));
+  } else {
+    const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
+    const LongRunVariance lrv = options_.intervals == "ewc"
+                                    ? equal_weighted_cosine(u, options_.ewc_terms)
+                                    : prewhitened_newey_west(u);
+    const Eigen::MatrixXd xtx_inv =
+        (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    V = xtx_inv * lrv.S * xtx_inv;
+    dofs.assign(static_cast<std::size_t>(m), lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1));
+    description = fmt::format("{}; Student t with {:g} dof", lrv.description, dofs.front());
+  }
   double e_num = 0.0, e_den = 0.0;
   for (Eigen::Index p = 0; p < l; ++p) {
     e_den += e[p] * e[p];
@@ -137,10 +156,10 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   }
   const double rho = e_den > 0.0 ? e_num / e_den : 0.0;
 
-  const boost::math::students_t t_dist(dof);
-  const double t95 = boost::math::quantile(boost::math::complement(t_dist, 0.025));
   const Coefficients c = problem.physical(r.z);
   for (Eigen::Index j = 0; j < m; ++j) {
+    const boost::math::students_t t_dist(dofs[static_cast<std::size_t>(j)]);
+    const double t95 = boost::math::quantile(boost::math::complement(t_dist, 0.025));
     const double se_beta = std::sqrt(std::max(0.0, V(j, j)));
     const double se = se_beta / problem.scale()[j];
     const double b = c.b[static_cast<std::size_t>(j)];
@@ -149,8 +168,7 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
     r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t))
                                           : 0.0);
   }
-  r.interval_method = fmt::format("{}; residual lag-1 autocorrelation {:.2f}; Student t with {:g} dof",
-                                  lrv.description, rho, dof);
+  r.interval_method = fmt::format("{}; residual lag-1 autocorrelation {:.2f}", description, rho);
   r.message = "least squares by column-pivoting QR";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
@@ -161,8 +179,9 @@ namespace {
 // Every option, once: parsing, validate() and the listing read this table.
 const OptionTable<OlsOptions>& option_table() {
   static const OptionTable<OlsOptions> table = {
-      {"intervals", &OlsOptions::intervals, one_of({"nw", "ewc"}),
-       "nw (pre-whitened Newey-West) or ewc (equal-weighted cosine)"},
+      {"intervals", &OlsOptions::intervals, one_of({"model", "nw", "ewc"}),
+       "model (the record's identified noise; nw where none is identified), nw (pre-whitened "
+       "Newey-West) or ewc (equal-weighted cosine)"},
       {"ewc_terms", &OlsOptions::ewc_terms, whole(0, 1000),
        "cosine terms B for ewc (0: ceil(0.4 l^(2/3)))"},
   };

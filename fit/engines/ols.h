@@ -39,7 +39,7 @@
 namespace gyrotherm::fit {
 
 struct OlsOptions {
-  std::string intervals = "nw";  // long-run variance estimator: nw (Newey–West) or ewc
+  std::string intervals = "model";  // model (identified noise), nw (Newey–West) or ewc
   int ewc_terms = 0;  // cosine frequencies B for ewc; 0: ⌈0.4·l^{2/3}⌉ (LLSW's rule)
 
   // Throws InputError naming the field, its value and the rule.

@@ -30,11 +30,14 @@
 // recomputed from the residuals with a two-pass sum (sigma_two_pass).
 
 #include <Eigen/Core>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace gyrotherm::fit {
+
+struct NoiseContext;  // fit/model/noise_model.h
 
 // A model's coefficients in physical units: intercept b0 and b_j per term.
 struct Coefficients {
@@ -90,6 +93,11 @@ class LinearProblem {
   double condition_number() const { return condition_; }              // of G
   const std::vector<std::string>& warnings() const { return warnings_; }
 
+  // The record's identified noise at these points (absent: none identified);
+  // ols computes its intervals from it (fit/model/noise_model.h).
+  void attach_noise(std::shared_ptr<const NoiseContext> noise) { noise_ = std::move(noise); }
+  const NoiseContext* noise() const { return noise_.get(); }
+
   static constexpr double kIllConditioned = 1e6;
   static constexpr double kPoorlyConditioned = 1e3;
 
@@ -103,6 +111,7 @@ class LinearProblem {
   double s_yy_ = 0.0;
   double condition_ = 1.0;
   std::vector<std::string> warnings_;
+  std::shared_ptr<const NoiseContext> noise_;
 };
 
 }  // namespace gyrotherm::fit

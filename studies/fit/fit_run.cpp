@@ -57,6 +57,11 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
     out += fmt::format("          {} = {:.6g}{}\n", terms[k]->parameter->name, result.parameters[k], extra);
   }
   if (!result.engine.interval_method.empty()) out += fmt::format("  intervals: {}\n", result.engine.interval_method);
+  out += fmt::format("record: {}\n", fit::describe_support(result.support));
+  for (std::size_t k = 0; k < terms.size() && k < result.support.flags.size(); ++k)
+    if (!result.support.flags[k].empty())
+      out += fmt::format("  caution, {}: {}; its number is not a property of the gyro alone\n",
+                         terms[k]->name, result.support.flags[k]);
   out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n", fit::averages_name(data, c.pipeline),
                      result.instability_before_dph, result.instability_after_dph, result.ratio());
   out += fmt::format("engine: {}\n", result.engine.brief_report());
