@@ -6,6 +6,10 @@
 //    target σ = optimum·(1 + 1e-6) and a budget of 200 000 evaluations.
 //    Counters: median evaluations to the target, how many of the 10 reached
 //    it; the time is for the 10 fits.
+//  BM_FitIntervals: fit_model (ols, the paper's model) on the 72 h random
+//    profile (scenarios/random.toml, 2593 windows), prepared once, with the
+//    identified noise model's intervals; BM_IdentifyNoise: the REML
+//    identification alone on the same problem (the share it costs).
 
 #include <benchmark/benchmark.h>
 
@@ -52,17 +56,22 @@ void BM_ObjectiveNaive(benchmark::State& state) {
 BENCHMARK(BM_ObjectiveGram)->Arg(1000)->Arg(10000)->Arg(100000);
 BENCHMARK(BM_ObjectiveNaive)->Arg(1000)->Arg(10000)->Arg(100000);
 
+// A shipped scenario simulated and prepared as the pipeline does.
+fit::PreparedData prepared(const std::string& scenario) {
+  const sim::Scenario sc = sim::load_scenario(std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/" + scenario);
+  const sim::SimulationResult r =
+      sim::Simulator(sc, sim::load_rig(sc.rig_file), sim::load_gyro(sc.gyro_file)).run();
+  fit::Measurement m;
+  m.file = scenario;
+  m.time_s = r.time_s;
+  m.temp_c = r.temp_c;
+  m.gyro_dph = r.gyro_dph;
+  return fit::prepare_data(m, {});
+}
+
 const fit::LinearProblem& cycle_problem() {
   static const fit::LinearProblem problem = [] {
-    const sim::Scenario sc = sim::load_scenario(std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/cycle.toml");
-    const sim::SimulationResult r =
-        sim::Simulator(sc, sim::load_rig(sc.rig_file), sim::load_gyro(sc.gyro_file)).run();
-    fit::Measurement m;
-    m.file = "cycle";
-    m.time_s = r.time_s;
-    m.temp_c = r.temp_c;
-    m.gyro_dph = r.gyro_dph;
-    const fit::PreparedData d = fit::prepare_data(m, {});
+    const fit::PreparedData d = prepared("cycle.toml");
     const auto terms = fit::parse_formula("T + T^2 + dT");
     const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(d.series.gyro_dph.data(),
                                                                 static_cast<Eigen::Index>(d.series.size()));
@@ -71,6 +80,34 @@ const fit::LinearProblem& cycle_problem() {
   }();
   return problem;
 }
+
+const fit::PreparedData& random_72h() {
+  static const fit::PreparedData data = prepared("random.toml");
+  return data;
+}
+
+void BM_FitIntervals(benchmark::State& state, const std::string& method) {
+  const fit::PreparedData& data = random_72h();
+  const auto terms = fit::parse_formula("T + T^2 + dT");
+  fit::EngineSettings settings;
+  settings.options["intervals"] = method;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(fit::fit_model(data, terms, fit::find_engine("ols"), settings));
+  state.counters["windows"] = static_cast<double>(data.series.size());
+}
+
+void BM_IdentifyNoise(benchmark::State& state) {
+  const fit::PreparedData& data = random_72h();
+  const auto terms = fit::parse_formula("T + T^2 + dT");
+  const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
+                                                              static_cast<Eigen::Index>(data.series.size()));
+  const fit::LinearProblem problem(fit::design_matrix(data.derived, terms, fit::default_parameters(terms)), y,
+                                   {"T", "T^2", "dT"});
+  for (auto _ : state) benchmark::DoNotOptimize(fit::identify_record_noise(data, problem));
+}
+
+BENCHMARK_CAPTURE(BM_FitIntervals, model, std::string("model"))->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyNoise)->Unit(benchmark::kMillisecond);
 
 void BM_EngineToTarget(benchmark::State& state, const std::string& name) {
   const fit::LinearProblem& problem = cycle_problem();

@@ -17,6 +17,22 @@
 
 using namespace gyrotherm;
 
+namespace {
+
+const char* const kReading =
+    "\nReading it:\n\n"
+    "* The kernel estimators (`nw`) cannot see noise whose memory is as long as the cycle: the "
+    "regression absorbs that slow power, the residual looks whiter than the noise was, and the "
+    "intervals come out narrow (58–84 % under flicker, Gauss–Markov or random walk).\n"
+    "* The identified noise (`model`, docs/noise.md) covers 92–99 % in every row. It leans "
+    "wide for T and T² (half-width up to 4 sd): when the record supports several noise "
+    "structures about equally (flicker or random walk over 9 h), each coefficient takes the "
+    "widest of their variances, since the record cannot tell which holds.\n"
+    "* dT is the tightest (92.5 % under white + flicker): the paper's model also misses the "
+    "temperature sensor's 20 s lag (a d2T term), which biases dT by −0.1 to −0.3 %.\n";
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const std::string out = argc > 1 ? argv[1] : "results/ols_coverage.md";
   const int seeds = argc > 2 ? std::atoi(argv[2]) : 200;
@@ -62,6 +78,7 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "{} {}: {} {} {}\n", variant, method, t[0].covered, t[1].covered, t[2].covered);
     }
   }
+  md += kReading;
   write_file_atomically(out, md);
   fmt::print("wrote {}\n", out);
   return 0;

@@ -22,15 +22,27 @@ RecordSupport record_support(const PreparedData& data, const std::vector<const T
   for (double v : T) ++bins[static_cast<long>(std::floor((v - s.temp_min_c) / s.level_width_c))];
   const int needed = std::max(2, static_cast<int>(std::ceil(0.03 * static_cast<double>(T.size()))));
   for (const auto& [bin, count] : bins) s.temperature_levels += count >= needed;
-  double mt = 0, mT = 0;
-  for (std::size_t i = 0; i < T.size(); ++i) { mt += t[i]; mT += T[i]; }
-  mt /= static_cast<double>(T.size());
-  mT /= static_cast<double>(T.size());
+  // Spearman's rank correlation: any monotone warm-up or cool-down is 1.
+  auto ranks = [](const std::vector<double>& v) {
+    std::vector<std::size_t> order(v.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+    std::vector<double> r(v.size());
+    for (std::size_t i = 0; i < order.size();) {
+      std::size_t j = i;
+      while (j + 1 < order.size() && v[order[j + 1]] == v[order[i]]) ++j;
+      for (std::size_t k = i; k <= j; ++k) r[order[k]] = 0.5 * static_cast<double>(i + j);  // ties share
+      i = j + 1;
+    }
+    return r;
+  };
+  const std::vector<double> rt = ranks(t), rT = ranks(T);
+  const double mean = 0.5 * static_cast<double>(T.size() - 1);
   double stt = 0, sTT = 0, stT = 0;
   for (std::size_t i = 0; i < T.size(); ++i) {
-    stt += (t[i] - mt) * (t[i] - mt);
-    sTT += (T[i] - mT) * (T[i] - mT);
-    stT += (t[i] - mt) * (T[i] - mT);
+    stt += (rt[i] - mean) * (rt[i] - mean);
+    sTT += (rT[i] - mean) * (rT[i] - mean);
+    stT += (rt[i] - mean) * (rT[i] - mean);
   }
   s.temp_time_correlation = stt > 0 && sTT > 0 ? stT / std::sqrt(stt * sTT) : 0.0;
 

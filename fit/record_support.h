@@ -18,7 +18,7 @@ struct RecordSupport {
   double temp_min_c = 0, temp_max_c = 0;  // of the window means
   int temperature_levels = 0;  // bins of width level_width_c holding ≥ 3 % of the windows (at least 2)
   double level_width_c = 0;
-  double temp_time_correlation = 0;  // Pearson r of the window means' temperature and time
+  double temp_time_correlation = 0;  // Spearman's rank r of the window means' temperature and time
   std::vector<std::string> flags;    // per term: why the record cannot support it ("" if it can)
 };
 

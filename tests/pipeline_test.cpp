@@ -72,7 +72,9 @@ TEST(Pipeline, ParameterIntervalsCoverTheTruth) {
     const Interval& i = *fit.parameter_intervals[3];
     EXPECT_LT(i.lower, fit.parameters[3]);
     EXPECT_GT(i.upper, fit.parameters[3]);
-    EXPECT_LT(i.upper / i.lower, 3.0) << "an interval that says nothing";
+    // The identified noise's slow power is in the interval (wider than the
+    // kernel estimators' were): still within a factor of ~2.2 either way.
+    EXPECT_LT(i.upper / i.lower, 5.0) << "an interval that says nothing";
     covered += i.lower <= 2400.0 && 2400.0 <= i.upper;
     for (std::size_t j = 0; j < 3; ++j) EXPECT_FALSE(fit.parameter_intervals[j].has_value());
   }

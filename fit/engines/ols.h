@@ -7,7 +7,14 @@
 //
 // 95 % confidence intervals. The residuals of 100 s averages are strongly
 // autocorrelated (flicker noise, unmodelled slow effects), so the iid formula
-// σ²(X̃ᵀX̃)⁻¹ would be far too narrow. The covariance is the Newey–West
+// σ²(X̃ᵀX̃)⁻¹ would be far too narrow.
+//
+// Default (intervals=model): when the problem carries the record's
+// identified noise (LinearProblem::noise(), fit/model/noise_model.h), the
+// covariance is the sandwich (X̃ᵀX̃)⁻¹ X̃ᵀCX̃ (X̃ᵀX̃)⁻¹ with that noise's
+// covariance C and Student-t quantiles with Satterthwaite dof per
+// coefficient. Without one (too few windows), and with intervals=nw, the
+// covariance is the Newey–West
 // heteroscedasticity-and-autocorrelation-consistent (HAC) sandwich
 //
 //   V = (X̃ᵀX̃)⁻¹ S (X̃ᵀX̃)⁻¹,  S = Γ₀ + Σ_{ℓ=1..L} (1 − ℓ/(L+1)) (Γ_ℓ + Γ_ℓᵀ),
@@ -22,11 +29,12 @@
 // (the scores projected on the B = ⌈0.4 l^{2/3}⌉ lowest cosine frequencies,
 // Student t with B dof; Lazarus, Lewis, Stock & Watson, JBES 36 (2018)).
 //
-// Limits, measured in results/ols_coverage.md: neither estimator can see
-// noise whose memory is as long as the regressors' own time scale (the flicker
-// of a gyro over a 9 h cycle): the regression absorbs that drift, the
+// Limits, measured in results/ols_coverage.md: neither kernel estimator can
+// see noise whose memory is as long as the regressors' own time scale (the
+// flicker of a gyro over a 9 h cycle): the regression absorbs that drift, the
 // residuals look whiter than the noise was, and the intervals come out too
-// narrow. A model that omits a real effect (the sensor lag's d2T) adds bias.
+// narrow (62–80 % coverage); the identified noise model does not have that
+// blind spot. A model that omits a real effect (the sensor lag's d2T) adds bias.
 //
 // References: Newey & West, Econometrica 55 (1987) 703–708; Andrews,
 // Econometrica 59 (1991) 817–858; Golub & Van Loan, Matrix Computations §5.4.

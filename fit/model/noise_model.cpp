@@ -17,63 +17,12 @@ constexpr std::size_t kIdentifyBlocks = 128;  // block means the REML works on
 constexpr double kFloorLog = -30.0;           // log-weight of an absent component
 constexpr double kPresentLog = -14.0;         // above this a component is in the model
 constexpr double kChi95 = 3.841458820694124;  // χ²₁ 95 % point
+// A Gauss–Markov process (two parameters, τ searched) must lower −2 log L by
+// χ²₂'s 95 % point to be added: on white noise it is then claimed rarely.
+constexpr double kGaussMarkovGain = 5.991464547107979;
 
 double record_span(const WindowGrid& g) {
   return g.time_s.back() - g.time_s.front() + g.window_s;
-}
-
-// Unit-variance exponential kernel e^{−|s|/τ} over windows of length Δ:
-// the window means' variance and the factor A of Cov_ij = A e^{−|t_i − t_j|/τ}.
-struct ExpWindow {
-  double diagonal, off;
-};
-ExpWindow exp_window(double tau, double delta) {
-  const double x = delta / tau;
-  const double r = tau / delta;
-  if (x > 50.0) return {2.0 * r * r * (x - 1.0), 0.0};  // white at the windows
-  const double two_sinh = std::exp(x / 2.0) - std::exp(-x / 2.0);
-  return {2.0 * r * r * (x + std::expm1(-x)), r * r * two_sinh * two_sinh};
-}
-
-// y = C x for the unit exponential kernel (semi-separable: two recursions).
-void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen::MatrixXd& x,
-                    Eigen::MatrixXd& y) {
-  const Eigen::Index n = x.rows();
-  const ExpWindow w = exp_window(tau, g.window_s);
-  y += weight * w.diagonal * x;
-  if (w.off == 0.0 || n < 2) return;
-  Eigen::RowVectorXd f = Eigen::RowVectorXd::Zero(x.cols());
-  for (Eigen::Index i = 1; i < n; ++i) {  // Σ_{j<i}
-    const double decay = std::exp(-(g.time_s[static_cast<std::size_t>(i)] -
-                                    g.time_s[static_cast<std::size_t>(i - 1)]) / tau);
-    f = decay * (f + x.row(i - 1));
-    y.row(i) += weight * w.off * f;
-  }
-  f.setZero();
-  for (Eigen::Index i = n - 2; i >= 0; --i) {  // Σ_{j>i}
-    const double decay = std::exp(-(g.time_s[static_cast<std::size_t>(i + 1)] -
-                                    g.time_s[static_cast<std::size_t>(i)]) / tau);
-    f = decay * (f + x.row(i + 1));
-    y.row(i) += weight * w.off * f;
-  }
-}
-
-void add_random_walk(const WindowGrid& g, double weight, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
-  const Eigen::Index n = x.rows();
-  const double t0 = g.time_s.front() - g.window_s / 2.0;
-  Eigen::RowVectorXd below = Eigen::RowVectorXd::Zero(x.cols());  // Σ_{j<i} s_j x_j
-  Eigen::RowVectorXd above = x.colwise().sum();                    // Σ_{j>i} x_j
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double s = g.time_s[static_cast<std::size_t>(i)] - t0;
-    above -= x.row(i);
-    y.row(i) += weight * (below + s * above + (s - g.window_s / 6.0) * x.row(i));
-    below += s * x.row(i);
-  }
-}
-
-void add_white(const WindowGrid& g, double weight, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    y.row(i) += weight / g.averaging_s[static_cast<std::size_t>(i)] * x.row(i);
 }
 
 std::vector<double> flicker_bank(const WindowGrid& g) {
@@ -209,7 +158,7 @@ Eigen::Vector4d nelder_mead(const std::function<double(const Eigen::Vector4d&)>&
     std::array<int, 5> order = {0, 1, 2, 3, 4};
     std::sort(order.begin(), order.end(), [&](int a, int b) { return fs[a] < fs[b]; });
     const int b = order[0], w = order[4], sw = order[3];
-    if (std::abs(fs[w] - fs[b]) < 1e-7 * (1.0 + std::abs(fs[b]))) break;
+    if (std::abs(fs[w] - fs[b]) < 1e-3) break;  // −2 log L: differences below 1e-3 mean nothing
     Eigen::Vector4d centroid = Eigen::Vector4d::Zero();
     for (int i = 0; i < 4; ++i) centroid += s[order[i]] / 4.0;
     const Eigen::Vector4d xr = clamp(centroid + (centroid - s[w]));
@@ -246,17 +195,6 @@ Eigen::Vector4d nelder_mead(const std::function<double(const Eigen::Vector4d&)>&
 
 }  // namespace
 
-Eigen::MatrixXd NoiseModel::apply(const WindowGrid& grid, const Eigen::MatrixXd& x, int kind) const {
-  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(x.rows(), x.cols());
-  auto weight = [&](int k) { return kind < 0 ? amplitude[static_cast<std::size_t>(k)] : (kind == k ? 1.0 : 0.0); };
-  if (weight(kWhite) > 0.0) add_white(grid, weight(kWhite), x, y);
-  if (weight(kFlicker) > 0.0)
-    for (double tau : flicker_tau_s) add_exp_kernel(grid, tau, weight(kFlicker), x, y);
-  if (weight(kGaussMarkov) > 0.0 && gm_tau_s > 0.0) add_exp_kernel(grid, gm_tau_s, weight(kGaussMarkov), x, y);
-  if (weight(kRandomWalk) > 0.0) add_random_walk(grid, weight(kRandomWalk), x, y);
-  return y;
-}
-
 NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
                           const Eigen::VectorXd& y) {
   const Eigen::Index n = static_cast<Eigen::Index>(grid.size());
@@ -283,7 +221,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   reml.X = aggregate(blocks, X);
   reml.y = aggregate(blocks, y);
   auto block_cov = [&](const NoiseModel& unit, int kind) {
-    return Eigen::MatrixXd(A.transpose() * unit.apply(grid, A, kind));
+    return aggregate(blocks, unit.apply(grid, A, kind));  // A·C·Aᵀ by block means: O(l·blocks)
   };
   for (int k : {kWhite, kFlicker, kRandomWalk}) reml.M[static_cast<std::size_t>(k)] = block_cov(model, k);
   const double lo_tau = std::log(grid.window_s), hi_tau = std::log(record_span(grid));
@@ -302,7 +240,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   // walk, by Nelder–Mead from several starts, then pruned: a component whose
   // removal costs less than 2 in −2 log L is dropped (Akaike's rule).
   // Stage 2: a Gauss–Markov process is added only if it lowers −2 log L by
-  // more than 4 (two parameters); what stage 1 kept stays. The order matters:
+  // more than 5.99 (χ²₂ 95 %); what stage 1 kept stays. The order matters:
   // a single Gauss–Markov process can mimic flicker at the windows' time
   // scales and yet have far less power at the long ones the coefficients
   // depend on.
@@ -313,24 +251,27 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   no_gm_hi[1] = kFloorLog;
   Eigen::Vector4d best_a(kFloorLog, kFloorLog, mid, kFloorLog);
   double best_f = f(best_a);
+  std::vector<std::pair<Eigen::Vector4d, double>> tried = {{best_a, best_f}};
   for (const Eigen::Vector4d& start :
-       {Eigen::Vector4d(-2, kFloorLog, mid, kFloorLog), Eigen::Vector4d(kFloorLog, kFloorLog, mid, -2),
-        Eigen::Vector4d(-2, kFloorLog, mid, -2)}) {
+       {Eigen::Vector4d(-2, kFloorLog, mid, kFloorLog), Eigen::Vector4d(3, kFloorLog, mid, kFloorLog),
+        Eigen::Vector4d(kFloorLog, kFloorLog, mid, -2), Eigen::Vector4d(kFloorLog, kFloorLog, mid, 3),
+        Eigen::Vector4d(-2, kFloorLog, mid, -2), Eigen::Vector4d(3, kFloorLog, mid, 3)}) {
     double fv = 0.0;
-    const Eigen::Vector4d a = nelder_mead(f, start, lo, no_gm_hi, 3.0, 300, &fv);
+    const Eigen::Vector4d a = nelder_mead(f, start, lo, no_gm_hi, 3.0, 200, &fv);
+    tried.emplace_back(a, fv);
     if (fv < best_f) { best_f = fv; best_a = a; }
   }
   for (;;) {
     int drop = -1;
     double drop_f = INFINITY;
-    Eigen::Vector4d drop_a;
+    Eigen::Vector4d drop_a = best_a;
     for (int c : {0, 3}) {
       if (!(best_a[c] > kPresentLog)) continue;
       Eigen::Vector4d start = best_a, hi_c = no_gm_hi;
       start[c] = kFloorLog;
       hi_c[c] = kFloorLog;
       double fv = 0.0;
-      const Eigen::Vector4d a = nelder_mead(f, start, lo, hi_c, 1.0, 150, &fv);
+      const Eigen::Vector4d a = nelder_mead(f, start, lo, hi_c, 1.0, 100, &fv);
       if (fv < drop_f) { drop = c; drop_f = fv; drop_a = a; }
     }
     if (drop < 0 || drop_f - best_f >= 2.0) break;
@@ -342,197 +283,137 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
     for (int c : {0, 3})
       if (!(best_a[c] > kPresentLog)) hi_gm[c] = kFloorLog;
     double gm_f = INFINITY;
-    Eigen::Vector4d gm_a;
+    Eigen::Vector4d gm_a = best_a;
     for (double where : {0.2, 0.5, 0.8}) {
       Eigen::Vector4d start = best_a;
       start[1] = -1.0;
       start[2] = lo_tau + where * (hi_tau - lo_tau);
       double fv = 0.0;
-      const Eigen::Vector4d a = nelder_mead(f, start, lo, hi_gm, 2.0, 250, &fv);
+      const Eigen::Vector4d a = nelder_mead(f, start, lo, hi_gm, 2.0, 150, &fv);
       if (fv < gm_f) { gm_f = fv; gm_a = a; }
     }
-    if (gm_f < best_f - 4.0 && gm_a[1] > kPresentLog) {
+    if (gm_f < best_f - kGaussMarkovGain && gm_a[1] > kPresentLog) {
       best_a = gm_a;
       best_f = gm_f;
     }
   }
-  double scale = 0.0;
-  reml.profiled(best_a, &scale);
-  model.amplitude = reml.amplitudes(best_a, scale);
-  model.gm_tau_s = std::exp(best_a[2]);
-  model.present = {true, best_a[0] > kPresentLog, best_a[1] > kPresentLog, best_a[3] > kPresentLog};
-  for (int k = 1; k < kNoiseKinds; ++k)
-    if (!model.present[static_cast<std::size_t>(k)]) model.amplitude[static_cast<std::size_t>(k)] = 0.0;
-  if (!model.present[kGaussMarkov]) model.gm_tau_s = 0.0;
-  model.minus_two_log_likelihood = reml.minus_two_ll(model.amplitude, best_a[2]);
+  // The model at a point a, with its uncertainty and bounds.
+  const NoiseModel base = model;
+  auto finish = [&](const Eigen::Vector4d& point) {
+    NoiseModel m = base;
+    double scale = 0.0;
+    reml.profiled(point, &scale);
+    m.amplitude = reml.amplitudes(point, scale);
+    m.gm_tau_s = std::exp(point[2]);
+    m.present = {true, point[0] > kPresentLog, point[1] > kPresentLog, point[3] > kPresentLog};
+    for (int k = 1; k < kNoiseKinds; ++k)
+      if (!m.present[static_cast<std::size_t>(k)]) m.amplitude[static_cast<std::size_t>(k)] = 0.0;
+    if (!m.present[kGaussMarkov]) m.gm_tau_s = 0.0;
+    m.minus_two_log_likelihood = reml.minus_two_ll(m.amplitude, point[2]);
 
-  // Expected information of θ = (v_w, v_f, v_gm, ln τ, v_rw) over the present
-  // ones, I_kl = ½ tr(P ∂_kC P ∂_lC) with P the REML projector (Searle, Casella
-  // & McCulloch, Variance Components (1992) §6.6); Cov(θ) = I⁻¹.
-  std::vector<int> free;
-  for (int k = 0; k < kNoiseKinds; ++k)
-    if (model.present[static_cast<std::size_t>(k)]) free.push_back(k == kRandomWalk ? 4 : k);
-  if (model.present[kGaussMarkov]) free.push_back(3);
-  std::sort(free.begin(), free.end());
-  {
-    const auto& v = model.amplitude;
-    Eigen::MatrixXd C = v[kWhite] * reml.M[kWhite] + v[kFlicker] * reml.M[kFlicker] +
-                        v[kRandomWalk] * reml.M[kRandomWalk];
-    if (v[kGaussMarkov] > 0.0) C += v[kGaussMarkov] * reml.gm_at(best_a[2]);
-    const Eigen::LLT<Eigen::MatrixXd> llt(C);
-    const Eigen::MatrixXd Ci = llt.solve(Eigen::MatrixXd::Identity(nb, nb));
-    const Eigen::MatrixXd CiX = Ci * reml.X;
-    const Eigen::MatrixXd P =
-        Ci - CiX * (reml.X.transpose() * CiX).ldlt().solve(CiX.transpose());
-    auto derivative = [&](int p) -> Eigen::MatrixXd {
-      switch (p) {
-        case 0: return reml.M[kWhite];
-        case 1: return reml.M[kFlicker];
-        case 2: return reml.gm_at(best_a[2]);
-        case 3: return v[kGaussMarkov] * (reml.gm_at(best_a[2] + 0.05) - reml.gm_at(best_a[2] - 0.05)) / 0.1;
-        default: return reml.M[kRandomWalk];
-      }
-    };
-    std::vector<Eigen::MatrixXd> PD;
-    for (int p : free) PD.push_back(P * derivative(p));
-    const auto nf = static_cast<Eigen::Index>(free.size());
-    Eigen::MatrixXd info(nf, nf);
-    for (Eigen::Index i = 0; i < nf; ++i)
-      for (Eigen::Index j = i; j < nf; ++j)
-        info(i, j) = info(j, i) =
-            0.5 * (PD[static_cast<std::size_t>(i)].array() * PD[static_cast<std::size_t>(j)].transpose().array()).sum();
-    // A direction the record hardly informs gets a large variance (its
-    // eigenvalue floored at 1e-12 of the largest), never none.
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(info);
-    const double floor = 1e-12 * std::max(eig.eigenvalues().maxCoeff(), 1e-300);
-    const Eigen::VectorXd inv = eig.eigenvalues().unaryExpr([&](double e) { return 1.0 / std::max(e, floor); });
-    const Eigen::MatrixXd cov = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
-    for (Eigen::Index i = 0; i < nf; ++i)
-      for (Eigen::Index j = 0; j < nf; ++j)
-        model.covariance(free[static_cast<std::size_t>(i)], free[static_cast<std::size_t>(j)]) = cov(i, j);
-  }
-  auto log_sd = [&](int k) {
-    const int p = k == kRandomWalk ? 4 : k;
-    const double value = model.amplitude[static_cast<std::size_t>(k)];
-    return value > 0.0 ? std::sqrt(std::max(0.0, model.covariance(p, p))) / value : INFINITY;
-  };
-  // Identified: present, and known to better than a decade (sd of ln < 1.2).
-  for (int k = 0; k < kNoiseKinds; ++k) {
-    model.identified[static_cast<std::size_t>(k)] =
-        model.present[static_cast<std::size_t>(k)] && log_sd(k) < 1.2;
-  }
-  // A bound for each component that is not identified: raise its amplitude
-  // (the others held) until −2 log L has risen by χ²₁(95 %).
-  for (int k = 0; k < kNoiseKinds; ++k) {
-    if (model.identified[static_cast<std::size_t>(k)]) continue;
-    const double tiny = 1e-12 * model.amplitude[kWhite] * reml.norm[kWhite] / reml.norm[static_cast<std::size_t>(k)];
-    auto rise = [&](double log_v) {
-      std::array<double, kNoiseKinds> v = model.amplitude;
-      v[static_cast<std::size_t>(k)] = std::exp(log_v);
-      const double tau = k == kGaussMarkov && model.gm_tau_s <= 0.0 ? std::exp(0.5 * (lo_tau + hi_tau)) : best_a[2];
-      return reml.minus_two_ll(v, tau) - model.minus_two_log_likelihood - kChi95;
-    };
-    double a = std::log(std::max({model.amplitude[static_cast<std::size_t>(k)], tiny, 1e-300}));
-    double b = a + 2.0;
-    int guard = 0;
-    while (rise(b) < 0.0 && guard++ < 40) { a = b; b += 2.0; }
-    for (int it = 0; it < 40; ++it) {
-      const double c = 0.5 * (a + b);
-      (rise(c) < 0.0 ? a : b) = c;
+    // Expected information of θ = (v_w, v_f, v_gm, ln τ, v_rw) over the present
+    // ones, I_kl = ½ tr(P ∂_kC P ∂_lC) with P the REML projector (Searle, Casella
+    // & McCulloch, Variance Components (1992) §6.6); Cov(θ) = I⁻¹.
+    std::vector<int> free;
+    for (int k = 0; k < kNoiseKinds; ++k)
+      if (m.present[static_cast<std::size_t>(k)]) free.push_back(k == kRandomWalk ? 4 : k);
+    if (m.present[kGaussMarkov]) free.push_back(3);
+    std::sort(free.begin(), free.end());
+    {
+      const auto& v = m.amplitude;
+      Eigen::MatrixXd C = v[kWhite] * reml.M[kWhite] + v[kFlicker] * reml.M[kFlicker] +
+                          v[kRandomWalk] * reml.M[kRandomWalk];
+      if (v[kGaussMarkov] > 0.0) C += v[kGaussMarkov] * reml.gm_at(point[2]);
+      const Eigen::LLT<Eigen::MatrixXd> llt(C);
+      const Eigen::MatrixXd Ci = llt.solve(Eigen::MatrixXd::Identity(nb, nb));
+      const Eigen::MatrixXd CiX = Ci * reml.X;
+      const Eigen::MatrixXd P =
+          Ci - CiX * (reml.X.transpose() * CiX).ldlt().solve(CiX.transpose());
+      auto derivative = [&](int p) -> Eigen::MatrixXd {
+        switch (p) {
+          case 0: return reml.M[kWhite];
+          case 1: return reml.M[kFlicker];
+          case 2: return reml.gm_at(point[2]);
+          case 3: return v[kGaussMarkov] * (reml.gm_at(point[2] + 0.05) - reml.gm_at(point[2] - 0.05)) / 0.1;
+          default: return reml.M[kRandomWalk];
+        }
+      };
+      std::vector<Eigen::MatrixXd> PD;
+      for (int p : free) PD.push_back(P * derivative(p));
+      const auto nf = static_cast<Eigen::Index>(free.size());
+      Eigen::MatrixXd info(nf, nf);
+      for (Eigen::Index i = 0; i < nf; ++i)
+        for (Eigen::Index j = i; j < nf; ++j)
+          info(i, j) = info(j, i) =
+              0.5 * (PD[static_cast<std::size_t>(i)].array() * PD[static_cast<std::size_t>(j)].transpose().array()).sum();
+      // A direction the record hardly informs gets a large variance (its
+      // eigenvalue floored at 1e-12 of the largest), never none.
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(info);
+      const double floor = 1e-12 * std::max(eig.eigenvalues().maxCoeff(), 1e-300);
+      const Eigen::VectorXd inv = eig.eigenvalues().unaryExpr([&](double e) { return 1.0 / std::max(e, floor); });
+      const Eigen::MatrixXd cov = eig.eigenvectors() * inv.asDiagonal() * eig.eigenvectors().transpose();
+      for (Eigen::Index i = 0; i < nf; ++i)
+        for (Eigen::Index j = 0; j < nf; ++j)
+          m.covariance(free[static_cast<std::size_t>(i)], free[static_cast<std::size_t>(j)]) = cov(i, j);
     }
-    model.upper_bound[static_cast<std::size_t>(k)] = std::exp(b);
+    auto log_sd = [&](int k) {
+      const int p = k == kRandomWalk ? 4 : k;
+      const double value = m.amplitude[static_cast<std::size_t>(k)];
+      return value > 0.0 ? std::sqrt(std::max(0.0, m.covariance(p, p))) / value : INFINITY;
+    };
+    // Identified: present, and known to better than a decade (sd of ln < 1.2).
+    for (int k = 0; k < kNoiseKinds; ++k) {
+      m.identified[static_cast<std::size_t>(k)] =
+          m.present[static_cast<std::size_t>(k)] && log_sd(k) < 1.2;
+    }
+    // A bound for each component that is not identified: raise its amplitude
+    // (the others held) until −2 log L has risen by χ²₁(95 %).
+    for (int k = 0; k < kNoiseKinds; ++k) {
+      if (m.identified[static_cast<std::size_t>(k)]) continue;
+      const double tiny = 1e-12 * m.amplitude[kWhite] * reml.norm[kWhite] / reml.norm[static_cast<std::size_t>(k)];
+      auto rise = [&](double log_v) {
+        std::array<double, kNoiseKinds> v = m.amplitude;
+        v[static_cast<std::size_t>(k)] = std::exp(log_v);
+        const double tau = k == kGaussMarkov && m.gm_tau_s <= 0.0 ? std::exp(0.5 * (lo_tau + hi_tau)) : point[2];
+        return reml.minus_two_ll(v, tau) - m.minus_two_log_likelihood - kChi95;
+      };
+      double a = std::log(std::max({m.amplitude[static_cast<std::size_t>(k)], tiny, 1e-300}));
+      double b = a + 2.0;
+      int guard = 0;
+      while (rise(b) < 0.0 && guard++ < 40) { a = b; b += 2.0; }
+      for (int it = 0; it < 20; ++it) {
+        const double c = 0.5 * (a + b);
+        (rise(c) < 0.0 ? a : b) = c;
+      }
+      m.upper_bound[static_cast<std::size_t>(k)] = std::exp(b);
+    }
+    return m;
+  };
+  model = finish(best_a);
+  // Other structures the record supports about as well (Akaike weights
+  // within 2 of the best: Burnham & Anderson, Model Selection (2002) §2.6):
+  // intervals take the widest of them, since the record cannot tell which
+  // one holds. A random walk and a flicker floor, for instance, can fit an
+  // 11 h record alike and yet differ tenfold in a trend's variance.
+  auto parameter_count = [](const Eigen::Vector4d& a) {
+    return 1 + (a[0] > kPresentLog) + 2 * (a[1] > kPresentLog) + (a[3] > kPresentLog);
+  };
+  auto structure = [](const Eigen::Vector4d& a) {
+    return (a[0] > kPresentLog) + 2 * (a[1] > kPresentLog) + 4 * (a[3] > kPresentLog);
+  };
+  const double best_aic = best_f + 2.0 * parameter_count(best_a);
+  std::vector<int> seen = {structure(best_a)};
+  std::sort(tried.begin(), tried.end(), [](const auto& p, const auto& q) { return p.second < q.second; });
+  for (const auto& [a, fa] : tried) {
+    if (std::find(seen.begin(), seen.end(), structure(a)) != seen.end()) continue;
+    seen.push_back(structure(a));
+    const double delta = fa + 2.0 * parameter_count(a) - best_aic;
+    if (delta <= 2.0) {
+      model.alternatives.push_back(finish(a));
+      model.alternatives.back().akaike_weight = std::exp(-0.5 * std::max(0.0, delta));
+    }
   }
   return model;
-}
-
-std::vector<NoiseParameter> NoiseModel::parameters() const {
-  std::vector<NoiseParameter> out;
-  const double z = 1.959963984540054;
-  // value = factor · amplitude^power, an interval from the log-amplitude's sd.
-  auto add = [&](const char* name, const char* unit, int k, int p, double factor, double power) {
-    NoiseParameter q;
-    q.name = name;
-    q.unit = unit;
-    const double v = amplitude[static_cast<std::size_t>(k)];
-    q.value = v > 0.0 ? factor * std::pow(v, power) : 0.0;
-    q.identified = identified[static_cast<std::size_t>(k)];
-    if (q.identified) {
-      const double sd = std::sqrt(std::max(0.0, covariance(p, p))) / v * power;
-      q.lower = q.value * std::exp(-z * sd);
-      q.upper = q.value * std::exp(z * sd);
-    } else {
-      q.lower = 0.0;
-      q.upper = factor * std::pow(std::max(upper_bound[static_cast<std::size_t>(k)], v), power);
-    }
-    out.push_back(q);
-  };
-  add("arw", "deg/sqrt(h)", kWhite, 0, 1.0 / 60.0, 0.5);
-  add("bias_instability", "deg/h", kFlicker, 1, flicker_floor_per_s, 0.5);
-  add("gauss_markov", "deg/h", kGaussMarkov, 2, 1.0, 0.5);
-  if (present[kGaussMarkov]) {
-    NoiseParameter q{"gauss_markov_tau", "s", gm_tau_s, 0, 0, identified[kGaussMarkov]};
-    const double sd = std::sqrt(std::max(0.0, covariance(3, 3)));
-    q.lower = gm_tau_s * std::exp(-z * sd);
-    q.upper = gm_tau_s * std::exp(z * sd);
-    out.push_back(q);
-  }
-  add("rrw", "deg/h/sqrt(h)", kRandomWalk, 4, 60.0, 0.5);
-  return out;
-}
-
-std::string NoiseModel::description() const {
-  std::string out;
-  for (const NoiseParameter& p : parameters()) {
-    if (!out.empty()) out += "; ";
-    if (p.name == "gauss_markov_tau") {
-      out += fmt::format("tau {:.3g} s [{:.3g}, {:.3g}]", p.value, p.lower, p.upper);
-    } else if (p.identified) {
-      out += fmt::format("{} {:.3g} [{:.3g}, {:.3g}] {}", p.name, p.value, p.lower, p.upper, p.unit);
-    } else {
-      out += fmt::format("{} < {:.3g} {} (not pinned down)", p.name, p.upper, p.unit);
-    }
-  }
-  return out;
-}
-
-NoiseSandwich noise_sandwich(const NoiseModel& model, const WindowGrid& grid,
-                             const Eigen::MatrixXd& centred) {
-  const Eigen::Index l = centred.rows(), m = centred.cols();
-  const Eigen::MatrixXd G_inv =
-      (centred.transpose() * centred).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
-  const Eigen::MatrixXd P = centred * G_inv;  // β̂ = Pᵀ y
-  // Each component's part of Cov(β̂), and Gauss–Markov's change with ln τ.
-  std::array<Eigen::MatrixXd, kNoiseKinds> part;
-  NoiseSandwich out;
-  out.covariance = Eigen::MatrixXd::Zero(m, m);
-  for (int k = 0; k < kNoiseKinds; ++k) {
-    const double v = model.amplitude[static_cast<std::size_t>(k)];
-    if (!(v > 0.0)) { part[static_cast<std::size_t>(k)] = Eigen::MatrixXd::Zero(m, m); continue; }
-    part[static_cast<std::size_t>(k)] = v * P.transpose() * model.apply(grid, P, k);
-    out.covariance += part[static_cast<std::size_t>(k)];
-  }
-  Eigen::MatrixXd d_tau = Eigen::MatrixXd::Zero(m, m);
-  if (model.amplitude[kGaussMarkov] > 0.0) {
-    NoiseModel up = model, down = model;
-    up.gm_tau_s *= std::exp(0.05);
-    down.gm_tau_s *= std::exp(-0.05);
-    d_tau = model.amplitude[kGaussMarkov] *
-            P.transpose() * (up.apply(grid, P, kGaussMarkov) - down.apply(grid, P, kGaussMarkov)) / 0.1;
-  }
-  const double max_dof = static_cast<double>(std::max<Eigen::Index>(1, l - m - 1));
-  for (Eigen::Index j = 0; j < m; ++j) {
-    Eigen::Matrix<double, 5, 1> grad;
-    // ∂V_jj/∂θ: per unit amplitude, and per unit of ln τ.
-    auto unit = [&](int k) {
-      const double v = model.amplitude[static_cast<std::size_t>(k)];
-      return v > 0.0 ? part[static_cast<std::size_t>(k)](j, j) / v : 0.0;
-    };
-    grad << unit(kWhite), unit(kFlicker), unit(kGaussMarkov), d_tau(j, j), unit(kRandomWalk);
-    const double var = grad.transpose() * model.covariance * grad;
-    const double vjj = out.covariance(j, j);
-    out.dof.push_back(var > 0.0 ? std::clamp(2.0 * vjj * vjj / var, 1.0, max_dof) : max_dof);
-  }
-  return out;
 }
 
 }  // namespace gyrotherm::fit

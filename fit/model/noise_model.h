@@ -83,6 +83,11 @@ struct NoiseModel {
   std::array<bool, kNoiseKinds> identified{};  // and pinned down by the record
   std::array<double, kNoiseKinds> upper_bound{};  // amplitude's 95 % bound where not identified
   double minus_two_log_likelihood = 0;
+  // Other structures (which components are in) that the record supports
+  // about as well (Akaike's criterion within 2), each with its Akaike weight
+  // relative to this model's 1: intervals take the widest.
+  std::vector<NoiseModel> alternatives;
+  double akaike_weight = 1.0;
   std::size_t blocks = 0;  // block means the identification used
   double block_s = 0;      // their typical length
 
@@ -101,7 +106,8 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
 
 // The least-squares coefficients' covariance under the model, for the
 // centred design `centred` (l × m), and each diagonal's Satterthwaite degrees
-// of freedom (clamped to [1, l − m − 1]).
+// of freedom (clamped to [1, l − m − 1]); each diagonal is the widest among
+// the model and its alternatives.
 struct NoiseSandwich {
   Eigen::MatrixXd covariance;
   std::vector<double> dof;

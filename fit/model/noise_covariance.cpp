@@ -1,0 +1,199 @@
+// The noise model's covariance of window means (the kernels, applied to a
+// matrix in O(l·m)), its parameters in physical units, and the coefficients'
+// sandwich: fit/model/noise_model.h. The identification is noise_model.cpp.
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "fit/model/noise_model.h"
+
+namespace gyrotherm::fit {
+
+namespace {
+
+// Unit-variance exponential kernel e^{−|s|/τ} over windows of length Δ:
+// the window means' variance and the factor A of Cov_ij = A e^{−|t_i − t_j|/τ}.
+struct ExpWindow {
+  double diagonal, off;
+};
+ExpWindow exp_window(double tau, double delta) {
+  const double x = delta / tau;
+  const double r = tau / delta;
+  if (x > 50.0) return {2.0 * r * r * (x - 1.0), 0.0};  // white at the windows
+  const double two_sinh = std::exp(x / 2.0) - std::exp(-x / 2.0);
+  return {2.0 * r * r * (x + std::expm1(-x)), r * r * two_sinh * two_sinh};
+}
+
+// y = C x for the unit exponential kernel (semi-separable: two recursions).
+void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen::MatrixXd& x,
+                    Eigen::MatrixXd& y) {
+  const Eigen::Index n = x.rows();
+  const ExpWindow w = exp_window(tau, g.window_s);
+  y += weight * w.diagonal * x;
+  if (w.off == 0.0 || n < 2) return;
+  Eigen::RowVectorXd f = Eigen::RowVectorXd::Zero(x.cols());
+  for (Eigen::Index i = 1; i < n; ++i) {  // Σ_{j<i}
+    const double decay = std::exp(-(g.time_s[static_cast<std::size_t>(i)] -
+                                    g.time_s[static_cast<std::size_t>(i - 1)]) / tau);
+    f = decay * (f + x.row(i - 1));
+    y.row(i) += weight * w.off * f;
+  }
+  f.setZero();
+  for (Eigen::Index i = n - 2; i >= 0; --i) {  // Σ_{j>i}
+    const double decay = std::exp(-(g.time_s[static_cast<std::size_t>(i + 1)] -
+                                    g.time_s[static_cast<std::size_t>(i)]) / tau);
+    f = decay * (f + x.row(i + 1));
+    y.row(i) += weight * w.off * f;
+  }
+}
+
+void add_random_walk(const WindowGrid& g, double weight, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+  const Eigen::Index n = x.rows();
+  const double t0 = g.time_s.front() - g.window_s / 2.0;
+  Eigen::RowVectorXd below = Eigen::RowVectorXd::Zero(x.cols());  // Σ_{j<i} s_j x_j
+  Eigen::RowVectorXd above = x.colwise().sum();                    // Σ_{j>i} x_j
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double s = g.time_s[static_cast<std::size_t>(i)] - t0;
+    above -= x.row(i);
+    y.row(i) += weight * (below + s * above + (s - g.window_s / 6.0) * x.row(i));
+    below += s * x.row(i);
+  }
+}
+
+void add_white(const WindowGrid& g, double weight, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    y.row(i) += weight / g.averaging_s[static_cast<std::size_t>(i)] * x.row(i);
+}
+
+}  // namespace
+
+Eigen::MatrixXd NoiseModel::apply(const WindowGrid& grid, const Eigen::MatrixXd& x, int kind) const {
+  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(x.rows(), x.cols());
+  auto weight = [&](int k) { return kind < 0 ? amplitude[static_cast<std::size_t>(k)] : (kind == k ? 1.0 : 0.0); };
+  if (weight(kWhite) > 0.0) add_white(grid, weight(kWhite), x, y);
+  if (weight(kFlicker) > 0.0)
+    for (double tau : flicker_tau_s) add_exp_kernel(grid, tau, weight(kFlicker), x, y);
+  if (weight(kGaussMarkov) > 0.0 && gm_tau_s > 0.0) add_exp_kernel(grid, gm_tau_s, weight(kGaussMarkov), x, y);
+  if (weight(kRandomWalk) > 0.0) add_random_walk(grid, weight(kRandomWalk), x, y);
+  return y;
+}
+
+std::vector<NoiseParameter> NoiseModel::parameters() const {
+  std::vector<NoiseParameter> out;
+  const double z = 1.959963984540054;
+  // value = factor · amplitude^power, an interval from the log-amplitude's sd.
+  auto add = [&](const char* name, const char* unit, int k, int p, double factor, double power) {
+    NoiseParameter q;
+    q.name = name;
+    q.unit = unit;
+    const double v = amplitude[static_cast<std::size_t>(k)];
+    q.value = v > 0.0 ? factor * std::pow(v, power) : 0.0;
+    q.identified = identified[static_cast<std::size_t>(k)];
+    if (q.identified) {
+      const double sd = std::sqrt(std::max(0.0, covariance(p, p))) / v * power;
+      q.lower = q.value * std::exp(-z * sd);
+      q.upper = q.value * std::exp(z * sd);
+    } else {
+      q.lower = 0.0;
+      q.upper = factor * std::pow(std::max(upper_bound[static_cast<std::size_t>(k)], v), power);
+    }
+    out.push_back(q);
+  };
+  add("arw", "deg/sqrt(h)", kWhite, 0, 1.0 / 60.0, 0.5);
+  add("bias_instability", "deg/h", kFlicker, 1, flicker_floor_per_s, 0.5);
+  add("gauss_markov", "deg/h", kGaussMarkov, 2, 1.0, 0.5);
+  if (present[kGaussMarkov]) {
+    NoiseParameter q{"gauss_markov_tau", "s", gm_tau_s, 0, 0, identified[kGaussMarkov]};
+    const double sd = std::sqrt(std::max(0.0, covariance(3, 3)));
+    q.lower = gm_tau_s * std::exp(-z * sd);
+    q.upper = gm_tau_s * std::exp(z * sd);
+    out.push_back(q);
+  }
+  add("rrw", "deg/h/sqrt(h)", kRandomWalk, 4, 60.0, 0.5);
+  return out;
+}
+
+std::string NoiseModel::description() const {
+  std::string out = alternatives.empty() ? std::string() : "best of several the record supports alike: ";
+  for (const NoiseParameter& p : parameters()) {
+    if (!out.empty() && out.back() != ' ') out += "; ";
+    if (p.name == "gauss_markov_tau") {
+      out += fmt::format("tau {:.3g} s [{:.3g}, {:.3g}]", p.value, p.lower, p.upper);
+    } else if (p.identified) {
+      out += fmt::format("{} {:.3g} [{:.3g}, {:.3g}] {}", p.name, p.value, p.lower, p.upper, p.unit);
+    } else {
+      out += fmt::format("{} < {:.3g} {} (not pinned down)", p.name, p.upper, p.unit);
+    }
+  }
+  return out;
+}
+
+namespace {
+
+NoiseSandwich one_sandwich(const NoiseModel& model, const WindowGrid& grid,
+                           const Eigen::MatrixXd& centred) {
+  const Eigen::Index l = centred.rows(), m = centred.cols();
+  const Eigen::MatrixXd G_inv =
+      (centred.transpose() * centred).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  const Eigen::MatrixXd P = centred * G_inv;  // β̂ = Pᵀ y
+  // Each component's part of Cov(β̂), and Gauss–Markov's change with ln τ.
+  std::array<Eigen::MatrixXd, kNoiseKinds> part;
+  NoiseSandwich out;
+  out.covariance = Eigen::MatrixXd::Zero(m, m);
+  for (int k = 0; k < kNoiseKinds; ++k) {
+    const double v = model.amplitude[static_cast<std::size_t>(k)];
+    if (!(v > 0.0)) { part[static_cast<std::size_t>(k)] = Eigen::MatrixXd::Zero(m, m); continue; }
+    part[static_cast<std::size_t>(k)] = v * P.transpose() * model.apply(grid, P, k);
+    out.covariance += part[static_cast<std::size_t>(k)];
+  }
+  Eigen::MatrixXd d_tau = Eigen::MatrixXd::Zero(m, m);
+  if (model.amplitude[kGaussMarkov] > 0.0) {
+    NoiseModel up = model, down = model;
+    up.gm_tau_s *= std::exp(0.05);
+    down.gm_tau_s *= std::exp(-0.05);
+    d_tau = model.amplitude[kGaussMarkov] *
+            P.transpose() * (up.apply(grid, P, kGaussMarkov) - down.apply(grid, P, kGaussMarkov)) / 0.1;
+  }
+  const double max_dof = static_cast<double>(std::max<Eigen::Index>(1, l - m - 1));
+  for (Eigen::Index j = 0; j < m; ++j) {
+    Eigen::Matrix<double, 5, 1> grad;
+    // ∂V_jj/∂θ: per unit amplitude, and per unit of ln τ.
+    auto unit = [&](int k) {
+      const double v = model.amplitude[static_cast<std::size_t>(k)];
+      return v > 0.0 ? part[static_cast<std::size_t>(k)](j, j) / v : 0.0;
+    };
+    grad << unit(kWhite), unit(kFlicker), unit(kGaussMarkov), d_tau(j, j), unit(kRandomWalk);
+    const double var = grad.transpose() * model.covariance * grad;
+    const double vjj = out.covariance(j, j);
+    out.dof.push_back(var > 0.0 ? std::clamp(2.0 * vjj * vjj / var, 1.0, max_dof) : max_dof);
+  }
+  return out;
+}
+
+}  // namespace
+
+NoiseSandwich noise_sandwich(const NoiseModel& model, const WindowGrid& grid,
+                             const Eigen::MatrixXd& centred) {
+  NoiseSandwich out = one_sandwich(model, grid, centred);
+  if (model.alternatives.empty()) return out;
+  // Each coefficient takes the widest variance among the plausible models
+  // (with that model's dof): the record cannot tell which one holds, and an
+  // interval too narrow misleads where one too wide only costs precision.
+  // The matrix is rescaled to those diagonals.
+  Eigen::VectorXd widest = out.covariance.diagonal();
+  for (const NoiseModel& alternative : model.alternatives) {
+    const NoiseSandwich other = one_sandwich(alternative, grid, centred);
+    for (Eigen::Index j = 0; j < widest.size(); ++j)
+      if (other.covariance(j, j) > widest[j]) {
+        widest[j] = other.covariance(j, j);
+        out.dof[static_cast<std::size_t>(j)] = other.dof[static_cast<std::size_t>(j)];
+      }
+  }
+  const Eigen::VectorXd d =
+      (widest.array() / out.covariance.diagonal().array().max(1e-300)).sqrt().matrix();
+  out.covariance = d.asDiagonal() * out.covariance * d.asDiagonal();
+  return out;
+}
+
+}  // namespace gyrotherm::fit
