@@ -145,8 +145,9 @@ TEST(Layers, TheLibrariesLinkAsTheLayers) {
       const std::string targets = (*it)[2].str();
       for (const auto& [other_layer, other] : library) {
         const std::regex word("\\b" + other + "\\b");
-        if (std::regex_search(targets, word))
+        if (std::regex_search(targets, word)) {
           EXPECT_TRUE(allowed.contains(other_layer)) << name << " links " << other;
+        }
       }
     }
   }
