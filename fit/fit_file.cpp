@@ -18,6 +18,21 @@ using Json = nlohmann::ordered_json;
 
 }  // namespace
 
+nlohmann::ordered_json noise_model_json(const NoiseModel& n) {
+  Json components = Json::object();
+  for (const NoiseParameter& q : n.parameters())
+    components[q.name] = {{"value", q.value},
+                          {"interval_95", {q.lower, q.upper}},
+                          {"identified", q.identified},
+                          {"unit", q.unit}};
+  return {{"method", "REML on the fit's residual: white + flicker + rate random walk, a "
+                     "Gauss-Markov process where it pays"},
+          {"blocks", n.blocks},
+          {"block_s", n.block_s},
+          {"alternatives", n.alternatives.size()},
+          {"components", components}};
+}
+
 nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                                 const PipelineOptions& pipeline, const EngineSettings& settings) {
   Json j;
@@ -63,20 +78,7 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
     j["intervals_95"] = intervals;
     j["interval_method"] = fit.engine.interval_method;
   }
-  if (fit.noise) {
-    const NoiseModel& n = fit.noise->model;
-    Json components = Json::object();
-    for (const NoiseParameter& q : n.parameters())
-      components[q.name] = {{"value", q.value},
-                            {"interval_95", {q.lower, q.upper}},
-                            {"identified", q.identified},
-                            {"unit", q.unit}};
-    j["noise_model"] = {{"method", "REML on the fit's residual: white + flicker + rate random walk, "
-                                   "a Gauss-Markov process where it pays"},
-                        {"blocks", n.blocks},
-                        {"block_s", n.block_s},
-                        {"components", components}};
-  }
+  if (fit.noise) j["noise_model"] = noise_model_json(fit.noise->model);
   {
     const RecordSupport& s = fit.support;
     Json flags = Json::object();

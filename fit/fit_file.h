@@ -26,6 +26,9 @@
 namespace gyrotherm::fit {
 
 // (With data from `simulate`, studies/simulated.h adds the truth.)
+// The `noise_model` object of fit's and diagnose's JSON (docs/contracts.md).
+nlohmann::ordered_json noise_model_json(const NoiseModel& model);
+
 nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                                 const PipelineOptions& pipeline, const EngineSettings& settings);
 

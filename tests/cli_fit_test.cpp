@@ -57,6 +57,42 @@ TEST(CliFit, FitsSimulatedDataAndReportsAgainstTheTruth) {
   EXPECT_NE(human.out.find("truth 1.81"), std::string::npos) << human.out;
 }
 
+TEST(CliFit, ReportsTheIdentifiedNoiseAndWhatTheRecordCanSupport) {
+  ScratchDir dir;
+  simulate_short(dir, "run", 1);
+  const auto r = run_cli(dir, "fit run.csv --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("noise_model")) << r.out;
+  const auto& components = j["noise_model"]["components"];
+  for (const char* name : {"arw", "bias_instability", "gauss_markov", "rrw"}) {
+    ASSERT_TRUE(components.contains(name)) << name;
+    const auto& c = components[name];
+    EXPECT_LE(c["interval_95"][0].get<double>(), c["interval_95"][1].get<double>()) << name;
+    if (c["identified"].get<bool>()) {
+      EXPECT_LE(c["interval_95"][0].get<double>(), c["value"].get<double>()) << name;
+      EXPECT_GE(c["interval_95"][1].get<double>(), c["value"].get<double>()) << name;
+    }
+  }
+  // The simulated white noise (ARW) is seen and named in its unit.
+  EXPECT_TRUE(components["arw"]["identified"].get<bool>());
+  EXPECT_EQ(components["arw"]["unit"], "deg/sqrt(h)");
+  EXPECT_NE(j["interval_method"].get<std::string>().find("identified noise"), std::string::npos);
+  ASSERT_TRUE(j.contains("record"));
+  EXPECT_GE(j["record"]["temperature_levels"].get<int>(), 1);
+  EXPECT_EQ(j["record"]["temp_range_c"], j["data"]["temp_range_c"]);
+  // Newey-West stays one option away, and diagnose reports the same model.
+  const auto nw = run_cli(dir, "fit run.csv --json --option intervals=nw");
+  ASSERT_EQ(nw.exit_code, 0) << nw.err;
+  EXPECT_NE(nlohmann::json::parse(nw.out)["interval_method"].get<std::string>().find("Newey-West"),
+            std::string::npos);
+  const auto d = run_cli(dir, "diagnose run.csv --json");
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_EQ(nlohmann::json::parse(d.out)["noise_model"], j["noise_model"]);
+  const auto text = run_cli(dir, "fit run.csv");
+  EXPECT_NE(text.out.find("record: temperature"), std::string::npos) << text.out;
+}
+
 TEST(CliFit, CompensateAppliesTheFitToOtherData) {
   ScratchDir dir;
   simulate_short(dir, "train", 1);

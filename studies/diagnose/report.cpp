@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "fit/fit_file.h"
 #include "fit/model/formula.h"
 #include "sim/util/input_error.h"
 
@@ -56,6 +57,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   j["instability_dph"] = d.fit.instability_after_dph;
   j["instability_before_dph"] = d.fit.instability_before_dph;
   j["noise_floor_dph"] = d.noise_floor_dph;
+  if (d.fit.noise) j["noise_model"] = fit::noise_model_json(d.fit.noise->model);
   j["noise_floor"] = {{"method", d.floor.method},
                       {"description", d.floor.description()},
                       {"hadamard_triples", d.floor.triples},
