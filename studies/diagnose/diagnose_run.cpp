@@ -53,7 +53,9 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
   for (const CandidateReport& c : d.candidates)
     out += fmt::format("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n", c.significant ? "*" : " ", c.term->name,
-                       c.reduction_pct, c.p_value, c.significant ? "significant" : "", c.term->meaning);
+                       c.reduction_pct, c.p_value,
+                       !c.significant ? "" : c.confounded_with.empty() ? "significant" : "its group is",
+                       c.term->meaning);
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
   if (before) {
     out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",

@@ -81,9 +81,13 @@ void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::v
   const fit::AveragedSeries& s = data.series;
   const std::size_t l = s.size();
   std::vector<const fit::Term*> final_terms = terms;
+  // A significant group (terms this record cannot tell apart) explains what
+  // it explains whichever member stands for it: its first member joins,
+  // then the selection stops, as it does.
   for (const CandidateReport& c : d.candidates) {
-    if (!c.significant || !c.confounded_with.empty()) break;
+    if (!c.significant) break;
     final_terms.push_back(c.term);
+    if (!c.confounded_with.empty()) break;
   }
   try {
     const fit::ModelFit f = fit::fit_model(data, final_terms, fit::find_engine("ols"), {});
@@ -101,7 +105,7 @@ void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::v
       d.remaining = fmt::format(
           "structure remains that no candidate explains: {} is still {:.2f} times the floor, "
           "worst in the {} segment at {:.2f}–{:.2f} h ({:.1f} to {:.1f} °C), {:.2f} times the floor",
-          final_terms.size() > terms.size() ? "the model with the significant candidates" : "the model",
+          final_terms.size() > terms.size() ? "the model with the significant candidates (or their group)" : "the model",
           f.instability_after_dph / d.noise_floor_dph, worst->kind,
           (worst->start_s - s.start_time_s) / 3600.0, (worst->end_s - s.start_time_s) / 3600.0,
           worst->temp_min_c, worst->temp_max_c, worst->ratio_to_floor);

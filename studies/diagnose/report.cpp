@@ -76,7 +76,10 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
                                 {"meaning", c.term->meaning},
                                 {"instability_after_dph", c.instability_after_dph},
                                 {"reduction_pct", c.reduction_pct},
-                                {"significant", c.significant},
+                                // Alone only: a member of a confounded group is not
+                                // significant by itself; the group is.
+                                {"significant", c.significant && c.confounded_with.empty()},
+                                {"group_significant", c.significant && !c.confounded_with.empty()},
                                 {"p_value", c.p_value},
                                 {"cv_gain_pct", c.cv_gain_pct},
                                 {"confounded_with", c.confounded_with}};
