@@ -80,7 +80,13 @@ inline void expect_round_trip(const RoundTrip& r) {
   for (const auto& other : best["confounded_with"]) named |= other == r.term;
   EXPECT_TRUE(named) << d["verdict"];
   EXPECT_GE(best["reduction_pct"].get<double>(), 80.0);
-  EXPECT_TRUE(best["significant"].get<bool>()) << d["verdict"];
+  // Significant alone, or (confounded) as a group; never alone when grouped.
+  const bool grouped = !best["confounded_with"].empty();
+  EXPECT_TRUE(grouped ? best["group_significant"].get<bool>() : best["significant"].get<bool>())
+      << d["verdict"];
+  if (grouped) {
+    EXPECT_FALSE(best["significant"].get<bool>()) << best;
+  }
 
   // 4. compensate --causal with the fit: the instability falls.
   const auto compensated = run_cli(dir, "compensate h.csv --fit fit.json --causal --json -o c.csv");
