@@ -79,7 +79,9 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
 
 // The windows of a prepared record as the noise model sees them.
 WindowGrid window_grid(const PreparedData& data);
-// The noise of `problem`'s residual on the record's windows (nullptr: too few windows).
+// The noise of `problem`'s residual on the record's windows (nullptr: too few
+// windows, or terms that cannot be told apart at the identification's block
+// means; ols then falls back to Newey–West and says so).
 std::shared_ptr<const NoiseContext> identify_record_noise(const PreparedData& data,
                                                           const LinearProblem& problem);
 

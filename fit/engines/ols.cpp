@@ -147,7 +147,12 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
         (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
     V = xtx_inv * lrv.S * xtx_inv;
     dofs.assign(static_cast<std::size_t>(m), lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1));
-    description = fmt::format("{}; Student t with {:g} dof", lrv.description, dofs.front());
+    description = fmt::format("{}{}; Student t with {:g} dof",
+                              options_.intervals == "model"
+                                  ? "no noise model could be identified on this record (too few "
+                                    "windows for the terms): "
+                                  : "",
+                              lrv.description, dofs.front());
   }
   double e_num = 0.0, e_den = 0.0;
   for (Eigen::Index p = 0; p < l; ++p) {

@@ -166,7 +166,8 @@ NoiseSandwich one_sandwich(const NoiseModel& model, const WindowGrid& grid,
     grad << unit(kWhite), unit(kFlicker), unit(kGaussMarkov), d_tau(j, j), unit(kRandomWalk);
     const double var = grad.transpose() * model.covariance * grad;
     const double vjj = out.covariance(j, j);
-    out.dof.push_back(var > 0.0 ? std::clamp(2.0 * vjj * vjj / var, 1.0, max_dof) : max_dof);
+    const double dof = var > 0.0 ? 2.0 * vjj * vjj / var : max_dof;
+    out.dof.push_back(std::isfinite(dof) ? std::clamp(dof, 1.0, max_dof) : 1.0);  // unknown: the widest
   }
   return out;
 }

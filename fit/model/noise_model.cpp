@@ -220,6 +220,9 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   X.rightCols(design.cols()) = design;
   reml.X = aggregate(blocks, X);
   reml.y = aggregate(blocks, y);
+  if (Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(reml.X).rank() < reml.X.cols())
+    throw InputError(fmt::format("the model's terms cannot be told apart at the {} block means the "
+                                 "noise is identified on", nb));
   auto block_cov = [&](const NoiseModel& unit, int kind) {
     return aggregate(blocks, unit.apply(grid, A, kind));  // A·C·Aᵀ by block means: O(l·blocks)
   };
