@@ -90,44 +90,43 @@ struct Reml {
     return (1.0 - f) * gm[k] + f * gm[k + 1];
   }
 
-  // −2 log L_REML up to a constant for C = Σ v_k M_k (unnormalised amplitudes).
-  double minus_two_ll(const std::array<double, kNoiseKinds>& v, double log_tau) const {
+  // C = Σ v_k M_k (unnormalised amplitudes) at the block means.
+  Eigen::MatrixXd covariance(const std::array<double, kNoiseKinds>& v, double log_tau) const {
     Eigen::MatrixXd C = v[kWhite] * M[kWhite] + v[kFlicker] * M[kFlicker] +
                         v[kRandomWalk] * M[kRandomWalk];
     if (v[kGaussMarkov] > 0.0) C += v[kGaussMarkov] * gm_at(log_tau);
+    return C;
+  }
+
+  // The REML pieces for C: log|C| + log|XᵀC⁻¹X| and the GLS residual's
+  // rᵀC⁻¹r; false where C is not positive definite or the fit is exact.
+  bool pieces(const Eigen::MatrixXd& C, double* logdet, double* rss) const {
     const Eigen::LLT<Eigen::MatrixXd> llt(C);
-    if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+    if (llt.info() != Eigen::Success) return false;
     const Eigen::MatrixXd Xw = llt.matrixL().solve(X);
     const Eigen::VectorXd yw = llt.matrixL().solve(y);
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Xw);
-    const Eigen::VectorXd beta = qr.solve(yw);
-    const double rss = (yw - Xw * beta).squaredNorm();
-    double logdet = 0.0;
-    for (Eigen::Index i = 0; i < C.rows(); ++i) logdet += 2.0 * std::log(llt.matrixLLT()(i, i));
-    double logdet_x = 0.0;
-    for (Eigen::Index i = 0; i < X.cols(); ++i) logdet_x += 2.0 * std::log(std::abs(qr.matrixQR()(i, i)));
-    if (!std::isfinite(rss) || !(rss > 0.0)) return std::numeric_limits<double>::infinity();
-    return logdet + logdet_x + rss;
+    *rss = (yw - Xw * qr.solve(yw)).squaredNorm();
+    *logdet = 0.0;
+    for (Eigen::Index i = 0; i < C.rows(); ++i) *logdet += 2.0 * std::log(llt.matrixLLT()(i, i));
+    for (Eigen::Index i = 0; i < X.cols(); ++i) *logdet += 2.0 * std::log(std::abs(qr.matrixQR()(i, i)));
+    return std::isfinite(*rss) && *rss > 0.0;
+  }
+
+  // −2 log L_REML up to a constant for the amplitudes v.
+  double minus_two_ll(const std::array<double, kNoiseKinds>& v, double log_tau) const {
+    double logdet = 0.0, rss = 0.0;
+    if (!pieces(covariance(v, log_tau), &logdet, &rss)) return std::numeric_limits<double>::infinity();
+    return logdet + rss;
   }
 
   // Weights a = (ln w_f, ln w_gm, ln τ, ln w_rw) relative to white; the
   // overall scale profiled out. Returns −2 log L and the scale.
   double profiled(const Eigen::Vector4d& a, double* scale = nullptr) const {
-    const std::array<double, kNoiseKinds> v = amplitudes(a, 1.0);
-    Eigen::MatrixXd C = v[kWhite] * M[kWhite] + v[kFlicker] * M[kFlicker] +
-                        v[kRandomWalk] * M[kRandomWalk];
-    if (v[kGaussMarkov] > 0.0) C += v[kGaussMarkov] * gm_at(a[2]);
-    const Eigen::LLT<Eigen::MatrixXd> llt(C);
-    if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-    const Eigen::MatrixXd Xw = llt.matrixL().solve(X);
-    const Eigen::VectorXd yw = llt.matrixL().solve(y);
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Xw);
-    const double rss = (yw - Xw * qr.solve(yw)).squaredNorm();
+    double logdet = 0.0, rss = 0.0;
+    if (!pieces(covariance(amplitudes(a, 1.0), a[2]), &logdet, &rss))
+      return std::numeric_limits<double>::infinity();
     const double nu = static_cast<double>(X.rows() - X.cols());
-    double logdet = 0.0;
-    for (Eigen::Index i = 0; i < C.rows(); ++i) logdet += 2.0 * std::log(llt.matrixLLT()(i, i));
-    for (Eigen::Index i = 0; i < X.cols(); ++i) logdet += 2.0 * std::log(std::abs(qr.matrixQR()(i, i)));
-    if (!std::isfinite(rss) || !(rss > 0.0)) return std::numeric_limits<double>::infinity();
     if (scale) *scale = rss / nu;
     return nu * std::log(rss / nu) + logdet;
   }
@@ -324,10 +323,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
     std::sort(free.begin(), free.end());
     {
       const auto& v = m.amplitude;
-      Eigen::MatrixXd C = v[kWhite] * reml.M[kWhite] + v[kFlicker] * reml.M[kFlicker] +
-                          v[kRandomWalk] * reml.M[kRandomWalk];
-      if (v[kGaussMarkov] > 0.0) C += v[kGaussMarkov] * reml.gm_at(point[2]);
-      const Eigen::LLT<Eigen::MatrixXd> llt(C);
+      const Eigen::LLT<Eigen::MatrixXd> llt(reml.covariance(v, point[2]));
       const Eigen::MatrixXd Ci = llt.solve(Eigen::MatrixXd::Identity(nb, nb));
       const Eigen::MatrixXd CiX = Ci * reml.X;
       const Eigen::MatrixXd P =
