@@ -406,11 +406,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   for (const auto& [a, fa] : tried) {
     if (std::find(seen.begin(), seen.end(), structure(a)) != seen.end()) continue;
     seen.push_back(structure(a));
-    const double delta = fa + 2.0 * parameter_count(a) - best_aic;
-    if (delta <= 2.0) {
-      model.alternatives.push_back(finish(a));
-      model.alternatives.back().akaike_weight = std::exp(-0.5 * std::max(0.0, delta));
-    }
+    if (fa + 2.0 * parameter_count(a) <= best_aic + 2.0) model.alternatives.push_back(finish(a));
   }
   return model;
 }

@@ -84,10 +84,8 @@ struct NoiseModel {
   std::array<double, kNoiseKinds> upper_bound{};  // amplitude's 95 % bound where not identified
   double minus_two_log_likelihood = 0;
   // Other structures (which components are in) that the record supports
-  // about as well (Akaike's criterion within 2), each with its Akaike weight
-  // relative to this model's 1: intervals take the widest.
+  // about as well (Akaike's criterion within 2): intervals take the widest.
   std::vector<NoiseModel> alternatives;
-  double akaike_weight = 1.0;
   std::size_t blocks = 0;  // block means the identification used
   double block_s = 0;      // their typical length
 
