@@ -13,6 +13,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include <random>
+
+#include "studies/allan/allan_study.h"
+
 #include <algorithm>
 #include <string>
 
@@ -108,6 +112,23 @@ void BM_IdentifyNoise(benchmark::State& state) {
 
 BENCHMARK_CAPTURE(BM_FitIntervals, model, std::string("model"))->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyNoise)->Unit(benchmark::kMillisecond);
+
+// `allan` on 2²⁰ samples (12 days at 1 s) of white plus flicker-like noise:
+// the curve at octave τ, the series' noise model and the coefficients (aim ≤ 0.5 s).
+void BM_AllanSeries(benchmark::State& state) {
+  const std::size_t n = std::size_t{1} << 20;
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<double> t(n), y(n);
+  double slow = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    t[i] = static_cast<double>(i);
+    slow = 0.999 * slow + 0.002 * normal(rng);
+    y[i] = 0.03 * normal(rng) + slow;
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(studies::allan_series(t, y, {}, "raw"));
+}
+BENCHMARK(BM_AllanSeries)->Unit(benchmark::kMillisecond);
 
 void BM_EngineToTarget(benchmark::State& state, const std::string& name) {
   const fit::LinearProblem& problem = cycle_problem();

@@ -32,38 +32,50 @@ void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen:
   const ExpWindow w = exp_window(tau, g.window_s);
   y += weight * w.diagonal * x;
   if (w.off == 0.0 || n < 2) return;
-  Eigen::RowVectorXd f = Eigen::RowVectorXd::Zero(x.cols());
-  for (Eigen::Index i = 1; i < n; ++i) {  // Σ_{j<i}
-    const double decay = std::exp(-(g.time_s[static_cast<std::size_t>(i)] -
-                                    g.time_s[static_cast<std::size_t>(i - 1)]) / tau);
-    f = decay * (f + x.row(i - 1));
-    y.row(i) += weight * w.off * f;
-  }
-  f.setZero();
-  for (Eigen::Index i = n - 2; i >= 0; --i) {  // Σ_{j>i}
-    const double decay = std::exp(-(g.time_s[static_cast<std::size_t>(i + 1)] -
-                                    g.time_s[static_cast<std::size_t>(i)]) / tau);
-    f = decay * (f + x.row(i + 1));
-    y.row(i) += weight * w.off * f;
+  // decay[i] = e^{−(t_{i+1} − t_i)/τ}; the recursions run down each column
+  // (contiguous in memory), Σ_{j<i} forward and Σ_{j>i} backward.
+  std::vector<double> decay(static_cast<std::size_t>(n - 1));
+  for (Eigen::Index i = 0; i + 1 < n; ++i)
+    decay[static_cast<std::size_t>(i)] =
+        std::exp(-(g.time_s[static_cast<std::size_t>(i + 1)] - g.time_s[static_cast<std::size_t>(i)]) / tau);
+  const double scale = weight * w.off;
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const double* xc = x.col(c).data();
+    double* yc = y.col(c).data();
+    double f = 0.0;
+    for (Eigen::Index i = 1; i < n; ++i) {
+      f = decay[static_cast<std::size_t>(i - 1)] * (f + xc[i - 1]);
+      yc[i] += scale * f;
+    }
+    f = 0.0;
+    for (Eigen::Index i = n - 2; i >= 0; --i) {
+      f = decay[static_cast<std::size_t>(i)] * (f + xc[i + 1]);
+      yc[i] += scale * f;
+    }
   }
 }
 
 void add_random_walk(const WindowGrid& g, double weight, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
   const Eigen::Index n = x.rows();
   const double t0 = g.time_s.front() - g.window_s / 2.0;
-  Eigen::RowVectorXd below = Eigen::RowVectorXd::Zero(x.cols());  // Σ_{j<i} s_j x_j
-  Eigen::RowVectorXd above = x.colwise().sum();                    // Σ_{j>i} x_j
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double s = g.time_s[static_cast<std::size_t>(i)] - t0;
-    above -= x.row(i);
-    y.row(i) += weight * (below + s * above + (s - g.window_s / 6.0) * x.row(i));
-    below += s * x.row(i);
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    const double* xc = x.col(c).data();
+    double* yc = y.col(c).data();
+    double below = 0.0;        // Σ_{j<i} s_j x_j
+    double above = 0.0;        // Σ_{j>i} x_j
+    for (Eigen::Index i = 0; i < n; ++i) above += xc[i];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double s = g.time_s[static_cast<std::size_t>(i)] - t0;
+      above -= xc[i];
+      yc[i] += weight * (below + s * above + (s - g.window_s / 6.0) * xc[i]);
+      below += s * xc[i];
+    }
   }
 }
 
 void add_white(const WindowGrid& g, double weight, const Eigen::MatrixXd& x, Eigen::MatrixXd& y) {
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    y.row(i) += weight / g.averaging_s[static_cast<std::size_t>(i)] * x.row(i);
+  const Eigen::Map<const Eigen::VectorXd> a(g.averaging_s.data(), static_cast<Eigen::Index>(g.averaging_s.size()));
+  y.noalias() += (weight * a.cwiseInverse()).asDiagonal() * x;
 }
 
 }  // namespace
@@ -112,6 +124,17 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
   }
   add("rrw", "deg/h/sqrt(h)", kRandomWalk, 4, 60.0, 0.5);
   return out;
+}
+
+double NoiseModel::allan_variance(double tau_s) const {
+  const auto g = [tau_s](double tau_c) {
+    const double x = tau_s / tau_c;
+    return x < 1e-4 ? 2.0 * x / 3.0 : (2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x)) / (x * x);
+  };
+  double avar = amplitude[kWhite] / tau_s + amplitude[kRandomWalk] * tau_s / 3.0;
+  for (const double t : flicker_tau_s) avar += amplitude[kFlicker] * g(t);
+  if (gm_tau_s > 0.0) avar += amplitude[kGaussMarkov] * g(gm_tau_s);
+  return avar;
 }
 
 std::string NoiseModel::description() const {

@@ -92,6 +92,9 @@ struct NoiseModel {
   std::vector<NoiseParameter> parameters() const;
   // "white N = 3.1e-04 °/√h [2.8e-04, 3.4e-04]; flicker B = …; no random walk (K < …)"
   std::string description() const;
+  // The model's Allan variance ((°/h)²) at τ (s): q_w/τ + s²Σg(τ/τ_i) +
+  // σ²g(τ/τ_c) + q_r τ/3, g the exponential kernel's (above).
+  double allan_variance(double tau_s) const;
   // C·x for the windows of `grid`: every component, or only `kind` at unit amplitude.
   Eigen::MatrixXd apply(const WindowGrid& grid, const Eigen::MatrixXd& x, int kind = -1) const;
 };

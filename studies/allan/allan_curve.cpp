@@ -7,10 +7,16 @@
 #include <fmt/format.h>
 
 #include "fit/data/median.h"
+#include "studies/allan/greenhall_edf.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 namespace {
+
+// Block averages the lag-1 autocorrelation needs. Riley & Greenhall's 30 lets
+// r1 stray by ±0.18, enough to call one white point in six flicker angle
+// noise (α = 1) and under-state its interval; with 100 it strays by ±0.1.
+constexpr std::size_t kAcfAverages = 100;
 
 // A gap-free run: its rates and its angle x_k = Σ_{i<k} (y_i − ȳ) (in rate ×
 // samples; the mean cancels in the second differences and keeps x small),
@@ -48,29 +54,9 @@ std::pair<double, std::size_t> second_differences(const std::vector<double>& x, 
   return {sum, n - 2 * m + 1};
 }
 
-// NIST SP 1065 Table 5: edf of the overlapping Allan variance, N phase points.
-double table5_edf(int alpha, double n, double m) {
-  switch (alpha) {
-    case 2:
-      return (n + 1.0) * (n - 2.0 * m) / (2.0 * (n - m));
-    case 1: {
-      const double a = std::log((n - 1.0) / (2.0 * m)), b = std::log((2.0 * m + 1.0) * (n - 1.0) / 4.0);
-      return a > 0.0 && b > 0.0 ? std::exp(std::sqrt(a * b)) : 1.0;
-    }
-    case 0:
-      return (3.0 * (n - 1.0) / (2.0 * m) - 2.0 * (n - 2.0) / n) * 4.0 * m * m / (4.0 * m * m + 5.0);
-    case -1:
-      return m == 1.0 ? 2.0 * (n - 2.0) * (n - 2.0) / (2.3 * n - 4.9) : 5.0 * n * n / (4.0 * m * (n + 3.0 * m));
-    default:  // −2
-      return n > 3.0 ? (n - 2.0) / m * ((n - 1.0) * (n - 1.0) - 3.0 * m * (n - 1.0) + 4.0 * m * m) /
-                           ((n - 3.0) * (n - 3.0))
-                     : 1.0;
-  }
-}
-
 // Riley & Greenhall's lag-1 autocorrelation identification on the runs' m-block
 // averages, pooled (products only within a run). Returns false when there are
-// fewer than 30 averages.
+// fewer than kAcfAverages averages.
 bool acf_alpha(const std::vector<Run>& runs, std::size_t m, int& alpha) {
   std::vector<std::vector<double>> z;
   std::size_t count = 0;
@@ -84,7 +70,7 @@ bool acf_alpha(const std::vector<Run>& runs, std::size_t m, int& alpha) {
     count += blocks.size();
     if (blocks.size() >= 2) z.push_back(std::move(blocks));
   }
-  if (count < 30) return false;
+  if (count < kAcfAverages) return false;
   for (int d = 0;; ++d) {
     double mean = 0.0;
     std::size_t n = 0;
@@ -216,21 +202,32 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
     row.alpha_from_acf = acf_alpha(runs, m, row.alpha);
     c.rows.push_back(row);
   }
-  // Where the block averages are too few, the local slope of σ² names the type.
+  // Where the block averages are too few: the noise model's type, or the
+  // curve's least-squares slope over the τ within two octaves.
   for (std::size_t i = 0; i < c.rows.size(); ++i) {
     AllanRow& row = c.rows[i];
     if (!row.alpha_from_acf) {
-      const std::size_t a = i > 0 ? i - 1 : i, b = i > 0 ? i : std::min(i + 1, c.rows.size() - 1);
-      const double mu = a == b || c.rows[a].adev_dph <= 0.0 || c.rows[b].adev_dph <= 0.0
-                            ? -1.0
-                            : 2.0 * std::log(c.rows[b].adev_dph / c.rows[a].adev_dph) /
-                                  std::log(c.rows[b].tau_s / c.rows[a].tau_s);
+      double mu = -1.0;
+      if (options.model_avar) {
+        const double lo = options.model_avar(row.tau_s / 1.2), hi = options.model_avar(row.tau_s * 1.2);
+        if (lo > 0.0 && hi > 0.0 && std::isfinite(lo) && std::isfinite(hi)) {
+          mu = std::log(hi / lo) / std::log(1.44);
+          row.alpha_from_model = true;
+        }
+      }
+      if (!row.alpha_from_model) {
+        double sx = 0, sy = 0, sxx = 0, sxy = 0, k = 0;
+        for (const AllanRow& o : c.rows)
+          if (o.adev_dph > 0.0 && std::abs(std::log2(o.tau_s / row.tau_s)) <= 2.0 + 1e-9) {
+            const double x = std::log(o.tau_s), y = 2.0 * std::log(o.adev_dph);
+            sx += x; sy += y; sxx += x * x; sxy += x * y; k += 1.0;
+          }
+        if (k >= 2.0 && sxx - sx * sx / k > 0.0) mu = (sxy - sx * sy / k) / (sxx - sx * sx / k);
+      }
       row.alpha = std::clamp(static_cast<int>(std::lround(-mu - 1.0)), -2, 2);
     }
     for (const Run& r : runs)
-      if (r.rate.size() >= 2 * row.m)
-        row.edf += std::max(0.0, table5_edf(row.alpha, static_cast<double>(r.rate.size() + 1),
-                                            static_cast<double>(row.m)));
+      if (r.rate.size() >= 2 * row.m) row.edf += greenhall_edf(row.alpha, row.m, r.rate.size() + 1);
     row.edf = std::max(row.edf, 1.0);
     const boost::math::chi_squared chi2(row.edf);
     row.lo_dph = row.adev_dph * std::sqrt(row.edf / boost::math::quantile(chi2, 0.5 + 0.5 * options.confidence));

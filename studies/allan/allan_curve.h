@@ -16,29 +16,31 @@
 // S_y(f) ∝ f^α is identified by the lag-1 autocorrelation method (Riley &
 // Greenhall 2004): the rates averaged over non-overlapping m-blocks (within
 // runs) are differenced d times until δ = r1/(1 + r1) < 0.25 (d ≤ 2), and
-// α = −2(δ + d), rounded. It needs 30 block averages; beyond that (long τ)
-// α comes from the local log-log slope μ of σ²(τ) ∝ τ^μ, α = −μ − 1. For a
-// gyro: α = 2 quantisation (white angle noise), 1 flicker angle noise,
-// 0 angle random walk (white rate noise), −1 bias instability (flicker rate),
-// −2 rate random walk.
+// α = −2(δ + d), rounded. It needs 100 block averages (Riley's 30 lets r1
+// stray by ±0.18: one white point in six was called another type). At longer τ the type is
+// the one of the record's noise model (series_noise.h: white, flicker,
+// Gauss–Markov, random walk identified by REML on the whole record): α =
+// −μ − 1 rounded, μ the model's local log-log slope of σ²(τ); without a model
+// (too short a record), μ is the least-squares slope of the curve over the
+// τ within two octaves, never one pair of points. For a gyro: α = 2
+// quantisation (white angle noise), 1 flicker angle noise, 0 angle random
+// walk (white rate noise), −1 bias instability (flicker rate), −2 rate random
+// walk.
 //
 // Confidence intervals. The estimate is χ²-distributed with the equivalent
-// degrees of freedom of the overlapping estimator for that noise type, NIST
-// SP 1065 Table 5 (N phase points per run, edf summed over runs since runs
-// are independent):
-//   α = 2:  (N + 1)(N − 2m) / (2(N − m))
-//   α = 1:  exp √(ln((N − 1)/2m) · ln((2m + 1)(N − 1)/4))
-//   α = 0:  (3(N − 1)/2m − 2(N − 2)/N) · 4m²/(4m² + 5)
-//   α = −1: 2(N − 2)²/(2.3N − 4.9) for m = 1, 5N²/(4m(N + 3m)) for m ≥ 2
-//   α = −2: (N − 2)/m · ((N − 1)² − 3m(N − 1) + 4m²)/(N − 3)²
-// and the interval at confidence c is σ·√(edf/χ²_edf((1 ± c)/2)) (Boost.Math).
+// degrees of freedom of the overlapping estimator for that noise type by
+// Greenhall's algorithm (greenhall_edf.h), summed over runs (runs are
+// independent), and the interval at confidence c is
+// σ·√(edf/χ²_edf((1 ± c)/2)) (Boost.Math).
 //
 // References: W. J. Riley, "Handbook of Frequency Stability Analysis", NIST
-// SP 1065 (2008), §5.2.4, §5.5.2 (Table 5), §5.6; W. J. Riley, C. A.
+// SP 1065 (2008), §5.2.4, §5.6; C. A. Greenhall, W. J. Riley, "Uncertainty
+// of stability variances based on finite differences", 35th PTTI (2003); W. J. Riley, C. A.
 // Greenhall, "Power law noise identification using the lag 1
 // autocorrelation", Proc. 18th EFTF (2004); IEEE Std 952-1997, Annex C.
 
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -56,6 +58,9 @@ struct AllanOptions {
   // The longest τ asked for (s); 0: the default above. A τ beyond what the
   // record can give (one gap-free stretch of 2τ) is refused.
   double tau_max_s = 0.0;
+  // The record's noise model as an Allan variance ((°/h)² at τ in s), for the
+  // noise type where block averages are too few; empty: the curve's slope.
+  std::function<double(double)> model_avar;
 };
 
 struct AllanRow {
@@ -65,7 +70,8 @@ struct AllanRow {
   double lo_dph = 0.0, hi_dph = 0.0;
   double edf = 0.0;
   int alpha = 0;               // the noise type's spectral exponent (above)
-  bool alpha_from_acf = true;  // false: from the local slope
+  bool alpha_from_acf = true;     // false: from the noise model, or the slope
+  bool alpha_from_model = false;  // from the noise model
   std::size_t terms = 0;       // second differences used
   std::size_t gap_terms = 0;   // left out because their clusters would span a gap
 };

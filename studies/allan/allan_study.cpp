@@ -6,6 +6,8 @@
 
 #include "fit/channels.h"
 #include "fit/compensation.h"
+#include "fit/data/median.h"
+#include "fit/fit_file.h"
 #include "fit/pipeline.h"
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
@@ -22,16 +24,30 @@ nlohmann::ordered_json coefficient_json(const NoiseCoefficient& k) {
     j["tau_range_s"] = {k.tau_from_s, k.tau_to_s};
     j["tau_read_s"] = k.tau_read_s;
   }
+  j["upper_bound"] = k.upper_bound > 0.0 ? nlohmann::ordered_json(k.upper_bound) : nlohmann::ordered_json();
   j["note"] = k.note;
   return j;
 }
 
 std::string coefficient_text(const NoiseCoefficient& k, const char* unit) {
-  if (!k.shown) return "—";
+  if (!k.shown) return k.upper_bound > 0.0 ? fmt::format("< {:.3g} {} (bound)", k.upper_bound, unit) : "—";
   return fmt::format("{:.4g} [{:.4g}, {:.4g}] {}", k.value, k.lo, k.hi, unit);
 }
 
 }  // namespace
+
+AllanSeries allan_series(std::span<const double> time_s, std::span<const double> rate_dph, AllanOptions options,
+                         std::string name) {
+  AllanSeries s;
+  std::vector<double> steps(time_s.size() > 1 ? time_s.size() - 1 : 0);
+  for (std::size_t i = 0; i < steps.size(); ++i) steps[i] = time_s[i + 1] - time_s[i];
+  if (!steps.empty()) s.noise = identify_series_noise(time_s, rate_dph, fit::median_of(steps));
+  if (s.noise && !options.model_avar)
+    options.model_avar = [model = *s.noise](double tau) { return model.allan_variance(tau); };
+  s.curve = allan_curve(time_s, rate_dph, options, std::move(name));
+  s.coefficients = read_noise_coefficients(s.curve);
+  return s;
+}
 
 std::optional<double> AllanStudy::bias_instability_ratio() const {
   if (series.size() < 2) return std::nullopt;
@@ -44,10 +60,7 @@ std::optional<double> AllanStudy::bias_instability_ratio() const {
 AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, const AllanOptions& options) {
   AllanStudy s;
   s.data_file = m.file;
-  AllanSeries raw;
-  raw.curve = allan_curve(m.time_s, m.gyro_dph, options, "raw");
-  raw.coefficients = read_noise_coefficients(raw.curve);
-  s.series.push_back(std::move(raw));
+  s.series.push_back(allan_series(m.time_s, m.gyro_dph, options, "raw"));
   if (fit) {
     s.fit_file = fit->file.string();
     s.channel = fit->channel;
@@ -59,10 +72,7 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
       compensated[i] = c.gyro_dph[i] - c.model_dph[i];
       s.outliers += c.outlier[i];
     }
-    AllanSeries comp;
-    comp.curve = allan_curve(c.time_s, compensated, options, "compensated");
-    comp.coefficients = read_noise_coefficients(comp.curve);
-    s.series.push_back(std::move(comp));
+    s.series.push_back(allan_series(c.time_s, compensated, options, "compensated"));
   }
   return s;
 }
@@ -89,7 +99,7 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
       hi.push_back(r.hi_dph);
       edf.push_back(r.edf);
       type.push_back(noise_type_name(r.alpha));
-      from.push_back(r.alpha_from_acf ? "acf" : "slope");
+      from.push_back(r.alpha_from_acf ? "acf" : r.alpha_from_model ? "model" : "slope");
       terms.push_back(r.terms);
       gap_terms.push_back(r.gap_terms);
     }
@@ -106,6 +116,14 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
                           {"bias_instability_dph", coefficient_json(s.coefficients.bias_instability_dph)},
                           {"rrw_dph_per_sqrt_h", coefficient_json(s.coefficients.rrw_dph_per_sqrt_h)},
                           {"quantization_arcsec", coefficient_json(s.coefficients.quantization_arcsec)}};
+    js["coefficient_fit_chi2_per_dof"] = s.coefficients.fit_chi2_per_dof;
+    if (s.noise) {
+      js["noise_model"] = fit::noise_model_json(*s.noise);
+      js["noise_model"]["method"] = "REML on the series (intercept only): white + flicker + rate random walk, a "
+                                    "Gauss-Markov process where it pays";
+    } else {
+      js["noise_model"] = nullptr;
+    }
     j["series"].push_back(std::move(js));
   }
   const auto ratio = study.bias_instability_ratio();
@@ -118,7 +136,7 @@ std::string allan_text(const AllanStudy& study) {
   const AllanCurve& first = study.series.front().curve;
   std::string out = fmt::format(
       "allan {}{}: {} samples every {:.4g} s over {:.4g} h, {} gap-free run{}; overlapping Allan deviation, "
-      "{:.0f} % intervals (edf of NIST SP 1065 Table 5 for the noise type at each τ)\n",
+      "{:.0f} % intervals (Greenhall's edf for the noise type at each τ)\n",
       study.data_file, study.channel.empty() ? "" : ", channel " + study.channel, first.samples, first.tau0_s,
       first.span_s / 3600.0, first.runs, first.runs == 1 ? "" : "s", 100.0 * first.confidence);
   if (first.gaps > 0)
@@ -139,7 +157,7 @@ std::string allan_text(const AllanStudy& study) {
     for (const AllanRow& r : s.curve.rows)
       out += fmt::format("  {:>10.4g} {:>12.5g} [{:>11.5g}, {:>11.5g}] {:>9.4g}  {:<26} {:>9}\n", r.tau_s,
                          r.adev_dph, r.lo_dph, r.hi_dph, r.edf,
-                         noise_type_name(r.alpha) + (r.alpha_from_acf ? "" : " (slope)"), r.gap_terms);
+                         noise_type_name(r.alpha) + (r.alpha_from_acf ? "" : r.alpha_from_model ? " (model)" : " (slope)"), r.gap_terms);
   }
   out += "\nnoise coefficients (value [interval]):\n";
   std::string header = fmt::format("  {:<22}", "");
@@ -162,6 +180,8 @@ std::string allan_text(const AllanStudy& study) {
     if (k.quantization_arcsec.shown) out += fmt::format("  {}: quantisation: {}\n", s.curve.name, k.quantization_arcsec.note);
   }
   out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664)\n";
+  for (const AllanSeries& s : study.series)
+    if (s.noise) out += fmt::format("noise model of {} (REML): {}\n", s.curve.name, s.noise->description());
   if (const auto ratio = study.bias_instability_ratio())
     out += fmt::format("bias instability raw / compensated: {:.3g}\n", *ratio);
   return out;
@@ -208,6 +228,12 @@ void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study)
     line(k.rrw_dph_per_sqrt_h, fmt::format("{:.8g}*sqrt(x/3600.0/3.0)", k.rrw_dph_per_sqrt_h.value),
          fmt::format("RRW {:.3g} °/h/√h [{:.3g}, {:.3g}]", k.rrw_dph_per_sqrt_h.value, k.rrw_dph_per_sqrt_h.lo,
                      k.rrw_dph_per_sqrt_h.hi));
+    if (!k.bias_instability_dph.shown && k.bias_instability_dph.upper_bound > 0.0) {
+      labels += fmt::format("set label '{}: bias instability < {:.3g} °/h (a bound: no flat part shows)' at graph "
+                            "0.02, graph {:.3f} tc rgb '{}'\n",
+                            s.curve.name, k.bias_instability_dph.upper_bound, label_y, colour);
+      label_y -= 0.04;
+    }
     line(k.quantization_arcsec, fmt::format("{:.8g}*sqrt(3.0)/x", k.quantization_arcsec.value),
          fmt::format("quantisation {:.3g}″", k.quantization_arcsec.value));
   }

@@ -20,13 +20,20 @@
 #include "fit/fit_file.h"
 #include "studies/allan/allan_curve.h"
 #include "studies/allan/noise_coefficients.h"
+#include "studies/allan/series_noise.h"
 
 namespace gyrotherm::studies {
 
 struct AllanSeries {
   AllanCurve curve;
   NoiseCoefficients coefficients;
+  std::optional<fit::NoiseModel> noise;  // the series' noise model (series_noise.h), if identified
 };
+
+// The Allan curve and coefficients of one series, its noise model identified
+// first and used for the noise type at long τ.
+AllanSeries allan_series(std::span<const double> time_s, std::span<const double> rate_dph,
+                         AllanOptions options, std::string name);
 
 struct AllanStudy {
   std::string data_file, fit_file, channel;
@@ -42,9 +49,10 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
 
 // --json: data, fit, channel, confidence, and per series name, tau0_s,
 // samples, runs, gaps, taus_s, adev_dph, lo_dph, hi_dph, edf, noise_type,
-// noise_type_from ("acf" or "slope"), terms, gap_terms and coefficients
+// noise_type_from ("acf", "model" or "slope"), terms, gap_terms, coefficients
 // (arw_dpsh, bias_instability_dph, rrw_dph_per_sqrt_h, quantization_arcsec,
-// each {shown, value, lo, hi, tau_range_s, tau_read_s, note});
+// each {shown, value, lo, hi, tau_range_s, tau_read_s, upper_bound, note}),
+// coefficient_fit_chi2_per_dof and noise_model (fit's noise_model object);
 // bias_instability_ratio.
 nlohmann::ordered_json allan_json(const AllanStudy& study);
 

@@ -1,119 +1,290 @@
 #include "studies/allan/noise_coefficients.h"
 
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <limits>
 #include <cmath>
-#include <functional>
 
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/QR>
 #include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/normal.hpp>
 #include <fmt/format.h>
 
 namespace gyrotherm::studies {
 namespace {
 
-// The local log-log slope of σ(τ) at row i (to both neighbours, or the one).
-double local_slope(const AllanCurve& c, std::size_t i) {
-  const std::size_t a = i > 0 ? i - 1 : i, b = i + 1 < c.rows.size() ? i + 1 : i;
-  if (a == b || c.rows[a].adev_dph <= 0.0 || c.rows[b].adev_dph <= 0.0) return std::nan("");
-  return std::log(c.rows[b].adev_dph / c.rows[a].adev_dph) / std::log(c.rows[b].tau_s / c.rows[a].tau_s);
+// The standard terms as σ² contributions per unit squared coefficient:
+// quantisation Q (″), ARW N (°/√h), flicker B (°/h), RRW K (°/h/√h); σ² in (°/h)², τ in s.
+constexpr int kTerms = 4;
+enum Term { kQ = 0, kN = 1, kB = 2, kK = 3 };
+double basis(int term, double tau) {
+  switch (term) {
+    case kQ: return 3.0 / (tau * tau);
+    case kN: return 3600.0 / tau;
+    case kB: return kFlickerFloor * kFlickerFloor;
+    default: return tau / 10800.0;
+  }
 }
 
-// The coefficient of a slope region (τ of the term's noise type where the
-// curve's local slope is the term's, within ±0.1: next to another region the
-// two mix, and a reading there would carry the other term too), read at the
-// region's τ with the most degrees of freedom, scaled by `scale(τ)`.
-NoiseCoefficient slope_region(const AllanCurve& c, int alpha, double slope,
-                              const std::function<double(double)>& scale, const std::string& what) {
-  NoiseCoefficient k;
-  const AllanRow* best = nullptr;
-  // The region within ±0.1; read where the slope is within ±0.05 if any τ is.
-  for (const double tolerance : {0.05, 0.1}) {
-    for (std::size_t i = 0; i < c.rows.size(); ++i) {
-      const AllanRow& r = c.rows[i];
-      const double off = std::abs(local_slope(c, i) - slope);
-      if (r.alpha != alpha || !(off <= 0.1)) continue;
-      if (k.tau_from_s == 0.0) k.tau_from_s = r.tau_s;
-      k.tau_to_s = std::max(k.tau_to_s, r.tau_s);
-      if (off <= tolerance && (!best || r.edf > best->edf)) best = &r;
-    }
-    if (best) break;
+constexpr double kZ95 = 1.959963984540054;
+constexpr std::size_t kMinClusters = 8;  // rows the bias instability may be read from
+constexpr std::size_t kMaxRows = 160;    // rows the weighted fit uses (log-spaced when more)
+
+struct CurveFit {
+  std::array<double, kTerms> a{};        // squared coefficients (0: not in the model)
+  std::array<double, kTerms> sd{};       // their standard deviations (scaled by the Birge ratio)
+  std::array<bool, kTerms> in{};
+  double chi2_per_dof = 0.0;
+  bool ok = false;
+};
+
+// Generalised least squares of v on the columns `mask` of X with the whitening L (V = LLᵀ).
+struct SubFit {
+  Eigen::VectorXd a;
+  Eigen::MatrixXd cov;
+  double chi2 = 0.0;
+};
+SubFit gls(const Eigen::MatrixXd& xw, const Eigen::VectorXd& vw, unsigned mask) {
+  std::vector<Eigen::Index> cols;
+  for (int k = 0; k < kTerms; ++k)
+    if (mask & (1u << k)) cols.push_back(k);
+  Eigen::MatrixXd x(xw.rows(), static_cast<Eigen::Index>(cols.size()));
+  Eigen::VectorXd scale(x.cols());
+  for (Eigen::Index j = 0; j < x.cols(); ++j) {
+    x.col(j) = xw.col(cols[static_cast<std::size_t>(j)]);
+    scale[j] = x.col(j).norm();
+    x.col(j) /= scale[j];
   }
-  if (!best) {
-    k.note = c.rows.empty() ? "no τ" : fmt::format("not shown: no τ from {:.3g} to {:.3g} s where {} shows alone",
-                                                   c.rows.front().tau_s, c.rows.back().tau_s, what);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(x);
+  SubFit f;
+  f.a = Eigen::VectorXd::Zero(kTerms);
+  f.cov = Eigen::MatrixXd::Zero(kTerms, kTerms);
+  if (qr.rank() < x.cols()) {
+    f.chi2 = std::numeric_limits<double>::infinity();
+    return f;
+  }
+  const Eigen::VectorXd b = qr.solve(vw);
+  f.chi2 = (vw - x * b).squaredNorm();
+  const Eigen::MatrixXd inv = (x.transpose() * x).inverse();
+  for (Eigen::Index i = 0; i < x.cols(); ++i) {
+    f.a[cols[static_cast<std::size_t>(i)]] = b[i] / scale[i];
+    for (Eigen::Index j = 0; j < x.cols(); ++j)
+      f.cov(cols[static_cast<std::size_t>(i)], cols[static_cast<std::size_t>(j)]) = inv(i, j) / (scale[i] * scale[j]);
+  }
+  return f;
+}
+
+CurveFit fit_curve(const AllanCurve& c) {
+  std::vector<const AllanRow*> rows;
+  for (const AllanRow& r : c.rows)
+    if (r.adev_dph > 0.0 && r.edf >= 1.0) rows.push_back(&r);
+  if (rows.size() > kMaxRows) {  // log-spaced thinning (τ = all)
+    std::vector<const AllanRow*> kept;
+    const double lo = std::log(rows.front()->tau_s), hi = std::log(rows.back()->tau_s);
+    for (std::size_t k = 0, i = 0; k < kMaxRows; ++k) {
+      const double target = lo + (hi - lo) * static_cast<double>(k) / (kMaxRows - 1);
+      while (i + 1 < rows.size() && std::log(rows[i]->tau_s) < target) ++i;
+      if (kept.empty() || kept.back() != rows[i]) kept.push_back(rows[i]);
+    }
+    rows = std::move(kept);
+  }
+  CurveFit out;
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  if (n < 3) return out;
+  Eigen::MatrixXd x(n, kTerms);
+  Eigen::VectorXd v(n), model(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const AllanRow& r = *rows[static_cast<std::size_t>(i)];
+    v[i] = r.adev_dph * r.adev_dph;
+    for (int k = 0; k < kTerms; ++k) x(i, k) = basis(k, r.tau_s);
+  }
+  model = v;
+  SubFit best;
+  unsigned best_mask = 0;
+  Eigen::MatrixXd xw;
+  Eigen::VectorXd vw;
+  for (int iteration = 0; iteration < 5; ++iteration) {
+    Eigen::MatrixXd cov(n, n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double si = std::max(model[i], 0.25 * v[i]) * std::sqrt(2.0 / rows[static_cast<std::size_t>(i)]->edf);
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const double sj =
+            std::max(model[j], 0.25 * v[j]) * std::sqrt(2.0 / rows[static_cast<std::size_t>(j)]->edf);
+        const double ti = rows[static_cast<std::size_t>(i)]->tau_s, tj = rows[static_cast<std::size_t>(j)]->tau_s;
+        cov(i, j) = std::sqrt(std::min(ti, tj) / std::max(ti, tj)) * si * sj;
+      }
+    }
+    const Eigen::LLT<Eigen::MatrixXd> llt(cov);
+    if (llt.info() != Eigen::Success) return out;
+    xw = llt.matrixL().solve(x);
+    vw = llt.matrixL().solve(v);
+    best = SubFit{};
+    best.chi2 = std::numeric_limits<double>::infinity();
+    for (unsigned mask = 1; mask < (1u << kTerms); ++mask) {
+      if (static_cast<Eigen::Index>(std::popcount(mask)) >= n) continue;
+      SubFit f = gls(xw, vw, mask);
+      bool feasible = std::isfinite(f.chi2);
+      for (int k = 0; k < kTerms; ++k) feasible = feasible && f.a[k] >= 0.0;
+      if (feasible && f.chi2 < best.chi2) {
+        best = std::move(f);
+        best_mask = mask;
+      }
+    }
+    if (!std::isfinite(best.chi2)) return out;
+    model = x * best.a;
+  }
+  const double dof = static_cast<double>(n - std::popcount(best_mask));
+  out.chi2_per_dof = dof > 0.0 ? best.chi2 / dof : 0.0;
+  const double birge = std::max(1.0, out.chi2_per_dof);
+  // Every term's spread in the full model (the bound of a term left out).
+  const SubFit full = gls(xw, vw, (1u << kTerms) - 1);
+  for (int k = 0; k < kTerms; ++k) {
+    out.in[static_cast<std::size_t>(k)] = (best_mask >> k) & 1u;
+    out.a[static_cast<std::size_t>(k)] = best.a[k];
+    const double var = out.in[static_cast<std::size_t>(k)] ? best.cov(k, k) : full.cov(k, k);
+    out.sd[static_cast<std::size_t>(k)] = std::sqrt(std::max(0.0, var) * birge);
+  }
+  out.ok = true;
+  return out;
+}
+
+// A fitted term: shown when its square is above zero at 95 %.
+NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, double unit_scale,
+                             const std::string& what) {
+  NoiseCoefficient k;
+  if (!f.ok) {
+    k.note = "not shown: too few τ for the weighted fit";
+    return k;
+  }
+  const auto t = static_cast<std::size_t>(term);
+  const double a = f.a[t], sd = f.sd[t];
+  const double confidence = c.confidence;
+  const double z = boost::math::quantile(boost::math::normal(), 0.5 + 0.5 * confidence);
+  // Where the term weighs in the fitted curve.
+  double share_best = -1.0;
+  for (const AllanRow& r : c.rows) {
+    double total = 0.0;
+    for (int j = 0; j < kTerms; ++j) total += f.a[static_cast<std::size_t>(j)] * basis(j, r.tau_s);
+    const double share = total > 0.0 ? a * basis(term, r.tau_s) / total : 0.0;
+    if (share >= 0.5) {
+      if (k.tau_from_s == 0.0) k.tau_from_s = r.tau_s;
+      k.tau_to_s = r.tau_s;
+    }
+    if (share > share_best) {
+      share_best = share;
+      k.tau_read_s = r.tau_s;
+    }
+  }
+  if (k.tau_from_s == 0.0) k.tau_from_s = k.tau_to_s = k.tau_read_s;
+  const std::string fit_text = fmt::format("weighted fit of the standard terms to σ² at {} τ (χ²/dof {:.2g})",
+                                           c.rows.size(), f.chi2_per_dof);
+  if (!(a - kZ95 * sd > 0.0)) {
+    k.upper_bound = std::sqrt(std::max(0.0, a) + kZ95 * sd) * unit_scale;
+    k.note = fmt::format("not resolved: {} below {:.3g} (95 % bound of the {})", what, k.upper_bound, fit_text);
     return k;
   }
   k.shown = true;
-  k.tau_read_s = best->tau_s;
-  const double s = scale(best->tau_s);
-  k.value = best->adev_dph * s;
-  k.lo = best->lo_dph * s;
-  k.hi = best->hi_dph * s;
-  k.note = fmt::format("{} region τ = {:.3g}–{:.3g} s, read at τ = {:.3g} s", what, k.tau_from_s, k.tau_to_s,
-                       k.tau_read_s);
+  k.value = std::sqrt(a) * unit_scale;
+  k.lo = std::sqrt(std::max(0.0, a - z * sd)) * unit_scale;
+  k.hi = std::sqrt(a + z * sd) * unit_scale;
+  k.note = fmt::format("{}; {} dominates τ = {:.3g}–{:.3g} s", fit_text, what, k.tau_from_s, k.tau_to_s);
   return k;
 }
 
-NoiseCoefficient bias_instability(const AllanCurve& c) {
+// The local log-log slope of σ at row i: least squares over the rows within
+// an octave either side (at least its two neighbours).
+double local_slope(const AllanCurve& c, std::size_t i) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, k = 0;
+  for (std::size_t j = 0; j < c.rows.size(); ++j) {
+    const bool near = std::abs(std::log2(c.rows[j].tau_s / c.rows[i].tau_s)) <= 1.0 + 1e-9;
+    const bool neighbour = j + 1 == i || j == i + 1 || j == i;
+    if ((near || neighbour) && c.rows[j].adev_dph > 0.0) {
+      const double x = std::log(c.rows[j].tau_s), y = std::log(c.rows[j].adev_dph);
+      sx += x; sy += y; sxx += x * x; sxy += x * y; k += 1.0;
+    }
+  }
+  const double d = sxx - sx * sx / k;
+  return k >= 3.0 && d > 0.0 ? (sxy - sx * sy / k) / d : std::nan("");
+}
+
+double chi2_bound(double edf, double p) { return edf / boost::math::quantile(boost::math::chi_squared(edf), p); }
+
+NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
   NoiseCoefficient k;
-  const std::size_t n = c.rows.size();
-  if (n < 3) {
-    k.note = "not shown: fewer than 3 τ";
+  // Rows with at least kMinClusters clusters (terms ≥ (clusters − 2)·m).
+  std::vector<std::size_t> usable;
+  for (std::size_t i = 0; i < c.rows.size(); ++i)
+    if (c.rows[i].adev_dph > 0.0 && c.rows[i].terms + 2 * c.rows[i].m >= kMinClusters * c.rows[i].m)
+      usable.push_back(i);
+  if (usable.size() < 3) {
+    k.note = "not shown: fewer than 3 τ with 8 clusters";
     return k;
   }
-  std::size_t lowest = 0, highest = 0;
-  for (std::size_t i = 1; i < n; ++i) {
+  // Flat rows: usable, with a τ on either side, local slope within ±0.2.
+  std::vector<bool> flat(c.rows.size(), false);
+  for (const std::size_t i : usable)
+    flat[i] = i > 0 && i + 1 < c.rows.size() && std::abs(local_slope(c, i)) <= 0.2;
+  // The longest stretch of flat rows (ties: the lowest).
+  std::size_t from = 0, to = 0, best_len = 0;
+  double best_level = 0.0;
+  for (std::size_t i = 0; i < c.rows.size();) {
+    if (!flat[i]) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    double level = 0.0, weight = 0.0;
+    for (; j < c.rows.size() && flat[j]; ++j) {
+      level += c.rows[j].edf * c.rows[j].adev_dph * c.rows[j].adev_dph;
+      weight += c.rows[j].edf;
+    }
+    level /= weight;
+    if (j - i > best_len || (j - i == best_len && level < best_level)) {
+      from = i;
+      to = j - 1;
+      best_len = j - i;
+      best_level = level;
+    }
+    i = j;
+  }
+  const auto white = [&](double tau) { return f.a[kQ] * basis(kQ, tau) + f.a[kN] * basis(kN, tau); };
+  std::size_t lowest = usable.front();
+  for (const std::size_t i : usable)
     if (c.rows[i].adev_dph < c.rows[lowest].adev_dph) lowest = i;
-    if (c.rows[i].adev_dph > c.rows[highest].adev_dph) highest = i;
+  const AllanRow& low = c.rows[lowest];
+  const double bound = low.adev_dph * std::sqrt(chi2_bound(low.edf, 0.025)) / kFlickerFloor;
+  if (best_len > 0) {
+    const AllanRow& read = c.rows[from];  // the stretch's best-determined τ (the shortest)
+    const double level = std::sqrt(best_level);
+    const double lo95 = level * level * chi2_bound(read.edf, 0.975);
+    if (lo95 > white(read.tau_s)) {
+      k.shown = true;
+      k.tau_read_s = read.tau_s;
+      k.tau_from_s = c.rows[from].tau_s;
+      k.tau_to_s = c.rows[to].tau_s;
+      k.value = level / kFlickerFloor;
+      k.lo = level * std::sqrt(chi2_bound(read.edf, 0.5 + 0.5 * c.confidence)) / kFlickerFloor;
+      k.hi = level * std::sqrt(chi2_bound(read.edf, 0.5 - 0.5 * c.confidence)) / kFlickerFloor;
+      const bool hump = from > 0 && to + 1 < c.rows.size() && c.rows[from - 1].adev_dph < level &&
+                        c.rows[to + 1].adev_dph < level;
+      k.note = fmt::format("the flat part of the curve, τ = {:.3g}–{:.3g} s (local slope within ±0.2), σ/0.664{}",
+                           k.tau_from_s, k.tau_to_s,
+                           hump ? "; the curve falls on both sides: a plateau of a correlated (Gauss–Markov) bias" : "");
+      return k;
+    }
   }
-  std::size_t at = n;
-  std::string shape;
-  // Still falling at the longest τ, but flat there (the last step's slope
-  // above −0.2, where white rate noise alone falls at −½): the flat part has
-  // begun, and its rise is beyond the record.
-  const double last_slope = std::log(c.rows[n - 1].adev_dph / c.rows[n - 2].adev_dph) /
-                            std::log(c.rows[n - 1].tau_s / c.rows[n - 2].tau_s);
-  // And significantly so: even the 95 % lower bound of the last τ lies above
-  // the −½ line from two τ before (white noise with few clusters often
-  // flattens by chance over the last step).
-  const AllanRow& last = c.rows[n - 1];
-  const AllanRow& before = c.rows[n - 3];
-  const double lo95 =
-      last.adev_dph * std::sqrt(last.edf / boost::math::quantile(boost::math::chi_squared(last.edf), 0.975));
-  const double white_line = before.adev_dph * std::sqrt(before.tau_s / last.tau_s);
-  if (lowest + 1 == n && last_slope > -0.2 && lo95 > white_line) {
-    at = lowest;
-    shape = "the flat end of the curve (its rise is beyond the record, so B may be a little lower)";
-  } else if (lowest > 0 && lowest + 1 < n) {
-    at = lowest;
-    shape = "the curve's minimum";
-  } else if (highest > 0 && highest + 1 < n) {
-    at = highest;
-    shape = "the top of the curve's hump (a correlated, Gauss–Markov-like bias)";
-  }
-  if (at == n) {
-    k.note = lowest + 1 == n ? fmt::format("not shown: the curve still falls at the longest τ ({:.3g} s); the "
-                                           "record is too short to show the flat part",
-                                           c.rows.back().tau_s)
-                             : fmt::format("not shown: the curve rises from the shortest τ ({:.3g} s)",
-                                           c.rows.front().tau_s);
-    return k;
-  }
-  const AllanRow& r = c.rows[at];
-  // The flat part: the τ around the extremum whose deviation lies inside its interval.
-  std::size_t from = at, to = at;
-  while (from > 0 && c.rows[from - 1].adev_dph >= r.lo_dph && c.rows[from - 1].adev_dph <= r.hi_dph) --from;
-  while (to + 1 < n && c.rows[to + 1].adev_dph >= r.lo_dph && c.rows[to + 1].adev_dph <= r.hi_dph) ++to;
-  k.shown = true;
-  k.tau_read_s = r.tau_s;
-  k.tau_from_s = c.rows[from].tau_s;
-  k.tau_to_s = c.rows[to].tau_s;
-  k.value = r.adev_dph / kFlickerFloor;
-  k.lo = r.lo_dph / kFlickerFloor;
-  k.hi = r.hi_dph / kFlickerFloor;
-  k.note = fmt::format("{} at τ = {:.3g} s (flat within its interval from {:.3g} to {:.3g} s), σ/0.664", shape,
-                       r.tau_s, k.tau_from_s, k.tau_to_s);
-  if (r.alpha != -1)
-    k.note += fmt::format("; the noise there identifies as {}, so flicker is not alone and this bounds B from above",
-                          noise_type_name(r.alpha));
+  k.upper_bound = bound;
+  k.tau_read_s = low.tau_s;
+  k.note = lowest == usable.back()
+               ? fmt::format("a bound only: the curve still falls at its longest usable τ ({:.3g} s), so the flat "
+                             "part is beyond the record; B ≤ {:.3g} °/h (the flicker floor lies under every point)",
+                             low.tau_s, bound)
+               : fmt::format("not shown: no flat part above what the fitted white noise gives; "
+                             "B ≤ {:.3g} °/h (the curve's lowest point, τ = {:.3g} s)",
+                             bound, low.tau_s);
   return k;
 }
 
@@ -121,13 +292,12 @@ NoiseCoefficient bias_instability(const AllanCurve& c) {
 
 NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {
   NoiseCoefficients k;
-  k.arw_dpsh = slope_region(c, 0, -0.5, [](double tau) { return std::sqrt(tau / 3600.0); },
-                            "angle random walk (−½ slope)");
-  k.rrw_dph_per_sqrt_h = slope_region(c, -2, 0.5, [](double tau) { return std::sqrt(3.0 / (tau / 3600.0)); },
-                                      "rate random walk (+½ slope)");
-  k.quantization_arcsec = slope_region(c, 2, -1.0, [](double tau) { return tau / std::sqrt(3.0); },
-                                       "quantisation (−1 slope)");
-  k.bias_instability_dph = bias_instability(c);
+  const CurveFit f = fit_curve(c);
+  k.fit_chi2_per_dof = f.chi2_per_dof;
+  k.arw_dpsh = fitted_term(c, f, kN, 1.0, "angle random walk (−½ slope)");
+  k.rrw_dph_per_sqrt_h = fitted_term(c, f, kK, 1.0, "rate random walk (+½ slope)");
+  k.quantization_arcsec = fitted_term(c, f, kQ, 1.0, "quantisation (−1 slope)");
+  k.bias_instability_dph = bias_instability(c, f);
   return k;
 }
 

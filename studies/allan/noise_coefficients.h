@@ -1,31 +1,31 @@
 #pragma once
-// A gyro's noise coefficients read from its Allan deviation the standard way
-// (IEEE Std 952-1997 Annex C; El-Sheimy, Hou & Niu 2008):
+// A gyro's noise coefficients read from its Allan deviation (IEEE Std
+// 952-1997 Annex C; El-Sheimy, Hou & Niu 2008):
 //
-//   σ²(τ) = 3Q²/τ² + N²/τ + (2 ln 2/π)·B² + K²τ/3 + …
+//   σ²(τ) = 3Q²/τ² + N²/τ + (2 ln 2/π)·B² + K²τ/3
 //
-// each term dominating one region of the log-log curve:
-// - angle random walk N (°/√h): the −½ slope region (white rate noise),
-//   σ(τ) = N/√τ. Stated with the τ = 1 h convention: N is the value of the
-//   −½ line at τ = 1 h, so N[°/√h] = σ[°/h]·√(τ[h]).
-// - bias instability B (°/h): the flat part, σ = √(2 ln 2/π)·B ≈ 0.664·B,
-//   read at the curve's flat extremum: its minimum between the falling and
-//   rising parts; at the longest τ when the curve has flattened there (last
-//   slope above −0.2, and the last τ's 95 % lower bound above the −½ line
-//   from two τ before) but the record ends before it rises; or, when the
-//   curve has no minimum but a hump (a first-order Gauss–Markov bias wanders
-//   like that), the hump's top.
-// - rate random walk K (°/h/√h): the +½ slope region, σ(τ) = K·√(τ/3), the
-//   value of the +½ line at τ = 3 h.
-// - quantisation Q (″): the −1 slope region, σ(τ) = √3·Q/τ.
+// Angle random walk N (°/√h, the −½ line's value at τ = 1 h), rate random
+// walk K (°/h/√h, the +½ line's value at τ = 3 h) and quantisation Q (″, the
+// −1 line) come from one weighted fit of this curve to σ² at every τ, the
+// four squared coefficients non-negative (the best of the sub-models with
+// every coefficient ≥ 0). The estimates at different τ are χ² with the
+// row's edf (variance 2σ⁴/edf, at the fitted curve: iterated) and
+// correlated (they share data; the correlation of octave neighbours is
+// taken as √(τ_short/τ_long)); the coefficients' covariance is the
+// generalised least-squares one, scaled up by the fit's χ²/dof where the four
+// terms do not describe the curve (a Gauss–Markov hump, thermal drift), so
+// the intervals carry the fit's uncertainty, not one point's. A coefficient
+// is shown only where the fit supports it (its square above zero at 95 %);
+// otherwise the report gives its 95 % upper bound.
 //
-// The region of a term is the set of τ whose identified noise type
-// (allan_curve.h) is that term's and where the curve's local slope is the
-// term's within ±0.1 (next to another region the two mix: a gyro's
-// quantisation lifts the shortest τ above the ARW line); the coefficient is
-// read at the region's τ with the most degrees of freedom, and its interval
-// is that τ's interval scaled the same way. A term whose region the record does not show is
-// reported as not shown, with the reason.
+// Bias instability B (°/h) is read from the flat part of the curve wherever
+// it lies: the longest stretch of τ (at least 8 clusters each) whose local
+// slope (least squares over the τ within an octave either side) is within ±0.2, a flicker floor or a Gauss–Markov plateau alike; B =
+// the stretch's σ / 0.664 (√(2 ln 2/π)), its interval the best-determined
+// τ's. It is shown only if the stretch lies above what the fitted white
+// noise gives there (at 95 %); a curve still falling at its longest τ gives
+// only a bound (B ≤ its lowest σ / 0.664, the flicker floor lies under every
+// point), labelled so.
 
 #include <string>
 
@@ -35,9 +35,10 @@ namespace gyrotherm::studies {
 
 struct NoiseCoefficient {
   bool shown = false;
-  double value = 0.0, lo = 0.0, hi = 0.0;  // in the coefficient's unit
-  double tau_from_s = 0.0, tau_to_s = 0.0;  // the region's τ range
-  double tau_read_s = 0.0;                  // where it was read
+  double value = 0.0, lo = 0.0, hi = 0.0;   // in the coefficient's unit, at the curve's confidence
+  double upper_bound = 0.0;                 // 95 % bound when not shown (0: none)
+  double tau_from_s = 0.0, tau_to_s = 0.0;  // the τ range where the term shows
+  double tau_read_s = 0.0;                  // where it weighs most (B: where it was read)
   std::string note;                         // how it was read, or why it is not shown
 };
 
@@ -46,6 +47,7 @@ struct NoiseCoefficients {
   NoiseCoefficient bias_instability_dph;  // °/h
   NoiseCoefficient rrw_dph_per_sqrt_h;    // °/h/√h
   NoiseCoefficient quantization_arcsec;   // ″
+  double fit_chi2_per_dof = 0.0;          // of the weighted fit (≈ 1 when the terms describe the curve)
 };
 
 // 0.664: σ at the flat part of flicker rate noise is √(2 ln 2/π) B.

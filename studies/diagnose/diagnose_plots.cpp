@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "sim/util/gnuplot.h"
-#include "studies/allan/allan_curve.h"
+#include "studies/allan/allan_study.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
@@ -116,8 +116,8 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     }
     // The Allan deviation of studies/allan, with its intervals for the noise
     // type identified at each τ.
-    const AllanCurve raw = allan_curve(m.time_s, m.gyro_dph, {}, "raw");
-    const AllanCurve comp = allan_curve(m.time_s, compensated, {}, "compensated");
+    const AllanCurve raw = allan_series(m.time_s, m.gyro_dph, {}, "raw").curve;
+    const AllanCurve comp = allan_series(m.time_s, compensated, {}, "compensated").curve;
     std::vector<double> tr, r, rl, ru, tc, c, cl, cu;
     for (const AllanRow& a : raw.rows) {
       tr.push_back(a.tau_s); r.push_back(a.adev_dph); rl.push_back(a.lo_dph); ru.push_back(a.hi_dph);
