@@ -6,6 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
 #include "cli_runner.h"
 #include "sim/effects/effect.h"
 
@@ -13,6 +17,39 @@ namespace gyrotherm {
 namespace {
 
 using namespace gyrotherm::testing;
+
+// A hidden gradient (the second temperature logged) on the cycle, a random
+// profile and a bursty copy of the cycle: grad is named first, or first
+// together with the terms this record cannot tell it from; the fitted lag
+// filter, which can mimic it, is never significant alone.
+TEST(CliDiagnose, AHiddenGradientIsNamedFirstOrGroupedNeverTheLagAlone) {
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", "--hidden grad=0.0533 --seed 3", "cycle.csv");
+  simulate_shipped(dir, "random", "--hidden grad=0.0533 --seed 3", "random.csv");
+  {
+    std::ifstream in(dir / "cycle.csv");
+    std::ofstream out(dir / "bursts.csv");
+    for (std::string line; std::getline(in, line);)
+      if (line.empty() || line[0] == '#' || line.rfind("time_s", 0) == 0 ||
+          std::fmod(std::stod(line.substr(0, line.find(','))), 300.0) < 60.0)
+        out << line << "\n";
+  }
+  for (const char* csv : {"cycle.csv", "random.csv", "bursts.csv"}) {
+    const auto r = run_cli(dir, std::string("diagnose ") + csv + " --json");
+    ASSERT_EQ(r.exit_code, 0) << csv << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    const auto& first = j["missing_effects"][0];
+    const auto& with = first["confounded_with"];
+    const bool grouped = std::find(with.begin(), with.end(), "grad") != with.end();
+    EXPECT_TRUE(first["term"] == "grad" || grouped) << csv << ": " << j["verdict"];
+    EXPECT_TRUE(first["significant"].get<bool>() || first["group_significant"].get<bool>()) << csv;
+    for (const auto& c : j["missing_effects"]) {
+      if (c["term"] == "lag") {
+        EXPECT_FALSE(c["significant"].get<bool>()) << csv << ": " << j["verdict"];
+      }
+    }
+  }
+}
 
 TEST(CliDiagnose, FindsAHiddenGradientAndWatchesTheErrorFall) {
   ScratchDir dir;

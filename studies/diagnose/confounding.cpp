@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "sim/util/format.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -37,6 +38,43 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
 }
 
 }  // namespace
+
+Separation separate(const fit::PreparedData& data, const std::vector<const fit::Term*>& model,
+                    const fit::Term* a, const fit::Term* b) {
+  std::vector<const fit::Term*> with = model;
+  with.push_back(a);
+  with.push_back(b);
+  const fit::ModelFit f = fit::fit_model(data, with, fit::find_engine("ols"), {});
+  const auto& iv = f.engine.intervals;
+  if (iv.size() < 2) throw InputError("the joint model gave no intervals");
+  const fit::Interval ia = iv[iv.size() - 2], ib = iv.back();
+  Separation s;
+  s.a_adds = ia.lower > 0.0 || ia.upper < 0.0;
+  s.b_adds = ib.lower > 0.0 || ib.upper < 0.0;
+  if (!s.a_adds && !s.b_adds)
+    s.note = fmt::format(
+        "{} and {} explain the same part of the bias on this record: fitted together, neither adds "
+        "significantly to what the other explains (95 % intervals under the record's identified noise: {} "
+        "[{:.3g}, {:.3g}], {} [{:.3g}, {:.3g}]); a record on which they differ (other temperature rates or "
+        "gradients) would separate them",
+        a->name, b->name, a->name, ia.lower, ia.upper, b->name, ib.lower, ib.upper);
+  return s;
+}
+
+void add_group(Confounding& c, const std::string& a, const std::string& b, const std::string& note) {
+  for (std::size_t g = 0; g < c.groups.size(); ++g) {
+    auto& group = c.groups[g];
+    const bool has_a = std::find(group.begin(), group.end(), a) != group.end();
+    const bool has_b = std::find(group.begin(), group.end(), b) != group.end();
+    if (!has_a && !has_b) continue;
+    if (!has_a) group.push_back(a);
+    if (!has_b) group.push_back(b);
+    if (g < c.notes.size() && !(has_a && has_b)) c.notes[g] += "; " + note;
+    return;
+  }
+  c.groups.push_back({a, b});
+  c.notes.push_back(note);
+}
 
 const std::vector<std::string>* Confounding::group_of(const std::string& term) const {
   for (const auto& g : groups)

@@ -20,6 +20,7 @@
 
 #include "fit/data/derivatives.h"
 #include "fit/model/terms.h"
+#include "fit/pipeline.h"
 
 namespace gyrotherm::studies {
 
@@ -32,6 +33,23 @@ struct Confounding {
 
 inline constexpr double kConfoundedCorrelation = 0.99;
 inline constexpr double kNearlyConstant = 0.02;  // sd / |mean|
+
+// Two candidates that are not collinear can still explain the same part of
+// the bias (a fitted filter of T against the logged gradient): fitted together
+// with the model (ols, its intervals under the record's identified noise,
+// nonlinear parameters refitted), does each add significantly (95 %) to what
+// the other explains? If neither does, the record cannot tell them apart; if
+// only one does, it encompasses the other. Throws InputError when the joint
+// model cannot be fitted.
+struct Separation {
+  bool a_adds = false, b_adds = false;
+  std::string note;  // the sentence for a group, when neither adds
+};
+Separation separate(const fit::PreparedData& data, const std::vector<const fit::Term*>& model,
+                    const fit::Term* a, const fit::Term* b);
+
+// Adds a group {a, b} (merging with a group holding either) with its note.
+void add_group(Confounding& c, const std::string& a, const std::string& b, const std::string& note);
 
 // terms[i] at parameters[i] (NaN where it has none).
 Confounding find_confounding(const fit::DerivedSeries& derived, const std::vector<const fit::Term*>& terms,

@@ -52,9 +52,11 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   out += fmt::format("   by temperature: {}\n", bands);
   out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
   for (const CandidateReport& c : d.candidates)
-    out += fmt::format("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n", c.significant ? "*" : " ", c.term->name,
-                       c.reduction_pct, c.p_value,
-                       !c.significant ? "" : c.confounded_with.empty() ? "significant" : "its group is",
+    out += fmt::format("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n",
+                       c.significant || (c.group_significant && !c.confounded_with.empty()) ? "*" : " ",
+                       c.term->name, c.reduction_pct, c.p_value,
+                       !c.confounded_with.empty() ? (c.group_significant ? "its group is" : "")
+                                                  : (c.significant ? "significant" : ""),
                        c.term->meaning);
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
   if (before) {
@@ -141,7 +143,8 @@ std::string diagnose_text(const DiagnoseRun& run) {
     if (!d.candidates.empty()) {
       const CandidateReport& b = d.candidates.front();
       best = fmt::format("{} ({:.0f} %{})", b.term->name, b.reduction_pct,
-                         b.significant ? (b.confounded_with.empty() ? ", significant" : ", significant, not alone") : "");
+                         !b.confounded_with.empty() ? (b.group_significant ? ", its group significant" : "")
+                                                    : (b.significant ? ", significant" : ""));
     }
     out += fmt::format("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,
                        d.noise_floor_dph, d.excess_ratio(), best);

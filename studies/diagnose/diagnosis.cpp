@@ -36,7 +36,8 @@ void name_confounded(Diagnosis& d, const fit::PreparedData& data, const std::vec
     all.push_back(c.term);
     params.push_back(c.parameter);
   }
-  const Confounding confounding = find_confounding(data.derived, all, params);
+  Confounding confounding = find_confounding(data.derived, all, params);
+  for (const auto& [a, b, note] : d.inseparable) add_group(confounding, a, b, note);
   d.confounded = confounding.groups;
   d.confounding_notes = confounding.notes;
   for (CandidateReport& c : d.candidates)
@@ -44,6 +45,15 @@ void name_confounded(Diagnosis& d, const fit::PreparedData& data, const std::vec
       c.confounded_with = *group;
       std::erase(c.confounded_with, std::string(c.term->name));
     }
+  // A group passed the test when any member did (alone, or standing for it).
+  for (CandidateReport& c : d.candidates) {
+    if (c.confounded_with.empty()) continue;
+    for (const CandidateReport& o : d.candidates)
+      if (std::find(c.confounded_with.begin(), c.confounded_with.end(), std::string(o.term->name)) !=
+          c.confounded_with.end())
+        c.group_significant = c.group_significant || o.significant || o.group_significant;
+    c.group_significant = c.group_significant || c.significant;
+  }
 }
 
 // The bias steps found, each sized with the model (ols) and judged by the
@@ -85,7 +95,7 @@ void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::v
   // it explains whichever member stands for it: its first member joins,
   // then the selection stops, as it does.
   for (const CandidateReport& c : d.candidates) {
-    if (!c.significant) break;
+    if (!c.significant && !(c.group_significant && !c.confounded_with.empty())) break;
     final_terms.push_back(c.term);
     if (!c.confounded_with.empty()) break;
   }
@@ -124,7 +134,7 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
         "The model is {:.2f} times the noise floor and there is nothing left to try: every "
         "available term is already in it.",
         ratio);
-  } else if (d.candidates.front().significant && !d.candidates.front().confounded_with.empty()) {
+  } else if (d.candidates.front().group_significant && !d.candidates.front().confounded_with.empty()) {
     // Significant, but not alone: say which effects it cannot be told from,
     // and why (the note of its own group).
     const CandidateReport& c = d.candidates.front();

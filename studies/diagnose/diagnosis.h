@@ -29,20 +29,30 @@
 //     (after² − floor²) it removes. Significance by block cross-validation,
 //     which autocorrelated residuals cannot fool: the windows are cut into
 //     contiguous blocks of 10; each block is predicted by both models fitted
-//     without it; the per-block gains d_k = SSE_base − SSE_with are tested by
+//     without it (a candidate's own parameter, a filter's time constant,
+//     chosen again in every fold on the training rows from a grid of 9 values
+//     and the full-record optimum, so a term with a tuned parameter is not
+//     favoured over one without); the per-block gains d_k = SSE_base − SSE_with are tested by
 //     a one-sided sign-flip randomisation test (20 000 seeded draws), with a
 //     Bonferroni correction over the candidates. A candidate is significant
 //     when p < α/n, its cross-validated gain is positive, and it removes at
 //     least 10 % of the excess. Ranking is greedy (forward selection): a
 //     significant best term joins the model and the others are scored again,
 //     so a second hidden effect is judged on what the first leaves; the
-//     reductions are shares of the original excess.
+//     reductions are shares of the original excess. Before the best joins,
+//     every candidate of its round that removes at least half as much is
+//     fitted together with it (confounding.h, separate(): ols under the
+//     record's identified noise): if neither adds significantly to the
+//     other, the record cannot tell them apart and they form one group (the
+//     one with fewer fitted parameters stands for it); if only the rival
+//     adds, and it passed the test too, the rival joins instead.
 //
 // References: IEEE Std 952-1997 Annex C (Allan and Hadamard variances);
 // Arlot & Celisse, "A survey of cross-validation procedures for model
 // selection", Statistics Surveys 4 (2010) §8 (dependent data: block CV);
 // Good, Permutation, Parametric and Bootstrap Tests of Hypotheses (2005).
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -96,6 +106,9 @@ struct CandidateReport {
   double cv_gain_pct = 0;              // of the cross-validated SSE
   double p_value = 1;                  // sign-flip test, before the correction
   bool significant = false;
+  // Its group (terms this record cannot tell apart) passed the test, through
+  // whichever member stood for it (set for every member).
+  bool group_significant = false;
   std::vector<std::string> confounded_with;  // terms this record cannot tell it from ("1": an offset)
 };
 
@@ -125,6 +138,9 @@ struct Diagnosis {
   bool limited = false;                   // the record supported fewer tests than there were candidates
   std::vector<std::vector<std::string>> confounded;  // groups of terms this record cannot tell apart
   std::vector<std::string> confounding_notes;        // why, in plain words, one per group
+  // Candidates that explain the same part of the bias though not collinear
+  // (confounding.h, separate()): {a, b, note}, found during the ranking.
+  std::vector<std::array<std::string, 3>> inseparable;
   std::vector<StepEvent> events;          // bias steps, in time order
   std::string remaining;                  // where structure remains that no candidate explains, or ""
   std::string verdict;

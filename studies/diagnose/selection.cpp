@@ -6,16 +6,20 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "fit/engines/ols.h"
 #include "fit/model/formula.h"
 #include "sim/util/input_error.h"
 #include "sim/util/random.h"
+#include "studies/diagnose/confounding.h"
 #include "studies/diagnose/diagnosis_steps.h"
 
 namespace gyrotherm::studies::diagnosis_steps {
 namespace {
+
+constexpr int kFoldGrid = 9;  // parameter values each fold chooses among (with the full-record optimum)
 
 // Cross-validated SSE per block: each block predicted by the model fitted
 // without it, by the fitter's own least squares (fit/model/linear_problem.h,
@@ -23,9 +27,10 @@ namespace {
 // left cannot be fitted.
 std::vector<double> block_sse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
                               const std::vector<std::size_t>& block, std::size_t blocks,
-                              const std::vector<std::string>& names) {
+                              const std::vector<std::string>& names, std::size_t only = SIZE_MAX) {
   std::vector<double> sse(blocks, 0.0);
   for (std::size_t k = 0; k < blocks; ++k) {
+    if (only != SIZE_MAX && k != only) continue;
     std::vector<Eigen::Index> train;
     for (std::size_t p = 0; p < block.size(); ++p)
       if (block[p] != k) train.push_back(static_cast<Eigen::Index>(p));
@@ -48,6 +53,60 @@ std::vector<double> block_sse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y
   return sse;
 }
 
+// As block_sse, for a model whose last term has a fitted parameter: in every
+// fold the parameter is chosen again on the training rows alone (the grid
+// `designs`, one per value, the full-record optimum among them, by the
+// training rows' least-squares SSE from normal equations on scaled columns),
+// so a filter's time constant tuned on all the data does not see the block it
+// predicts. The chosen design then predicts the block as block_sse does.
+std::vector<double> block_sse_refit(const std::vector<Eigen::MatrixXd>& designs, const Eigen::VectorXd& y,
+                                    const std::vector<std::size_t>& block, std::size_t blocks,
+                                    const std::vector<std::string>& names) {
+  const Eigen::Index l = y.size();
+  struct Normal {
+    Eigen::MatrixXd xs;  // [1, X] with unit-norm columns
+  };
+  std::vector<Normal> normal;
+  std::vector<Eigen::MatrixXd> gram_total;
+  std::vector<Eigen::VectorXd> xty_total;
+  for (const Eigen::MatrixXd& x : designs) {
+    Normal n;
+    n.xs.resize(l, x.cols() + 1);
+    n.xs.col(0).setOnes();
+    n.xs.rightCols(x.cols()) = x;
+    for (Eigen::Index j = 0; j < n.xs.cols(); ++j)
+      if (const double norm = n.xs.col(j).norm(); norm > 0.0) n.xs.col(j) /= norm;
+    gram_total.push_back(n.xs.transpose() * n.xs);
+    xty_total.push_back(n.xs.transpose() * y);
+    normal.push_back(std::move(n));
+  }
+  const double yy_total = y.squaredNorm();
+  std::vector<double> sse(blocks, 0.0);
+  for (std::size_t k = 0; k < blocks; ++k) {
+    std::vector<Eigen::Index> held;
+    for (std::size_t p = 0; p < block.size(); ++p)
+      if (block[p] == k) held.push_back(static_cast<Eigen::Index>(p));
+    std::size_t chosen = 0;
+    double best = std::numeric_limits<double>::infinity();
+    const Eigen::VectorXd yk = y(held);
+    for (std::size_t g = 0; g < designs.size(); ++g) {
+      const Eigen::MatrixXd xk = normal[g].xs(held, Eigen::all);
+      const Eigen::MatrixXd gram = gram_total[g] - xk.transpose() * xk;
+      const Eigen::VectorXd xty = xty_total[g] - xk.transpose() * yk;
+      const Eigen::VectorXd b = gram.ldlt().solve(xty);
+      const double train = yy_total - yk.squaredNorm() - 2.0 * b.dot(xty) + b.dot(gram * b);
+      if (std::isfinite(train) && train < best) {
+        best = train;
+        chosen = g;
+      }
+    }
+    // The chosen design's prediction of block k, by block_sse's own path.
+    const std::vector<double> one = block_sse(designs[chosen], y, block, blocks, names, k);
+    sse[k] = one[k];
+  }
+  return sse;
+}
+
 // One-sided sign-flip randomisation test of Σ d_k > 0.
 double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) {
   double observed = 0.0;
@@ -62,6 +121,38 @@ double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) 
   return (at_least + 1.0) / (draws + 1.0);
 }
 
+std::size_t parameter_count(const fit::Term* t) { return t->parameter ? 1 : 0; }
+
+// The round's best is significant; before it joins, the rivals that remove at
+// least half as much are fitted together with it (separate()). Returns the
+// candidate that joins: the best, a rival that encompasses it (and passed the
+// test itself), or, of a group the record cannot tell apart, the member with
+// the fewest fitted parameters (marked group_significant).
+std::size_t resolve_rivals(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& current,
+                           std::vector<CandidateReport>& round, std::size_t best) {
+  std::size_t leader = best;
+  for (std::size_t i = 0; i < round.size(); ++i) {
+    if (i == best || !(round[i].reduction_pct >= 0.5 * round[best].reduction_pct)) continue;
+    Separation s;
+    try {
+      s = separate(data, current, round[best].term, round[i].term);
+    } catch (const InputError&) {
+      continue;  // collinear with the model: the pairwise rule speaks for it
+    }
+    if (s.a_adds) continue;  // the best adds to it: the greedy order stands
+    if (s.b_adds && round[i].significant) {
+      if (leader == best || round[i].reduction_pct > round[leader].reduction_pct) leader = i;
+      continue;
+    }
+    d.inseparable.push_back({std::string(round[best].term->name), std::string(round[i].term->name),
+                             s.note.empty() ? fmt::format("{} encompasses {} on this record, but did not pass the "
+                                                          "test alone", round[i].term->name, round[best].term->name)
+                                            : s.note});
+    round[best].group_significant = round[i].group_significant = true;
+    if (leader == best && parameter_count(round[i].term) < parameter_count(round[best].term)) leader = i;
+  }
+  return leader;
+}
 
 }  // namespace
 
@@ -138,7 +229,21 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
         const Eigen::MatrixXd xw = fit::design_matrix(data.derived, with, params);
         const fit::LinearProblem problem(xw, y, fit::term_names(with));
         const double sigma = problem.sigma_two_pass(problem.physical(fit::least_squares_optimum(problem)));
-        const std::vector<double> sse = block_sse(xw, y, block, blocks, fit::term_names(with));
+        std::vector<double> sse;
+        if (term->parameter) {
+          // The grid of the parameter's values (log-spaced over its bounds)
+          // with the full-record optimum, each a design.
+          std::vector<Eigen::MatrixXd> designs = {xw};
+          const double lo = std::log(term->parameter->lower), hi = std::log(term->parameter->upper);
+          for (int g = 0; g < kFoldGrid; ++g) {
+            std::vector<double> p = params;
+            p.back() = std::exp(lo + (hi - lo) * g / (kFoldGrid - 1));
+            designs.push_back(fit::design_matrix(data.derived, with, p));
+          }
+          sse = block_sse_refit(designs, y, block, blocks, fit::term_names(with));
+        } else {
+          sse = block_sse(xw, y, block, blocks, fit::term_names(with));
+        }
         std::vector<double> gains(blocks);
         double cv = 0.0;
         for (std::size_t k = 0; k < blocks; ++k) {
@@ -175,11 +280,12 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
       for (const CandidateReport& c : round) d.candidates.push_back(c);
       break;
     }
-    d.candidates.push_back(round[best]);
-    current.push_back(round[best].term);
-    current_params = round_params[best];
-    current_sigma2 = round[best].instability_after_dph * round[best].instability_after_dph;
-    untried.erase(std::find(untried.begin(), untried.end(), round[best].term));
+    const std::size_t leader = resolve_rivals(d, data, current, round, best);
+    d.candidates.push_back(round[leader]);
+    current.push_back(round[leader].term);
+    current_params = round_params[leader];
+    current_sigma2 = round[leader].instability_after_dph * round[leader].instability_after_dph;
+    untried.erase(std::find(untried.begin(), untried.end(), round[leader].term));
   }
   // Candidates that could not be fitted (collinear with the model, say),
   // each named once.
