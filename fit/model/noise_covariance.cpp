@@ -126,6 +126,48 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
   return out;
 }
 
+Eigen::VectorXd NoiseModel::draw(const WindowGrid& g, const std::function<double()>& normal) const {
+  const auto n = static_cast<Eigen::Index>(g.size());
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    y[i] = std::sqrt(amplitude[kWhite] / g.averaging_s[static_cast<std::size_t>(i)]) * normal();
+  const auto add_exp = [&](double tau, double variance) {
+    if (!(variance > 0.0) || !(tau > 0.0)) return;
+    const ExpWindow w = exp_window(tau, g.window_s);
+    // Between windows the covariance is off·e^{−|Δt|/τ}. Where off ≤ the
+    // variance, an AR(1) at the window times carries it exactly and white
+    // noise the rest; where τ is short against the windows (off > variance)
+    // the AR(1) matches the variance and the neighbours' covariance, and the
+    // longer lags (below e^{−2Δ/τ}) only approximately.
+    const bool exact = w.off <= w.diagonal;
+    const double c = std::sqrt(variance * (exact ? w.off : w.diagonal));
+    const double rest = exact ? std::sqrt(variance * (w.diagonal - w.off)) : 0.0;
+    const double lag_scale = exact ? 1.0 : w.off / w.diagonal;
+    double z = normal();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (i > 0) {
+        const double rho = std::min(
+            0.999999, lag_scale * std::exp(-(g.time_s[static_cast<std::size_t>(i)] -
+                                              g.time_s[static_cast<std::size_t>(i - 1)]) / tau));
+        z = rho * z + std::sqrt(1.0 - rho * rho) * normal();
+      }
+      y[i] += c * z + rest * normal();
+    }
+  };
+  for (const double tau : flicker_tau_s) add_exp(tau, amplitude[kFlicker]);
+  add_exp(gm_tau_s, amplitude[kGaussMarkov]);
+  if (amplitude[kRandomWalk] > 0.0 && n > 0) {
+    double level = 0.0, last = g.time_s.front() - g.window_s / 2.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double t = g.time_s[static_cast<std::size_t>(i)];
+      level += std::sqrt(amplitude[kRandomWalk] * std::max(0.0, t - last)) * normal();
+      last = t;
+      y[i] += level;
+    }
+  }
+  return y;
+}
+
 double NoiseModel::allan_variance(double tau_s) const {
   const auto g = [tau_s](double tau_c) {
     const double x = tau_s / tau_c;

@@ -1,5 +1,7 @@
 #include "studies/diagnose/candidates.h"
 
+#include "fit/pipeline.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -49,6 +51,8 @@ CandidateSet candidate_set(const fit::PreparedData& data, const std::vector<cons
   const Eigen::MatrixXd design = fit::design_matrix(data.derived, model, parameters);
   StepSearch search;
   search.seed = seed;
+  const fit::WindowGrid grid = fit::window_grid(data);
+  if (grid.window_s > 0.0) search.grid = &grid;
   set.steps = find_steps(since_start, design,
                          Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
                                                            static_cast<Eigen::Index>(data.series.size())),

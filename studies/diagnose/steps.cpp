@@ -1,6 +1,10 @@
 #include "studies/diagnose/steps.h"
 
+#include "sim/util/input_error.h"
+
 #include <algorithm>
+#include <functional>
+#include <optional>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -172,17 +176,23 @@ double level_shift_statistic(const Eigen::VectorXd& e, const Eigen::MatrixXd& q)
 }
 
 double level_shift_p(const Eigen::VectorXd& noise, const Eigen::MatrixXd& q, double statistic, int replicates,
-                     Rng& rng) {
+                     Rng& rng, const fit::NoiseModel* model, const fit::WindowGrid* grid) {
   const Eigen::Index l = noise.size();
-  const double ratio = fit_level_q(noise);
+  const bool from_model = model != nullptr && grid != nullptr && static_cast<Eigen::Index>(grid->size()) == l;
+  const double ratio = from_model ? 0.0 : fit_level_q(noise);
   boost::random::normal_distribution<double> normal(0.0, 1.0);
+  const std::function<double()> draw_normal = [&] { return normal(rng); };
   int as_large = 0;
   Eigen::VectorXd x(l);
   for (int s = 0; s < replicates; ++s) {
-    double level = 0.0;
-    for (Eigen::Index t = 0; t < l; ++t) {
-      x[t] = level + normal(rng);
-      level += std::sqrt(ratio) * normal(rng);
+    if (from_model) {
+      x = model->draw(*grid, draw_normal);
+    } else {
+      double level = 0.0;
+      for (Eigen::Index t = 0; t < l; ++t) {
+        x[t] = level + normal(rng);
+        level += std::sqrt(ratio) * normal(rng);
+      }
     }
     x -= q * (q.transpose() * x);
     as_large += level_shift_statistic(x, q) >= statistic ? 1 : 0;
@@ -219,7 +229,23 @@ std::vector<StepCandidate> find_steps(const std::vector<double>& time_s, const E
     if (best == 0) break;
     // The noise without the step, found once: for the statistic's q and the bootstrap.
     const Eigen::VectorXd noise = without_step(e, q, best);
-    const double p = level_shift_p(noise, q, max_level_shift_t(e, q, noise), search.replicates, rng);
+    // The record's noise, identified with the model and this step as fixed effects.
+    std::optional<fit::NoiseModel> model;
+    if (search.grid != nullptr && static_cast<Eigen::Index>(search.grid->size()) == l) {
+      Eigen::MatrixXd with(l, a.cols() + 1);
+      with.leftCols(a.cols()) = a;
+      with.col(a.cols()).setZero();
+      with.col(a.cols()).tail(l - best).setOnes();
+      try {
+        model = fit::identify_noise(*search.grid, with, y);
+        for (const double v : model->amplitude)
+          if (!std::isfinite(v)) model.reset();
+      } catch (const InputError&) {
+        model.reset();
+      }
+    }
+    const double p = level_shift_p(noise, q, max_level_shift_t(e, q, noise), search.replicates, rng,
+                                   model ? &*model : nullptr, search.grid);
     if (p >= search.alpha) break;
     const auto k = static_cast<std::size_t>(best);
     out.push_back({std::round(0.5 * (time_s[k - 1] + time_s[k])), k, p});

@@ -38,8 +38,15 @@
 // fitted as a large q and hide itself).
 //
 // The p-value is a parametric bootstrap, (1 + #{T* ≥ T}) / (1 + replicates),
-// with T* found the same way on series drawn from the fitted local level
-// model and projected off the model like the residual. It holds its level on
+// with T* found the same way on series drawn from the record's own noise
+// model and projected off the model like the residual: the noise identified
+// by REML (fit/model/noise_model.h: white, flicker, Gauss–Markov, random walk)
+// on the windows with the model and the best step as fixed effects (under
+// the alternative, so the step is not read as slow noise). Gauss–Markov
+// noise then neither hides a step (a local level model reads it as a random
+// walk, whose wander makes every step look ordinary) nor invents one. Where
+// the noise cannot be identified (too few windows) the draws come from the
+// fitted local level model, as before. It holds its level on
 // white noise and random walks; on flicker spanning the record's own scale
 // (synthetic, three decades) it calls a step in about 7 % of records at
 // α = 0.01, because flicker makes larger single moves than a random walk of
@@ -77,6 +84,7 @@
 
 #include <Eigen/Core>
 
+#include "fit/model/noise_model.h"
 #include "sim/util/random.h"
 
 namespace gyrotherm::studies {
@@ -89,6 +97,9 @@ struct StepCandidate {
 
 struct StepSearch {
   double alpha = 0.01;          // a step is kept when its bootstrap p-value is below this
+  // The windows as the noise model sees them: with them the bootstrap draws
+  // from the record's identified noise (below); without, from the local level model.
+  const fit::WindowGrid* grid = nullptr;
   std::size_t max_steps = 3;
   int replicates = 199;         // of the bootstrap; the p-value's resolution is 1/(1 + replicates)
   std::uint64_t seed = 1;       // of the bootstrap's draws
@@ -115,9 +126,9 @@ Eigen::VectorXd level_shift_t(const Eigen::VectorXd& y, const Eigen::MatrixXd& m
 double level_shift_statistic(const Eigen::VectorXd& e, const Eigen::MatrixXd& q);
 
 // The bootstrap p-value of T for noise fitted on `noise` (a residual without
-// its best step).
+// its best step) by the local level model, or drawn from `model` on `grid`.
 double level_shift_p(const Eigen::VectorXd& noise, const Eigen::MatrixXd& q, double statistic, int replicates,
-                     Rng& rng);
+                     Rng& rng, const fit::NoiseModel* model = nullptr, const fit::WindowGrid* grid = nullptr);
 
 // The spread of step sizes that noise alone fits: with the model and the step
 // at `step_index` in `design` (no intercept column), the root mean square of
