@@ -13,7 +13,6 @@ namespace gyrotherm::fit {
 
 namespace {
 
-constexpr std::size_t kIdentifyBlocks = 128;  // block means the REML works on
 constexpr double kFloorLog = -30.0;           // log-weight of an absent component
 constexpr double kPresentLog = -14.0;         // above this a component is in the model
 constexpr double kChi95 = 3.841458820694124;  // χ²₁ 95 % point
@@ -50,8 +49,8 @@ double bank_floor(const std::vector<double>& taus, double from_s, double to_s) {
 }
 
 // Block means of consecutive windows: [begin, end) of each block.
-std::vector<std::pair<Eigen::Index, Eigen::Index>> blocks_of(Eigen::Index n) {
-  const Eigen::Index per = std::max<Eigen::Index>(1, (n + kIdentifyBlocks - 1) / kIdentifyBlocks);
+std::vector<std::pair<Eigen::Index, Eigen::Index>> blocks_of(Eigen::Index n, Eigen::Index most) {
+  const Eigen::Index per = std::max<Eigen::Index>(1, (n + most - 1) / most);
   std::vector<std::pair<Eigen::Index, Eigen::Index>> b;
   for (Eigen::Index i = 0; i < n; i += per) b.emplace_back(i, std::min(n, i + per));
   if (b.size() > 1 && 2 * (b.back().second - b.back().first) < per) {
@@ -195,7 +194,7 @@ Eigen::Vector4d nelder_mead(const std::function<double(const Eigen::Vector4d&)>&
 }  // namespace
 
 NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
-                          const Eigen::VectorXd& y) {
+                          const Eigen::VectorXd& y, std::size_t most_blocks) {
   const Eigen::Index n = static_cast<Eigen::Index>(grid.size());
   if (n < design.cols() + 5)
     throw InputError(fmt::format("only {} windows: too few to identify the noise of a model with "
@@ -204,7 +203,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   model.flicker_tau_s = flicker_bank(grid);
   model.flicker_floor_per_s = bank_floor(model.flicker_tau_s, grid.window_s, record_span(grid));
 
-  const auto blocks = blocks_of(n);
+  const auto blocks = blocks_of(n, static_cast<Eigen::Index>(std::max<std::size_t>(8, most_blocks)));
   const auto nb = static_cast<Eigen::Index>(blocks.size());
   model.blocks = blocks.size();
   model.block_s = grid.window_s * static_cast<double>(blocks.front().second - blocks.front().first);

@@ -40,7 +40,7 @@
 //     significant best term joins the model and the others are scored again,
 //     so a second hidden effect is judged on what the first leaves; the
 //     reductions are shares of the original excess. Before the best joins,
-//     every candidate of its round that removes at least half as much is
+//     every candidate of its round that removes at least 80 % as much is
 //     fitted together with it (confounding.h, separate(): ols under the
 //     record's identified noise): if neither adds significantly to the
 //     other, the record cannot tell them apart and they form one group (the

@@ -19,7 +19,11 @@
 namespace gyrotherm::studies::diagnosis_steps {
 namespace {
 
-constexpr int kFoldGrid = 9;  // parameter values each fold chooses among (with the full-record optimum)
+constexpr int kFoldGrid = 9;
+// A rival explains at least this share of what the best does: a near-equal
+// explanation, worth fitting together with it (fewer cost power: a step
+// grouped with a turn-on transient that explains much less).
+constexpr double kRivalShare = 0.8;  // parameter values each fold chooses among (with the full-record optimum)
 
 // Cross-validated SSE per block: each block predicted by the model fitted
 // without it, by the fitter's own least squares (fit/model/linear_problem.h,
@@ -124,7 +128,7 @@ double sign_flip_p(const std::vector<double>& d, int draws, std::uint64_t seed) 
 std::size_t parameter_count(const fit::Term* t) { return t->parameter ? 1 : 0; }
 
 // The round's best is significant; before it joins, the rivals that remove at
-// least half as much are fitted together with it (separate()). Returns the
+// least kRivalShare as much are fitted together with it (separate()). Returns the
 // candidate that joins: the best, a rival that encompasses it (and passed the
 // test itself), or, of a group the record cannot tell apart, the member with
 // the fewest fitted parameters (marked group_significant).
@@ -132,7 +136,7 @@ std::size_t resolve_rivals(Diagnosis& d, const fit::PreparedData& data, const st
                            std::vector<CandidateReport>& round, std::size_t best) {
   std::size_t leader = best;
   for (std::size_t i = 0; i < round.size(); ++i) {
-    if (i == best || !(round[i].reduction_pct >= 0.5 * round[best].reduction_pct)) continue;
+    if (i == best || !(round[i].reduction_pct >= kRivalShare * round[best].reduction_pct)) continue;
     Separation s;
     try {
       s = separate(data, current, round[best].term, round[i].term);

@@ -237,7 +237,7 @@ std::vector<StepCandidate> find_steps(const std::vector<double>& time_s, const E
       with.col(a.cols()).setZero();
       with.col(a.cols()).tail(l - best).setOnes();
       try {
-        model = fit::identify_noise(*search.grid, with, y);
+        model = fit::identify_noise(*search.grid, with, y, 128);  // window-level draws: the finer blocks
         for (const double v : model->amplitude)
           if (!std::isfinite(v)) model.reset();
       } catch (const InputError&) {
