@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/pipeline_options.h"
+#include "app/progress.h"
 #include "sim/util/comma_list.h"
 #include "studies/diagnose/diagnose_run.h"
 
@@ -34,6 +35,7 @@ int run_diagnose(const DiagnoseCli& o) {
   request.pipeline = o.data_options.resolved();
   request.options.candidates = split_commas(o.candidates);
   request.plots = o.plots;
+  request.progress = step_progress();
   const studies::DiagnoseRun run = studies::run_diagnose(request);
   fmt::print("{}", o.json ? studies::diagnose_json(run).dump() + "\n" : studies::diagnose_text(run));
   return 0;

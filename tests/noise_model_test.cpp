@@ -95,6 +95,29 @@ TEST(NoiseModel, DrawsHaveTheModelsCovariance) {
       const double sd = std::sqrt((c(i, i) * c(j, j) + c(i, j) * c(i, j)) / kDraws);
       EXPECT_NEAR(s(i, j), c(i, j), 4.0 * sd) << i << "," << j;
     }
+  // One Gauss–Markov process alone (τ = 3 windows), twelve regular windows:
+  // its correlation at every lag, where a draw with the wrong memory shows.
+  WindowGrid r;
+  r.window_s = 100.0;
+  for (int i = 0; i < 12; ++i) {
+    r.time_s.push_back(50.0 + 100.0 * i);
+    r.averaging_s.push_back(100.0);
+  }
+  NoiseModel gm;
+  gm.amplitude = {0.0, 0.0, 1.0, 0.0};
+  gm.gm_tau_s = 300.0;
+  const Eigen::MatrixXd cg = gm.apply(r, Eigen::MatrixXd::Identity(12, 12));
+  Eigen::MatrixXd sg = Eigen::MatrixXd::Zero(12, 12);
+  for (int k = 0; k < kDraws; ++k) {
+    const Eigen::VectorXd x = gm.draw(r, draw_normal);
+    sg += x * x.transpose();
+  }
+  sg /= kDraws;
+  for (Eigen::Index lag = 1; lag < 12; ++lag) {
+    const double sd = std::sqrt((cg(0, 0) * cg(lag, lag) + cg(0, lag) * cg(0, lag)) / kDraws);
+    EXPECT_NEAR(sg(0, lag), cg(0, lag), 4.0 * sd) << "lag " << lag;
+    EXPECT_NEAR(sg(5, 5 + std::min<Eigen::Index>(lag, 6)), cg(5, 5 + std::min<Eigen::Index>(lag, 6)), 4.0 * sd);
+  }
 }
 
 // Window means of white noise (ARW N) plus, optionally, a rate random walk K,

@@ -132,26 +132,31 @@ Eigen::VectorXd NoiseModel::draw(const WindowGrid& g, const std::function<double
   for (Eigen::Index i = 0; i < n; ++i)
     y[i] = std::sqrt(amplitude[kWhite] / g.averaging_s[static_cast<std::size_t>(i)]) * normal();
   const auto add_exp = [&](double tau, double variance) {
-    if (!(variance > 0.0) || !(tau > 0.0)) return;
+    if (!(variance > 0.0) || !(tau > 0.0) || n == 0) return;
+    // The unit-variance process u is simulated exactly: over a window of
+    // length Δ (x = Δ/τ), given u at its start, u at its end and the
+    // window's mean are jointly normal with means (e^{−x}u₀, u₀(1 − e^{−x})/x),
+    // variances 1 − e^{−2x} and Var(mean) − ((1 − e^{−x})/x)², covariance
+    // (1 − e^{−x})²/x; between windows u decays by e^{−gap/τ}.
+    const double x = g.window_s / tau, ex = std::exp(-x);
     const ExpWindow w = exp_window(tau, g.window_s);
-    // Between windows the covariance is off·e^{−|Δt|/τ}. Where off ≤ the
-    // variance, an AR(1) at the window times carries it exactly and white
-    // noise the rest; where τ is short against the windows (off > variance)
-    // the AR(1) matches the variance and the neighbours' covariance, and the
-    // longer lags (below e^{−2Δ/τ}) only approximately.
-    const bool exact = w.off <= w.diagonal;
-    const double c = std::sqrt(variance * (exact ? w.off : w.diagonal));
-    const double rest = exact ? std::sqrt(variance * (w.diagonal - w.off)) : 0.0;
-    const double lag_scale = exact ? 1.0 : w.off / w.diagonal;
-    double z = normal();
+    const double m1 = x > 1e-12 ? -std::expm1(-x) / x : 1.0;
+    const double a = -std::expm1(-2.0 * x), c = x > 1e-12 ? std::expm1(-x) * std::expm1(-x) / x : 0.0;
+    const double b = std::max(0.0, w.diagonal - m1 * m1);
+    const double l11 = std::sqrt(std::max(0.0, a)), l21 = l11 > 0.0 ? c / l11 : 0.0;
+    const double l22 = std::sqrt(std::max(0.0, b - l21 * l21));
+    const double scale = std::sqrt(variance);
+    double u = normal();  // at the first window's start
     for (Eigen::Index i = 0; i < n; ++i) {
-      if (i > 0) {
-        const double rho = std::min(
-            0.999999, lag_scale * std::exp(-(g.time_s[static_cast<std::size_t>(i)] -
-                                              g.time_s[static_cast<std::size_t>(i - 1)]) / tau));
-        z = rho * z + std::sqrt(1.0 - rho * rho) * normal();
+      const double z1 = normal(), z2 = normal();
+      y[i] += scale * (m1 * u + l21 * z1 + l22 * z2);
+      u = ex * u + l11 * z1;  // at the window's end
+      if (i + 1 < n) {
+        const double gap = std::max(0.0, g.time_s[static_cast<std::size_t>(i + 1)] -
+                                             g.time_s[static_cast<std::size_t>(i)] - g.window_s);
+        const double d = std::exp(-gap / tau);
+        u = d * u + std::sqrt(std::max(0.0, 1.0 - d * d)) * normal();
       }
-      y[i] += c * z + rest * normal();
     }
   };
   for (const double tau : flicker_tau_s) add_exp(tau, amplitude[kFlicker]);

@@ -97,12 +97,11 @@ struct NoiseModel {
   // σ²g(τ/τ_c) + q_r τ/3, g the exponential kernel's (above).
   double allan_variance(double tau_s) const;
   // One draw of the windows' noise from the model (every component, each
-  // window's mean): white N(0, q_w/a_i); each exponential kernel as an AR(1)
-  // at the window times with the covariance between windows exact, plus
-  // white for the rest of its variance (for τ short against the windows, the
-  // variance and the neighbours' covariance exact); the random walk at the window
-  // centres (its within-window averaging, −q_r·Δ/6 of variance, neglected).
-  // `normal` gives independent N(0, 1) draws.
+  // window's mean): white N(0, q_w/a_i); each exponential kernel exactly (the
+  // process simulated through each window and across the gaps, so the draws
+  // have apply()'s covariance); the random walk at the window centres (its
+  // within-window averaging, −q_r·Δ/6 of variance, neglected). `normal`
+  // gives independent N(0, 1) draws.
   Eigen::VectorXd draw(const WindowGrid& grid, const std::function<double()>& normal) const;
   // C·x for the windows of `grid`: every component, or only `kind` at unit amplitude.
   Eigen::MatrixXd apply(const WindowGrid& grid, const Eigen::MatrixXd& x, int kind = -1) const;

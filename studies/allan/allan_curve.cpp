@@ -217,12 +217,15 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
       }
       if (!row.alpha_from_model) {
         double sx = 0, sy = 0, sxx = 0, sxy = 0, k = 0;
-        for (const AllanRow& o : c.rows)
-          if (o.adev_dph > 0.0 && std::abs(std::log2(o.tau_s / row.tau_s)) <= 2.0 + 1e-9) {
+        for (std::size_t j = 0; j < c.rows.size(); ++j) {
+          const AllanRow& o = c.rows[j];
+          const bool near = std::abs(std::log2(o.tau_s / row.tau_s)) <= 2.0 + 1e-9 || j + 1 == i || j == i + 1;
+          if (o.adev_dph > 0.0 && near) {
             const double x = std::log(o.tau_s), y = 2.0 * std::log(o.adev_dph);
             sx += x; sy += y; sxx += x * x; sxy += x * y; k += 1.0;
           }
-        if (k >= 2.0 && sxx - sx * sx / k > 0.0) mu = (sxy - sx * sy / k) / (sxx - sx * sx / k);
+        }
+        if (k >= 3.0 && sxx - sx * sx / k > 0.0) mu = (sxy - sx * sy / k) / (sxx - sx * sx / k);
       }
       row.alpha = std::clamp(static_cast<int>(std::lround(-mu - 1.0)), -2, 2);
     }

@@ -22,7 +22,8 @@
 // Gauss–Markov, random walk identified by REML on the whole record): α =
 // −μ − 1 rounded, μ the model's local log-log slope of σ²(τ); without a model
 // (too short a record), μ is the least-squares slope of the curve over the
-// τ within two octaves, never one pair of points. For a gyro: α = 2
+// τ within two octaves and the neighbours (at least three points; with
+// fewer, white rate noise is assumed), never one pair of points. For a gyro: α = 2
 // quantisation (white angle noise), 1 flicker angle noise, 0 angle random
 // walk (white rate noise), −1 bias instability (flicker rate), −2 rate random
 // walk.

@@ -11,7 +11,7 @@
 //
 // For the overlapping Allan variance (d = 2, the unmodified filter F = m,
 // the stride S = m) on N phase points (N − 1 rates) at averaging factor m,
-// with M = N − 2m + 1 second differences: the basic sum term by term while it
+// with M = N − 2m terms (N phase points): the basic sum term by term while it
 // has at most 100 terms, the tables beyond.
 //
 // One choice differs from the paper's case 2.1a (which filters the phase
@@ -19,8 +19,8 @@
 // over τ0, so the angle at the sample times is the exact integral and needs
 // no filter; for α ≤ 0 the unfiltered limit F = ∞ is used at every m. It
 // gives the exact discrete edf for white rate noise (2M/3 at m = 1: 682 on
-// 1025 points, where F = m gives 801). White angle noise (α = 2) over fewer
-// than three τ of data falls back to NIST SP 1065 Table 5, as the paper
+// 1025 points, where F = m gives 801). White angle noise (α = 2) with r = M/m ≤ 2
+// (up to about four τ of data) falls back to NIST SP 1065 Table 5, as the paper
 // leaves that case to a direct sum.
 //
 // Tested against NIST SP 1065 Table 5 (which approximates the same

@@ -144,8 +144,14 @@ CurveFit fit_curve(const AllanCurve& c) {
   for (int k = 0; k < kTerms; ++k) {
     out.in[static_cast<std::size_t>(k)] = (best_mask >> k) & 1u;
     out.a[static_cast<std::size_t>(k)] = best.a[k];
-    const double var = out.in[static_cast<std::size_t>(k)] ? best.cov(k, k) : full.cov(k, k);
-    out.sd[static_cast<std::size_t>(k)] = std::sqrt(std::max(0.0, var) * birge);
+    double var = best.cov(k, k);
+    if (!out.in[static_cast<std::size_t>(k)]) {
+      // A term left out: its spread with it added to the chosen terms, or in
+      // the full model; none when neither can be fitted (NaN: no bound).
+      const SubFit with = gls(xw, vw, best_mask | (1u << k));
+      var = std::isfinite(with.chi2) ? with.cov(k, k) : std::isfinite(full.chi2) ? full.cov(k, k) : std::nan("");
+    }
+    out.sd[static_cast<std::size_t>(k)] = std::isnan(var) ? var : std::sqrt(std::max(0.0, var) * birge);
   }
   out.ok = true;
   return out;
@@ -181,6 +187,10 @@ NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, d
   if (k.tau_from_s == 0.0) k.tau_from_s = k.tau_to_s = k.tau_read_s;
   const std::string fit_text = fmt::format("weighted fit of the standard terms to σ² at {} τ (χ²/dof {:.2g})",
                                            c.rows.size(), f.chi2_per_dof);
+  if (std::isnan(sd)) {
+    k.note = fmt::format("not resolved: {} cannot be fitted beside the other terms on these τ (no bound)", what);
+    return k;
+  }
   if (!(a - kZ95 * sd > 0.0)) {
     k.upper_bound = std::sqrt(std::max(0.0, a) + kZ95 * sd) * unit_scale;
     k.note = fmt::format("not resolved: {} below {:.3g} (95 % bound of the {})", what, k.upper_bound, fit_text);

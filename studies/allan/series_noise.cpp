@@ -11,9 +11,9 @@ std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> tim
                                                      std::span<const double> rate_dph, double tau0_s) {
   const std::size_t n = time_s.size();
   if (n < 16 || !(tau0_s > 0.0)) return std::nullopt;
-  // About 512 windows over the record: four per block mean the
-  // identification aggregates (it uses at most 128), each a whole number of
-  // samples; the model serves the τ beyond n/100 samples, far above a window.
+  // About 512 windows over the record: about eight per block mean the
+  // identification aggregates (it uses at most 64 by default), each a whole
+  // number of samples; the model serves the τ beyond n/100 samples, far above a window.
   const std::size_t per = std::max<std::size_t>(1, n / 512);
   fit::WindowGrid grid;
   grid.window_s = static_cast<double>(per) * tau0_s;

@@ -62,18 +62,29 @@ Separation separate(const fit::PreparedData& data, const std::vector<const fit::
 }
 
 void add_group(Confounding& c, const std::string& a, const std::string& b, const std::string& note) {
-  for (std::size_t g = 0; g < c.groups.size(); ++g) {
-    auto& group = c.groups[g];
-    const bool has_a = std::find(group.begin(), group.end(), a) != group.end();
-    const bool has_b = std::find(group.begin(), group.end(), b) != group.end();
-    if (!has_a && !has_b) continue;
-    if (!has_a) group.push_back(a);
-    if (!has_b) group.push_back(b);
-    if (g < c.notes.size() && !(has_a && has_b)) c.notes[g] += "; " + note;
-    return;
+  // Every group holding a or b becomes one, with their notes joined.
+  std::vector<std::string> merged = {a, b};
+  std::string notes;
+  for (std::size_t g = 0; g < c.groups.size();) {
+    const auto& group = c.groups[g];
+    const bool holds = std::find(group.begin(), group.end(), a) != group.end() ||
+                       std::find(group.begin(), group.end(), b) != group.end();
+    if (!holds) {
+      ++g;
+      continue;
+    }
+    std::vector<std::string> front = group;
+    for (const std::string& t : merged)
+      if (std::find(front.begin(), front.end(), t) == front.end()) front.push_back(t);
+    merged = std::move(front);
+    if (g < c.notes.size()) {
+      notes += (notes.empty() ? "" : "; ") + c.notes[g];
+      c.notes.erase(c.notes.begin() + static_cast<std::ptrdiff_t>(g));
+    }
+    c.groups.erase(c.groups.begin() + static_cast<std::ptrdiff_t>(g));
   }
-  c.groups.push_back({a, b});
-  c.notes.push_back(note);
+  c.groups.push_back(std::move(merged));
+  c.notes.push_back(notes.empty() ? note : notes + "; " + note);
 }
 
 const std::vector<std::string>* Confounding::group_of(const std::string& term) const {

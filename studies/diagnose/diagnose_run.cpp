@@ -90,6 +90,14 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
   const std::vector<std::string> channels = fit::parse_channels(request.pipeline.columns.gyro);
   DiagnosisOptions options = request.options;
   options.excluded_columns = channels;  // no gyro channel explains another
+  // Progress only where the work is long: a log large enough to be streamed.
+  const bool large = request.progress && std::filesystem::exists(request.data) &&
+                     std::filesystem::file_size(request.data) > fit::streaming_threshold_bytes();
+  std::size_t channel_index = 0;
+  const auto report = [&](const std::string& what, double within) {
+    if (large)
+      request.progress(what, (static_cast<double>(channel_index) + within) / static_cast<double>(channels.size()));
+  };
   const fit::PipelineOptions with_columns = fit::reading_columns_of(request.pipeline, request.terms);
   run.channels =
       fit::for_each_channel(channels, with_columns, [&](const std::string& channel, const fit::PipelineOptions& p) {
@@ -97,6 +105,7 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
         c.channel = channel;
         c.pipeline = p;
         c.streamed = fit::streams(request.data, c.pipeline);
+        report(fmt::format("{}: reading {}", channel, request.data), 0.0);
         if (c.streamed) {
           c.data = fit::prepare_data_streaming(request.data, c.pipeline);
         } else {
@@ -104,8 +113,17 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
           c.measurement = fit::read_measurement_csv(request.data, c.pipeline.columns);
           c.data = fit::prepare_data(c.measurement, c.pipeline);
         }
+        DiagnosisOptions with_stages = options;
+        double within = 0.3;
+        with_stages.stage = [&](const std::string& stage) {
+          report(fmt::format("{}: {}", channel, stage), within);
+          within = std::min(0.95, within + 0.1);
+        };
+        report(fmt::format("{}: {} windows read", channel, c.data.series.size()), 0.25);
         c.report = diagnose_record(c.data, c.pipeline.columns, request.base_terms, request.terms, engine,
-                                   request.settings, options);
+                                   request.settings, with_stages);
+        ++channel_index;
+        report(fmt::format("{}: done", channel), 0.0);
         if (channels.size() > 1 && !c.report.next_command.empty()) c.report.next_command += " --gyro-col " + channel;
         return c;
       });

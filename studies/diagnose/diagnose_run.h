@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <functional>
+
 #include <nlohmann/json.hpp>
 
 #include "studies/diagnose/report.h"
@@ -24,6 +26,10 @@ struct DiagnoseRequest {
   fit::PipelineOptions pipeline;             // columns (gyro: the comma list of channels), units, rules
   DiagnosisOptions options;                  // --candidates (the channels are never candidates)
   std::string plots;                         // a folder for the figures, or ""
+  // Progress (what, share done), called on a log large enough to be streamed
+  // (over fit/data/streaming.h's threshold): reading, then each stage of the
+  // diagnosis of each channel. Empty: none.
+  std::function<void(const std::string& step, double fraction)> progress;
 };
 
 struct ChannelDiagnosis {

@@ -185,9 +185,15 @@ Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::T
         "if the record's runs allow it)",
         data.file, data.series.size(), kMinBlocks));
   Diagnosis d;
+  const auto stage = [&](const std::string& what) {
+    if (options.stage) options.stage(what);
+  };
+  stage("fitting the model and its noise");
   compare(d, data, terms, engine, settings);
   diagnosis_steps::locate_failures(d, data);
+  stage("searching for steps and scoring the candidates");
   const std::vector<StepCandidate> steps = diagnosis_steps::rank_candidates(d, data, terms, options);
+  stage("what the record cannot tell apart, and what remains");
   name_confounded(d, data, terms);
   size_steps(d, data, terms, steps);
   find_what_remains(d, data, terms);

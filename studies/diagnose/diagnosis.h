@@ -30,9 +30,8 @@
 //     which autocorrelated residuals cannot fool: the windows are cut into
 //     contiguous blocks of 10; each block is predicted by both models fitted
 //     without it (a candidate's own parameter, a filter's time constant,
-//     chosen again in every fold on the training rows from a grid of 9 values
-//     and the full-record optimum, so a term with a tuned parameter is not
-//     favoured over one without); the per-block gains d_k = SSE_base − SSE_with are tested by
+//     chosen again in every fold on the training rows from a grid of 41
+//     log-spaced values, so the block it predicts never tunes it); the per-block gains d_k = SSE_base − SSE_with are tested by
 //     a one-sided sign-flip randomisation test (20 000 seeded draws), with a
 //     Bonferroni correction over the candidates. A candidate is significant
 //     when p < α/n, its cross-validated gain is positive, and it removes at
@@ -44,8 +43,10 @@
 //     fitted together with it (confounding.h, separate(): ols under the
 //     record's identified noise): if neither adds significantly to the
 //     other, the record cannot tell them apart and they form one group (the
-//     one with fewer fitted parameters stands for it); if only the rival
-//     adds, and it passed the test too, the rival joins instead.
+//     one with fewer fitted parameters stands for it; a rival that only
+//     encompasses it without passing the test alone joins the group too);
+//     if only the rival adds, and it passed the test too, the rival joins
+//     instead.
 //
 // References: IEEE Std 952-1997 Annex C (Allan and Hadamard variances);
 // Arlot & Celisse, "A survey of cross-validation procedures for model
@@ -53,6 +54,7 @@
 // Good, Permutation, Parametric and Bootstrap Tests of Hypotheses (2005).
 
 #include <array>
+#include <functional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -78,6 +80,8 @@ struct DiagnosisOptions {
   std::vector<std::string> candidates;
   // Log columns that are never candidates (the other gyro channels).
   std::vector<std::string> excluded_columns;
+  // Called at each stage of a diagnosis ("scoring 14 candidates, round 1", …); may be empty.
+  std::function<void(const std::string& stage)> stage;
 };
 
 // A bias step found in the model's residual, after scoring (--json events).

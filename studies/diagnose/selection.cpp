@@ -19,10 +19,11 @@
 namespace gyrotherm::studies::diagnosis_steps {
 namespace {
 
-constexpr int kFoldGrid = 9;
+constexpr int kFoldGrid = 41;  // parameter values each fold chooses among, log-spaced over the bounds (fit_parameters' own grid)
 // A rival explains at least this share of what the best does: a near-equal
-// explanation, worth fitting together with it (fewer cost power: a step
-// grouped with a turn-on transient that explains much less).
+// explanation, worth fitting together with it (at half, a step was grouped
+// with turn-on transients that explained much less: results/diagnosis_false_alarms.md
+// lost 13 of 100 steps found).
 constexpr double kRivalShare = 0.8;  // parameter values each fold chooses among (with the full-record optimum)
 
 // Cross-validated SSE per block: each block predicted by the model fitted
@@ -59,14 +60,15 @@ std::vector<double> block_sse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y
 
 // As block_sse, for a model whose last term has a fitted parameter: in every
 // fold the parameter is chosen again on the training rows alone (the grid
-// `designs`, one per value, the full-record optimum among them, by the
-// training rows' least-squares SSE from normal equations on scaled columns),
+// `designs`, one per value, by the training rows' least-squares SSE from
+// normal equations on scaled columns, y centred),
 // so a filter's time constant tuned on all the data does not see the block it
 // predicts. The chosen design then predicts the block as block_sse does.
 std::vector<double> block_sse_refit(const std::vector<Eigen::MatrixXd>& designs, const Eigen::VectorXd& y,
                                     const std::vector<std::size_t>& block, std::size_t blocks,
                                     const std::vector<std::string>& names) {
   const Eigen::Index l = y.size();
+  const Eigen::VectorXd yc = y.array() - y.mean();  // the intercept is in every design: SSEs unchanged
   struct Normal {
     Eigen::MatrixXd xs;  // [1, X] with unit-norm columns
   };
@@ -81,10 +83,10 @@ std::vector<double> block_sse_refit(const std::vector<Eigen::MatrixXd>& designs,
     for (Eigen::Index j = 0; j < n.xs.cols(); ++j)
       if (const double norm = n.xs.col(j).norm(); norm > 0.0) n.xs.col(j) /= norm;
     gram_total.push_back(n.xs.transpose() * n.xs);
-    xty_total.push_back(n.xs.transpose() * y);
+    xty_total.push_back(n.xs.transpose() * yc);
     normal.push_back(std::move(n));
   }
-  const double yy_total = y.squaredNorm();
+  const double yy_total = yc.squaredNorm();
   std::vector<double> sse(blocks, 0.0);
   for (std::size_t k = 0; k < blocks; ++k) {
     std::vector<Eigen::Index> held;
@@ -92,7 +94,7 @@ std::vector<double> block_sse_refit(const std::vector<Eigen::MatrixXd>& designs,
       if (block[p] == k) held.push_back(static_cast<Eigen::Index>(p));
     std::size_t chosen = 0;
     double best = std::numeric_limits<double>::infinity();
-    const Eigen::VectorXd yk = y(held);
+    const Eigen::VectorXd yk = yc(held);
     for (std::size_t g = 0; g < designs.size(); ++g) {
       const Eigen::MatrixXd xk = normal[g].xs(held, Eigen::all);
       const Eigen::MatrixXd gram = gram_total[g] - xk.transpose() * xk;
@@ -134,7 +136,8 @@ std::size_t parameter_count(const fit::Term* t) { return t->parameter ? 1 : 0; }
 // the fewest fitted parameters (marked group_significant).
 std::size_t resolve_rivals(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& current,
                            std::vector<CandidateReport>& round, std::size_t best) {
-  std::size_t leader = best;
+  std::vector<std::pair<std::size_t, Separation>> inseparable;
+  std::size_t encompassing = best;
   for (std::size_t i = 0; i < round.size(); ++i) {
     if (i == best || !(round[i].reduction_pct >= kRivalShare * round[best].reduction_pct)) continue;
     Separation s;
@@ -145,13 +148,20 @@ std::size_t resolve_rivals(Diagnosis& d, const fit::PreparedData& data, const st
     }
     if (s.a_adds) continue;  // the best adds to it: the greedy order stands
     if (s.b_adds && round[i].significant) {
-      if (leader == best || round[i].reduction_pct > round[leader].reduction_pct) leader = i;
+      if (encompassing == best || round[i].reduction_pct > round[encompassing].reduction_pct) encompassing = i;
       continue;
     }
-    d.inseparable.push_back({std::string(round[best].term->name), std::string(round[i].term->name),
-                             s.note.empty() ? fmt::format("{} encompasses {} on this record, but did not pass the "
-                                                          "test alone", round[i].term->name, round[best].term->name)
-                                            : s.note});
+    if (s.note.empty())
+      s.note = fmt::format("{} encompasses {} on this record, but did not pass the test alone", round[i].term->name,
+                           round[best].term->name);
+    inseparable.emplace_back(i, std::move(s));
+  }
+  // A rival that encompasses the best and passed the test joins instead;
+  // the best's other rivals are judged again in the next round.
+  if (encompassing != best) return encompassing;
+  std::size_t leader = best;
+  for (const auto& [i, s] : inseparable) {
+    d.inseparable.push_back({std::string(round[best].term->name), std::string(round[i].term->name), s.note});
     round[best].group_significant = round[i].group_significant = true;
     if (leader == best && parameter_count(round[i].term) < parameter_count(round[best].term)) leader = i;
   }
@@ -218,7 +228,10 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
   std::vector<double> current_params = d.fit.parameters;
   double current_sigma2 = after2;
   std::vector<std::string> failed;
-  while (!untried.empty()) {
+  for (int round_number = 1; !untried.empty(); ++round_number) {
+    if (options.stage)
+      options.stage(fmt::format("scoring {} candidates by block cross-validation, round {}", untried.size(),
+                                round_number));
     const Eigen::MatrixXd xc = fit::design_matrix(data.derived, current, current_params);
     const std::vector<double> base_sse = block_sse(xc, y, block, blocks, fit::term_names(current));
     double base_cv = 0.0;
@@ -237,7 +250,7 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
         if (term->parameter) {
           // The grid of the parameter's values (log-spaced over its bounds)
           // with the full-record optimum, each a design.
-          std::vector<Eigen::MatrixXd> designs = {xw};
+          std::vector<Eigen::MatrixXd> designs;  // not the full-record optimum: it has seen every block
           const double lo = std::log(term->parameter->lower), hi = std::log(term->parameter->upper);
           for (int g = 0; g < kFoldGrid; ++g) {
             std::vector<double> p = params;
