@@ -1,6 +1,4 @@
-// gyrotherm diagnose DATA.csv [--model F] [--add TERM ...] [--engine E]
-//                            [--candidates LIST] [--plots DIR] [--json]
-// (studies/diagnose/diagnose_run.h)
+// gyrotherm diagnose DATA.csv [--model F] [--add TERM ...] [--candidates LIST] [--plots DIR] [--json] …
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
