@@ -5,6 +5,7 @@
 #include <bit>
 #include <limits>
 #include <cmath>
+#include <functional>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -45,7 +46,7 @@ struct CurveFit {
 struct SubFit {
   Eigen::VectorXd a;
   Eigen::MatrixXd cov;
-  double chi2 = 0.0;
+  double chi2 = std::numeric_limits<double>::infinity();  // not fitted
 };
 SubFit gls(const Eigen::MatrixXd& xw, const Eigen::VectorXd& vw, unsigned mask) {
   std::vector<Eigen::Index> cols;
@@ -62,10 +63,7 @@ SubFit gls(const Eigen::MatrixXd& xw, const Eigen::VectorXd& vw, unsigned mask) 
   SubFit f;
   f.a = Eigen::VectorXd::Zero(kTerms);
   f.cov = Eigen::MatrixXd::Zero(kTerms, kTerms);
-  if (qr.rank() < x.cols()) {
-    f.chi2 = std::numeric_limits<double>::infinity();
-    return f;
-  }
+  if (qr.rank() < x.cols()) return f;
   const Eigen::VectorXd b = qr.solve(vw);
   f.chi2 = (vw - x * b).squaredNorm();
   const Eigen::MatrixXd inv = (x.transpose() * x).inverse();
@@ -77,10 +75,12 @@ SubFit gls(const Eigen::MatrixXd& xw, const Eigen::VectorXd& vw, unsigned mask) 
   return f;
 }
 
-CurveFit fit_curve(const AllanCurve& c) {
+// `use`: the rows fitted (all if empty); `allowed`: the terms that may enter.
+CurveFit fit_curve(const AllanCurve& c, const std::function<bool(const AllanRow&)>& use = {},
+                   unsigned allowed = (1u << kTerms) - 1) {
   std::vector<const AllanRow*> rows;
   for (const AllanRow& r : c.rows)
-    if (r.adev_dph > 0.0 && r.edf >= 1.0) rows.push_back(&r);
+    if (r.adev_dph > 0.0 && r.edf >= 1.0 && (!use || use(r))) rows.push_back(&r);
   if (rows.size() > kMaxRows) {  // log-spaced thinning (τ = all)
     std::vector<const AllanRow*> kept;
     const double lo = std::log(rows.front()->tau_s), hi = std::log(rows.back()->tau_s);
@@ -124,7 +124,7 @@ CurveFit fit_curve(const AllanCurve& c) {
     best = SubFit{};
     best.chi2 = std::numeric_limits<double>::infinity();
     for (unsigned mask = 1; mask < (1u << kTerms); ++mask) {
-      if (static_cast<Eigen::Index>(std::popcount(mask)) >= n) continue;
+      if ((mask & ~allowed) != 0u || static_cast<Eigen::Index>(std::popcount(mask)) >= n) continue;
       SubFit f = gls(xw, vw, mask);
       bool feasible = std::isfinite(f.chi2);
       for (int k = 0; k < kTerms; ++k) feasible = feasible && f.a[k] >= 0.0;
@@ -140,7 +140,7 @@ CurveFit fit_curve(const AllanCurve& c) {
   out.chi2_per_dof = dof > 0.0 ? best.chi2 / dof : 0.0;
   const double birge = std::max(1.0, out.chi2_per_dof);
   // Every term's spread in the full model (the bound of a term left out).
-  const SubFit full = gls(xw, vw, (1u << kTerms) - 1);
+  const SubFit full = gls(xw, vw, allowed);
   for (int k = 0; k < kTerms; ++k) {
     out.in[static_cast<std::size_t>(k)] = (best_mask >> k) & 1u;
     out.a[static_cast<std::size_t>(k)] = best.a[k];
@@ -148,8 +148,10 @@ CurveFit fit_curve(const AllanCurve& c) {
     if (!out.in[static_cast<std::size_t>(k)]) {
       // A term left out: its spread with it added to the chosen terms, or in
       // the full model; none when neither can be fitted (NaN: no bound).
-      const SubFit with = gls(xw, vw, best_mask | (1u << k));
-      var = std::isfinite(with.chi2) ? with.cov(k, k) : std::isfinite(full.chi2) ? full.cov(k, k) : std::nan("");
+      const SubFit with = (allowed >> k) & 1u ? gls(xw, vw, best_mask | (1u << k)) : SubFit{};
+      var = std::isfinite(with.chi2) && with.cov.rows() == kTerms ? with.cov(k, k)
+            : std::isfinite(full.chi2) && full.cov.rows() == kTerms && ((allowed >> k) & 1u) ? full.cov(k, k)
+                                                                                              : std::nan("");
     }
     out.sd[static_cast<std::size_t>(k)] = std::isnan(var) ? var : std::sqrt(std::max(0.0, var) * birge);
   }
@@ -304,9 +306,23 @@ NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {
   NoiseCoefficients k;
   const CurveFit f = fit_curve(c);
   k.fit_chi2_per_dof = f.chi2_per_dof;
-  k.arw_dpsh = fitted_term(c, f, kN, 1.0, "angle random walk (−½ slope)");
+  // White noise (ARW, quantisation) again from the τ where the full fit says
+  // it makes at least 80 % of σ²: a real flicker floor rolls off below its
+  // shortest correlation time, where a flat B term would over-predict and
+  // pull N down (26 % on white + flicker comparable at 10–100 s).
+  const auto white_share = [&](const AllanRow& r) {
+    double total = 0.0;
+    for (int j = 0; j < kTerms; ++j) total += f.a[static_cast<std::size_t>(j)] * basis(j, r.tau_s);
+    const double white = f.a[kQ] * basis(kQ, r.tau_s) + f.a[kN] * basis(kN, r.tau_s);
+    return total > 0.0 ? white / total : 0.0;
+  };
+  const CurveFit w = f.ok ? fit_curve(c, [&](const AllanRow& r) { return white_share(r) >= 0.8; },
+                                      (1u << kQ) | (1u << kN))
+                          : CurveFit{};
+  const CurveFit& white_fit = w.ok && w.in[kN] ? w : f;
+  k.arw_dpsh = fitted_term(c, white_fit, kN, 1.0, "angle random walk (−½ slope)");
   k.rrw_dph_per_sqrt_h = fitted_term(c, f, kK, 1.0, "rate random walk (+½ slope)");
-  k.quantization_arcsec = fitted_term(c, f, kQ, 1.0, "quantisation (−1 slope)");
+  k.quantization_arcsec = fitted_term(c, white_fit, kQ, 1.0, "quantisation (−1 slope)");
   k.bias_instability_dph = bias_instability(c, f);
   return k;
 }
