@@ -73,7 +73,7 @@ void count(Tally& t, const studies::Diagnosis& d) {
   }
   bool any = false, step = false, column = false, term = false, alone = false;
   for (const studies::CandidateReport& c : d.candidates) {
-    if (!c.significant && !c.group_significant) continue;  // a group that passed counts too
+    if (!c.passed()) continue;  // a group that passed counts too
     any = true;
     alone |= c.confounded_with.empty();
     const fit::Term& x = *c.term;

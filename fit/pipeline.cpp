@@ -132,12 +132,9 @@ std::shared_ptr<const NoiseContext> identify_record_noise(const PreparedData& da
   const WindowGrid grid = window_grid(data);
   if (grid.size() < problem.dimension() + 5 || !(grid.window_s > 0.0)) return nullptr;
   try {
-    NoiseModel model = identify_noise(grid, problem.design(), problem.y());
-    for (double a : model.amplitude)
-      if (!std::isfinite(a)) return nullptr;  // nothing to trust: ols falls back to Newey–West
-    return std::make_shared<const NoiseContext>(NoiseContext{std::move(model), grid});
+    return std::make_shared<const NoiseContext>(NoiseContext{identify_noise(grid, problem.design(), problem.y()), grid});
   } catch (const InputError&) {
-    return nullptr;
+    return nullptr;  // nothing to trust: ols falls back to Newey–West
   }
 }
 

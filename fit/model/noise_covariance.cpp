@@ -173,14 +173,14 @@ Eigen::VectorXd NoiseModel::draw(const WindowGrid& g, const std::function<double
   return y;
 }
 
+double gauss_markov_allan_variance(double x) {
+  return x < 1e-4 ? 2.0 * x / 3.0 : (2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x)) / (x * x);
+}
+
 double NoiseModel::allan_variance(double tau_s) const {
-  const auto g = [tau_s](double tau_c) {
-    const double x = tau_s / tau_c;
-    return x < 1e-4 ? 2.0 * x / 3.0 : (2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x)) / (x * x);
-  };
   double avar = amplitude[kWhite] / tau_s + amplitude[kRandomWalk] * tau_s / 3.0;
-  for (const double t : flicker_tau_s) avar += amplitude[kFlicker] * g(t);
-  if (gm_tau_s > 0.0) avar += amplitude[kGaussMarkov] * g(gm_tau_s);
+  for (const double t : flicker_tau_s) avar += amplitude[kFlicker] * gauss_markov_allan_variance(tau_s / t);
+  if (gm_tau_s > 0.0) avar += amplitude[kGaussMarkov] * gauss_markov_allan_variance(tau_s / gm_tau_s);
   return avar;
 }
 

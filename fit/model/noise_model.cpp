@@ -39,10 +39,7 @@ double bank_floor(const std::vector<double>& taus, double from_s, double to_s) {
   for (int k = 0; k <= 200; ++k) {
     const double tau = from_s * std::pow(to_s / from_s, k / 200.0);
     double avar = 0.0;
-    for (double t : taus) {
-      const double x = tau / t;
-      avar += (2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x)) / (x * x);
-    }
+    for (double t : taus) avar += gauss_markov_allan_variance(tau / t);
     best = std::max(best, avar);
   }
   return std::sqrt(best);
@@ -407,6 +404,8 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
     seen.push_back(structure(a));
     if (fa + 2.0 * parameter_count(a) <= best_aic + 2.0) model.alternatives.push_back(finish(a));
   }
+  for (const double v : model.amplitude)
+    if (!std::isfinite(v)) throw InputError("the noise amplitudes came out non-finite: nothing to trust");
   return model;
 }
 

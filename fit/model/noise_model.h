@@ -107,9 +107,14 @@ struct NoiseModel {
   Eigen::MatrixXd apply(const WindowGrid& grid, const Eigen::MatrixXd& x, int kind = -1) const;
 };
 
+// The Allan variance of a unit-variance Gauss–Markov process at τ = x·τ_c:
+// g(x) = (2x − 3 + 4e^{−x} − e^{−2x})/x² (2x/3 as x → 0).
+double gauss_markov_allan_variance(double x);
+
 // Identifies the noise of y − design·b (intercept included) by REML. Throws
 // InputError when there are too few windows to say anything (fewer than
-// design.cols() + 4).
+// design.cols() + 4), when the terms cannot be told apart at the block means,
+// or when an amplitude comes out non-finite (nothing to trust).
 // `most_blocks`: the block means it runs on. 64 serve the coefficients'
 // intervals (results/ols_coverage.md: 92–98.5 %; 27 ms on a 72 h record);
 // the step test, whose bootstrap draws noise window by window, needs the

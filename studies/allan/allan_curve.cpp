@@ -121,6 +121,19 @@ std::string noise_type_name(int alpha) {
   }
 }
 
+double loglog_slope(const std::vector<AllanRow>& rows, std::size_t i, double octaves) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, k = 0;
+  for (std::size_t j = 0; j < rows.size(); ++j) {
+    const bool near = std::abs(std::log2(rows[j].tau_s / rows[i].tau_s)) <= octaves + 1e-9 || j + 1 == i || j == i + 1;
+    if (near && rows[j].adev_dph > 0.0) {
+      const double x = std::log(rows[j].tau_s), y = std::log(rows[j].adev_dph);
+      sx += x; sy += y; sxx += x * x; sxy += x * y; k += 1.0;
+    }
+  }
+  const double d = k > 0.0 ? sxx - sx * sx / k : 0.0;
+  return k >= 3.0 && d > 0.0 ? (sxy - sx * sy / k) / d : std::nan("");
+}
+
 double overlapping_adev(std::span<const double> rate, std::size_t m) {
   const auto [sum, terms] = second_differences(angle_of(rate), m);
   if (terms == 0) return std::nan("");
@@ -216,16 +229,7 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
         }
       }
       if (!row.alpha_from_model) {
-        double sx = 0, sy = 0, sxx = 0, sxy = 0, k = 0;
-        for (std::size_t j = 0; j < c.rows.size(); ++j) {
-          const AllanRow& o = c.rows[j];
-          const bool near = std::abs(std::log2(o.tau_s / row.tau_s)) <= 2.0 + 1e-9 || j + 1 == i || j == i + 1;
-          if (o.adev_dph > 0.0 && near) {
-            const double x = std::log(o.tau_s), y = 2.0 * std::log(o.adev_dph);
-            sx += x; sy += y; sxx += x * x; sxy += x * y; k += 1.0;
-          }
-        }
-        if (k >= 3.0 && sxx - sx * sx / k > 0.0) mu = (sxy - sx * sy / k) / (sxx - sx * sx / k);
+        if (const double slope = loglog_slope(c.rows, i, 2.0); !std::isnan(slope)) mu = 2.0 * slope;
       }
       row.alpha = std::clamp(static_cast<int>(std::lround(-mu - 1.0)), -2, 2);
     }

@@ -98,6 +98,11 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
 // "angle_random_walk", "bias_instability", "rate_random_walk".
 std::string noise_type_name(int alpha);
 
+// The least-squares slope of ln σ against ln τ at row i, over the rows
+// within `octaves` either side and its two neighbours; NaN with fewer than
+// three points.
+double loglog_slope(const std::vector<AllanRow>& rows, std::size_t i, double octaves);
+
 // The overlapping Allan deviation of one gap-free series at averaging factor
 // m (no intervals; NaN when the series is shorter than 2m).
 double overlapping_adev(std::span<const double> rate, std::size_t m);

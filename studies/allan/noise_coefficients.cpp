@@ -21,6 +21,7 @@ namespace {
 // quantisation Q (″), ARW N (°/√h), flicker B (°/h), RRW K (°/h/√h); σ² in (°/h)², τ in s.
 constexpr int kTerms = 4;
 enum Term { kQ = 0, kN = 1, kB = 2, kK = 3 };
+constexpr unsigned kWhiteTerms = (1u << kQ) | (1u << kN);  // white angle and white rate noise
 double basis(int term, double tau) {
   switch (term) {
     case kQ: return 3.0 / (tau * tau);
@@ -39,7 +40,15 @@ struct CurveFit {
   std::array<double, kTerms> sd{};       // their standard deviations (scaled by the Birge ratio)
   std::array<bool, kTerms> in{};
   double chi2_per_dof = 0.0;
+  std::size_t taus = 0;                  // the τ fitted
   bool ok = false;
+  // The fitted σ² at τ from the terms in `mask` (all by default).
+  double part(double tau, unsigned mask = (1u << kTerms) - 1) const {
+    double sum = 0.0;
+    for (int k = 0; k < kTerms; ++k)
+      if ((mask >> k) & 1u) sum += a[static_cast<std::size_t>(k)] * basis(k, tau);
+    return sum;
+  }
 };
 
 // Generalised least squares of v on the columns `mask` of X with the whitening L (V = LLᵀ).
@@ -107,22 +116,20 @@ CurveFit fit_curve(const AllanCurve& c, const std::function<bool(const AllanRow&
   Eigen::MatrixXd xw;
   Eigen::VectorXd vw;
   for (int iteration = 0; iteration < 5; ++iteration) {
+    Eigen::VectorXd sd(n);  // of each σ² estimate, at the fitted curve
+    for (Eigen::Index i = 0; i < n; ++i)
+      sd[i] = std::max(model[i], 0.25 * v[i]) * std::sqrt(2.0 / rows[static_cast<std::size_t>(i)]->edf);
     Eigen::MatrixXd cov(n, n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double si = std::max(model[i], 0.25 * v[i]) * std::sqrt(2.0 / rows[static_cast<std::size_t>(i)]->edf);
+    for (Eigen::Index i = 0; i < n; ++i)
       for (Eigen::Index j = 0; j < n; ++j) {
-        const double sj =
-            std::max(model[j], 0.25 * v[j]) * std::sqrt(2.0 / rows[static_cast<std::size_t>(j)]->edf);
         const double ti = rows[static_cast<std::size_t>(i)]->tau_s, tj = rows[static_cast<std::size_t>(j)]->tau_s;
-        cov(i, j) = std::sqrt(std::min(ti, tj) / std::max(ti, tj)) * si * sj;
+        cov(i, j) = std::sqrt(std::min(ti, tj) / std::max(ti, tj)) * sd[i] * sd[j];
       }
-    }
     const Eigen::LLT<Eigen::MatrixXd> llt(cov);
     if (llt.info() != Eigen::Success) return out;
     xw = llt.matrixL().solve(x);
     vw = llt.matrixL().solve(v);
     best = SubFit{};
-    best.chi2 = std::numeric_limits<double>::infinity();
     for (unsigned mask = 1; mask < (1u << kTerms); ++mask) {
       if ((mask & ~allowed) != 0u || static_cast<Eigen::Index>(std::popcount(mask)) >= n) continue;
       SubFit f = gls(xw, vw, mask);
@@ -138,6 +145,7 @@ CurveFit fit_curve(const AllanCurve& c, const std::function<bool(const AllanRow&
   }
   const double dof = static_cast<double>(n - std::popcount(best_mask));
   out.chi2_per_dof = dof > 0.0 ? best.chi2 / dof : 0.0;
+  out.taus = rows.size();
   const double birge = std::max(1.0, out.chi2_per_dof);
   // Every term's spread in the full model (the bound of a term left out).
   const SubFit full = gls(xw, vw, allowed);
@@ -160,8 +168,7 @@ CurveFit fit_curve(const AllanCurve& c, const std::function<bool(const AllanRow&
 }
 
 // A fitted term: shown when its square is above zero at 95 %.
-NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, double unit_scale,
-                             const std::string& what) {
+NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, const std::string& what) {
   NoiseCoefficient k;
   if (!f.ok) {
     k.note = "not shown: too few τ for the weighted fit";
@@ -174,8 +181,7 @@ NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, d
   // Where the term weighs in the fitted curve.
   double share_best = -1.0;
   for (const AllanRow& r : c.rows) {
-    double total = 0.0;
-    for (int j = 0; j < kTerms; ++j) total += f.a[static_cast<std::size_t>(j)] * basis(j, r.tau_s);
+    const double total = f.part(r.tau_s);
     const double share = total > 0.0 ? a * basis(term, r.tau_s) / total : 0.0;
     if (share >= 0.5) {
       if (k.tau_from_s == 0.0) k.tau_from_s = r.tau_s;
@@ -188,38 +194,22 @@ NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, d
   }
   if (k.tau_from_s == 0.0) k.tau_from_s = k.tau_to_s = k.tau_read_s;
   const std::string fit_text = fmt::format("weighted fit of the standard terms to σ² at {} τ (χ²/dof {:.2g})",
-                                           c.rows.size(), f.chi2_per_dof);
+                                           f.taus, f.chi2_per_dof);
   if (std::isnan(sd)) {
     k.note = fmt::format("not resolved: {} cannot be fitted beside the other terms on these τ (no bound)", what);
     return k;
   }
   if (!(a - kZ95 * sd > 0.0)) {
-    k.upper_bound = std::sqrt(std::max(0.0, a) + kZ95 * sd) * unit_scale;
+    k.upper_bound = std::sqrt(std::max(0.0, a) + kZ95 * sd);
     k.note = fmt::format("not resolved: {} below {:.3g} (95 % bound of the {})", what, k.upper_bound, fit_text);
     return k;
   }
   k.shown = true;
-  k.value = std::sqrt(a) * unit_scale;
-  k.lo = std::sqrt(std::max(0.0, a - z * sd)) * unit_scale;
-  k.hi = std::sqrt(a + z * sd) * unit_scale;
+  k.value = std::sqrt(a);
+  k.lo = std::sqrt(std::max(0.0, a - z * sd));
+  k.hi = std::sqrt(a + z * sd);
   k.note = fmt::format("{}; {} dominates τ = {:.3g}–{:.3g} s", fit_text, what, k.tau_from_s, k.tau_to_s);
   return k;
-}
-
-// The local log-log slope of σ at row i: least squares over the rows within
-// an octave either side (at least its two neighbours).
-double local_slope(const AllanCurve& c, std::size_t i) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0, k = 0;
-  for (std::size_t j = 0; j < c.rows.size(); ++j) {
-    const bool near = std::abs(std::log2(c.rows[j].tau_s / c.rows[i].tau_s)) <= 1.0 + 1e-9;
-    const bool neighbour = j + 1 == i || j == i + 1 || j == i;
-    if ((near || neighbour) && c.rows[j].adev_dph > 0.0) {
-      const double x = std::log(c.rows[j].tau_s), y = std::log(c.rows[j].adev_dph);
-      sx += x; sy += y; sxx += x * x; sxy += x * y; k += 1.0;
-    }
-  }
-  const double d = sxx - sx * sx / k;
-  return k >= 3.0 && d > 0.0 ? (sxy - sx * sy / k) / d : std::nan("");
 }
 
 double chi2_bound(double edf, double p) { return edf / boost::math::quantile(boost::math::chi_squared(edf), p); }
@@ -238,7 +228,7 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
   // Flat rows: usable, with a τ on either side, local slope within ±0.2.
   std::vector<bool> flat(c.rows.size(), false);
   for (const std::size_t i : usable)
-    flat[i] = i > 0 && i + 1 < c.rows.size() && std::abs(local_slope(c, i)) <= 0.2;
+    flat[i] = i > 0 && i + 1 < c.rows.size() && std::abs(loglog_slope(c.rows, i, 1.0)) <= 0.2;
   // The longest stretch of flat rows (ties: the lowest).
   std::size_t from = 0, to = 0, best_len = 0;
   double best_level = 0.0;
@@ -262,7 +252,6 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
     }
     i = j;
   }
-  const auto white = [&](double tau) { return f.a[kQ] * basis(kQ, tau) + f.a[kN] * basis(kN, tau); };
   std::size_t lowest = usable.front();
   for (const std::size_t i : usable)
     if (c.rows[i].adev_dph < c.rows[lowest].adev_dph) lowest = i;
@@ -272,7 +261,7 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
     const AllanRow& read = c.rows[from];  // the stretch's best-determined τ (the shortest)
     const double level = std::sqrt(best_level);
     const double lo95 = level * level * chi2_bound(read.edf, 0.975);
-    if (lo95 > white(read.tau_s)) {
+    if (lo95 > f.part(read.tau_s, kWhiteTerms)) {
       k.shown = true;
       k.tau_read_s = read.tau_s;
       k.tau_from_s = c.rows[from].tau_s;
@@ -310,19 +299,14 @@ NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {
   // it makes at least 80 % of σ²: a real flicker floor rolls off below its
   // shortest correlation time, where a flat B term would over-predict and
   // pull N down (26 % on white + flicker comparable at 10–100 s).
-  const auto white_share = [&](const AllanRow& r) {
-    double total = 0.0;
-    for (int j = 0; j < kTerms; ++j) total += f.a[static_cast<std::size_t>(j)] * basis(j, r.tau_s);
-    const double white = f.a[kQ] * basis(kQ, r.tau_s) + f.a[kN] * basis(kN, r.tau_s);
-    return total > 0.0 ? white / total : 0.0;
+  const auto white_dominated = [&](const AllanRow& r) {
+    return f.part(r.tau_s, kWhiteTerms) >= 0.8 * f.part(r.tau_s) && f.part(r.tau_s) > 0.0;
   };
-  const CurveFit w = f.ok ? fit_curve(c, [&](const AllanRow& r) { return white_share(r) >= 0.8; },
-                                      (1u << kQ) | (1u << kN))
-                          : CurveFit{};
+  const CurveFit w = f.ok ? fit_curve(c, white_dominated, kWhiteTerms) : CurveFit{};
   const CurveFit& white_fit = w.ok && w.in[kN] ? w : f;
-  k.arw_dpsh = fitted_term(c, white_fit, kN, 1.0, "angle random walk (−½ slope)");
-  k.rrw_dph_per_sqrt_h = fitted_term(c, f, kK, 1.0, "rate random walk (+½ slope)");
-  k.quantization_arcsec = fitted_term(c, white_fit, kQ, 1.0, "quantisation (−1 slope)");
+  k.arw_dpsh = fitted_term(c, white_fit, kN, "angle random walk (−½ slope)");
+  k.rrw_dph_per_sqrt_h = fitted_term(c, f, kK, "rate random walk (+½ slope)");
+  k.quantization_arcsec = fitted_term(c, white_fit, kQ, "quantisation (−1 slope)");
   k.bias_instability_dph = bias_instability(c, f);
   return k;
 }

@@ -35,13 +35,9 @@ std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> tim
     start = end;
   }
   if (means.size() < 16) return std::nullopt;
+  const auto count = static_cast<Eigen::Index>(means.size());
   try {
-    fit::NoiseModel model = fit::identify_noise(grid, Eigen::MatrixXd(static_cast<Eigen::Index>(means.size()), 0),
-                                                Eigen::Map<const Eigen::VectorXd>(means.data(),
-                                                                                  static_cast<Eigen::Index>(means.size())));
-    for (const double a : model.amplitude)
-      if (!std::isfinite(a)) return std::nullopt;
-    return model;
+    return fit::identify_noise(grid, Eigen::MatrixXd(count, 0), Eigen::Map<const Eigen::VectorXd>(means.data(), count));
   } catch (const InputError&) {
     return std::nullopt;
   }

@@ -53,10 +53,8 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
   for (const CandidateReport& c : d.candidates)
     out += fmt::format("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n",
-                       c.significant || (c.group_significant && !c.confounded_with.empty()) ? "*" : " ",
-                       c.term->name, c.reduction_pct, c.p_value,
-                       !c.confounded_with.empty() ? (c.group_significant ? "its group is" : "")
-                                                  : (c.significant ? "significant" : ""),
+                       c.passed() ? "*" : " ", c.term->name, c.reduction_pct, c.p_value,
+                       !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
                        c.term->meaning);
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
   if (before) {
@@ -91,11 +89,10 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
   DiagnosisOptions options = request.options;
   options.excluded_columns = channels;  // no gyro channel explains another
   // Progress only where the work is long: a log large enough to be streamed.
-  const bool large = request.progress && std::filesystem::exists(request.data) &&
-                     std::filesystem::file_size(request.data) > fit::streaming_threshold_bytes();
+  bool show = false;
   std::size_t channel_index = 0;
   const auto report = [&](const std::string& what, double within) {
-    if (large)
+    if (show)
       request.progress(what, (static_cast<double>(channel_index) + within) / static_cast<double>(channels.size()));
   };
   const fit::PipelineOptions with_columns = fit::reading_columns_of(request.pipeline, request.terms);
@@ -105,6 +102,7 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
         c.channel = channel;
         c.pipeline = p;
         c.streamed = fit::streams(request.data, c.pipeline);
+        show = request.progress && c.streamed;
         report(fmt::format("{}: reading {}", channel, request.data), 0.0);
         if (c.streamed) {
           c.data = fit::prepare_data_streaming(request.data, c.pipeline);
@@ -161,8 +159,7 @@ std::string diagnose_text(const DiagnoseRun& run) {
     if (!d.candidates.empty()) {
       const CandidateReport& b = d.candidates.front();
       best = fmt::format("{} ({:.0f} %{})", b.term->name, b.reduction_pct,
-                         !b.confounded_with.empty() ? (b.group_significant ? ", its group significant" : "")
-                                                    : (b.significant ? ", significant" : ""));
+                         !b.passed() ? "" : b.confounded_with.empty() ? ", significant" : ", its group significant");
     }
     out += fmt::format("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,
                        d.noise_floor_dph, d.excess_ratio(), best);

@@ -95,7 +95,7 @@ void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::v
   // it explains whichever member stands for it: its first member joins,
   // then the selection stops, as it does.
   for (const CandidateReport& c : d.candidates) {
-    if (!c.significant && !(c.group_significant && !c.confounded_with.empty())) break;
+    if (!c.passed()) break;
     final_terms.push_back(c.term);
     if (!c.confounded_with.empty()) break;
   }
@@ -134,7 +134,7 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
         "The model is {:.2f} times the noise floor and there is nothing left to try: every "
         "available term is already in it.",
         ratio);
-  } else if (d.candidates.front().group_significant && !d.candidates.front().confounded_with.empty()) {
+  } else if (d.candidates.front().passed() && !d.candidates.front().confounded_with.empty()) {
     // Significant, but not alone: say which effects it cannot be told from,
     // and why (the note of its own group).
     const CandidateReport& c = d.candidates.front();

@@ -114,6 +114,8 @@ struct CandidateReport {
   // whichever member stood for it (set for every member).
   bool group_significant = false;
   std::vector<std::string> confounded_with;  // terms this record cannot tell it from ("1": an offset)
+  // It passed the test: alone, or, in a group, through its group.
+  bool passed() const { return confounded_with.empty() ? significant : group_significant; }
 };
 
 // The estimate of step 1 and how it was made.

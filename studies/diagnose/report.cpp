@@ -78,8 +78,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
                                 {"reduction_pct", c.reduction_pct},
                                 // Alone only: a member of a confounded group is not
                                 // significant by itself; the group is.
-                                {"significant", c.significant && c.confounded_with.empty()},
-                                {"group_significant", c.group_significant && !c.confounded_with.empty()},
+                                {"significant", c.passed() && c.confounded_with.empty()},
+                                {"group_significant", c.passed() && !c.confounded_with.empty()},
                                 {"p_value", c.p_value},
                                 {"cv_gain_pct", c.cv_gain_pct},
                                 {"confounded_with", c.confounded_with}};

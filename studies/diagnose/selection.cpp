@@ -24,7 +24,7 @@ constexpr int kFoldGrid = 41;  // parameter values each fold chooses among, log-
 // explanation, worth fitting together with it (at half, a step was grouped
 // with turn-on transients that explained much less: results/diagnosis_false_alarms.md
 // lost 13 of 100 steps found).
-constexpr double kRivalShare = 0.8;  // parameter values each fold chooses among (with the full-record optimum)
+constexpr double kRivalShare = 0.8;
 
 // Cross-validated SSE per block: each block predicted by the model fitted
 // without it, by the fitter's own least squares (fit/model/linear_problem.h,
@@ -69,22 +69,18 @@ std::vector<double> block_sse_refit(const std::vector<Eigen::MatrixXd>& designs,
                                     const std::vector<std::string>& names) {
   const Eigen::Index l = y.size();
   const Eigen::VectorXd yc = y.array() - y.mean();  // the intercept is in every design: SSEs unchanged
-  struct Normal {
-    Eigen::MatrixXd xs;  // [1, X] with unit-norm columns
-  };
-  std::vector<Normal> normal;
+  std::vector<Eigen::MatrixXd> scaled;  // [1, X] with unit-norm columns
   std::vector<Eigen::MatrixXd> gram_total;
   std::vector<Eigen::VectorXd> xty_total;
   for (const Eigen::MatrixXd& x : designs) {
-    Normal n;
-    n.xs.resize(l, x.cols() + 1);
-    n.xs.col(0).setOnes();
-    n.xs.rightCols(x.cols()) = x;
-    for (Eigen::Index j = 0; j < n.xs.cols(); ++j)
-      if (const double norm = n.xs.col(j).norm(); norm > 0.0) n.xs.col(j) /= norm;
-    gram_total.push_back(n.xs.transpose() * n.xs);
-    xty_total.push_back(n.xs.transpose() * yc);
-    normal.push_back(std::move(n));
+    Eigen::MatrixXd xs(l, x.cols() + 1);
+    xs.col(0).setOnes();
+    xs.rightCols(x.cols()) = x;
+    for (Eigen::Index j = 0; j < xs.cols(); ++j)
+      if (const double norm = xs.col(j).norm(); norm > 0.0) xs.col(j) /= norm;
+    gram_total.push_back(xs.transpose() * xs);
+    xty_total.push_back(xs.transpose() * yc);
+    scaled.push_back(std::move(xs));
   }
   const double yy_total = yc.squaredNorm();
   std::vector<double> sse(blocks, 0.0);
@@ -96,7 +92,7 @@ std::vector<double> block_sse_refit(const std::vector<Eigen::MatrixXd>& designs,
     double best = std::numeric_limits<double>::infinity();
     const Eigen::VectorXd yk = yc(held);
     for (std::size_t g = 0; g < designs.size(); ++g) {
-      const Eigen::MatrixXd xk = normal[g].xs(held, Eigen::all);
+      const Eigen::MatrixXd xk = scaled[g](held, Eigen::all);
       const Eigen::MatrixXd gram = gram_total[g] - xk.transpose() * xk;
       const Eigen::VectorXd xty = xty_total[g] - xk.transpose() * yk;
       const Eigen::VectorXd b = gram.ldlt().solve(xty);
@@ -248,9 +244,9 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
         const double sigma = problem.sigma_two_pass(problem.physical(fit::least_squares_optimum(problem)));
         std::vector<double> sse;
         if (term->parameter) {
-          // The grid of the parameter's values (log-spaced over its bounds)
-          // with the full-record optimum, each a design.
-          std::vector<Eigen::MatrixXd> designs;  // not the full-record optimum: it has seen every block
+          // The grid of the parameter's values (log-spaced over its bounds),
+          // each a design; not the full-record optimum: it has seen every block.
+          std::vector<Eigen::MatrixXd> designs;
           const double lo = std::log(term->parameter->lower), hi = std::log(term->parameter->upper);
           for (int g = 0; g < kFoldGrid; ++g) {
             std::vector<double> p = params;

@@ -229,19 +229,17 @@ std::vector<StepCandidate> find_steps(const std::vector<double>& time_s, const E
     if (best == 0) break;
     // The noise without the step, found once: for the statistic's q and the bootstrap.
     const Eigen::VectorXd noise = without_step(e, q, best);
-    // The record's noise, identified with the model and this step as fixed effects.
+    // The model with this step: the fixed effects the record's noise is
+    // identified with, and, if the step stands, the next search's model.
+    Eigen::MatrixXd with(l, a.cols() + 1);
+    with.leftCols(a.cols()) = a;
+    with.col(a.cols()).setZero();
+    with.col(a.cols()).tail(l - best).setOnes();
     std::optional<fit::NoiseModel> model;
     if (search.grid != nullptr && static_cast<Eigen::Index>(search.grid->size()) == l) {
-      Eigen::MatrixXd with(l, a.cols() + 1);
-      with.leftCols(a.cols()) = a;
-      with.col(a.cols()).setZero();
-      with.col(a.cols()).tail(l - best).setOnes();
       try {
         model = fit::identify_noise(*search.grid, with, y, 128);  // window-level draws: the finer blocks
-        for (const double v : model->amplitude)
-          if (!std::isfinite(v)) model.reset();
       } catch (const InputError&) {
-        model.reset();
       }
     }
     const double p = level_shift_p(noise, q, max_level_shift_t(e, q, noise), search.replicates, rng,
@@ -249,9 +247,7 @@ std::vector<StepCandidate> find_steps(const std::vector<double>& time_s, const E
     if (p >= search.alpha) break;
     const auto k = static_cast<std::size_t>(best);
     out.push_back({std::round(0.5 * (time_s[k - 1] + time_s[k])), k, p});
-    a.conservativeResize(Eigen::NoChange, a.cols() + 1);
-    a.col(a.cols() - 1).setZero();
-    a.col(a.cols() - 1).tail(l - best).setOnes();
+    a = std::move(with);
   }
   std::sort(out.begin(), out.end(),
             [](const StepCandidate& x, const StepCandidate& z) { return x.time_s < z.time_s; });
