@@ -167,8 +167,11 @@ CurveFit fit_curve(const AllanCurve& c, const std::function<bool(const AllanRow&
   return out;
 }
 
-// A fitted term: shown when its square is above zero at 95 %.
-NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, const std::string& what) {
+// A fitted term of `f`: shown when its square is above zero at 95 %. Where
+// it dominates is judged on `whole`, the curve fitted over every τ with every
+// term (f may be a refit of some terms on some τ).
+NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, const CurveFit& whole, int term,
+                             const std::string& what) {
   NoiseCoefficient k;
   if (!f.ok) {
     k.note = "not shown: too few τ for the weighted fit";
@@ -178,11 +181,11 @@ NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, int term, c
   const double a = f.a[t], sd = f.sd[t];
   const double confidence = c.confidence;
   const double z = boost::math::quantile(boost::math::normal(), 0.5 + 0.5 * confidence);
-  // Where the term weighs in the fitted curve.
+  // Where the term weighs in the curve fitted over every τ.
   double share_best = -1.0;
   for (const AllanRow& r : c.rows) {
-    const double total = f.part(r.tau_s);
-    const double share = total > 0.0 ? a * basis(term, r.tau_s) / total : 0.0;
+    const double total = whole.part(r.tau_s);
+    const double share = total > 0.0 ? whole.part(r.tau_s, 1u << term) / total : 0.0;
     if (share >= 0.5) {
       if (k.tau_from_s == 0.0) k.tau_from_s = r.tau_s;
       k.tau_to_s = r.tau_s;
@@ -304,9 +307,9 @@ NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {
   };
   const CurveFit w = f.ok ? fit_curve(c, white_dominated, kWhiteTerms) : CurveFit{};
   const CurveFit& white_fit = w.ok && w.in[kN] ? w : f;
-  k.arw_dpsh = fitted_term(c, white_fit, kN, "angle random walk (−½ slope)");
-  k.rrw_dph_per_sqrt_h = fitted_term(c, f, kK, "rate random walk (+½ slope)");
-  k.quantization_arcsec = fitted_term(c, white_fit, kQ, "quantisation (−1 slope)");
+  k.arw_dpsh = fitted_term(c, white_fit, f, kN, "angle random walk (−½ slope)");
+  k.rrw_dph_per_sqrt_h = fitted_term(c, f, f, kK, "rate random walk (+½ slope)");
+  k.quantization_arcsec = fitted_term(c, white_fit, f, kQ, "quantisation (−1 slope)");
   k.bias_instability_dph = bias_instability(c, f);
   return k;
 }
