@@ -53,7 +53,7 @@ double least_squares_sigma(const DerivedSeries& derived, const Eigen::VectorXd& 
                            const std::vector<double>& parameters) {
   try {
     const LinearProblem problem(design_matrix(derived, terms, parameters), y, term_names(terms));
-    return problem.objective(least_squares_optimum(problem));
+    return problem.optimum_objective();
   } catch (const InputError&) {
     return std::numeric_limits<double>::infinity();
   }
@@ -70,7 +70,8 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
                                          const std::vector<const Term*>& terms,
                                          const std::vector<double>& parameters,
                                          const Coefficients& c,
-                                         std::shared_ptr<const NoiseContext> noise) {
+                                         std::shared_ptr<const NoiseContext> noise,
+                                         const Engine& ols) {
   LinearisedIntervals out;
   out.parameters.assign(terms.size(), std::nullopt);
   std::vector<std::size_t> nonlinear;
@@ -101,7 +102,7 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
   try {
     LinearProblem problem(augmented, y, names);
     if (noise) problem.attach_noise(noise);
-    out.ols = OlsEngine().fit(problem);
+    out.ols = ols.fit(problem);
     for (std::size_t i = 0; i < nonlinear.size(); ++i) {
       const Interval& d = out.ols.intervals[static_cast<std::size_t>(x.cols()) + i];
       out.parameters[nonlinear[i]] = Interval{parameters[nonlinear[i]] * std::exp(d.lower),
@@ -212,7 +213,8 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.parameter_intervals.assign(terms.size(), std::nullopt);
   if (!fit.engine.intervals.empty()) {
     LinearisedIntervals li =
-        linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients, fit.noise);
+        linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients, fit.noise,
+                             engine.name == "ols" ? *e : static_cast<const Engine&>(OlsEngine()));
     fit.parameter_intervals = std::move(li.parameters);
     if (!li.ols.intervals.empty()) {
       // The coefficients' intervals with the parameters' uncertainty in them.

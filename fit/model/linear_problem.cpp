@@ -74,6 +74,13 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   half_width_ = 2.0 * std::sqrt(s_yy_) * inverse.diagonal().cwiseSqrt();
 }
 
+double LinearProblem::optimum_objective() const {
+  const Eigen::VectorXd beta = gram_.ldlt().solve(cross_);
+  std::vector<double> z(static_cast<std::size_t>(beta.size()));
+  for (Eigen::Index j = 0; j < beta.size(); ++j) z[static_cast<std::size_t>(j)] = beta[j] / half_width_[j];
+  return objective(z);
+}
+
 double LinearProblem::objective(std::span<const double> z) const {
   const Eigen::Index m = gram_.rows();
   // β = h ∘ z; σ² = S_yy − 2βᵀc + βᵀGβ.

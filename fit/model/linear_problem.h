@@ -71,6 +71,10 @@ class LinearProblem {
   double objective(std::span<const double> z) const;
   // The same σ by forming every residual: O(l·m) (reference and benchmark).
   double objective_naive(std::span<const double> z) const;
+  // σ at the least-squares optimum from the normal equations of the scaled
+  // design, O(m³) once the problem is built: for searches that compare many
+  // designs (a nonlinear parameter's grid); ols itself solves by QR.
+  double optimum_objective() const;
 
   Coefficients physical(std::span<const double> z) const;
   std::vector<double> unit_box(const Coefficients& c) const;
