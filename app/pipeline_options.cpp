@@ -69,7 +69,7 @@ void add_model_options(CLI::App* cmd, ModelOptions& o, const std::string& add_he
   cmd->add_option("--model", o.model, "Model formula, terms joined by + (default 'T + T^2 + dT')");
   cmd->add_option("--add", o.add, add_help);
   cmd->add_option("--engine", o.engine, "Fitting engine (default ols; see 'gyrotherm engines')");
-  cmd->add_option("--seed", o.seed, "Seed of a stochastic engine (default 1)");
+  cmd->add_option("--seed", o.seed, "Seed of a stochastic engine and of ols's bootstrap intervals (default 1)");
 }
 
 }  // namespace gyrotherm::app

@@ -77,7 +77,14 @@ TEST(CliFit, ReportsTheIdentifiedNoiseAndWhatTheRecordCanSupport) {
   // The simulated white noise (ARW) is seen and named in its unit.
   EXPECT_TRUE(components["arw"]["identified"].get<bool>());
   EXPECT_EQ(components["arw"]["unit"], "deg/sqrt(h)");
-  EXPECT_NE(j["interval_method"].get<std::string>().find("identified noise"), std::string::npos);
+  // A short record (under 200 windows): the default draws its intervals by the
+  // parametric bootstrap; the analytic ones stay one option away.
+  EXPECT_NE(j["interval_method"].get<std::string>().find("parametric bootstrap, 1000 draws"), std::string::npos)
+      << j["interval_method"];
+  const auto analytic = run_cli(dir, "fit run.csv --json --option intervals=model");
+  ASSERT_EQ(analytic.exit_code, 0) << analytic.err;
+  EXPECT_NE(nlohmann::json::parse(analytic.out)["interval_method"].get<std::string>().find("identified noise"),
+            std::string::npos);
   ASSERT_TRUE(j.contains("record"));
   EXPECT_GE(j["record"]["temperature_levels"].get<int>(), 1);
   EXPECT_EQ(j["record"]["temp_range_c"], j["data"]["temp_range_c"]);

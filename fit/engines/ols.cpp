@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "fit/model/noise_bootstrap.h"
 #include "fit/model/noise_model.h"
 
 namespace gyrotherm::fit {
@@ -128,7 +129,12 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   Eigen::MatrixXd V;
   std::vector<double> dofs;
   std::string description;
-  if (options_.intervals == "model" && problem.noise()) {
+  const bool from_noise = options_.intervals != "nw" && options_.intervals != "ewc" && problem.noise();
+  const bool bootstrap =
+      from_noise && (options_.intervals == "bootstrap" ||
+                     (options_.intervals == "auto" &&
+                      bootstrap_by_default(problem.noise()->model, problem.noise()->grid, X)));
+  if (from_noise) {
     // The identified noise's covariance (fit/model/noise_model.h).
     const NoiseContext& noise = *problem.noise();
     NoiseSandwich sandwich = noise_sandwich(noise.model, noise.grid, X);
@@ -148,7 +154,7 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
     V = xtx_inv * lrv.S * xtx_inv;
     dofs.assign(static_cast<std::size_t>(m), lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1));
     description = fmt::format("{}{}; Student t with {:g} dof",
-                              options_.intervals == "model"
+                              options_.intervals != "nw" && options_.intervals != "ewc"
                                   ? "no noise model could be identified on this record (too few "
                                     "windows for the terms): "
                                   : "",
@@ -162,7 +168,21 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   const double rho = e_den > 0.0 ? e_num / e_den : 0.0;
 
   const Coefficients c = problem.physical(r.z);
-  for (Eigen::Index j = 0; j < m; ++j) {
+  if (bootstrap) {
+    const NoiseContext& noise = *problem.noise();
+    const NoiseBootstrap boot = noise_bootstrap(noise.model, noise.grid, X, options_.draws, options_.seed);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const auto [lo, hi] = boot.interval(j, beta[j]);
+      r.intervals.push_back({lo / problem.scale()[j], hi / problem.scale()[j]});
+      r.p_values.push_back(boot.p_value(j, beta[j]));
+    }
+    description = fmt::format("parametric bootstrap, {} draws from the noise models the record "
+                              "supports ({}; structure by Akaike weight, amplitudes from their "
+                              "uncertainty), basic intervals",
+                              options_.draws, noise.model.description());
+  }
+  const bool analytic = r.intervals.empty();
+  for (Eigen::Index j = 0; analytic && j < m; ++j) {
     const boost::math::students_t t_dist(dofs[static_cast<std::size_t>(j)]);
     const double t95 = boost::math::quantile(boost::math::complement(t_dist, 0.025));
     const double se_beta = std::sqrt(std::max(0.0, V(j, j)));
@@ -184,9 +204,12 @@ namespace {
 // Every option, once: parsing, validate() and the listing read this table.
 const OptionTable<OlsOptions>& option_table() {
   static const OptionTable<OlsOptions> table = {
-      {"intervals", &OlsOptions::intervals, one_of({"model", "nw", "ewc"}),
-       "model (the record's identified noise; nw where none is identified), nw (pre-whitened "
-       "Newey-West) or ewc (equal-weighted cosine)"},
+      {"intervals", &OlsOptions::intervals, one_of({"auto", "model", "bootstrap", "nw", "ewc"}),
+       "auto (bootstrap on a record of fewer than 200 windows or under random-walk-dominated "
+       "noise, else model), model (analytic, from the record's identified noise; nw where none "
+       "is identified), bootstrap (drawn from the noise models the record supports), nw "
+       "(pre-whitened Newey-West) or ewc (equal-weighted cosine)"},
+      {"draws", &OlsOptions::draws, whole(100, 100000), "bootstrap draws (intervals=bootstrap)"},
       {"ewc_terms", &OlsOptions::ewc_terms, whole(0, 1000),
        "cosine terms B for ewc (0: ceil(0.4 l^(2/3)))"},
   };

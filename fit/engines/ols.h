@@ -9,7 +9,9 @@
 // autocorrelated (flicker noise, unmodelled slow effects), so the iid formula
 // σ²(X̃ᵀX̃)⁻¹ would be far too narrow.
 //
-// Default (intervals=model): when the problem carries the record's
+// Default (intervals=auto): the bootstrap below on a short record or under
+// random-walk-dominated noise (bootstrap_by_default), else intervals=model.
+// intervals=model: when the problem carries the record's
 // identified noise (LinearProblem::noise(), fit/model/noise_model.h), the
 // covariance is the sandwich (X̃ᵀX̃)⁻¹ X̃ᵀCX̃ (X̃ᵀX̃)⁻¹ with that noise's
 // covariance C and Student-t quantiles with Satterthwaite dof per
@@ -25,6 +27,11 @@
 // L = ⌈1.1447 (α l)^{1/3}⌉ (capped at l/2), a small-sample factor l/(l−m−1),
 // and Student-t quantiles with l − m − 1 degrees of freedom.
 //
+// Option intervals=bootstrap: a parametric bootstrap from the identified
+// noise (fit/model/noise_bootstrap.h): `draws` draws, each from a noise model
+// the record supports (structure by Akaike weight, amplitudes from their
+// REML uncertainty), basic bootstrap intervals and p-values; from `seed`.
+//
 // Option intervals=ewc uses instead the equal-weighted cosine estimator
 // (the scores projected on the B = ⌈0.4 l^{2/3}⌉ lowest cosine frequencies,
 // Student t with B dof; Lazarus, Lewis, Stock & Watson, JBES 36 (2018)).
@@ -39,6 +46,7 @@
 // References: Newey & West, Econometrica 55 (1987) 703–708; Andrews,
 // Econometrica 59 (1991) 817–858; Golub & Van Loan, Matrix Computations §5.4.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -47,7 +55,9 @@
 namespace gyrotherm::fit {
 
 struct OlsOptions {
-  std::string intervals = "model";  // model (identified noise), nw (Newey–West) or ewc
+  std::string intervals = "auto";  // auto, model (identified noise), bootstrap, nw (Newey–West) or ewc
+  int draws = 1000;                 // bootstrap draws
+  std::uint64_t seed = 1;           // of the bootstrap (--seed)
   int ewc_terms = 0;  // cosine frequencies B for ewc; 0: ⌈0.4·l^{2/3}⌉ (LLSW's rule)
 
   // Throws InputError naming the field, its value and the rule.

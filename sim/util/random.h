@@ -56,6 +56,8 @@ enum : std::uint64_t {
   diagnosis_step_bootstrap = 0x57E9,
   // The per-trial [spread] draws of score (studies/score/spread.h).
   score_spread = 0x5C0E,
+  // ols's parametric bootstrap of the coefficients (fit/model/noise_bootstrap.h).
+  fit_bootstrap = 0xB007,
 };
 }  // namespace streams
 
