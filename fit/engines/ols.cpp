@@ -176,9 +176,9 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
       r.intervals.push_back({lo / problem.scale()[j], hi / problem.scale()[j]});
       r.p_values.push_back(boot.p_value(j, beta[j]));
     }
-    description = fmt::format("parametric bootstrap, {} draws from the noise models the record "
-                              "supports ({}; structure by Akaike weight, amplitudes from their "
-                              "uncertainty), basic intervals",
+    description = fmt::format("parametric bootstrap, {} draws from each noise structure the "
+                              "record supports ({}), amplitudes drawn from their uncertainty; the "
+                              "widest basic interval",
                               options_.draws, noise.model.description());
   }
   const bool analytic = r.intervals.empty();

@@ -21,43 +21,58 @@ NoiseModel plausible_noise(const NoiseModel& model, const WindowGrid& grid,
                            const std::function<double()>& normal) {
   NoiseModel m = model;
   m.alternatives.clear();
-  // The amplitudes, log-normal with the REML covariance carried to the logs.
-  std::vector<int> free;  // θ indices of the present components
-  for (int k = 0; k < kNoiseKinds; ++k)
-    if (m.present[static_cast<std::size_t>(k)] && m.amplitude[static_cast<std::size_t>(k)] > 0.0)
-      free.push_back(theta_index(k));
-  if (m.present[kGaussMarkov] && m.gm_tau_s > 0.0) free.push_back(3);
-  std::sort(free.begin(), free.end());
-  const auto nf = static_cast<Eigen::Index>(free.size());
-  auto theta = [&](int p) {
-    return p == 3 ? 1.0 : m.amplitude[static_cast<std::size_t>(p == 4 ? kRandomWalk : p)];
+  // The amplitudes, log-normal with the REML covariance carried to the logs:
+  // jointly for the identified components (their logs are known to better
+  // than a decade, so the matrix is well scaled), one by one for the others
+  // (an estimate near 0 with a huge relative spread), capped at their bound.
+  auto theta_of = [&](int p) -> double& {
+    return p == 3 ? m.gm_tau_s : m.amplitude[static_cast<std::size_t>(p == 4 ? kRandomWalk : p)];
   };
-  Eigen::MatrixXd log_cov(nf, nf);
-  for (Eigen::Index i = 0; i < nf; ++i)
-    for (Eigen::Index j = 0; j < nf; ++j) {
-      const int p = free[static_cast<std::size_t>(i)], q = free[static_cast<std::size_t>(j)];
-      log_cov(i, j) = m.covariance(p, q) / (theta(p) * theta(q));
-    }
-  // A symmetric square root that tolerates a semi-definite covariance.
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(log_cov);
-  const Eigen::MatrixXd root = eig.eigenvectors() *
-                               eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-                               eig.eigenvectors().transpose();
-  Eigen::VectorXd z(nf);
-  for (Eigen::Index i = 0; i < nf; ++i) z[i] = normal();
-  const Eigen::VectorXd shift = root * z;
+  auto kind_of = [](int p) { return p == 3 ? kGaussMarkov : p == 4 ? kRandomWalk : p; };
+  auto log_variance = [&](int p, int q) {
+    const double scale_p = p == 3 ? 1.0 : theta_of(p), scale_q = q == 3 ? 1.0 : theta_of(q);
+    return m.covariance(p, q) / (scale_p * scale_q);
+  };
+  std::vector<int> joint, alone;  // θ indices of the present components
+  for (int k = 0; k < kNoiseKinds; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    if (!m.present[kk] || !(m.amplitude[kk] > 0.0)) continue;
+    (m.identified[kk] ? joint : alone).push_back(theta_index(k));
+  }
+  if (m.present[kGaussMarkov] && m.gm_tau_s > 0.0)
+    (m.identified[kGaussMarkov] ? joint : alone).push_back(3);
+  std::vector<double> shift(5, 0.0);
+  if (!joint.empty()) {
+    const auto n = static_cast<Eigen::Index>(joint.size());
+    Eigen::MatrixXd log_cov(n, n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < n; ++j)
+        log_cov(i, j) = log_variance(joint[static_cast<std::size_t>(i)], joint[static_cast<std::size_t>(j)]);
+    // A symmetric square root that tolerates a semi-definite covariance.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(log_cov);
+    const Eigen::MatrixXd root = eig.eigenvectors() *
+                                 eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+                                 eig.eigenvectors().transpose();
+    Eigen::VectorXd z(n);
+    for (Eigen::Index i = 0; i < n; ++i) z[i] = normal();
+    const Eigen::VectorXd s = root * z;
+    for (Eigen::Index i = 0; i < n; ++i) shift[static_cast<std::size_t>(joint[static_cast<std::size_t>(i)])] = s[i];
+  }
+  for (int p : alone) shift[static_cast<std::size_t>(p)] = std::sqrt(std::max(0.0, log_variance(p, p))) * normal();
   const double span = grid.size() > 0 ? grid.time_s.back() - grid.time_s.front() + grid.window_s : 0.0;
-  for (Eigen::Index i = 0; i < nf; ++i) {
-    const int p = free[static_cast<std::size_t>(i)];
-    if (p == 3) {
-      m.gm_tau_s = std::clamp(m.gm_tau_s * std::exp(shift[i]), grid.window_s, std::max(grid.window_s, span));
-      continue;
+  for (const std::vector<int>* group : {&joint, &alone}) {
+    for (int p : *group) {
+      double& value = theta_of(p);
+      const double estimate = value;
+      value *= std::exp(std::clamp(shift[static_cast<std::size_t>(p)], -50.0, 50.0));
+      if (p == 3) {
+        value = std::clamp(value, grid.window_s, std::max(grid.window_s, span));
+        continue;
+      }
+      const auto k = static_cast<std::size_t>(kind_of(p));
+      if (!m.identified[k] && m.upper_bound[k] > 0.0) value = std::min(value, std::max(estimate, m.upper_bound[k]));
+      if (!std::isfinite(value)) value = estimate;
     }
-    const int k = p == 4 ? kRandomWalk : p;
-    double& a = m.amplitude[static_cast<std::size_t>(k)];
-    a *= std::exp(shift[i]);
-    if (!m.identified[static_cast<std::size_t>(k)] && m.upper_bound[static_cast<std::size_t>(k)] > 0.0)
-      a = std::min(a, m.upper_bound[static_cast<std::size_t>(k)]);
   }
   return m;
 }
