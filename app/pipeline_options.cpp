@@ -47,9 +47,10 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
                   "Name of the far-side temperature column (°C), for the grad term");
   fit::Units& u = o.pipeline.columns.units;
   using fit::Quantity;
-  cmd->add_option("--time-unit", u.time, "Unit of the time column: " + fit::unit_names(Quantity::time, " or ") + " (default s)");
-  cmd->add_option("--gyro-unit", u.gyro, "Unit of the gyro column: " + fit::unit_names(Quantity::gyro, " or ") + " (default dph)");
-  cmd->add_option("--temp-unit", u.temp, "Unit of the temperature columns: " + fit::unit_names(Quantity::temperature, " or ") + " (default C)");
+  const std::string header = " (default: the unit the column's name states, e.g. 'time (ms)', else ";
+  cmd->add_option("--time-unit", u.time, "Unit of the time column: " + fit::unit_names(Quantity::time, " or ") + header + "s)");
+  cmd->add_option("--gyro-unit", u.gyro, "Unit of the gyro column: " + fit::unit_names(Quantity::gyro, " or ") + header + "dph)");
+  cmd->add_option("--temp-unit", u.temp, "Unit of the temperature columns: " + fit::unit_names(Quantity::temperature, " or ") + header + "C)");
   cmd->add_option("--gyro-scale", u.gyro_scale,
                   "Multiply the gyro column by K before its unit (raw counts, a logger's scale)");
   cmd->add_option("--temp-scale", u.temp_scale,

@@ -115,7 +115,9 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                {"windows", data.series.size()},
                {"dropped_windows", data.averaging.dropped_windows},
                {"bursts", data.averaging.bursts},
-               {"windows_described", describe_windows(data, pipeline)}};
+               {"windows_described", describe_windows(data, pipeline)},
+               {"units", data.units.used()},
+               {"cautions", data.cautions}};
   j["data"]["outlier_floor_dph"] = data.outliers.floor_dph;  // the glitch rule's s_floor on this record
   if (!data.series.temp_c.empty()) {
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
@@ -133,13 +135,16 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                      {"gyro", pipeline.columns.gyro},
                      {"temp2", pipeline.columns.temp2},
                      {"units",
-                      {{"time", pipeline.columns.units.time},
-                       {"gyro", pipeline.columns.units.gyro},
-                       {"temp", pipeline.columns.units.temp},
-                       {"gyro_scale", pipeline.columns.units.gyro_scale},
-                       {"temp_scale", pipeline.columns.units.temp_scale},
-                       {"temp_offset", pipeline.columns.units.temp_offset},
-                       {"conversion", pipeline.columns.units.description()}}}}}};
+                      {{"time", data.units.time_unit().name},
+                       {"gyro", data.units.gyro_unit().name},
+                       {"temp", data.units.temp_unit().name},
+                       {"gyro_scale", data.units.gyro_scale},
+                       {"temp_scale", data.units.temp_scale},
+                       {"temp_offset", data.units.temp_offset},
+                       {"conversion", data.units.description()},
+                       {"from", {{"time", data.units.time_from},
+                                 {"gyro", data.units.gyro_from},
+                                 {"temp", data.units.temp_from}}}}}}}};
   return j;
 }
 
@@ -230,6 +235,7 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     units.gyro_scale = number(need(u, "gyro_scale", "a number"), "pipeline.columns.units.gyro_scale");
     units.temp_scale = number(need(u, "temp_scale", "a number"), "pipeline.columns.units.temp_scale");
     units.temp_offset = number(need(u, "temp_offset", "a number"), "pipeline.columns.units.temp_offset");
+    units.time_from = units.gyro_from = units.temp_from = fmt::format("the fit file {}", file.string());
     try {
       units.validate();
     } catch (const InputError& e) {

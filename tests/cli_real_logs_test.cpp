@@ -277,8 +277,8 @@ TEST_P(RealLogBadInput, NamesTheProblemExitsTwoWritesNothing) {
 INSTANTIATE_TEST_SUITE_P(
     Catalogue, RealLogBadInput,
     ::testing::Values(
-        BadLog{"unknown_gyro_unit", "--gyro-col gx --gyro-unit deg/hr", {"--gyro-unit deg/hr: unknown unit", "dph, dps, rad/s, mdps"}},
-        BadLog{"unknown_time_unit", "--gyro-col gx --time-unit min", {"--time-unit min: unknown unit"}},
+        BadLog{"unknown_gyro_unit", "--gyro-col gx --gyro-unit deg/hr", {"--gyro-unit deg/hr: unknown unit", "dph, dps, rad/s"}},
+        BadLog{"unknown_time_unit", "--gyro-col gx --time-unit fortnight", {"--time-unit fortnight: unknown unit"}},
         BadLog{"zero_scale", "--gyro-col gx --gyro-scale 0", {"--gyro-scale 0", "other than 0"}},
         BadLog{"missing_channel", "--gyro-col gx,gz", {"channel gz", "no column 'gz'"}},
         BadLog{"constant_channel", "--gyro-col gflat", {"the gyro output is constant"}},

@@ -394,7 +394,7 @@ TEST(Units, ConvertToSecondsDegreesCelsiusAndDegreesPerHour) {
 
 TEST(Units, BadUnitsAndScalesAreNamed) {
   for (const auto& [units, fragment] : std::vector<std::pair<Units, std::string>>{
-           {Units{.time = "min"}, "--time-unit min: unknown unit (expected one of s, ms, us)"},
+           {Units{.time = "fortnight"}, "--time-unit fortnight: unknown unit (expected one of s, ms, us, ns, min, h)"},
            {Units{.gyro = "deg/hr"}, "--gyro-unit deg/hr: unknown unit"},
            {Units{.temp = "R"}, "--temp-unit R: unknown unit (expected one of C, K, F)"},
            {Units{.gyro_scale = 0.0}, "--gyro-scale 0: must be a finite number other than 0"},

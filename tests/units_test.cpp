@@ -67,7 +67,7 @@ TEST(Units, ConvertKnownValues) {
 TEST(Units, AnUnknownNameIsRefusedWithTheKnownOnes) {
   expect_input_error([] { find_unit(Quantity::gyro, "furlong/s", "--gyro-unit"); },
                      {"--gyro-unit furlong/s: unknown unit (expected one of " + unit_names(Quantity::gyro) + ")"});
-  EXPECT_EQ(unit_names(Quantity::time, " or "), "s, ms or us");
+  EXPECT_EQ(unit_names(Quantity::time, " or "), "s, ms, us, ns, min or h");
 }
 
 // A gyro column written in each unit reads as the record in °/h.
@@ -77,10 +77,11 @@ TEST(Units, EveryGyroUnitReadsAsDegreesPerHour) {
     if (u.quantity != Quantity::gyro) continue;
     SCOPED_TRACE(std::string(u.name));
     const double per_unit = u.to_base(1.0);
-    std::string text = "time_s,temp_c,gyro_dph\n";
+    std::string text = "time_s,temp_c,gyro\n";  // a header that states no unit: the option's
     for (int k = 0; k < 5; ++k) text += fmt::format("{},20,{:.17g}\n", k, (7.0 + 0.01 * k) / per_unit);
     write_text(dir / "g.csv", text);
     ColumnMap columns;
+    columns.gyro = "gyro";
     columns.units.gyro = std::string(u.name);
     const Measurement m = read_measurement_csv(dir / "g.csv", columns);
     for (int k = 0; k < 5; ++k) EXPECT_NEAR(m.gyro_dph[static_cast<std::size_t>(k)], 7.0 + 0.01 * k, 1e-12);
@@ -98,10 +99,10 @@ TEST(Units, DegreesPerMinute) {
   EXPECT_EQ(in_base(Quantity::gyro, "deg/min", 1.0), 60.0);
   ScratchDir dir;
   testing::simulate_shipped(dir, "warmup", "", "dph.csv");
-  ASSERT_EQ(testing::run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/||/^time/{print;next} {$6=sprintf(\"%.12g\",$6/60); print}' "
-                                    "dph.csv | tee dpm.csv").exit_code, 0);
+  ASSERT_EQ(testing::run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^#/{print;next} /^time/{$6=\"gyro_dpm\"; print; next} "
+                                    "{$6=sprintf(\"%.12g\",$6/60); print}' dph.csv | tee dpm.csv").exit_code, 0);
   const auto a = testing::run_cli(dir, "fit dph.csv --json");
-  const auto b = testing::run_cli(dir, "fit dpm.csv --gyro-unit deg/min --json");
+  const auto b = testing::run_cli(dir, "fit dpm.csv --gyro-col gyro_dpm --gyro-unit deg/min --json");
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
   for (const char* term : {"1", "T", "T^2", "dT"})

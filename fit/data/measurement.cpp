@@ -1,5 +1,7 @@
 #include "fit/data/measurement.h"
 
+#include "fit/data/header_units.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -28,9 +30,23 @@ void check_scale(const char* option, double value, bool zero_allowed) {
 
 }  // namespace
 
-const Unit& Units::time_unit() const { return find_unit(Quantity::time, time, "--time-unit"); }
-const Unit& Units::gyro_unit() const { return find_unit(Quantity::gyro, gyro, "--gyro-unit"); }
-const Unit& Units::temp_unit() const { return find_unit(Quantity::temperature, temp, "--temp-unit"); }
+namespace {
+const Unit& unit_or_base(Quantity q, const std::string& name, std::string_view option) {
+  return find_unit(q, name.empty() ? base_unit(q) : std::string_view(name), option);
+}
+}  // namespace
+
+const Unit& Units::time_unit() const { return unit_or_base(Quantity::time, time, "--time-unit"); }
+const Unit& Units::gyro_unit() const { return unit_or_base(Quantity::gyro, gyro, "--gyro-unit"); }
+const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
+
+std::string Units::used() const {
+  auto one = [](std::string_view what, const Unit& u, const std::string& from) {
+    return fmt::format("{} {}{}", what, u.name, from.empty() ? std::string() : " (" + from + ")");
+  };
+  return one("time", time_unit(), time_from) + ", " + one("gyro", gyro_unit(), gyro_from) + ", " +
+         one("temperature", temp_unit(), temp_from);
+}
 
 void Units::validate() const {
   time_unit();
@@ -60,15 +76,15 @@ double Units::temp_c(double x) const {
 std::string Units::description() const {
   if (identity()) return "none";
   std::vector<std::string> parts;
-  if (!time_unit().is_base()) parts.push_back(fmt::format("time {} → s (× {:g})", time, time_unit().factor));
+  if (!time_unit().is_base()) parts.push_back(fmt::format("time {} → s (× {:g})", time_unit().name, time_unit().factor));
   if (!gyro_unit().is_base() || gyro_scale != 1.0)
     parts.push_back(fmt::format("gyro {}{} → °/h (× {:.9g})",
-                                gyro_scale != 1.0 ? fmt::format("{:g} × ", gyro_scale) : "", gyro,
+                                gyro_scale != 1.0 ? fmt::format("{:g} × ", gyro_scale) : "", gyro_unit().name,
                                 gyro_scale * gyro_unit().factor));
   if (!temp_unit().is_base() || temp_scale != 1.0 || temp_offset != 0.0) {
     std::string raw = temp_scale != 1.0 ? fmt::format("{:g} × column", temp_scale) : "column";
     if (temp_offset != 0.0) raw += fmt::format(" {} {:g}", temp_offset < 0 ? "−" : "+", std::abs(temp_offset));
-    parts.push_back(fmt::format("temp {}{} → °C", raw, !temp_unit().is_base() ? " in " + temp : std::string()));
+    parts.push_back(fmt::format("temp {}{} → °C", raw, !temp_unit().is_base() ? " in " + std::string(temp_unit().name) : std::string()));
   }
   std::string out;
   for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
@@ -248,9 +264,7 @@ class CsvParser {
  public:
   CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {
     map_.units.validate();
-    time_factor_ = map_.units.time_unit().factor;
-    gyro_factor_ = map_.units.gyro_unit().factor;
-    temp_in_c_ = map_.units.temp_unit().is_base() && map_.units.temp_scale == 1.0 && map_.units.temp_offset == 0.0;
+    use_units(map_.units);
   }
 
   Measurement read(const fs::path& file);
@@ -264,14 +278,20 @@ class CsvParser {
   [[noreturn]] void fail(std::size_t line, const std::string& message) const {
     throw InputError(located(name_, line, message));
   }
-  // A value read from the file in the units of map_.units, in s, °C or °/h.
+  void use_units(const Units& u) {
+    units_ = u;
+    time_factor_ = u.time_unit().factor;
+    gyro_factor_ = u.gyro_unit().factor;
+    temp_in_c_ = u.temp_unit().is_base() && u.temp_scale == 1.0 && u.temp_offset == 0.0;
+  }
+  // A value read from the file in the units of units_, in s, °C or °/h.
   // (Units' arithmetic, with the unit names looked up once.)
   double convert(Role role, double v) const {
     switch (role) {
       case kTime: return v * time_factor_;
-      case kGyro: return map_.units.gyro_scale * v * gyro_factor_;
+      case kGyro: return units_.gyro_scale * v * gyro_factor_;
       case kTemp:
-      case kTemp2: return temp_in_c_ ? v : map_.units.temp_c(v);
+      case kTemp2: return temp_in_c_ ? v : units_.temp_c(v);
       default: return v;
     }
   }
@@ -281,6 +301,7 @@ class CsvParser {
 
   std::string name_;
   const ColumnMap& map_;
+  Units units_;  // as resolved against the header
   double time_factor_ = 1.0, gyro_factor_ = 1.0;
   bool temp_in_c_ = true;
   std::vector<int> role_of_column_;              // Role of each header column
@@ -351,6 +372,15 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
     column_of_[role] = column;
     if (optional) has_temp2_ = true;
   }
+  try {
+    const auto name_of = [&](int role) {
+      return role != kTemp2 || has_temp2_ ? names[column_of_[role]] : std::string();
+    };
+    use_units(resolve_units(map_.units, name_of(kTime), name_of(kTemp), name_of(kGyro), name_of(kTemp2)));
+  } catch (const InputError& e) {
+    fail(line_number, e.what());
+  }
+  m.units = units_;
   for (const std::string& name : map_.extra) {
     const auto it = std::find(names.begin(), names.end(), name);
     if (it == names.end())
@@ -430,7 +460,7 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
              fmt::format("column {}: {}{}", m.columns[column], range,
                          read == value[role] ? std::string()
                                              : fmt::format(" (read {:g}, converted by {})", read,
-                                                           map_.units.description())));
+                                                           units_.description())));
     }
     if (comma == nullptr) break;
     p = comma + 1;
@@ -486,7 +516,7 @@ Measurement CsvParser::read(const fs::path& file) {
       parse_header(line, line_number, m);
       std::sort(extras_.begin(), extras_.end(), by_column);
       header_end_bytes_ = reader.consumed_bytes();
-      if (header_sink_) header_sink_(CsvHeader{m.file, m.columns, has_temp2_, 0});
+      if (header_sink_) header_sink_(CsvHeader{m.file, m.units, m.columns, has_temp2_, 0});
       continue;
     }
     if (rows_ == 0 && !sink_) reserve(m, line.size());
@@ -521,6 +551,7 @@ CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& colum
   const Measurement header_only = parser.read(file);
   CsvHeader h;
   h.file = header_only.file;
+  h.units = header_only.units;
   h.columns = header_only.columns;
   h.has_temp2 = parser.has_temp2();
   h.rows = parser.rows();

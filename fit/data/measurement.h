@@ -46,11 +46,16 @@ namespace gyrotherm::fit {
 //             counts, or its bug);
 //   temp    = c(A · x + B) for temp_c and temp2_c, A = --temp-scale,
 //             B = --temp-offset (raw counts), c the --temp-unit → °C.
+//
+// A unit name left empty is not given: the reader takes the one the
+// column's name states, else the base unit (fit/data/header_units.h), and
+// records where each came from in *_from ("--time-unit", "header 'time (ms)'",
+// "default").
 struct Units {
-  std::string time = "s";
-  std::string gyro = "dph";
-  std::string temp = "C";
-  // The table's entries (throw InputError naming the option for an unknown name).
+  std::string time, gyro, temp;
+  std::string time_from, gyro_from, temp_from;
+  // The table's entries, the base unit for an empty name (throw InputError
+  // naming the option for an unknown name).
   const Unit& time_unit() const;
   const Unit& gyro_unit() const;
   const Unit& temp_unit() const;
@@ -67,6 +72,8 @@ struct Units {
   // "time ms → s; gyro 0.5 × rad/s → °/h; temp 0.00390625 × counts − 231 → °C",
   // or "none" when nothing is converted.
   std::string description() const;
+  // "time ms (header 'time (ms)'), gyro rad/s (--gyro-unit), temperature C (default)".
+  std::string used() const;
 };
 
 // The names of the needed columns in the file's header, and their units.
@@ -88,6 +95,7 @@ struct ColumnMap {
 
 struct Measurement {
   std::string file;  // as given to the reader, for messages
+  Units units;       // as read: every unit name set (fit/data/header_units.h)
   std::vector<double> time_s, temp_c, gyro_dph;
   std::vector<double> temp2_c;       // empty when the file has no such column
   // The extra columns read (ColumnMap::extra, other_numeric), as written.
@@ -105,6 +113,7 @@ Measurement read_measurement_csv(const std::filesystem::path& file, const Column
 using RowSink = std::function<void(double time_s, double temp_c, double gyro_dph, double temp2_c)>;
 struct CsvHeader {
   std::string file;
+  Units units;  // as read
   std::vector<std::string> columns;
   bool has_temp2 = false;
   std::size_t rows = 0;

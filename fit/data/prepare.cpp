@@ -1,5 +1,7 @@
 #include "fit/data/prepare.h"
 
+#include "fit/data/plausibility.h"
+
 #include <fmt/format.h>
 
 #include "sim/util/format.h"
@@ -9,6 +11,8 @@ namespace gyrotherm::fit {
 PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) {
   PreparedData d;
   d.file = m.file;
+  d.units = m.units;
+  d.cautions = measurement_cautions(m);
   d.raw_samples = m.size();
   std::vector<unsigned char> valid(m.size(), 1);
   if (options.remove_outliers) d.outliers = flag_outliers(m, options.outliers, valid);

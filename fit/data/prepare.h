@@ -30,6 +30,8 @@ struct PipelineOptions {
 
 struct PreparedData {
   std::string file;
+  Units units;  // the units the columns were read in, each set (Measurement::units)
+  std::vector<std::string> cautions;  // numbers that look like another unit (fit/data/plausibility.h)
   std::size_t raw_samples = 0;
   OutlierReport outliers;
   AveragingReport averaging;

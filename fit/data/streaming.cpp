@@ -1,5 +1,7 @@
 #include "fit/data/streaming.h"
 
+#include "fit/data/plausibility.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -40,10 +42,21 @@ class OnePassPreparer {
  public:
   OnePassPreparer(const PipelineOptions& options, std::string file) : o_(options) { d_.file = std::move(file); }
 
-  void set_header(const CsvHeader& header) { has_temp2_ = header.has_temp2; }
+  void set_header(const CsvHeader& header) {
+    has_temp2_ = header.has_temp2;
+    d_.units = header.units;
+  }
 
   void add(const Row& r) {
     ++d_.raw_samples;
+    probe_.add(r.t, r.gyro);
+    if (d_.raw_samples == 1) {
+      first_t_ = r.t;
+      read_ = {0.0, 0.0, r.temp, r.temp};
+    }
+    read_.span_s = r.t - first_t_;
+    read_.temp_min_c = std::min(read_.temp_min_c, r.temp);
+    read_.temp_max_c = std::max(read_.temp_max_c, r.temp);
     if (!averager_) {
       prefix_.push_back(r);
       if (prefix_.size() == kPrefixRows) begin_stream(false);
@@ -63,10 +76,15 @@ class OnePassPreparer {
     check_windows_survive(d_.file, d_.series, *averager_, o_.averaging);
     d_.derived = derive(d_.series, o_.derivative, o_.derivative_span_s);
     d_.derivative_span_s = o_.derivative_span_s;
+    read_.arw_deg_per_sqrt_h = probe_.arw_deg_per_sqrt_h();
+    d_.cautions = unit_cautions(d_.units, read_);
     return std::move(d_);
   }
 
  private:
+  WhiteNoiseProbe probe_;  // what the units' plausibility is judged on
+  ReadSummary read_;
+  double first_t_ = 0.0;
   // The rules from the prefix (the whole record if `whole`), then the prefix
   // replayed through the filter.
   void begin_stream(bool whole) {

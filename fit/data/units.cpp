@@ -18,17 +18,21 @@ using Q = Quantity;
 
 // clang-format off
 constexpr Unit kUnits[] = {
-  {Q::time, "s", "seconds"},
-  {Q::time, "ms", "milliseconds", 1e-3},
-  {Q::time, "us", "microseconds", 1e-6},
-  {Q::gyro, "dph", "degrees per hour"},
-  {Q::gyro, "dps", "degrees per second", 3600.0},
-  {Q::gyro, "rad/s", "radians per second", 3600.0 * kDegPerRad},
-  {Q::gyro, "mdps", "millidegrees per second", 3.6},
-  {Q::gyro, "deg/min", "degrees per minute", 60.0},
-  {Q::temperature, "C", "degrees Celsius"},
-  {Q::temperature, "K", "kelvin", 1.0, &from_kelvin},
-  {Q::temperature, "F", "degrees Fahrenheit", 1.0, &from_fahrenheit},
+  {Q::time, "s", "seconds", 1.0, nullptr, "s sec secs second seconds"},
+  {Q::time, "ms", "milliseconds", 1e-3, nullptr, "ms msec msecs millisecond milliseconds"},
+  {Q::time, "us", "microseconds", 1e-6, nullptr, "us usec usecs microsecond microseconds"},
+  {Q::time, "ns", "nanoseconds", 1e-9, nullptr, "ns nsec nsecs nanosecond nanoseconds"},
+  {Q::time, "min", "minutes", 60.0, nullptr, "min mins minute minutes"},
+  {Q::time, "h", "hours", 3600.0, nullptr, "h hr hrs hour hours"},
+  {Q::gyro, "dph", "degrees per hour", 1.0, nullptr, "dph deg/h deg/hr degph deg_h deg/hour"},
+  {Q::gyro, "dps", "degrees per second", 3600.0, nullptr, "dps deg/s deg/sec degps deg_s"},
+  {Q::gyro, "rad/s", "radians per second", 3600.0 * kDegPerRad, nullptr, "rad/s rad/sec rads radps rad_s rps"},
+  {Q::gyro, "mrad/s", "milliradians per second", 3.6 * kDegPerRad, nullptr, "mrad/s mrads mradps mrad_s"},
+  {Q::gyro, "mdps", "millidegrees per second", 3.6, nullptr, "mdps mdeg/s mdeg_s"},
+  {Q::gyro, "deg/min", "degrees per minute", 60.0, nullptr, "deg/min degpm deg_min dpm"},
+  {Q::temperature, "C", "degrees Celsius", 1.0, nullptr, "c degc deg_c celsius"},
+  {Q::temperature, "K", "kelvin", 1.0, &from_kelvin, "k kelvin"},
+  {Q::temperature, "F", "degrees Fahrenheit", 1.0, &from_fahrenheit, "f degf deg_f fahrenheit"},
 };
 // clang-format on
 

@@ -23,6 +23,9 @@ struct Unit {
   std::string_view meaning;  // "milliseconds"
   double factor = 1.0;                  // base = factor · value (s, °/h, °C)
   double (*affine)(double) = nullptr;   // instead, for a scale with an offset (K, °F)
+  // How column names write it (fit/data/header_units.h): lower case, spaces
+  // between, "°" written "deg" and "µ" "u" ("deg/s dps degps deg_s").
+  std::string_view aliases = {};
   double to_base(double value) const { return affine ? affine(value) : value * factor; }
   bool is_base() const { return affine == nullptr && factor == 1.0; }
 };

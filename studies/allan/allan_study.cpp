@@ -1,5 +1,7 @@
 #include "studies/allan/allan_study.h"
 
+#include "fit/data/plausibility.h"
+
 #include <cmath>
 
 #include <fmt/format.h>
@@ -60,6 +62,8 @@ std::optional<double> AllanStudy::bias_instability_ratio() const {
 AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, const AllanOptions& options) {
   AllanStudy s;
   s.data_file = m.file;
+  s.units = m.units;
+  s.cautions = fit::measurement_cautions(m);
   s.series.push_back(allan_series(m.time_s, m.gyro_dph, options, "raw"));
   if (fit) {
     s.fit_file = fit->file.string();
@@ -80,6 +84,8 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
 nlohmann::ordered_json allan_json(const AllanStudy& study) {
   nlohmann::ordered_json j;
   j["data"] = study.data_file;
+  j["units"] = study.units.used();
+  j["cautions"] = study.cautions;
   j["fit"] = study.fit_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(study.fit_file);
   if (!study.channel.empty()) j["channel"] = study.channel;
   j["confidence"] = study.series.front().curve.confidence;
@@ -139,6 +145,7 @@ std::string allan_text(const AllanStudy& study) {
       "{:.0f} % intervals (Greenhall's edf for the noise type at each τ)\n",
       study.data_file, study.channel.empty() ? "" : ", channel " + study.channel, first.samples, first.tau0_s,
       first.span_s / 3600.0, first.runs, first.runs == 1 ? "" : "s", 100.0 * first.confidence);
+  out += fit::units_text(study.units, study.cautions);
   if (first.gaps > 0)
     out += fmt::format("  {} gaps: a τ whose clusters would span one uses only those that do not (the 'left out' "
                        "column); the longest gap-free run is {:.4g} s\n",

@@ -36,6 +36,8 @@ AllanSeries allan_series(std::span<const double> time_s, std::span<const double>
                          AllanOptions options, std::string name);
 
 struct AllanStudy {
+  fit::Units units;                   // the log's columns were read in these
+  std::vector<std::string> cautions;  // numbers that look like another unit
   std::string data_file, fit_file, channel;
   std::vector<AllanSeries> series;  // "raw", then "compensated" with a fit
   std::size_t outliers = 0;         // samples the fit's glitch rule flagged (kept in both series)

@@ -1,5 +1,7 @@
 #include "studies/diagnose/diagnose_run.h"
 
+#include "fit/data/plausibility.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -25,6 +27,7 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   std::string out = fmt::format("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n", run.request.data,
                                 fit::formula_text(run.request.terms), run.request.engine,
                                 fit::describe_windows(data, pipeline), data.outliers.removed);
+  out += fit::units_text(data.units, data.cautions);
   if (channel.streamed)
     out += fmt::format(
         "   (over {} MB: read in one pass without holding the samples; the log's other columns are not tried as "

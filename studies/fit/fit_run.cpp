@@ -1,5 +1,7 @@
 #include "studies/fit/fit_run.h"
 
+#include "fit/data/plausibility.h"
+
 #include <fmt/format.h>
 
 #include "fit/channels.h"
@@ -19,8 +21,7 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
                                 data.raw_samples, c.streamed ? " (streamed)" : "", data.averaging.sample_interval_s,
                                 data.outliers.removed, data.averaging.gaps.size(),
                                 fit::describe_windows(data, c.pipeline));
-  if (!c.pipeline.columns.units.identity())
-    out += fmt::format("  units converted: {}\n", c.pipeline.columns.units.description());
+  out += fit::units_text(data.units, data.cautions);
   if (!data.outliers.times_s.empty()) {
     std::string times;
     for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 8; ++k)

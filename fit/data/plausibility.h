@@ -1,0 +1,53 @@
+#pragma once
+// Does what was read look like the unit it was read in? A column read in the
+// wrong unit gives numbers that no gyro, clock or test produces; these
+// checks say so (as cautions every report prints) instead of fitting them:
+//
+//   gyro:  the white noise of consecutive samples, as an angle random walk
+//          N = √(mean((Δg)²·Δt/2)) / 60 °/√h over pairs less than a minute
+//          apart (white noise of density q has Var(g) = q/Δt per sample, so
+//          (Δg)²·Δt/2 estimates q whatever the rate; slow drift cancels).
+//          Below 2e-5 °/√h is quieter than the best strategic-grade gyros
+//          (about 1e-4): numbers in rad/s or °/s read as °/h. Above 200 °/√h
+//          is noisier than any MEMS gyro (0.1–10): °/h read as °/s.
+//   time:  a record longer than 30 days: milliseconds or microseconds read as s.
+//   temperature: every window below −100 °C or above 200 °C: °C read as K
+//          (−253 °C) or raw counts.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "fit/data/measurement.h"
+
+namespace gyrotherm::fit {
+
+// The gyro's white noise from consecutive samples (in s and °/h), one at a time.
+class WhiteNoiseProbe {
+ public:
+  void add(double time_s, double gyro_dph);
+  // N in °/√h; 0 when no two samples were less than a minute apart.
+  double arw_deg_per_sqrt_h() const;
+
+ private:
+  double last_time_ = 0.0, last_gyro_ = 0.0, sum_ = 0.0;
+  std::size_t pairs_ = 0;
+  bool started_ = false;
+};
+
+struct ReadSummary {
+  double arw_deg_per_sqrt_h = 0;  // WhiteNoiseProbe's
+  double span_s = 0;              // last − first sample time
+  double temp_min_c = 0, temp_max_c = 0;  // of the temperature as read (window means or samples)
+};
+
+// The cautions for a record read in `units` (empty when all looks right).
+std::vector<std::string> unit_cautions(const Units& units, const ReadSummary& read);
+
+// "  units: time ms (header 'time (ms)'), …\n" and a "  caution: …" line each.
+std::string units_text(const Units& units, const std::vector<std::string>& cautions);
+
+// The summary and cautions of a whole measurement (allan reads one directly).
+std::vector<std::string> measurement_cautions(const Measurement& m);
+
+}  // namespace gyrotherm::fit
