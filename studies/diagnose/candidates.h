@@ -6,7 +6,11 @@
 //  * every numeric column of the log, NAME, and its rate d(NAME): a quantity
 //    the user logged (case or chamber temperature, supply voltage, field),
 //    never the record's own time, temperature and gyro columns (all the
-//    --gyro-col channels), nor the simulator's truth column bias_true_dph;
+//    --gyro-col channels), nor the simulator's truth column bias_true_dph,
+//    nor, unless named in --candidates, another motion sensor's channel of
+//    the same log (sensor_channel(): the other gyro axes, accelerometer and
+//    magnetometer axes: they move with the platform, not with the bias's
+//    physical causes);
 //  * the bias steps the model's residual shows (studies/diagnose/steps.h),
 //    as step@TIME terms.
 //
@@ -28,7 +32,14 @@ struct CandidateSet {
   std::vector<const fit::Term*> terms;      // to be tried, registry first, then columns, then steps
   std::vector<std::string> skipped;    // what could not be a candidate, and why
   std::vector<StepCandidate> steps;    // the steps found in the residual
+  std::vector<std::string> columns;    // the log's columns tried (each with its rate)
 };
+
+// Whether a column is a motion sensor's channel by its name: a gyro unit in
+// it ("gy_dph", "gyroy rad/s"), a name that starts with gyr, acc, mag or
+// omega ("GyrX", "accel_y", "mag1x [T]"), an axis name ("gx", "ay", "m1z",
+// "wz") or MAVLink's ("xgyro", "yacc", "zmag").
+bool sensor_channel(const std::string& column);
 
 // The columns that are never candidates besides the record's own roles.
 inline const std::vector<std::string> kNeverCandidates = {"bias_true_dph"};

@@ -59,6 +59,8 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
                        c.passed() ? "*" : " ", c.term->name, c.reduction_pct, c.p_value,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
                        c.term->meaning);
+  if (!d.columns_tried.empty())
+    out += fmt::format("   the log's columns tried as causes (each with its rate): {}\n", fmt::join(d.columns_tried, ", "));
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
   if (before) {
     out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",

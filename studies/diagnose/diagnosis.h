@@ -141,6 +141,7 @@ struct Diagnosis {
   std::vector<double> model_dph;          // per window
   std::vector<CandidateReport> candidates;  // best first
   std::vector<std::string> skipped;       // terms that could not be tried, and why
+  std::vector<std::string> columns_tried;  // the log's columns tried as causes (each with its rate)
   bool limited = false;                   // the record supported fewer tests than there were candidates
   std::vector<std::vector<std::string>> confounded;  // groups of terms this record cannot tell apart
   std::vector<std::string> confounding_notes;        // why, in plain words, one per group

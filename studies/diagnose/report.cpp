@@ -88,6 +88,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   }
   j["missing_effects"] = effects;
   j["skipped"] = d.skipped;
+  j["columns_tried"] = d.columns_tried;
   j["significance"] =
       "block cross-validation: blocks of 10 windows, one-sided sign-flip test of the per-block "
       "SSE gains, Bonferroni over the candidates, and at least 10 % of the excess removed";

@@ -199,6 +199,7 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
       candidate_set(data, terms, d.fit.parameters, options.candidates, options.excluded_columns, options.seed);
   std::vector<const fit::Term*> untried = std::move(candidates.terms);
   d.skipped = std::move(candidates.skipped);
+  d.columns_tried = std::move(candidates.columns);
   const std::vector<StepCandidate> steps = std::move(candidates.steps);
   // What the record can support: the smallest p of a sign-flip test on B
   // blocks is 2^−B, so at most ⌊α·2^B⌋ candidates can pass Bonferroni; each
