@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include "app/commands.h"
+#include "app/pipeline_options.h"
 #include "studies/fit/compensate_run.h"
 
 namespace gyrotherm::app {
@@ -18,6 +19,7 @@ void add_compensate_command(CLI::App& app, Run* run) {
   cmd->add_option("-o,--output", o->output, "Write time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier");
   cmd->add_flag("--causal", o->causal, "Real-time compensation: backward differences and only past windows");
   cmd->add_flag("--json", *json, "Print one JSON object");
+  add_column_options(cmd, o->columns, /*fit_defaults=*/true);
   when_chosen(cmd, run, [o, json] {
     const studies::CompensateRun r = studies::run_compensate(*o);
     fmt::print("{}", *json ? studies::compensate_json(r).dump() + "\n" : studies::compensate_text(r));

@@ -28,6 +28,27 @@ fit::PipelineOptions DataOptions::resolved() const {
   return p;
 }
 
+void add_column_options(CLI::App* cmd, fit::ColumnMap& c, bool fit_defaults) {
+  const auto is = [&](const std::string& plain) { return fit_defaults ? std::string(" (default: the fit's)") : plain; };
+  cmd->add_option("--time-col", c.time, "Name of the time column" + is(" (default time_s)"));
+  cmd->add_option("--temp-col", c.temp, "Name of the gyro temperature column" + is(" (default temp_c)"));
+  cmd->add_option("--gyro-col", c.gyro, "Name of the gyro output column, or several A,B,C" + is(" (default gyro_dph)"));
+  cmd->add_option("--temp2-col", c.temp2, "Name of the far-side temperature column, for the grad term" + is(" (default temp2_c)"));
+  fit::Units& u = c.units;
+  using fit::Quantity;
+  const std::string header = fit_defaults ? " (default: the fit's)"
+                                          : " (default: the unit the column's name states, e.g. 'time (ms)', else ";
+  const auto last = [&](const char* base) { return fit_defaults ? std::string() : std::string(base) + ")"; };
+  cmd->add_option("--time-unit", u.time, "Unit of the time column: " + fit::unit_names(Quantity::time, " or ") + header + last("s"));
+  cmd->add_option("--gyro-unit", u.gyro, "Unit of the gyro column: " + fit::unit_names(Quantity::gyro, " or ") + header + last("dph"));
+  cmd->add_option("--temp-unit", u.temp, "Unit of the temperature columns: " + fit::unit_names(Quantity::temperature, " or ") + header + last("C"));
+  cmd->add_option("--gyro-scale", u.gyro_scale,
+                  "Multiply the gyro column by K before its unit (raw counts, a logger's scale)" + is(""));
+  cmd->add_option("--temp-scale", u.temp_scale,
+                  "Temperature = A x column + B (raw counts): A, before --temp-unit" + is(" (default 1)"));
+  cmd->add_option("--temp-offset", u.temp_offset, "Temperature = A x column + B: B" + is(" (default 0)"));
+}
+
 void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
   if (with_avg)
     cmd->add_option("--avg", o.pipeline.averaging.window_s,
@@ -40,22 +61,7 @@ void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {
   cmd->add_flag("--keep-outliers", o.keep_outliers, "Do not remove counting glitches");
   cmd->add_option("--outlier-threshold", o.outlier_threshold,
                   "Glitch rule: deviation from the moving median in robust sigmas (default 8)");
-  cmd->add_option("--time-col", o.pipeline.columns.time, "Name of the time column (s)");
-  cmd->add_option("--temp-col", o.pipeline.columns.temp, "Name of the gyro temperature column (°C)");
-  cmd->add_option("--gyro-col", o.pipeline.columns.gyro, "Name of the gyro output column (°/h)");
-  cmd->add_option("--temp2-col", o.pipeline.columns.temp2,
-                  "Name of the far-side temperature column (°C), for the grad term");
-  fit::Units& u = o.pipeline.columns.units;
-  using fit::Quantity;
-  const std::string header = " (default: the unit the column's name states, e.g. 'time (ms)', else ";
-  cmd->add_option("--time-unit", u.time, "Unit of the time column: " + fit::unit_names(Quantity::time, " or ") + header + "s)");
-  cmd->add_option("--gyro-unit", u.gyro, "Unit of the gyro column: " + fit::unit_names(Quantity::gyro, " or ") + header + "dph)");
-  cmd->add_option("--temp-unit", u.temp, "Unit of the temperature columns: " + fit::unit_names(Quantity::temperature, " or ") + header + "C)");
-  cmd->add_option("--gyro-scale", u.gyro_scale,
-                  "Multiply the gyro column by K before its unit (raw counts, a logger's scale)");
-  cmd->add_option("--temp-scale", u.temp_scale,
-                  "Temperature = A x column + B (raw counts): A, before --temp-unit (default 1)");
-  cmd->add_option("--temp-offset", u.temp_offset, "Temperature = A x column + B: B (default 0)");
+  add_column_options(cmd, o.pipeline.columns, false);
 }
 
 std::vector<const fit::Term*> ModelOptions::base_terms() const { return fit::parse_formula(model); }

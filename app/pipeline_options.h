@@ -29,6 +29,9 @@ struct DataOptions {
 };
 
 void add_data_options(CLI::App* command, DataOptions& options, bool with_avg = true);
+// The column and unit options alone (part of add_data_options); with
+// fit_defaults the help says an unset option keeps the fit file's.
+void add_column_options(CLI::App* command, fit::ColumnMap& columns, bool fit_defaults);
 
 // The model and engine options shared by fit and diagnose.
 struct ModelOptions {

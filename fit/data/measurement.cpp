@@ -40,6 +40,30 @@ const Unit& Units::time_unit() const { return unit_or_base(Quantity::time, time,
 const Unit& Units::gyro_unit() const { return unit_or_base(Quantity::gyro, gyro, "--gyro-unit"); }
 const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
 
+ColumnMap ColumnMap::unset() {
+  ColumnMap c;
+  c.time = c.temp = c.gyro = c.temp2 = "";
+  c.units.gyro_scale = c.units.temp_scale = c.units.temp_offset = std::nan("");
+  return c;
+}
+
+ColumnMap ColumnMap::with(const ColumnMap& given) const {
+  ColumnMap c = *this;
+  for (auto [mine, theirs] : {std::pair{&c.time, &given.time}, {&c.temp, &given.temp}, {&c.gyro, &given.gyro},
+                              {&c.temp2, &given.temp2}, {&c.units.time, &given.units.time},
+                              {&c.units.gyro, &given.units.gyro}, {&c.units.temp, &given.units.temp}})
+    if (!theirs->empty()) *mine = *theirs;
+  // A unit given anew comes from the option, not from where this map had it.
+  if (!given.units.time.empty()) c.units.time_from.clear();
+  if (!given.units.gyro.empty()) c.units.gyro_from.clear();
+  if (!given.units.temp.empty()) c.units.temp_from.clear();
+  for (auto [mine, theirs] : {std::pair{&c.units.gyro_scale, given.units.gyro_scale},
+                              {&c.units.temp_scale, given.units.temp_scale},
+                              {&c.units.temp_offset, given.units.temp_offset}})
+    if (!std::isnan(theirs)) *mine = theirs;
+  return c;
+}
+
 std::string Units::used() const {
   auto one = [](std::string_view what, const Unit& u, const std::string& from) {
     return fmt::format("{} {}{}", what, u.name, from.empty() ? std::string() : " (" + from + ")");

@@ -91,6 +91,12 @@ struct ColumnMap {
   // (diagnose tries them as candidates); a column with anything else is left.
   std::vector<std::string> extra;
   bool other_numeric = false;
+
+  // A map that sets nothing (empty names and units, NaN scales): what an
+  // option set holds when every option keeps another map's value.
+  static ColumnMap unset();
+  // This map with each name, unit and scale `given` sets in place of its own.
+  ColumnMap with(const ColumnMap& given) const;
 };
 
 struct Measurement {

@@ -5,6 +5,7 @@
 #include "fit/channels.h"
 #include "fit/data/streaming.h"
 #include "fit/model/formula.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 
@@ -12,9 +13,20 @@ CompensateRun run_compensate(const CompensateRequest& o) {
   CompensateRun run;
   run.request = o;
   run.fits = fit::load_fits(o.fit_file);
+  const std::vector<std::string> gyros = o.columns.gyro.empty() ? std::vector<std::string>{} : fit::parse_channels(o.columns.gyro);
+  if (!gyros.empty() && gyros.size() != run.fits.size())
+    throw InputError(fmt::format("--gyro-col {}: {} column{} for the {} channel{} of {}; name one column per channel, in "
+                                 "the fit's order",
+                                 o.columns.gyro, gyros.size(), gyros.size() == 1 ? "" : "s", run.fits.size(),
+                                 run.fits.size() == 1 ? "" : "s", o.fit_file));
   bool streamed = false;
+  std::size_t channel = 0;
   run.channels = fit::for_each_saved_fit(run.fits, [&](const fit::SavedFit& fit) {
     fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
+    fit::ColumnMap given = o.columns;
+    given.gyro = gyros.empty() ? "" : gyros[channel++];
+    pipeline.columns = pipeline.columns.with(given);
+    pipeline.columns.units.validate();
     if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
     // A log too large to hold, one channel: never held, the output written as
     // it is computed (fit/compensation.h).

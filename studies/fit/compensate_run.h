@@ -19,6 +19,9 @@ struct CompensateRequest {
   std::string fit_file;
   std::string output;  // the compensated CSV, or ""
   bool causal = false;
+  // Columns and units of the log where they differ from the fit's (set
+  // fields only; ColumnMap::unset()): --gyro-col lists one column per channel.
+  fit::ColumnMap columns = fit::ColumnMap::unset();
 };
 
 struct CompensateRun {
