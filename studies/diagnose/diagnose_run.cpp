@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "fit/channels.h"
@@ -39,16 +40,25 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
                        "slower than a window, bias instability)\n",
                        human(d.floor.within_dph));
   out += "2. where it fails (residual RMS over the floor, worst first):\n";
+  // Temperatures with the decimals that tell every segment's (every band's)
+  // ends apart: a record spanning a few degrees has bands narrower than 1 °C.
   const auto worst = d.worst_segments();
-  for (std::size_t k = 0; k < worst.size() && k < 6; ++k) {
+  const std::size_t shown = std::min<std::size_t>(worst.size(), 6);
+  int decimals = 1;
+  for (std::size_t k = 0; k < shown; ++k)
+    decimals = std::max(decimals, decimals_to_tell_apart(d.segments[worst[k]].temp_min_c,
+                                                         d.segments[worst[k]].temp_max_c, 1));
+  for (std::size_t k = 0; k < shown; ++k) {
     const SegmentReport& s = d.segments[worst[k]];
-    out += fmt::format("   {:<8} {:>8} – {:<8} {:6.1f} .. {:5.1f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
-                       hours(s.end_s), s.temp_min_c, s.temp_max_c, s.ratio_to_floor);
+    out += fmt::format("   {:<8} {:>8} – {:<8} {:6.{}f} .. {:5.{}f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
+                       hours(s.end_s), s.temp_min_c, decimals, s.temp_max_c, decimals, s.ratio_to_floor);
   }
+  decimals = 0;
+  for (const auto& b : d.bands) decimals = std::max(decimals, decimals_to_tell_apart(b.temp_min_c, b.temp_max_c, 0));
   std::string bands;
   for (const auto& b : d.bands)
-    bands += fmt::format("{}{:.0f}..{:.0f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c, b.temp_max_c,
-                         b.ratio_to_floor);
+    bands += fmt::format("{}{:.{}f}..{:.{}f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c, decimals,
+                         b.temp_max_c, decimals, b.ratio_to_floor);
   out += fmt::format("   by temperature: {}\n", bands);
   out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
   for (const CandidateReport& c : d.candidates)

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "fit/model/formula.h"
+#include "sim/util/format.h"
 #include "sim/util/input_error.h"
 #include "studies/diagnose/confounding.h"
 #include "studies/diagnose/diagnosis_steps.h"
@@ -114,11 +115,11 @@ void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::v
       });
       d.remaining = fmt::format(
           "structure remains that no candidate explains: {} is still {:.2f} times the floor, "
-          "worst in the {} segment at {:.2f}–{:.2f} h ({:.1f} to {:.1f} °C), {:.2f} times the floor",
+          "worst in the {} segment at {:.2f}–{:.2f} h ({} °C), {:.2f} times the floor",
           final_terms.size() > terms.size() ? "the model with the significant candidates (or their group)" : "the model",
           f.instability_after_dph / d.noise_floor_dph, worst->kind,
           (worst->start_s - s.start_time_s) / 3600.0, (worst->end_s - s.start_time_s) / 3600.0,
-          worst->temp_min_c, worst->temp_max_c, worst->ratio_to_floor);
+          range_text(worst->temp_min_c, worst->temp_max_c, 1, " to "), worst->ratio_to_floor);
     }
   } catch (const InputError&) {
   }
