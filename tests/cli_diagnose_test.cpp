@@ -129,6 +129,17 @@ TEST(CliDiagnose, NarrowTemperatureBandsArePrintedWithTheirDecimals) {
   EXPECT_NE(r.out.find("by temperature: 13.0.."), std::string::npos) << r.out;  // bands 0.15 °C wide
 }
 
+// A count of one takes the singular ("only 1 window", not "only 1 windows").
+TEST(CliDiagnose, ARecordOfOneWindowSaysSoInTheSingular) {
+  ScratchDir dir;
+  std::string csv = "time_s,temp_c,gyro_dph\n";
+  for (int k = 0; k < 150; ++k) csv += std::to_string(k) + "," + std::to_string(20.0 + 0.01 * k) + ",1.5\n";
+  write_text(dir / "one.csv", csv);
+  const auto r = run_cli(dir, "diagnose one.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("only 1 window:"), std::string::npos) << r.err;
+}
+
 TEST(CliDiagnose, AModelWithEveryTermHasNothingLeftToTry) {
   ScratchDir dir;
   simulate_shipped(dir, "cycle", "", "c.csv");

@@ -23,9 +23,9 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   const fit::PreparedData& data = channel.data;
   const Diagnosis& d = channel.report.diagnosis;
   const std::optional<Diagnosis>& before = channel.report.before;
-  std::string out = fmt::format("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n", run.request.data,
+  std::string out = fmt::format("diagnose {}: model B = b0 + {} ({}), {}, {} removed\n", run.request.data,
                                 fit::formula_text(run.request.terms), run.request.engine,
-                                fit::describe_windows(data, pipeline), data.outliers.removed);
+                                fit::describe_windows(data, pipeline), counted(data.outliers.removed, "glitch", "glitches"));
   if (channel.streamed)
     out += fmt::format(
         "   (over {} MB: read in one pass without holding the samples; the log's other columns are not tried as "

@@ -182,9 +182,9 @@ Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::T
                    const DiagnosisOptions& options) {
   if (data.series.size() < kMinBlocks)
     throw InputError(fmt::format(
-        "{}: only {} windows: diagnose needs at least {} (a shorter --avg gives more windows, "
+        "{}: only {}: diagnose needs at least {} (a shorter --avg gives more windows, "
         "if the record's runs allow it)",
-        data.file, data.series.size(), kMinBlocks));
+        data.file, counted(data.series.size(), "window"), kMinBlocks));
   Diagnosis d;
   const auto stage = [&](const std::string& what) {
     if (options.stage) options.stage(what);
