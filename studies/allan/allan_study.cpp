@@ -269,10 +269,15 @@ std::vector<AllanStudy> run_allan(const AllanRequest& r) {
       return s;
     });
   }
+  // One figure per channel beside --plot, named after it (made safe for a file name).
+  std::vector<std::string> channels;
+  for (const AllanStudy& s : studies) channels.push_back(s.channel);
+  const std::vector<std::string> names = fit::channel_file_names(channels);
   for (std::size_t i = 0; i < studies.size() && !r.plot.empty(); ++i) {
     std::filesystem::path png = r.plot;
-    if (studies.size() > 1) png.replace_filename(png.stem().string() + "_" + studies[i].channel + png.extension().string());
+    if (studies.size() > 1) png.replace_filename(png.stem().string() + "_" + names[i] + png.extension().string());
     write_allan_plot(png, studies[i]);
+    studies[i].plot = png.string();
   }
   return studies;
 }
@@ -284,13 +289,14 @@ nlohmann::ordered_json allan_json(const std::vector<AllanStudy>& studies) {
   return {{"channels", all}};
 }
 
-std::string allan_text(const std::vector<AllanStudy>& studies, const std::string& plot) {
+std::string allan_text(const std::vector<AllanStudy>& studies) {
   std::string out;
   for (std::size_t i = 0; i < studies.size(); ++i) {
     if (i > 0) out += "\n";
     out += allan_text(studies[i]);
   }
-  if (!plot.empty()) out += fmt::format("plot: {}\n", plot);
+  for (const AllanStudy& s : studies)
+    if (!s.plot.empty()) out += fmt::format("plot: {}\n", s.plot);
   return out;
 }
 

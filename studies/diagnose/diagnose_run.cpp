@@ -135,10 +135,13 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
         if (channels.size() > 1 && !c.report.next_command.empty()) c.report.next_command += " --gyro-col " + channel;
         return c;
       });
-  // With several channels, each one's figures in a folder of its own.
-  for (ChannelDiagnosis& c : run.channels) {
+  // With several channels, each one's figures in a folder of its own, named
+  // after it (made safe for a file name: "gyrox rad/s" would nest folders).
+  const std::vector<std::string> folders = fit::channel_file_names(channels);
+  for (std::size_t i = 0; i < run.channels.size(); ++i) {
+    ChannelDiagnosis& c = run.channels[i];
     if (request.plots.empty()) continue;
-    c.plots = run.channels.size() > 1 ? (std::filesystem::path(request.plots) / c.channel).string() : request.plots;
+    c.plots = run.channels.size() > 1 ? (std::filesystem::path(request.plots) / folders[i]).string() : request.plots;
     write_diagnosis_plots(c.plots, c.measurement, c.data, c.report.diagnosis,
                           c.report.before ? &*c.report.before : nullptr);
   }
