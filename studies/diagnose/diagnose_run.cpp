@@ -62,8 +62,10 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   out += fmt::format("   by temperature: {}\n", bands);
   out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
   for (const CandidateReport& c : d.candidates)
-    out += fmt::format("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n",
-                       c.passed() ? "*" : " ", c.term->name, c.reduction_pct, c.p_value,
+    out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} {:<12} {}\n", c.passed() ? "*" : " ", c.term->name,
+                       c.reduction_pct < kBelowFloorPct ? fmt::format("{:.0f} %", c.reduction_pct)
+                                                        : excess_share_text(c.reduction_pct),
+                       c.p_value,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
                        c.term->meaning);
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
@@ -171,7 +173,9 @@ std::string diagnose_text(const DiagnoseRun& run) {
     std::string best = "none";
     if (!d.candidates.empty()) {
       const CandidateReport& b = d.candidates.front();
-      best = fmt::format("{} ({:.0f} %{})", b.term->name, b.reduction_pct,
+      best = fmt::format("{} ({}{})", b.term->name,
+                         b.reduction_pct < kBelowFloorPct ? fmt::format("{:.0f} %", b.reduction_pct)
+                                                          : excess_share_text(b.reduction_pct),
                          !b.passed() ? "" : b.confounded_with.empty() ? ", significant" : ", its group significant");
     }
     out += fmt::format("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,

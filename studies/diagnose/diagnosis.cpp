@@ -146,10 +146,9 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
       if (std::find(d.confounded[g].begin(), d.confounded[g].end(), std::string(c.term->name)) != d.confounded[g].end())
         why = d.confounding_notes[g];
     verdict = fmt::format(
-        "The model is {:.2f} times the noise floor; adding {} ({}) would remove {:.0f} % of the "
-        "excess, but on this record it cannot be told apart from {}, so the data do not say which "
-        "effect it is: {}",
-        ratio, c.term->name, c.term->meaning, c.reduction_pct, others, why);
+        "The model is {:.2f} times the noise floor; adding {} ({}) would remove {}, but on this "
+        "record it cannot be told apart from {}, so the data do not say which effect it is: {}",
+        ratio, c.term->name, c.term->meaning, excess_share_text(c.reduction_pct), others, why);
   } else if (d.candidates.front().significant) {
     std::vector<const fit::Term*> with = terms;
     std::string found;
@@ -162,9 +161,9 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
     }
     *suggested = fit::formula_text(with);
     verdict = fmt::format(
-        "The model is {:.2f} times the noise floor; adding {} removes {:.0f} % of the excess, "
+        "The model is {:.2f} times the noise floor; adding {} removes {}, "
         "significant under block cross-validation.",
-        ratio, found, std::min(removed, 100.0));
+        ratio, found, excess_share_text(removed));
   } else {
     verdict = fmt::format(
         "The model is {:.2f} times the noise floor; no missing effect is significant under "
@@ -176,6 +175,11 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
 }
 
 }  // namespace
+
+std::string excess_share_text(double pct) {
+  if (pct < kBelowFloorPct) return fmt::format("{:.0f} % of the excess", pct);
+  return fmt::format("all of the excess ({:.0f} %, below the estimated floor)", pct);
+}
 
 Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
                    const fit::EngineInfo& engine, const fit::EngineSettings& settings,
