@@ -18,6 +18,11 @@ namespace {
 
 std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
 
+// A candidate's share of the excess in a table: "45 %", or in words past the floor.
+std::string share_cell(double pct) {
+  return pct < kBelowFloorPct ? fmt::format("{:.0f} %", pct) : excess_share_text(pct);
+}
+
 std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel) {
   const fit::PipelineOptions& pipeline = channel.pipeline;
   const fit::PreparedData& data = channel.data;
@@ -63,8 +68,7 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
   for (const CandidateReport& c : d.candidates)
     out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} {:<12} {}\n", c.passed() ? "*" : " ", c.term->name,
-                       c.reduction_pct < kBelowFloorPct ? fmt::format("{:.0f} %", c.reduction_pct)
-                                                        : excess_share_text(c.reduction_pct),
+                       share_cell(c.reduction_pct),
                        c.p_value,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
                        c.term->meaning);
@@ -167,16 +171,17 @@ std::string diagnose_text(const DiagnoseRun& run) {
   if (n < 2) return out;
   out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));
   out += fmt::format("  {:<14} {:>12} {:>12} {:>8}  {}\n", "channel", "after °/h", "floor °/h", "x floor",
-                     "best candidate");
+                     "missing effect");
   for (const ChannelDiagnosis& c : run.channels) {
     const Diagnosis& d = c.report.diagnosis;
-    std::string best = "none";
+    // The top candidate, named as the answer only when it passed the test.
+    std::string best = "nothing left to try";
     if (!d.candidates.empty()) {
       const CandidateReport& b = d.candidates.front();
-      best = fmt::format("{} ({}{})", b.term->name,
-                         b.reduction_pct < kBelowFloorPct ? fmt::format("{:.0f} %", b.reduction_pct)
-                                                          : excess_share_text(b.reduction_pct),
-                         !b.passed() ? "" : b.confounded_with.empty() ? ", significant" : ", its group significant");
+      best = !b.passed() ? fmt::format("none significant (top: {} removes {}, p = {:.2g})", b.term->name,
+                                       share_cell(b.reduction_pct), b.p_value)
+                         : fmt::format("{} ({}, {})", b.term->name, share_cell(b.reduction_pct),
+                                       b.confounded_with.empty() ? "significant" : "its group significant");
     }
     out += fmt::format("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,
                        d.noise_floor_dph, d.excess_ratio(), best);
