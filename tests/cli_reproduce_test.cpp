@@ -76,6 +76,11 @@ TEST(CliReproduce, ReducedRunWritesTheReportAndCompensationHelps) {
   for (const char* text : {"| raw | 0.00953 |", "| IAFSA | 0.00185 (5.15×) |", "## Test 1", "## Test 2",
                            "What the engines can and cannot do", "a term is dropped"})
     EXPECT_NE(md.find(text), std::string::npos) << text;
+  // The tests are described by the scenarios that ran (Test 1: 35 + 120 + 50 + 120 + 60 min), not by the shipped ones.
+  for (const char* text : {"## Cycle (the training data: INS in the chamber, set points -40..60 °C, 4.5 h)",
+                           "## Test 1 (random profile: INS in the chamber, set points -20..30 °C, 6.4 h)",
+                           "## Test 2 (natural warm-up: INS in a 23 °C room, 6 h)"})
+    EXPECT_NE(md.find(text), std::string::npos) << text << " not in:\n" << md;
   for (const char* png : {"fig2_cycle_1s.png", "fig3_cycle_100s.png", "fig4_5_cycle_compensated.png",
                           "fig6_7_test1.png", "fig8_9_test2.png"})
     EXPECT_GT(std::filesystem::file_size(dir / "out" / png), 10000u) << png;
