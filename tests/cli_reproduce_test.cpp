@@ -77,9 +77,9 @@ TEST(CliReproduce, ReducedRunWritesTheReportAndCompensationHelps) {
                            "What the engines can and cannot do", "a term is dropped"})
     EXPECT_NE(md.find(text), std::string::npos) << text;
   // The tests are described by the scenarios that ran (Test 1: 35 + 120 + 50 + 120 + 60 min), not by the shipped ones.
-  for (const char* text : {"## Cycle (the training data: INS in the chamber, set points -40..60 °C, 4.5 h)",
-                           "## Test 1 (random profile: INS in the chamber, set points -20..30 °C, 6.4 h)",
-                           "## Test 2 (natural warm-up: INS in a 23 °C room, 6 h)"})
+  for (const char* text : {"## Cycle (the training data: in the chamber, set points -40..60 °C, 4.5 h)",
+                           "## Test 1 (the INS, random profile: in the chamber, set points -20..30 °C, 6.4 h)",
+                           "## Test 2 (the INS, natural warm-up: in a 23 °C room, 6 h)"})
     EXPECT_NE(md.find(text), std::string::npos) << text << " not in:\n" << md;
   for (const char* png : {"fig2_cycle_1s.png", "fig3_cycle_100s.png", "fig4_5_cycle_compensated.png",
                           "fig6_7_test1.png", "fig8_9_test2.png"})

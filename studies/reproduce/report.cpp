@@ -113,7 +113,8 @@ std::string table_markdown(const ReproduceResult& r) {
     const bool one = t->name == "test1";
     md += fmt::format("\n## {} ({}: {})\n\nEach engine's cycle fit applied with the causal, real-time compensator.\n\n"
                       "| | before (°/h) | after (°/h) | times |\n|---|---|---|---|\n",
-                      one ? "Test 1" : "Test 2", one ? "random profile" : "natural warm-up", t->facts.text());
+                      one ? "Test 1" : "Test 2", one ? "the INS, random profile" : "the INS, natural warm-up",
+                      t->facts.text());
     md += fmt::format("| paper (IAFSA) | {} | {} | {} |\n", one ? paper.test1_before : paper.test2_before,
                       one ? paper.test1_after : paper.test2_after, one ? paper.test1_times : paper.test2_times);
     for (const auto& e : r.engines) {

@@ -54,8 +54,8 @@ Truth truth_of(const std::filesystem::path& cycle) {
 }  // namespace
 
 std::string ScenarioFacts::text() const {
-  const std::string where = chamber ? fmt::format("INS in the chamber, set points {} °C", range_text(set_min_c, set_max_c, 0))
-                                    : fmt::format("INS in a {:g} °C room", room_c);
+  const std::string where = chamber ? fmt::format("in the chamber, set points {} °C", range_text(set_min_c, set_max_c, 0))
+                                    : fmt::format("in a {:g} °C room", room_c);
   return fmt::format("{}, {:g} h", where, std::round(duration_h * 10.0) / 10.0);
 }
 

@@ -43,7 +43,7 @@ struct ScenarioFacts {
   bool chamber = true;                         // false: the INS sits in the room
   double set_min_c = 0.0, set_max_c = 0.0;     // the chamber's set points (chamber only)
   double gyro_min_c = 0.0, gyro_max_c = 0.0;   // the gyro temperature logged
-  // "INS in the chamber, set points -20..60 °C, 72.3 h" or "INS in a 23 °C room, 8 h".
+  // "in the chamber, set points -20..60 °C, 72.3 h" or "in a 23 °C room, 8 h".
   std::string text() const;
 };
 
