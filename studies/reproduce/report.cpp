@@ -230,8 +230,10 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r) {
     const bool one = t->name == "test1";
     GnuplotFigure fig(dir / (one ? "fig6_7_test1.png" : "fig8_9_test2.png"), 1400, 1000);
     fig.data("d", {"t_h", "gyro", "temp", "comp"}, {hours(ts.time_s), ts.gyro_dph, ts.temp_c, comp.window_compensated_dph});
+    // Both panels share fixed left and right margins, so that their time axes
+    // line up (gnuplot sizes each panel's margins to its own labels and key).
     fig.commands(fmt::format(
-        "set multiplot layout 2,1 title '{}'\n"
+        "set multiplot layout 2,1 title '{}'\nset lmargin at screen 0.08\nset rmargin at screen 0.76\n"
         "set ylabel 'gyro, 100 s means (°/h)'\nset y2label 'gyro temperature (°C)'\nset y2tics\nset ytics nomirror\nset key outside right\n"
         "plot $d using 1:2 with lines lc rgb '#333333' title 'before ({:.5f} °/h)', $d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'gyro temperature'\n"
         "unset y2tics\nunset y2label\nset xlabel 'time (h)'\nset ylabel 'compensated (°/h)'\n"
