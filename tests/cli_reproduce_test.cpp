@@ -47,6 +47,12 @@ TEST(CliReproduce, ReducedRunWritesTheReportAndCompensationHelps) {
   const auto r = run_cli(dir, "reproduce --scenarios sc --engines ols,stepwise,iafsa --out out");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("[100%]"), std::string::npos) << "progress is shown";
+  // Done only once everything, figures included, is written: the last line, after the figures.
+  const std::size_t done = r.err.rfind("[100%] done\n");
+  ASSERT_NE(done, std::string::npos) << r.err;
+  EXPECT_EQ(done + std::string("[100%] done\n").size(), r.err.size()) << r.err;
+  EXPECT_LT(r.err.find("drawing the figures"), done) << r.err;
+  EXPECT_EQ(r.err.find("[100%]"), done) << "nothing else at 100 %:\n" << r.err;
   EXPECT_NE(r.out.find("Table 1, side by side"), std::string::npos) << r.out;
 
   const auto j = nlohmann::json::parse(slurp(dir / "out/table1.json"));

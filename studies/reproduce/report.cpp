@@ -254,15 +254,22 @@ std::string shown_engine(const ReproduceResult& r) {
 
 nlohmann::ordered_json write_reproduce_report(const std::filesystem::path& dir,
                                               const ReproduceResult& r,
-                                              std::chrono::steady_clock::time_point started) {
+                                              std::chrono::steady_clock::time_point started,
+                                              const std::function<void(const std::string&, double)>& progress) {
+  const auto report = [&](const std::string& step, double f) {
+    if (progress) progress(step, f);
+  };
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", dir.string(), ec.message()));
+  report("drawing the figures", kReproduceComputedShare);
   plot_figures(dir, r);
   // The files hold what the seeds decide, so a run leaves them as they were;
   // the run times go to the terminal (the JSON returned).
+  report("writing table1.json and table1.md", 0.5 * (1.0 + kReproduceComputedShare));
   write_file_atomically(dir / "table1.json", table_json(r, false).dump(2) + "\n");
   write_file_atomically(dir / "table1.md", table_markdown(r));
+  report("done", 1.0);
   nlohmann::ordered_json j = table_json(r, true);
   j["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return j;

@@ -90,7 +90,7 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
 
   for (std::size_t i = 0; i < engines.size(); ++i) {
     progress(fmt::format("fitting the cycle with {}", engines[i]),
-             0.25 + 0.75 * static_cast<double>(i) / static_cast<double>(engines.size()));
+             0.25 + (kReproduceComputedShare - 0.25) * static_cast<double>(i) / static_cast<double>(engines.size()));
     fit::EngineSettings settings;
     settings.seed = o.engine_seed;
     EngineOnCycle e;
@@ -111,7 +111,6 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
     r.test2.before_dph = r.test2.by_engine[e.engine].before_dph;
     r.engines.push_back(std::move(e));
   }
-  progress("done", 1.0);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

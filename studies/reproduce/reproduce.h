@@ -31,9 +31,12 @@ struct ReproduceOptions {
   std::filesystem::path cycle, test1, test2;  // scenario files
   std::vector<std::string> engines;           // empty: every registered engine
   std::uint64_t engine_seed = 1;
-  // Called with a short description of each step and its fraction done.
+  // Called with a short description of each step and its fraction done:
+  // reproduce() reaches kReproduceComputedShare, write_reproduce_report()
+  // (report.h) the rest, and "done" at 1 once every file is written.
   std::function<void(const std::string& step, double fraction)> progress;
 };
+inline constexpr double kReproduceComputedShare = 0.9;
 
 // What the report says about a scenario, read from the scenario that ran
 // rather than written into the report by hand.
