@@ -104,7 +104,10 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
   const std::vector<std::string> channels = fit::parse_channels(request.pipeline.columns.gyro);
   DiagnosisOptions options = request.options;
   options.excluded_columns = channels;  // no gyro channel explains another
-  // Progress only where the work is long: a log large enough to be streamed.
+  // Progress only where the work is long: a large log, or one streamed.
+  std::error_code size_error;
+  const std::uintmax_t bytes = std::filesystem::file_size(request.data, size_error);
+  const bool large = !size_error && bytes > request.progress_above_bytes;
   bool show = false;
   std::size_t channel_index = 0;
   const auto report = [&](const std::string& what, double within) {
@@ -118,7 +121,7 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
         c.channel = channel;
         c.pipeline = p;
         c.streamed = fit::streams(request.data, c.pipeline);
-        show = request.progress && c.streamed;
+        show = request.progress && (large || c.streamed);
         report(fmt::format("{}: reading {}", channel, request.data), 0.0);
         if (c.streamed) {
           c.data = fit::prepare_data_streaming(request.data, c.pipeline);
