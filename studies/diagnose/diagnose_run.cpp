@@ -183,7 +183,7 @@ std::string diagnose_text(const DiagnoseRun& run) {
       const CandidateReport& b = d.candidates.front();
       best = !b.passed() ? fmt::format("none significant (top: {} removes {}, p = {:.2g})", b.term->name,
                                        share_cell(b.reduction_pct), b.p_value)
-                         : fmt::format("{} ({}, {})", b.term->name, share_cell(b.reduction_pct),
+                         : fmt::format("{}: {}, {}", b.term->name, share_cell(b.reduction_pct),
                                        b.confounded_with.empty() ? "significant" : "its group significant");
     }
     out += fmt::format("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,

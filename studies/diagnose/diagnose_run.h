@@ -18,7 +18,7 @@
 namespace gyrotherm::studies {
 
 // Logs over this size get progress: reading and diagnosing them take a second
-// or more (the simulated 72 h record, 19 MB, about 1 s; a 75 MB log 12 s).
+// or more (the simulated 72 h record, 17 MB, 1.2 s; a 75 MB log, 12 s).
 inline constexpr std::uintmax_t kDiagnoseProgressAboveBytes = 16ull << 20;
 
 struct DiagnoseRequest {
