@@ -33,7 +33,7 @@ std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, cons
   std::string names;
   for (const std::string& n : cubic.dropped) names += (names.empty() ? "" : ", ") + n;
   return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); a polynomial "
-                     "refitted alone (fit --model 'T + T^2') would do better than these coefficients",
+                     "refitted alone (fit --model 'T + T^2') can do no worse than these coefficients",
                      channel_name(f), names, data.string(), cost.with_dph, cost.without_dph,
                      cost.without_dph / cost.with_dph);
 }
