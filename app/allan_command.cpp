@@ -37,7 +37,7 @@ int run_allan(AllanCli o) {
         fmt::format("--ci {}: the confidence must be between 0 and 1 (e.g. 0.68 or 0.95)", options.confidence));
   if (o.request.fit_file.empty()) o.request.pipeline = o.data_options.resolved();  // with a fit: the fit's
   const std::vector<studies::AllanStudy> studies = studies::run_allan(o.request);
-  fmt::print("{}", o.json ? studies::allan_json(studies).dump() + "\n" : studies::allan_text(studies, o.request.plot));
+  fmt::print("{}", o.json ? studies::allan_json(studies).dump() + "\n" : studies::allan_text(studies));
   return 0;
 }
 

@@ -30,7 +30,9 @@ void add_export_command(CLI::App& app, Run* run) {
   cmd->add_option("--data", o->data, "The data the fit was made on, for --drop-unsupported (default: the fit's own)");
   cmd->add_option("-o,--output", o->output, "The parameter file to write")->required();
   when_chosen(cmd, run, [o] {
-    for (const std::string& line : studies::run_export(*o)) fmt::print("{}\n", line);
+    const studies::ExportOutput out = studies::run_export(*o);
+    for (const std::string& line : out.lines) fmt::print("{}\n", line);
+    for (const std::string& warning : out.warnings) fmt::print(stderr, "gyrotherm: warning: {}\n", warning);
     return 0;
   });
 }

@@ -40,8 +40,7 @@ int run_reproduce(const ReproduceCli& o) {
   options.progress = step_progress();
   const auto started = std::chrono::steady_clock::now();
   const studies::ReproduceResult r = studies::reproduce(options);
-  options.progress("drawing the figures", 1.0);
-  const nlohmann::ordered_json j = studies::write_reproduce_report(o.out, r, started);
+  const nlohmann::ordered_json j = studies::write_reproduce_report(o.out, r, started, options.progress);
   fmt::print("{}", o.json ? j.dump() + "\n" : studies::reproduce_text(r, o.out, j["total_seconds"].get<double>()));
   return 0;
 }

@@ -1,6 +1,7 @@
 #include "fit/channels.h"
 
 #include <algorithm>
+#include <cctype>
 
 namespace gyrotherm::fit {
 
@@ -18,6 +19,32 @@ std::vector<std::string> parse_channels(const std::string& list) {
     out.push_back(name);
     if (comma == std::string::npos) break;
     from = comma + 1;
+  }
+  return out;
+}
+
+namespace {
+
+std::string file_safe(const std::string& name) {
+  std::string out;
+  for (const char c : name) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '-' || (c == '.' && !out.empty());
+    if (keep) out += c;
+    else if (out.empty() || out.back() != '_') out += '_';
+  }
+  while (out.size() > 1 && out.back() == '_') out.pop_back();
+  return out.empty() || out == "_" ? "channel" : out;
+}
+
+}  // namespace
+
+std::vector<std::string> channel_file_names(const std::vector<std::string>& channels) {
+  std::vector<std::string> out;
+  for (const std::string& channel : channels) {
+    const std::string base = file_safe(channel);
+    std::string name = base;
+    for (int k = 2; std::find(out.begin(), out.end(), name) != out.end(); ++k) name = fmt::format("{}_{}", base, k);
+    out.push_back(name);
   }
   return out;
 }

@@ -20,6 +20,13 @@ namespace gyrotherm::fit {
 // name trimmed). Throws InputError for an empty or repeated name.
 std::vector<std::string> parse_channels(const std::string& list);
 
+// A file (or folder) name for each channel's output, in order: the channel's
+// name with every character but a letter, a digit, '-', '_' and a '.' inside
+// the name made '_' ("gyrox rad/s" → "gyrox_rad_s": a '/' would make a path),
+// runs of '_' made one; where two channels would share a name, the later get
+// _2, _3, ….
+std::vector<std::string> channel_file_names(const std::vector<std::string>& channels);
+
 // `pipeline` reading one gyro channel.
 PipelineOptions for_channel(PipelineOptions pipeline, const std::string& channel);
 

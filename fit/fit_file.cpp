@@ -243,6 +243,8 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     }
   }
   s.instability_after_dph = number(need(j, "instability_after_dph", "°/h"), "instability_after_dph");
+  if (j.contains("instability_before_dph"))
+    s.instability_before_dph = number(j["instability_before_dph"], "instability_before_dph");
   // Fit files from before the range was saved have none.
   if (j.contains("data") && j["data"].is_object() && j["data"].contains("temp_range_c")) {
     const nlohmann::json& r = j["data"]["temp_range_c"];

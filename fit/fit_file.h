@@ -45,6 +45,7 @@ struct SavedFit {
   Coefficients coefficients;
   PipelineOptions pipeline;
   double instability_after_dph = 0.0;
+  std::optional<double> instability_before_dph;  // of the data it was fitted on (absent in hand-made files)
   std::string channel;  // the gyro column it was fitted to, in a several-channel file
   // The range of the window-mean temperatures it was fitted on (°C); absent in
   // fit files written before it was saved.

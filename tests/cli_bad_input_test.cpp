@@ -89,7 +89,7 @@ INSTANTIATE_TEST_SUITE_P(
             {"d.csv:4: column time_s: time 1 is not after 1 on line 3"}},
         Row{"decreasing_time", "time_s,temp_c,gyro_dph\n0,20,-7\n5,20,-7\n4,20,-7\n", "fit d.csv", 2,
             {"d.csv:4: column time_s: time 4 is not after 5 on line 3"}},
-        Row{"gaps_reported", record(-10, 50, 20000, "\n", 8000, 9000), "fit d.csv", 0, {"1 gaps"}},
+        Row{"gaps_reported", record(-10, 50, 20000, "\n", 8000, 9000), "fit d.csv", 0, {"1 gap,"}},
         Row{"single_row", "time_s,temp_c,gyro_dph\n0,20,-7\n", "fit d.csv", 2,
             {"d.csv:2: only 1 data row; at least 2 are needed"}},
         Row{"huge_gyro", "time_s,temp_c,gyro_dph\n0,20,-7\n1,20,1e300\n", "fit d.csv", 2,

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <random>
+#include <regex>
 
 #include "cli_runner.h"
 #include "sim/effects/effect.h"
@@ -17,6 +19,30 @@ namespace gyrotherm {
 namespace {
 
 using namespace gyrotherm::testing;
+
+// A 4 h record at 1 Hz whose temperature creeps 0.6 °C (13.0 to 13.6 °C), with
+// a bias of 2 °/h/°C and white noise: temperature bands far narrower than 1 °C.
+// A second channel, gyro2_dph, holds −1 °/h/°C and its own white noise.
+void write_narrow_record(const std::filesystem::path& csv) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::ofstream out(csv);
+  out << "time_s,temp_c,gyro_dph,gyro2_dph\n";
+  for (int k = 0; k < 4 * 3600; ++k) {
+    const double temp = 13.0 + 0.6 * k / (4.0 * 3600.0);
+    const double gyro = 2.0 * temp + noise(rng);
+    out << k << "," << temp << "," << gyro << "," << -temp + noise(rng) << "\n";
+  }
+}
+
+// Every "A..B °C" or "A .. B °C" in a report, as printed.
+std::vector<std::pair<std::string, std::string>> printed_ranges(const std::string& text) {
+  static const std::regex range(R"((-?[0-9]+(?:\.[0-9]+)?) ?\.\. *(-?[0-9]+(?:\.[0-9]+)?) °C)");
+  std::vector<std::pair<std::string, std::string>> out;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), range); it != std::sregex_iterator(); ++it)
+    out.emplace_back((*it)[1], (*it)[2]);
+  return out;
+}
 
 // A hidden gradient (the second temperature logged) on the cycle, a random
 // profile and a bursty copy of the cycle: grad is named first, or first
@@ -90,6 +116,49 @@ TEST(CliDiagnose, CleanDataSaysSo) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("no missing effect is significant"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("next:"), std::string::npos);
+}
+
+// Bands and segments narrower than a degree are printed with the decimals
+// that show them (not "13..13 °C").
+TEST(CliDiagnose, NarrowTemperatureBandsArePrintedWithTheirDecimals) {
+  ScratchDir dir;
+  write_narrow_record(dir / "narrow.csv");
+  const auto r = run_cli(dir, "diagnose narrow.csv --model T");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ranges = printed_ranges(r.out);
+  ASSERT_GE(ranges.size(), 4u) << r.out;
+  for (const auto& [lo, hi] : ranges) EXPECT_NE(lo, hi) << r.out;
+  EXPECT_NE(r.out.find("by temperature: 13.0.."), std::string::npos) << r.out;  // bands 0.15 °C wide
+}
+
+// With nothing significant, the several-channel summary says so rather than
+// naming a "best candidate".
+TEST(CliDiagnose, TheSummarySaysWhenNoCandidateHelps) {
+  ScratchDir dir;
+  write_narrow_record(dir / "narrow.csv");
+  const auto r = run_cli(dir, "diagnose narrow.csv --model T --gyro-col gyro_dph,gyro2_dph");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string summary = r.out.substr(r.out.find("summary ("));
+  EXPECT_EQ(summary.find("best candidate"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("missing effect"), std::string::npos) << summary;
+  for (const char* channel : {"gyro_dph ", "gyro2_dph "}) {
+    const std::size_t row = summary.find(std::string("\n  ") + channel);
+    ASSERT_NE(row, std::string::npos) << summary;
+    EXPECT_NE(summary.substr(row, summary.find('\n', row + 1) - row).find("none significant (top: "),
+              std::string::npos)
+        << summary;
+  }
+}
+
+// A count of one takes the singular ("only 1 window", not "only 1 windows").
+TEST(CliDiagnose, ARecordOfOneWindowSaysSoInTheSingular) {
+  ScratchDir dir;
+  std::string csv = "time_s,temp_c,gyro_dph\n";
+  for (int k = 0; k < 120; ++k) csv += std::to_string(k) + "," + std::to_string(20.0 + 0.01 * k) + ",1.5\n";
+  write_text(dir / "one.csv", csv);
+  const auto r = run_cli(dir, "diagnose one.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("only 1 window:"), std::string::npos) << r.err;
 }
 
 TEST(CliDiagnose, AModelWithEveryTermHasNothingLeftToTry) {

@@ -47,6 +47,12 @@ TEST(CliReproduce, ReducedRunWritesTheReportAndCompensationHelps) {
   const auto r = run_cli(dir, "reproduce --scenarios sc --engines ols,stepwise,iafsa --out out");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("[100%]"), std::string::npos) << "progress is shown";
+  // Done only once everything, figures included, is written: the last line, after the figures.
+  const std::size_t done = r.err.rfind("[100%] done\n");
+  ASSERT_NE(done, std::string::npos) << r.err;
+  EXPECT_EQ(done + std::string("[100%] done\n").size(), r.err.size()) << r.err;
+  EXPECT_LT(r.err.find("drawing the figures"), done) << r.err;
+  EXPECT_EQ(r.err.find("[100%]"), done) << "nothing else at 100 %:\n" << r.err;
   EXPECT_NE(r.out.find("Table 1, side by side"), std::string::npos) << r.out;
 
   const auto j = nlohmann::json::parse(slurp(dir / "out/table1.json"));
@@ -76,6 +82,11 @@ TEST(CliReproduce, ReducedRunWritesTheReportAndCompensationHelps) {
   for (const char* text : {"| raw | 0.00953 |", "| IAFSA | 0.00185 (5.15×) |", "## Test 1", "## Test 2",
                            "What the engines can and cannot do", "a term is dropped"})
     EXPECT_NE(md.find(text), std::string::npos) << text;
+  // The tests are described by the scenarios that ran (Test 1: 35 + 120 + 50 + 120 + 60 min), not by the shipped ones.
+  for (const char* text : {"## Cycle (the training data: in the chamber, set points -40..60 °C, 4.5 h)",
+                           "## Test 1 (the INS, random profile: in the chamber, set points -20..30 °C, 6.4 h)",
+                           "## Test 2 (the INS, natural warm-up: in a 23 °C room, 6 h)"})
+    EXPECT_NE(md.find(text), std::string::npos) << text << " not in:\n" << md;
   for (const char* png : {"fig2_cycle_1s.png", "fig3_cycle_100s.png", "fig4_5_cycle_compensated.png",
                           "fig6_7_test1.png", "fig8_9_test2.png"})
     EXPECT_GT(std::filesystem::file_size(dir / "out" / png), 10000u) << png;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace gyrotherm::testing {
 
@@ -41,7 +42,8 @@ class ScratchDir {
     std::string name = std::string(info->test_suite_name()) + "_" + info->name();
     for (char& c : name)
       if (c == '/') c = '_';
-    path_ = std::filesystem::temp_directory_path() / ("gyrotherm_test_" + name);
+    // The process id keeps two test runs at once (two work trees) out of each other's folders.
+    path_ = std::filesystem::temp_directory_path() / ("gyrotherm_test_" + name + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

@@ -208,5 +208,13 @@ TEST(Diagnosis, AConfoundedCandidateIsExplainedByItsOwnGroup) {
   }
 }
 
+// A share above 100 % (the fit went below the estimated floor) is said in
+// words a user can read, with the number; up to 100 % it is the number.
+TEST(Diagnosis, ASharePastTheFloorIsAllOfTheExcess) {
+  EXPECT_EQ(excess_share_text(45.2), "45 % of the excess");
+  EXPECT_EQ(excess_share_text(100.4), "100 % of the excess");
+  EXPECT_EQ(excess_share_text(103.0), "all of the excess (103 %, below the estimated floor)");
+}
+
 }  // namespace
 }  // namespace gyrotherm::studies

@@ -28,10 +28,10 @@ PreparedData prepare_data(const std::filesystem::path& csv, const PipelineOption
 
 std::string describe_windows(const PreparedData& d, const PipelineOptions& o) {
   const std::size_t n = d.series.size();
-  if (!d.averaging.bursts) return fmt::format("{} windows of {} s", n, human(o.averaging.window_s));
-  return fmt::format("{} bursts of {} s every {} s, each averaged as one window (shorter than the {} s "
+  if (!d.averaging.bursts) return fmt::format("{} of {} s", counted(n, "window"), human(o.averaging.window_s));
+  return fmt::format("{} of {} s every {} s, each averaged as one window (shorter than the {} s "
                      "window)",
-                     n, human(d.averaging.median_run_s), human(d.averaging.median_spacing_s),
+                     counted(n, "burst"), human(d.averaging.median_run_s), human(d.averaging.median_spacing_s),
                      human(o.averaging.window_s));
 }
 

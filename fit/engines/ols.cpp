@@ -9,6 +9,7 @@
 
 #include "fit/model/noise_bootstrap.h"
 #include "fit/model/noise_model.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::fit {
 
@@ -67,7 +68,7 @@ LongRunVariance prewhitened_newey_west(const Eigen::MatrixXd& u) {
   Eigen::MatrixXd S = recolour * S_w * recolour.transpose();
   S *= static_cast<double>(l) / static_cast<double>(l - m - 1);
   return {S, 0.0, fmt::format("Newey-West HAC pre-whitened by a VAR(1) (Andrews-Monahan), Bartlett "
-                              "kernel with {} lags by Andrews' AR(1) rule", lags)};
+                              "kernel with {} by Andrews' AR(1) rule", counted(static_cast<std::size_t>(lags), "lag"))};
 
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "sim/util/format.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
@@ -16,9 +17,10 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   if (static_cast<Eigen::Index>(names_.size()) != m || y_.size() != l)
     throw std::invalid_argument("LinearProblem: sizes do not match");
   if (l < m + 2)
-    throw InputError(fmt::format("only {} averaged points for a model with {} terms and an "
-                                 "intercept: need at least {} (a longer record or a shorter --avg)",
-                                 l, m, m + 2));
+    throw InputError(fmt::format("only {} for a model with {} and an intercept: need at least {} (a longer "
+                                 "record or a shorter --avg)",
+                                 counted(static_cast<std::size_t>(l), "averaged point"),
+                                 counted(static_cast<std::size_t>(m), "term"), m + 2));
   const double dof = static_cast<double>(l - 1);
 
   // Centre and scale (two-pass means and standard deviations).

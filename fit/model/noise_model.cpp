@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 
+#include "sim/util/format.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
@@ -194,8 +195,9 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
                           const Eigen::VectorXd& y, std::size_t most_blocks) {
   const Eigen::Index n = static_cast<Eigen::Index>(grid.size());
   if (n < design.cols() + 5)
-    throw InputError(fmt::format("only {} windows: too few to identify the noise of a model with "
-                                 "{} terms (need {})", n, design.cols(), design.cols() + 5));
+    throw InputError(fmt::format("only {}: too few to identify the noise of a model with {} (need {})",
+                                 counted(static_cast<std::size_t>(n), "window"),
+                                 counted(static_cast<std::size_t>(design.cols()), "term"), design.cols() + 5));
   NoiseModel model;
   model.flicker_tau_s = flicker_bank(grid);
   model.flicker_floor_per_s = bank_floor(model.flicker_tau_s, grid.window_s, record_span(grid));

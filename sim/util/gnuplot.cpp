@@ -17,13 +17,19 @@ GnuplotFigure::GnuplotFigure(std::filesystem::path png, int width_px, int height
     : png_(std::move(png)), width_px_(width_px), height_px_(height_px) {}
 
 void GnuplotFigure::data(const std::string& name, const std::vector<std::string>& column_names,
-                         const std::vector<std::span<const double>>& columns) {
+                         const std::vector<std::span<const double>>& columns,
+                         std::span<const std::size_t> breaks) {
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "${} << EOD\n#", name);
   for (const std::string& c : column_names) fmt::format_to(std::back_inserter(out), " {}", c);
   out.push_back('\n');
   const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  std::size_t next_break = 0;
   for (std::size_t r = 0; r < rows; ++r) {
+    if (next_break < breaks.size() && breaks[next_break] == r) {
+      out.push_back('\n');
+      ++next_break;
+    }
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c][r];
       if (c > 0) out.push_back(' ');

@@ -20,9 +20,11 @@ class GnuplotFigure {
  public:
   GnuplotFigure(std::filesystem::path png, int width_px = 1400, int height_px = 900);
 
-  // An inline data block $name with equally long columns (NaN becomes a gap).
+  // An inline data block $name with equally long columns (NaN becomes a
+  // gap). A blank line goes before each row in `breaks` (increasing): lines
+  // and line-points do not join across it, for gaps in a record.
   void data(const std::string& name, const std::vector<std::string>& column_names,
-            const std::vector<std::span<const double>>& columns);
+            const std::vector<std::span<const double>>& columns, std::span<const std::size_t> breaks = {});
   // Plot commands appended to the script (after the terminal set-up).
   void commands(const std::string& text);
   // Runs gnuplot; throws InputError naming the PNG if gnuplot is missing or fails.

@@ -9,6 +9,7 @@
 #include "fit/data/median.h"
 #include "studies/allan/greenhall_edf.h"
 #include "sim/util/input_error.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -148,7 +149,7 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
                                  options.confidence));
   const std::size_t n = time_s.size();
   if (n != rate_dph.size() || n < 3)
-    throw InputError(fmt::format("{}: {} samples; the Allan deviation needs at least 3", name, n));
+    throw InputError(fmt::format("{}: {}; the Allan deviation needs at least 3", name, counted(n, "sample")));
   std::vector<double> steps(n - 1);
   for (std::size_t i = 0; i + 1 < n; ++i) steps[i] = time_s[i + 1] - time_s[i];
   AllanCurve c;
@@ -180,8 +181,8 @@ AllanCurve allan_curve(std::span<const double> time_s, std::span<const double> r
     const auto asked = static_cast<std::size_t>(std::floor(options.tau_max_s / c.tau0_s + 1e-9));
     if (asked > longest_run / 2)
       throw InputError(fmt::format("--tau-max {} s: a τ needs one gap-free stretch of 2τ, and the longest in {} is "
-                                   "{:.6g} s ({} samples of {:.6g} s); the longest τ it can give is {:.6g} s",
-                                   options.tau_max_s, c.name, c.longest_run_s, longest_run, c.tau0_s,
+                                   "{:.6g} s ({} of {:.6g} s); the longest τ it can give is {:.6g} s",
+                                   options.tau_max_s, c.name, c.longest_run_s, counted(longest_run, "sample"), c.tau0_s,
                                    static_cast<double>(longest_run / 2) * c.tau0_s));
     if (asked < 1)
       throw InputError(fmt::format("--tau-max {} s is shorter than the sample interval {:.6g} s", options.tau_max_s,

@@ -13,6 +13,7 @@
 #include "fit/pipeline.h"
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -141,15 +142,15 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
 std::string allan_text(const AllanStudy& study) {
   const AllanCurve& first = study.series.front().curve;
   std::string out = fmt::format(
-      "allan {}{}: {} samples every {:.4g} s over {:.4g} h, {} gap-free run{}; overlapping Allan deviation, "
+      "allan {}{}: {} every {:.4g} s over {:.4g} h, {}; overlapping Allan deviation, "
       "{:.0f} % intervals (Greenhall's edf for the noise type at each τ)\n",
-      study.data_file, study.channel.empty() ? "" : ", channel " + study.channel, first.samples, first.tau0_s,
-      first.span_s / 3600.0, first.runs, first.runs == 1 ? "" : "s", 100.0 * first.confidence);
+      study.data_file, study.channel.empty() ? "" : ", channel " + study.channel, counted(first.samples, "sample"),
+      first.tau0_s, first.span_s / 3600.0, counted(first.runs, "gap-free run"), 100.0 * first.confidence);
   out += fit::units_text(study.units, study.cautions);
   if (first.gaps > 0)
-    out += fmt::format("  {} gaps: a τ whose clusters would span one uses only those that do not (the 'left out' "
+    out += fmt::format("  {}: a τ whose clusters would span one uses only those that do not (the 'left out' "
                        "column); the longest gap-free run is {:.4g} s\n",
-                       first.gaps, first.longest_run_s);
+                       counted(first.gaps, "gap"), first.longest_run_s);
   if (first.limited_by_runs)
     out += fmt::format("  the longest τ is {:.4g} s: a τ needs one gap-free stretch of 2τ, and the runs are short "
                        "(bursts): the record cannot show longer τ, where bias instability and rate random walk sit\n",
@@ -157,7 +158,7 @@ std::string allan_text(const AllanStudy& study) {
   if (!study.fit_file.empty())
     out += fmt::format("  compensated: {} applied as a real-time compensator (compensate --causal){}\n",
                        study.fit_file,
-                       study.outliers ? fmt::format("; {} glitch samples flagged, kept in both", study.outliers) : "");
+                       study.outliers ? fmt::format("; {} flagged, kept in both", counted(study.outliers, "glitch sample")) : "");
   for (const AllanSeries& s : study.series) {
     out += fmt::format("\n{}:\n  {:>10} {:>12} {:>25} {:>9}  {:<26} {:>9}\n", s.curve.name, "tau (s)",
                        "adev (°/h)", "interval (°/h)", "edf", "noise type", "left out");
@@ -275,10 +276,15 @@ std::vector<AllanStudy> run_allan(const AllanRequest& r) {
       return s;
     });
   }
+  // One figure per channel beside --plot, named after it (made safe for a file name).
+  std::vector<std::string> channels;
+  for (const AllanStudy& s : studies) channels.push_back(s.channel);
+  const std::vector<std::string> names = fit::channel_file_names(channels);
   for (std::size_t i = 0; i < studies.size() && !r.plot.empty(); ++i) {
     std::filesystem::path png = r.plot;
-    if (studies.size() > 1) png.replace_filename(png.stem().string() + "_" + studies[i].channel + png.extension().string());
+    if (studies.size() > 1) png.replace_filename(png.stem().string() + "_" + names[i] + png.extension().string());
     write_allan_plot(png, studies[i]);
+    studies[i].plot = png.string();
   }
   return studies;
 }
@@ -290,13 +296,14 @@ nlohmann::ordered_json allan_json(const std::vector<AllanStudy>& studies) {
   return {{"channels", all}};
 }
 
-std::string allan_text(const std::vector<AllanStudy>& studies, const std::string& plot) {
+std::string allan_text(const std::vector<AllanStudy>& studies) {
   std::string out;
   for (std::size_t i = 0; i < studies.size(); ++i) {
     if (i > 0) out += "\n";
     out += allan_text(studies[i]);
   }
-  if (!plot.empty()) out += fmt::format("plot: {}\n", plot);
+  for (const AllanStudy& s : studies)
+    if (!s.plot.empty()) out += fmt::format("plot: {}\n", s.plot);
   return out;
 }
 

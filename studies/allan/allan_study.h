@@ -41,6 +41,7 @@ struct AllanStudy {
   std::string data_file, fit_file, channel;
   std::vector<AllanSeries> series;  // "raw", then "compensated" with a fit
   std::size_t outliers = 0;         // samples the fit's glitch rule flagged (kept in both series)
+  std::string plot;                 // the figure written for it (run_allan with a plot), or ""
   // Raw over compensated bias instability, when both are shown.
   std::optional<double> bias_instability_ratio() const;
 };
@@ -64,7 +65,8 @@ std::string allan_text(const AllanStudy& study);
 // `gyrotherm allan` on a log: every gyro channel (pipeline.columns.gyro, a
 // comma list) raw, or with a fit every channel it holds, each read with the
 // fit's own columns and units, raw and compensated; figures if asked (one per
-// channel, NAME_CHANNEL.png beside `plot` when there are several).
+// channel, STEM_CHANNEL.png beside `plot` when there are several, the channel
+// made safe for a file name by fit::channel_file_names).
 struct AllanRequest {
   std::string data;
   std::string fit_file;           // "" for none
@@ -75,8 +77,8 @@ struct AllanRequest {
 std::vector<AllanStudy> run_allan(const AllanRequest& request);
 // allan --json: one object, or {"channels": [...]}.
 nlohmann::ordered_json allan_json(const std::vector<AllanStudy>& studies);
-// The text of every study, and where the figure went.
-std::string allan_text(const std::vector<AllanStudy>& studies, const std::string& plot);
+// The text of every study, and the figures written.
+std::string allan_text(const std::vector<AllanStudy>& studies);
 
 // Log-log Allan deviation with the interval bands, the slope lines of the
 // coefficients read and their values, every series on one figure.

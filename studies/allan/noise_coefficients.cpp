@@ -31,6 +31,12 @@ double basis(int term, double tau) {
   }
 }
 
+// "τ = 16–256 s", or "τ = 256 s" when the stretch is a single τ.
+std::string tau_span_text(double from_s, double to_s) {
+  if (from_s == to_s) return fmt::format("τ = {:.3g} s", from_s);
+  return fmt::format("τ = {:.3g}–{:.3g} s", from_s, to_s);
+}
+
 constexpr double kZ95 = 1.959963984540054;
 constexpr std::size_t kMinClusters = 8;  // rows the bias instability may be read from
 constexpr std::size_t kMaxRows = 160;    // rows the weighted fit uses (log-spaced when more)
@@ -211,7 +217,7 @@ NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, const Curve
   k.value = std::sqrt(a);
   k.lo = std::sqrt(std::max(0.0, a - z * sd));
   k.hi = std::sqrt(a + z * sd);
-  k.note = fmt::format("{}; {} dominates τ = {:.3g}–{:.3g} s", fit_text, what, k.tau_from_s, k.tau_to_s);
+  k.note = fmt::format("{}; {} dominates {}", fit_text, what, tau_span_text(k.tau_from_s, k.tau_to_s));
   return k;
 }
 
@@ -274,8 +280,8 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
       k.hi = level * std::sqrt(chi2_bound(read.edf, 0.5 - 0.5 * c.confidence)) / kFlickerFloor;
       const bool hump = from > 0 && to + 1 < c.rows.size() && c.rows[from - 1].adev_dph < level &&
                         c.rows[to + 1].adev_dph < level;
-      k.note = fmt::format("the flat part of the curve, τ = {:.3g}–{:.3g} s (local slope within ±0.2), σ/0.664{}",
-                           k.tau_from_s, k.tau_to_s,
+      k.note = fmt::format("the flat part of the curve, {} (local slope within ±0.2{}), σ/0.664{}",
+                           tau_span_text(k.tau_from_s, k.tau_to_s), from == to ? ", at this τ alone" : "",
                            hump ? "; the curve falls on both sides: a plateau of a correlated (Gauss–Markov) bias" : "");
       return k;
     }

@@ -28,6 +28,15 @@ std::vector<double> in_hours(const std::vector<double>& s) {
 
 }  // namespace
 
+std::vector<std::size_t> windows_after_gaps(const fit::PreparedData& data) {
+  const fit::AveragedSeries& s = data.series;
+  const double spacing_s = data.averaging.bursts ? data.averaging.median_spacing_s : s.window_s;
+  std::vector<std::size_t> out;
+  for (std::size_t p = 1; p < s.size(); ++p)
+    if (s.time_s[p] - s.time_s[p - 1] > 1.75 * spacing_s) out.push_back(p);
+  return out;
+}
+
 void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
                            const fit::PreparedData& data, const Diagnosis& d,
                            const Diagnosis* before) {
@@ -36,11 +45,12 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   if (ec) throw InputError(fmt::format("--plots {}: cannot create the folder ({})", dir, ec.message()));
   const fit::AveragedSeries& s = data.series;
   const std::vector<double> t_h = in_hours(s.time_s);
+  const std::vector<std::size_t> gaps = windows_after_gaps(data);  // the time plots' lines break there
   const std::string floor_text = fmt::format("{:.4g}", d.noise_floor_dph);
 
   {  // 1. Measured and modelled bias with the temperature.
     GnuplotFigure fig(dir + "/bias_time.png", 1400, 700);
-    fig.data("d", {"t_h", "measured", "model", "temp"}, {t_h, s.gyro_dph, d.model_dph, s.temp_c});
+    fig.data("d", {"t_h", "measured", "model", "temp"}, {t_h, s.gyro_dph, d.model_dph, s.temp_c}, gaps);
     fig.commands(
         "set title 'Measured and modelled bias (window means) with the gyro temperature'\n"
         "set xlabel 'time (h)'\nset ylabel 'bias (°/h)'\nset y2label 'temperature (°C)'\n"
@@ -53,7 +63,7 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   {  // 2. Residual with the segments shaded and the worst marked.
     GnuplotFigure fig(dir + "/residual_segments.png", 1400, 700);
     std::vector<double> floor_hi(s.size(), d.noise_floor_dph), floor_lo(s.size(), -d.noise_floor_dph);
-    fig.data("r", {"t_h", "residual", "floor", "minus_floor"}, {t_h, d.residual_dph, floor_hi, floor_lo});
+    fig.data("r", {"t_h", "residual", "floor", "minus_floor"}, {t_h, d.residual_dph, floor_hi, floor_lo}, gaps);
     std::string cmds =
         "set title 'Residual of the model; shading: turn-on (yellow), heating (red), cooling "
         "(blue), soak (grey); the three worst segments are labelled'\n"
@@ -93,7 +103,7 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   }
   if (before != nullptr) {  // 4. Before and after the added effect.
     GnuplotFigure fig(dir + "/before_after.png", 1400, 700);
-    fig.data("b", {"t_h", "before", "after"}, {t_h, before->residual_dph, d.residual_dph});
+    fig.data("b", {"t_h", "before", "after"}, {t_h, before->residual_dph, d.residual_dph}, gaps);
     fig.commands(fmt::format(
         "set title 'Residual before ({:.4g} °/h) and after ({:.4g} °/h) adding the effect; noise "
         "floor {}'\nset xlabel 'time (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n"

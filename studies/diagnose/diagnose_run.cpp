@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "fit/channels.h"
@@ -19,14 +20,19 @@ namespace {
 
 std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
 
+// A candidate's share of the excess in a table: "45 %", or in words past the floor.
+std::string share_cell(double pct) {
+  return pct < kBelowFloorPct ? fmt::format("{:.0f} %", pct) : excess_share_text(pct);
+}
+
 std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel) {
   const fit::PipelineOptions& pipeline = channel.pipeline;
   const fit::PreparedData& data = channel.data;
   const Diagnosis& d = channel.report.diagnosis;
   const std::optional<Diagnosis>& before = channel.report.before;
-  std::string out = fmt::format("diagnose {}: model B = b0 + {} ({}), {}, {} glitches removed\n", run.request.data,
+  std::string out = fmt::format("diagnose {}: model B = b0 + {} ({}), {}, {} removed\n", run.request.data,
                                 fit::formula_text(run.request.terms), run.request.engine,
-                                fit::describe_windows(data, pipeline), data.outliers.removed);
+                                fit::describe_windows(data, pipeline), counted(data.outliers.removed, "glitch", "glitches"));
   out += fit::units_text(data.units, data.cautions);
   if (channel.streamed)
     out += fmt::format(
@@ -42,21 +48,31 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
                        "slower than a window, bias instability)\n",
                        human(d.floor.within_dph));
   out += "2. where it fails (residual RMS over the floor, worst first):\n";
+  // Temperatures with the decimals that tell every segment's (every band's)
+  // ends apart: a record spanning a few degrees has bands narrower than 1 °C.
   const auto worst = d.worst_segments();
-  for (std::size_t k = 0; k < worst.size() && k < 6; ++k) {
+  const std::size_t shown = std::min<std::size_t>(worst.size(), 6);
+  int decimals = 1;
+  for (std::size_t k = 0; k < shown; ++k)
+    decimals = std::max(decimals, decimals_to_tell_apart(d.segments[worst[k]].temp_min_c,
+                                                         d.segments[worst[k]].temp_max_c, 1));
+  for (std::size_t k = 0; k < shown; ++k) {
     const SegmentReport& s = d.segments[worst[k]];
-    out += fmt::format("   {:<8} {:>8} – {:<8} {:6.1f} .. {:5.1f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
-                       hours(s.end_s), s.temp_min_c, s.temp_max_c, s.ratio_to_floor);
+    out += fmt::format("   {:<8} {:>8} – {:<8} {:6.{}f} .. {:5.{}f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
+                       hours(s.end_s), s.temp_min_c, decimals, s.temp_max_c, decimals, s.ratio_to_floor);
   }
+  decimals = 0;
+  for (const auto& b : d.bands) decimals = std::max(decimals, decimals_to_tell_apart(b.temp_min_c, b.temp_max_c, 0));
   std::string bands;
   for (const auto& b : d.bands)
-    bands += fmt::format("{}{:.0f}..{:.0f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c, b.temp_max_c,
-                         b.ratio_to_floor);
+    bands += fmt::format("{}{:.{}f}..{:.{}f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c, decimals,
+                         b.temp_max_c, decimals, b.ratio_to_floor);
   out += fmt::format("   by temperature: {}\n", bands);
   out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
   for (const CandidateReport& c : d.candidates)
-    out += fmt::format("   {} {:<12} {:5.0f} %  p = {:<8.2g} {:<12} {}\n",
-                       c.passed() ? "*" : " ", c.term->name, c.reduction_pct, c.p_value,
+    out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} {:<12} {}\n", c.passed() ? "*" : " ", c.term->name,
+                       share_cell(c.reduction_pct),
+                       c.p_value,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
                        c.term->meaning);
   if (!d.columns_tried.empty())
@@ -93,7 +109,10 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
   const std::vector<std::string> channels = fit::parse_channels(request.pipeline.columns.gyro);
   DiagnosisOptions options = request.options;
   options.excluded_columns = channels;  // no gyro channel explains another
-  // Progress only where the work is long: a log large enough to be streamed.
+  // Progress only where the work is long: a large log, or one streamed.
+  std::error_code size_error;
+  const std::uintmax_t bytes = std::filesystem::file_size(request.data, size_error);
+  const bool large = !size_error && bytes > request.progress_above_bytes;
   bool show = false;
   std::size_t channel_index = 0;
   const auto report = [&](const std::string& what, double within) {
@@ -107,7 +126,7 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
         c.channel = channel;
         c.pipeline = p;
         c.streamed = fit::streams(request.data, c.pipeline);
-        show = request.progress && c.streamed;
+        show = request.progress && (large || c.streamed);
         report(fmt::format("{}: reading {}", channel, request.data), 0.0);
         if (c.streamed) {
           c.data = fit::prepare_data_streaming(request.data, c.pipeline);
@@ -130,10 +149,13 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
         if (channels.size() > 1 && !c.report.next_command.empty()) c.report.next_command += " --gyro-col " + channel;
         return c;
       });
-  // With several channels, each one's figures in a folder of its own.
-  for (ChannelDiagnosis& c : run.channels) {
+  // With several channels, each one's figures in a folder of its own, named
+  // after it (made safe for a file name: "gyrox rad/s" would nest folders).
+  const std::vector<std::string> folders = fit::channel_file_names(channels);
+  for (std::size_t i = 0; i < run.channels.size(); ++i) {
+    ChannelDiagnosis& c = run.channels[i];
     if (request.plots.empty()) continue;
-    c.plots = run.channels.size() > 1 ? (std::filesystem::path(request.plots) / c.channel).string() : request.plots;
+    c.plots = run.channels.size() > 1 ? (std::filesystem::path(request.plots) / folders[i]).string() : request.plots;
     write_diagnosis_plots(c.plots, c.measurement, c.data, c.report.diagnosis,
                           c.report.before ? &*c.report.before : nullptr);
   }
@@ -157,14 +179,17 @@ std::string diagnose_text(const DiagnoseRun& run) {
   if (n < 2) return out;
   out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));
   out += fmt::format("  {:<14} {:>12} {:>12} {:>8}  {}\n", "channel", "after °/h", "floor °/h", "x floor",
-                     "best candidate");
+                     "missing effect");
   for (const ChannelDiagnosis& c : run.channels) {
     const Diagnosis& d = c.report.diagnosis;
-    std::string best = "none";
+    // The top candidate, named as the answer only when it passed the test.
+    std::string best = "nothing left to try";
     if (!d.candidates.empty()) {
       const CandidateReport& b = d.candidates.front();
-      best = fmt::format("{} ({:.0f} %{})", b.term->name, b.reduction_pct,
-                         !b.passed() ? "" : b.confounded_with.empty() ? ", significant" : ", its group significant");
+      best = !b.passed() ? fmt::format("none significant (top: {} removes {}, p = {:.2g})", b.term->name,
+                                       share_cell(b.reduction_pct), b.p_value)
+                         : fmt::format("{}: {}, {}", b.term->name, share_cell(b.reduction_pct),
+                                       b.confounded_with.empty() ? "significant" : "its group significant");
     }
     out += fmt::format("  {:<14} {:>12.5g} {:>12.5g} {:>8.2f}  {}\n", c.channel, d.fit.instability_after_dph,
                        d.noise_floor_dph, d.excess_ratio(), best);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "fit/model/formula.h"
+#include "sim/util/format.h"
 #include "sim/util/input_error.h"
 #include "studies/diagnose/confounding.h"
 #include "studies/diagnose/diagnosis_steps.h"
@@ -114,11 +115,11 @@ void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::v
       });
       d.remaining = fmt::format(
           "structure remains that no candidate explains: {} is still {:.2f} times the floor, "
-          "worst in the {} segment at {:.2f}–{:.2f} h ({:.1f} to {:.1f} °C), {:.2f} times the floor",
+          "worst in the {} segment at {:.2f}–{:.2f} h ({} °C), {:.2f} times the floor",
           final_terms.size() > terms.size() ? "the model with the significant candidates (or their group)" : "the model",
           f.instability_after_dph / d.noise_floor_dph, worst->kind,
           (worst->start_s - s.start_time_s) / 3600.0, (worst->end_s - s.start_time_s) / 3600.0,
-          worst->temp_min_c, worst->temp_max_c, worst->ratio_to_floor);
+          range_text(worst->temp_min_c, worst->temp_max_c, 1, " to "), worst->ratio_to_floor);
     }
   } catch (const InputError&) {
   }
@@ -145,10 +146,9 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
       if (std::find(d.confounded[g].begin(), d.confounded[g].end(), std::string(c.term->name)) != d.confounded[g].end())
         why = d.confounding_notes[g];
     verdict = fmt::format(
-        "The model is {:.2f} times the noise floor; adding {} ({}) would remove {:.0f} % of the "
-        "excess, but on this record it cannot be told apart from {}, so the data do not say which "
-        "effect it is: {}",
-        ratio, c.term->name, c.term->meaning, c.reduction_pct, others, why);
+        "The model is {:.2f} times the noise floor; adding {} ({}) would remove {}, but on this "
+        "record it cannot be told apart from {}, so the data do not say which effect it is: {}",
+        ratio, c.term->name, c.term->meaning, excess_share_text(c.reduction_pct), others, why);
   } else if (d.candidates.front().significant) {
     std::vector<const fit::Term*> with = terms;
     std::string found;
@@ -161,9 +161,9 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
     }
     *suggested = fit::formula_text(with);
     verdict = fmt::format(
-        "The model is {:.2f} times the noise floor; adding {} removes {:.0f} % of the excess, "
+        "The model is {:.2f} times the noise floor; adding {} removes {}, "
         "significant under block cross-validation.",
-        ratio, found, std::min(removed, 100.0));
+        ratio, found, excess_share_text(removed));
   } else {
     verdict = fmt::format(
         "The model is {:.2f} times the noise floor; no missing effect is significant under "
@@ -176,14 +176,19 @@ std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& 
 
 }  // namespace
 
+std::string excess_share_text(double pct) {
+  if (pct < kBelowFloorPct) return fmt::format("{:.0f} % of the excess", pct);
+  return fmt::format("all of the excess ({:.0f} %, below the estimated floor)", pct);
+}
+
 Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
                    const fit::EngineInfo& engine, const fit::EngineSettings& settings,
                    const DiagnosisOptions& options) {
   if (data.series.size() < kMinBlocks)
     throw InputError(fmt::format(
-        "{}: only {} windows: diagnose needs at least {} (a shorter --avg gives more windows, "
+        "{}: only {}: diagnose needs at least {} (a shorter --avg gives more windows, "
         "if the record's runs allow it)",
-        data.file, data.series.size(), kMinBlocks));
+        data.file, counted(data.series.size(), "window"), kMinBlocks));
   Diagnosis d;
   const auto stage = [&](const std::string& what) {
     if (options.stage) options.stage(what);

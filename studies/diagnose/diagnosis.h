@@ -165,6 +165,13 @@ Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::T
                    const fit::EngineInfo& engine, const fit::EngineSettings& settings,
                    const DiagnosisOptions& options = {});
 
+// A share of the excess over the floor that a candidate removes, for people:
+// "45 % of the excess", or, where it rounds above 100 % (the fit goes below
+// the floor as estimated), "all of the excess (103 %, below the estimated
+// floor)". kBelowFloorPct: from where a share reads so.
+inline constexpr double kBelowFloorPct = 100.5;
+std::string excess_share_text(double reduction_pct);
+
 // Per-segment RMS of a residual, for before/after tables.
 std::vector<SegmentReport> segment_rms(const Diagnosis& d, const std::vector<double>& residual);
 

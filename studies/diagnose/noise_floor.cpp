@@ -9,6 +9,7 @@
 #include "fit/data/median.h"
 #include "sim/util/input_error.h"
 #include "studies/diagnose/diagnosis.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -68,16 +69,16 @@ NoiseFloor estimate_noise_floor(const fit::AveragedSeries& s, double span_s) {
     f.dph = f.within_dph;
   } else {
     throw InputError(fmt::format(
-        "only {} windows ({} equally spaced triples): too few to estimate the noise floor from "
+        "only {} ({} equally spaced): too few to estimate the noise floor from "
         "the window means, and the windows hold too few samples to estimate it from their scatter",
-        s.size(), f.triples));
+        counted(s.size(), "window"), counted(f.triples, "triple")));
   }
   return f;
 }
 
 std::string NoiseFloor::description() const {
   if (method == "hadamard")
-    return fmt::format("robust Hadamard deviation of the window means, {} triples", triples);
+    return fmt::format("robust Hadamard deviation of the window means, {}", counted(triples, "triple"));
   return fmt::format(
       "from the scatter inside the windows (the standard error of a window mean, corrected for "
       "the autocorrelation of its samples): only {} equally spaced triples of windows, fewer than "

@@ -342,6 +342,7 @@ ExporterInfo c_exporter() {
                 r.prefix, fit::formula_text(f.terms),
                 f.pipeline.remove_outliers ? fmt::format("; {}_update_gyro() also applies the glitch rule", r.prefix)
                                            : ""));
+            warn_if_little_compensation(f, f.instability_after_dph, &out);
             return out;
           }};
 }

@@ -68,11 +68,22 @@ const fit::SavedFit& chosen_channel(const ExportRequest& r, const std::vector<fi
   return *chosen;
 }
 
-std::vector<std::string> run_export(const ExportRequest& request) {
+void warn_if_little_compensation(const fit::SavedFit& f, double after_dph, ExportOutput* out) {
+  if (!f.instability_before_dph || !(*f.instability_before_dph > 0.0)) return;
+  const double before = *f.instability_before_dph;
+  if (after_dph <= kLittleCompensation * before) return;
+  out->warnings.push_back(fmt::format(
+      "{}: the exported model takes the instability of the data it was fitted on ({}) only from {:.3g} to {:.3g} "
+      "°/h ({:.0f} % off): it compensates little; 'gyrotherm diagnose' on that data shows what the bias follows",
+      channel_name(f), f.data_file.empty() ? std::string("unnamed") : f.data_file, before, after_dph,
+      100.0 * (1.0 - after_dph / before)));
+}
+
+ExportOutput run_export(const ExportRequest& request) {
   const ExporterInfo& exporter = find_exporter(request.format);
-  const ExportOutput out = exporter.write(request, fit::load_fits(request.fit_file));
+  ExportOutput out = exporter.write(request, fit::load_fits(request.fit_file));
   write_file_atomically(request.output, out.text);
-  return out.lines;
+  return out;
 }
 
 }  // namespace gyrotherm::studies

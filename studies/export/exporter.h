@@ -12,7 +12,9 @@
 //              (both: studies/export/firmware.h)
 //
 // run_export() loads the fit, lets the format write its text, and writes the
-// file atomically only once all of it is known: a refusal leaves no file.
+// file atomically only once all of it is known: a refusal leaves no file. A
+// model that takes little off the instability of the data it was fitted on
+// is exported with a warning (for stderr, not in the file) giving the numbers.
 
 #include <functional>
 #include <string>
@@ -39,9 +41,18 @@ struct ExportRequest {
 
 // What a format writes, and what export prints about it.
 struct ExportOutput {
-  std::string text;                // the file
-  std::vector<std::string> lines;  // for the terminal, in order
+  std::string text;                   // the file
+  std::vector<std::string> lines;     // for the terminal, in order
+  std::vector<std::string> warnings;  // for stderr: the file does not hold them
 };
+
+// An exported model that leaves more than this share of the instability of
+// the data it was fitted on compensates little (under 20 % off): say so.
+inline constexpr double kLittleCompensation = 0.8;
+// A warning on *out when `fit`'s model, as exported (instability after_dph
+// on its data: the fit's own, or with terms dropped what remains), takes
+// less than 20 % off the instability before; nothing when that is unknown.
+void warn_if_little_compensation(const fit::SavedFit& fit, double after_dph, ExportOutput* out);
 
 // Where the exported file came from (the file's opening comment).
 struct ExportHeader {
@@ -60,9 +71,9 @@ const ExporterInfo& find_exporter(std::string_view name);
 // "c, px4 or ardupilot"
 std::string exporter_names(std::string_view last = " or ");
 
-// Loads the fit, writes request.output with the chosen format, returns the
-// lines to print. Throws InputError (no file written) on bad input.
-std::vector<std::string> run_export(const ExportRequest& request);
+// Loads the fit, writes request.output with the chosen format, returns what
+// to print (lines, warnings). Throws InputError (no file written) on bad input.
+ExportOutput run_export(const ExportRequest& request);
 
 // Shared by the formats: a fit's channel name, the header of the file
 // exported from `fit` (its SHA-256 and the time now), and the fit a

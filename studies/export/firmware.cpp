@@ -15,7 +15,8 @@ namespace {
 
 // With terms dropped: the instability of the fitted data with the whole
 // model and with the cubic alone (the same coefficients, not refitted).
-std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, const std::string& data_option) {
+std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, const std::string& data_option,
+                           DroppedCost* cost_out) {
   std::filesystem::path data = data_option;
   if (data.empty()) {
     const std::filesystem::path named = f.data_file;
@@ -28,10 +29,11 @@ std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, cons
   }
   const fit::PipelineOptions pipeline = fit::reading_columns_of(f.pipeline, f.terms);
   const DroppedCost cost = dropped_cost(f, cubic, fit::read_measurement_csv(data, pipeline.columns));
+  *cost_out = cost;
   std::string names;
   for (const std::string& n : cubic.dropped) names += (names.empty() ? "" : ", ") + n;
   return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); a polynomial "
-                     "refitted alone (fit --model 'T + T^2') would do better than these coefficients",
+                     "refitted alone (fit --model 'T + T^2') can do no worse than these coefficients",
                      channel_name(f), names, data.string(), cost.with_dph, cost.without_dph,
                      cost.without_dph / cost.with_dph);
 }
@@ -112,7 +114,7 @@ ExportRange export_range(const std::array<AxisModel, 3>& axes) {
 }
 
 std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector<fit::SavedFit>& fits,
-                                       const std::string& format, std::vector<std::string>* lines) {
+                                       const std::string& format, ExportOutput* out) {
   // Which fit serves which axis.
   std::array<const fit::SavedFit*, 3> chosen{};
   if (o.axes.empty()) {
@@ -151,7 +153,9 @@ std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector
     axes[i].model = cubic_of(f, o.drop_unsupported, format);
     axes[i].temp_min_c = f.temp_range_c->first;
     axes[i].temp_max_c = f.temp_range_c->second;
-    if (!axes[i].model.dropped.empty()) lines->push_back(dropped_report(f, axes[i].model, o.data));
+    DroppedCost cost{f.instability_after_dph, f.instability_after_dph};
+    if (!axes[i].model.dropped.empty()) out->lines.push_back(dropped_report(f, axes[i].model, o.data, &cost));
+    warn_if_little_compensation(f, cost.without_dph, out);
   }
   if (std::none_of(axes.begin(), axes.end(), [](const AxisModel& a) { return a.present; }))
     throw InputError("--axes: every axis is '-': nothing to export");
@@ -160,7 +164,7 @@ std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector
 
 FirmwareFile firmware_file(const ExportRequest& r, const std::vector<fit::SavedFit>& fits, const std::string& format) {
   FirmwareFile f;
-  f.axes = firmware_axes(r, fits, format, &f.out.lines);
+  f.axes = firmware_axes(r, fits, format, &f.out);
   const auto first = std::find_if(f.axes.begin(), f.axes.end(), [](const AxisModel& a) { return a.present; });
   f.header = export_header(r, *first->fit);
   f.range = export_range(f.axes);

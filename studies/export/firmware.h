@@ -100,10 +100,11 @@ ExportRange export_range(const std::array<AxisModel, 3>& axes);
 
 // The axes of a firmware export from the request: the fit's channels in
 // order, or --axes X,Y,Z ('-' for none), each as its cubic; terms dropped
-// (--drop-unsupported) are reported in *lines with their cost. `format` is
-// the firmware's name for messages ("PX4").
+// (--drop-unsupported) are reported in out->lines with their cost, and a
+// model that compensates little (with its terms dropped, or as fitted) in
+// out->warnings. `format` is the firmware's name for messages ("PX4").
 std::array<AxisModel, 3> firmware_axes(const ExportRequest& request, const std::vector<fit::SavedFit>& fits,
-                                       const std::string& format, std::vector<std::string>* lines);
+                                       const std::string& format, ExportOutput* out);
 
 // What both firmware formats write: the axes, the file's header (from the
 // first axis's fit), the range, and export's lines so far (dropped terms).

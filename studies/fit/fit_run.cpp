@@ -9,6 +9,7 @@
 #include "fit/fit_file.h"
 #include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -17,9 +18,10 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
   const std::vector<const fit::Term*>& terms = run.request.terms;
   const fit::PreparedData& data = c.data;
   const fit::ModelFit& result = c.result;
-  std::string out = fmt::format("data: {}: {} samples{} every {:g} s, {} glitches removed, {} gaps, {}\n", data.file,
-                                data.raw_samples, c.streamed ? " (streamed)" : "", data.averaging.sample_interval_s,
-                                data.outliers.removed, data.averaging.gaps.size(),
+  std::string out = fmt::format("data: {}: {}{} every {:g} s, {} removed, {}, {}\n", data.file,
+                                counted(data.raw_samples, "sample"), c.streamed ? " (streamed)" : "",
+                                data.averaging.sample_interval_s, counted(data.outliers.removed, "glitch", "glitches"),
+                                counted(data.averaging.gaps.size(), "gap"),
                                 fit::describe_windows(data, c.pipeline));
   out += fit::units_text(data.units, data.cautions);
   if (!data.outliers.times_s.empty()) {

@@ -6,6 +6,7 @@
 
 #include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
+#include "sim/util/format.h"
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
 
@@ -73,7 +74,8 @@ std::string table_markdown(const ReproduceResult& r) {
       "same numbers on every run; run times go to the terminal (`reproduce --json` prints them).\n\n",
       r.cycle_seed, r.test1.seed, r.test2.seed);
 
-  md += "## −40..60 °C cycle (the training data)\n\n| | paper | ours | ours vs paper |\n|---|---|---|---|\n";
+  md += fmt::format("## Cycle (the training data: {})\n\n| | paper | ours | ours vs paper |\n|---|---|---|---|\n",
+                    r.cycle_facts.text());
   md += fmt::format("| raw | {} | {:.5f} | {} |\n", paper.cycle_raw, r.cycle_raw_dph, pct(r.cycle_raw_dph, paper.cycle_raw));
   if (const auto* s = find("stepwise"))
     md += fmt::format("| stepwise | {} (4.35×) | {:.5f} ({:.2f}×) | {} |\n", paper.cycle_stepwise,
@@ -109,9 +111,10 @@ std::string table_markdown(const ReproduceResult& r) {
 
   for (const TestOutcome* t : {&r.test1, &r.test2}) {
     const bool one = t->name == "test1";
-    md += fmt::format("\n## {} ({})\n\nEach engine's cycle fit applied with the causal, real-time compensator.\n\n"
+    md += fmt::format("\n## {} ({}: {})\n\nEach engine's cycle fit applied with the causal, real-time compensator.\n\n"
                       "| | before (°/h) | after (°/h) | times |\n|---|---|---|---|\n",
-                      one ? "Test 1" : "Test 2", one ? "random profile, INS in the chamber, 72 h" : "natural warm-up in a 23 °C room, 16 h");
+                      one ? "Test 1" : "Test 2", one ? "the INS, random profile" : "the INS, natural warm-up",
+                      t->facts.text());
     md += fmt::format("| paper (IAFSA) | {} | {} | {} |\n", one ? paper.test1_before : paper.test2_before,
                       one ? paper.test1_after : paper.test2_after, one ? paper.test1_times : paper.test2_times);
     for (const auto& e : r.engines) {
@@ -177,11 +180,15 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r) {
       temp.push_back(c.temp_c[k]);
     }
     fig.data("d", {"t_h", "gyro", "temp"}, {t, g, temp});
-    fig.commands("set title 'Fig. 2: gyro output (1 s) and temperature, -40..60 degC cycle'\n"
-                 "set xlabel 'time (h)'\nset ylabel 'gyro output (°/h)'\nset y2label 'temperature (°C)'\n"
-                 "set y2tics\nset ytics nomirror\nset key outside right\n"
-                 "plot $d using 1:2 with dots lc rgb '#555555' title '1 s output', "
-                 "$d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'temperature'\n");
+    // The gyro's temperature is what is plotted: it spans less than the chamber's set points.
+    fig.commands(fmt::format(
+        "set title 'Fig. 2: gyro output (1 s) and gyro temperature ({} °C); chamber set points {} °C'\n"
+        "set xlabel 'time (h)'\nset ylabel 'gyro output (°/h)'\nset y2label 'gyro temperature (°C)'\n"
+        "set y2tics\nset ytics nomirror\nset key outside right\n"
+        "plot $d using 1:2 with dots lc rgb '#555555' title '1 s output', "
+        "$d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'gyro temperature'\n",
+        range_text(r.cycle_facts.gyro_min_c, r.cycle_facts.gyro_max_c, 0),
+        range_text(r.cycle_facts.set_min_c, r.cycle_facts.set_max_c, 0)));
     fig.render();
   }
   const fit::AveragedSeries& s = r.cycle_data.series;
@@ -189,10 +196,10 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r) {
     GnuplotFigure fig(dir / "fig3_cycle_100s.png", 1400, 700);
     fig.data("d", {"t_h", "gyro", "temp"}, {hours(s.time_s), s.gyro_dph, s.temp_c});
     fig.commands(fmt::format("set title 'Fig. 3: 100 s means and temperature, cycle (instability {:.5f} °/h)'\n"
-                             "set xlabel 'time (h)'\nset ylabel 'gyro, 100 s means (°/h)'\nset y2label 'temperature (°C)'\n"
+                             "set xlabel 'time (h)'\nset ylabel 'gyro, 100 s means (°/h)'\nset y2label 'gyro temperature (°C)'\n"
                              "set y2tics\nset ytics nomirror\nset key outside right\n"
                              "plot $d using 1:2 with linespoints pt 7 ps 0.4 lc rgb '#333333' title '100 s means', "
-                             "$d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'temperature'\n",
+                             "$d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'gyro temperature'\n",
                              r.cycle_raw_dph));
     fig.render();
   }
@@ -223,10 +230,12 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r) {
     const bool one = t->name == "test1";
     GnuplotFigure fig(dir / (one ? "fig6_7_test1.png" : "fig8_9_test2.png"), 1400, 1000);
     fig.data("d", {"t_h", "gyro", "temp", "comp"}, {hours(ts.time_s), ts.gyro_dph, ts.temp_c, comp.window_compensated_dph});
+    // Both panels share fixed left and right margins, so that their time axes
+    // line up (gnuplot sizes each panel's margins to its own labels and key).
     fig.commands(fmt::format(
-        "set multiplot layout 2,1 title '{}'\n"
-        "set ylabel 'gyro, 100 s means (°/h)'\nset y2label 'temperature (°C)'\nset y2tics\nset ytics nomirror\nset key outside right\n"
-        "plot $d using 1:2 with lines lc rgb '#333333' title 'before ({:.5f} °/h)', $d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'temperature'\n"
+        "set multiplot layout 2,1 title '{}'\nset lmargin at screen 0.08\nset rmargin at screen 0.76\n"
+        "set ylabel 'gyro, 100 s means (°/h)'\nset y2label 'gyro temperature (°C)'\nset y2tics\nset ytics nomirror\nset key outside right\n"
+        "plot $d using 1:2 with lines lc rgb '#333333' title 'before ({:.5f} °/h)', $d using 1:3 axes x1y2 with lines lw 2 lc rgb '#1f77b4' title 'gyro temperature'\n"
         "unset y2tics\nunset y2label\nset xlabel 'time (h)'\nset ylabel 'compensated (°/h)'\n"
         "plot $d using 1:4 with lines lc rgb '#d62728' title 'after, {} causal ({:.5f} °/h)'\nunset multiplot\n",
         one ? "Figs. 6-7: Test 1, random profile, before and after real-time compensation"
@@ -245,15 +254,22 @@ std::string shown_engine(const ReproduceResult& r) {
 
 nlohmann::ordered_json write_reproduce_report(const std::filesystem::path& dir,
                                               const ReproduceResult& r,
-                                              std::chrono::steady_clock::time_point started) {
+                                              std::chrono::steady_clock::time_point started,
+                                              const std::function<void(const std::string&, double)>& progress) {
+  const auto report = [&](const std::string& step, double f) {
+    if (progress) progress(step, f);
+  };
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", dir.string(), ec.message()));
+  report("drawing the figures", kReproduceComputedShare);
   plot_figures(dir, r);
   // The files hold what the seeds decide, so a run leaves them as they were;
   // the run times go to the terminal (the JSON returned).
+  report("writing table1.json and table1.md", 0.5 * (1.0 + kReproduceComputedShare));
   write_file_atomically(dir / "table1.json", table_json(r, false).dump(2) + "\n");
   write_file_atomically(dir / "table1.md", table_markdown(r));
+  report("done", 1.0);
   nlohmann::ordered_json j = table_json(r, true);
   j["total_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return j;

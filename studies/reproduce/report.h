@@ -22,11 +22,13 @@ void plot_figures(const std::filesystem::path& dir, const ReproduceResult& r);
 
 // Everything into `dir` (created if need be): the figures, then table1.json
 // and table1.md, each written atomically, the same bytes on every run of the
-// same seeds. Returns the JSON with the run times (total_seconds: since
-// `started`, figures included) for the terminal.
+// same seeds; progress (may be empty) from kReproduceComputedShare to "done"
+// at 1, once all is written. Returns the JSON with the run times
+// (total_seconds: since `started`, figures included) for the terminal.
 nlohmann::ordered_json write_reproduce_report(const std::filesystem::path& dir,
                                               const ReproduceResult& r,
-                                              std::chrono::steady_clock::time_point started);
+                                              std::chrono::steady_clock::time_point started,
+                                              const std::function<void(const std::string&, double)>& progress = {});
 
 // The summary for the terminal.
 std::string reproduce_text(const ReproduceResult& r, const std::string& dir, double total_seconds);

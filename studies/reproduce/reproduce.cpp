@@ -1,22 +1,46 @@
 #include "studies/reproduce/reproduce.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fmt/format.h>
 
 #include "studies/simulated.h"
 #include "fit/model/formula.h"
 #include "sim/config_loader.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::studies {
 namespace {
 
-sim::SimulationResult simulate(const std::filesystem::path& file, std::uint64_t* seed) {
+ScenarioFacts facts_of(const sim::Scenario& sc, const sim::SimulationResult& run) {
+  ScenarioFacts f;
+  f.duration_h = sim::Profile(sc.start_c, sc.segments).duration_s() / 3600.0;
+  f.room_c = sc.room_c;
+  f.chamber = sc.chamber;
+  f.set_min_c = f.set_max_c = sc.start_c;
+  for (const sim::Segment& s : sc.segments) {
+    if (s.kind == sim::SegmentKind::free) continue;
+    f.set_min_c = std::min(f.set_min_c, s.temp_c);
+    f.set_max_c = std::max(f.set_max_c, s.temp_c);
+  }
+  if (run.rows() > 0) {
+    const auto [lo, hi] = std::minmax_element(run.temp_c.begin(), run.temp_c.end());
+    f.gyro_min_c = *lo;
+    f.gyro_max_c = *hi;
+  }
+  return f;
+}
+
+sim::SimulationResult simulate(const std::filesystem::path& file, std::uint64_t* seed, ScenarioFacts* facts) {
   const sim::Scenario sc = sim::load_scenario(file);
   const sim::RigConfig rig = sim::load_rig(sc.rig_file);
   const sim::GyroConfig gyro = sim::load_gyro(sc.gyro_file);
   sim::check_scenario_against_rig(sc, rig, sc.rig_file);
   *seed = sc.seed;
-  return sim::Simulator(sc, rig, gyro).run();
+  sim::SimulationResult run = sim::Simulator(sc, rig, gyro).run();
+  *facts = facts_of(sc, run);
+  return run;
 }
 
 Truth truth_of(const std::filesystem::path& cycle) {
@@ -29,6 +53,12 @@ Truth truth_of(const std::filesystem::path& cycle) {
 
 }  // namespace
 
+std::string ScenarioFacts::text() const {
+  const std::string where = chamber ? fmt::format("in the chamber, set points {} °C", range_text(set_min_c, set_max_c, 0))
+                                    : fmt::format("in a {:g} °C room", room_c);
+  return fmt::format("{}, {:g} h", where, std::round(duration_h * 10.0) / 10.0);
+}
+
 ReproduceResult reproduce(const ReproduceOptions& o) {
   const auto started = std::chrono::steady_clock::now();
   auto progress = [&](const std::string& step, double f) {
@@ -40,12 +70,12 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
     for (const fit::EngineInfo& e : fit::engine_registry()) engines.push_back(e.name);
   for (const std::string& e : engines) fit::find_engine(e);  // fail early on a bad name
 
-  progress("simulating the -40..60 degC cycle", 0.0);
-  r.cycle_run = simulate(o.cycle, &r.cycle_seed);
+  progress("simulating the cycle", 0.0);
+  r.cycle_run = simulate(o.cycle, &r.cycle_seed, &r.cycle_facts);
   progress("simulating Test 1 (random profile)", 0.05);
-  r.test1_run = simulate(o.test1, &r.test1.seed);
+  r.test1_run = simulate(o.test1, &r.test1.seed, &r.test1.facts);
   progress("simulating Test 2 (natural warm-up)", 0.2);
-  r.test2_run = simulate(o.test2, &r.test2.seed);
+  r.test2_run = simulate(o.test2, &r.test2.seed, &r.test2.facts);
   r.truth = truth_of(o.cycle);
 
   const fit::PipelineOptions pipeline;  // the paper's: glitches removed, 100 s, central differences
@@ -60,7 +90,7 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
 
   for (std::size_t i = 0; i < engines.size(); ++i) {
     progress(fmt::format("fitting the cycle with {}", engines[i]),
-             0.25 + 0.75 * static_cast<double>(i) / static_cast<double>(engines.size()));
+             0.25 + (kReproduceComputedShare - 0.25) * static_cast<double>(i) / static_cast<double>(engines.size()));
     fit::EngineSettings settings;
     settings.seed = o.engine_seed;
     EngineOnCycle e;
@@ -81,7 +111,6 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
     r.test2.before_dph = r.test2.by_engine[e.engine].before_dph;
     r.engines.push_back(std::move(e));
   }
-  progress("done", 1.0);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

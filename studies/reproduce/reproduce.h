@@ -11,7 +11,8 @@
 //     real-time compensator (backward differences, only completed windows),
 //     as the paper did: instability before and after, and the ratio.
 //
-// Everything is computed in memory; the CLI writes the tables and figures.
+// Everything is computed in memory; report.h writes the tables and figures,
+// describing each test by the scenario that ran (ScenarioFacts).
 
 #include <filesystem>
 #include <functional>
@@ -30,8 +31,23 @@ struct ReproduceOptions {
   std::filesystem::path cycle, test1, test2;  // scenario files
   std::vector<std::string> engines;           // empty: every registered engine
   std::uint64_t engine_seed = 1;
-  // Called with a short description of each step and its fraction done.
+  // Called with a short description of each step and its fraction done:
+  // reproduce() reaches kReproduceComputedShare, write_reproduce_report()
+  // (report.h) the rest, and "done" at 1 once every file is written.
   std::function<void(const std::string& step, double fraction)> progress;
+};
+inline constexpr double kReproduceComputedShare = 0.9;
+
+// What the report says about a scenario, read from the scenario that ran
+// rather than written into the report by hand.
+struct ScenarioFacts {
+  double duration_h = 0.0;                     // the profile's length
+  double room_c = 23.0;
+  bool chamber = true;                         // false: the INS sits in the room
+  double set_min_c = 0.0, set_max_c = 0.0;     // the chamber's set points (chamber only)
+  double gyro_min_c = 0.0, gyro_max_c = 0.0;   // the gyro temperature logged
+  // "in the chamber, set points -20..60 °C, 72.3 h" or "in a 23 °C room, 8 h".
+  std::string text() const;
 };
 
 struct EngineOnCycle {
@@ -43,12 +59,14 @@ struct EngineOnCycle {
 struct TestOutcome {
   std::string name;               // "test1" or "test2"
   std::uint64_t seed = 0;
+  ScenarioFacts facts;
   double before_dph = 0.0;
   std::map<std::string, fit::Compensation> by_engine;  // causal compensation with each engine's cycle fit
 };
 
 struct ReproduceResult {
   std::uint64_t cycle_seed = 0;
+  ScenarioFacts cycle_facts;
   sim::SimulationResult cycle_run, test1_run, test2_run;
   fit::PreparedData cycle_data;
   Truth truth;

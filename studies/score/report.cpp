@@ -8,6 +8,7 @@
 #include "sim/util/atomic_file.h"
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::studies {
 
@@ -22,6 +23,11 @@ void put_summary(Json& j, const std::string& name, const Summary& s, bool with_p
   j[name + "_median"] = number(s.median);
   if (with_p10) j[name + "_p10"] = number(s.p10);
   j[name + "_p90"] = number(s.p90);
+}
+
+// "seeds S..S+n−1", or "seed S" for one trial.
+std::string seeds_text(const Scoreboard& b) {
+  return b.trials == 1 ? fmt::format("seed {}", b.seed) : fmt::format("seeds {}..{}", b.seed, b.seed + (b.trials - 1));
 }
 
 }  // namespace
@@ -88,18 +94,18 @@ std::string scoreboard_json(const Scoreboard& b) {
 }
 
 std::string scoreboard_markdown(const Scoreboard& b) {
-  std::string md = fmt::format("# Scoreboard: {}, {} trials\n\n", b.scenario, b.trials);
+  std::string md = fmt::format("# Scoreboard: {}, {}\n\n", b.scenario, counted(b.trials, "trial"));
   std::string spread;
   for (const auto& [key, r] : b.spread) spread += fmt::format("{}{} ±{:g} %", spread.empty() ? "" : ", ", key, 100.0 * r);
   md += fmt::format(
-      "Scenario `{}`, seeds {}..{}, model `B = b0 + {}`; spread: {}. Target: σ ≤ σ*·(1 + {:g}), σ* the "
+      "Scenario `{}`, {}, model `B = b0 + {}`; spread: {}. Target: σ ≤ σ*·(1 + {:g}), σ* the "
       "least-squares optimum of each trial (median σ* {:.6g} °/h, median raw instability {:.6g} °/h). "
       "Medians over the trials, evaluations with their 95 % interval; \"not reached\": the median "
       "trial did not reach the target. Coefficient errors are |fit − truth| / |truth|, median / 90th percentile. "
-      "{} s on {} thread(s) × {} process(es).\n\n",
-      b.scenario_file, b.seed, b.seed + (b.trials - 1), b.model, spread.empty() ? "none" : spread,
+      "{} s on {} × {}.\n\n",
+      b.scenario_file, seeds_text(b), b.model, spread.empty() ? "none" : spread,
       b.target_relative, b.optimum_median_dph, b.before_median_dph, fmt::format("{:.2f}", b.seconds),
-      b.threads, b.processes);
+      counted(b.threads, "thread"), counted(b.processes, "process", "processes"));
   md += "| engine | success | evaluations to target | seconds to target | final gap (median / p90) | ratio |";
   for (const std::string& t : b.error_terms) md += fmt::format(" error {} |", t == "1" ? "b0" : t);
   md += "\n|---|---|---|---|---|---|";
@@ -157,13 +163,13 @@ void plot_convergence(const std::filesystem::path& png, const Scoreboard& b) {
   }
   fig.commands(fmt::format(
       "set title 'Convergence on {}: gap of the best sigma so far to the least-squares optimum, "
-      "median and quartiles of {} trials'\n"
+      "median and quartiles of {}'\n"
       "set xlabel 'objective evaluations'\nset ylabel 'sigma / optimum - 1 (gaps below {:g} drawn at {:g})'\n"
       "set logscale xy\nset format y '%.0e'\nset key outside right\n"
       "set style fill transparent solid 0.15 noborder\n"
       "set arrow from graph 0, first {:g} to graph 1, first {:g} nohead dt 2 lc rgb '#555555'\n"
       "set label 'target' at graph 0.01, first {:g} offset 0, 0.7 tc rgb '#555555'\n{}\n",
-      b.scenario, b.trials, kFloor, kFloor, b.target_relative, b.target_relative, b.target_relative, plot));
+      b.scenario, counted(b.trials, "trial"), kFloor, kFloor, b.target_relative, b.target_relative, b.target_relative, plot));
   fig.render();
 }
 
@@ -205,13 +211,14 @@ std::vector<std::string> write_score_files(const std::filesystem::path& dir, con
 
 std::string score_text(const Scoreboard& board) {
   std::string out = fmt::format(
-      "score: {}, {} trials (seeds {}..{}), model B = b0 + {}, target sigma <= optimum*(1 + {:g})\n", board.scenario,
-      board.trials, board.seed, board.seed + (board.trials - 1), board.model, board.target_relative);
+      "score: {}, {} ({}), model B = b0 + {}, target sigma <= optimum*(1 + {:g})\n", board.scenario,
+      counted(board.trials, "trial"), seeds_text(board), board.model, board.target_relative);
   out += fmt::format("median raw instability {:.6g} °/h, median least-squares optimum {:.6g} °/h; "
                      "medians over the trials, coefficient errors |fit - truth|/|truth|\n",
                      board.before_median_dph, board.optimum_median_dph);
   out += scoreboard_text(board);
-  out += fmt::format("{:.2f} s on {} thread(s) x {} process(es)\n", board.seconds, board.threads, board.processes);
+  out += fmt::format("{:.2f} s on {} x {}\n", board.seconds, counted(board.threads, "thread"),
+                     counted(board.processes, "process", "processes"));
   return out;
 }
 
