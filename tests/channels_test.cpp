@@ -26,14 +26,7 @@ TEST(Channels, FileNamesAreSafeAndDistinct) {
 // Two channels named like the PAN log's ("gyrox rad/s"): 3 h at 1 Hz over
 // 10..30 °C, each with its own temperature slope and white noise.
 void write_slashed_channels(const std::filesystem::path& csv) {
-  std::mt19937_64 rng(3);
-  std::normal_distribution<double> noise(0.0, 0.5);
-  std::ofstream out(csv);
-  out << "time_s,temp_c,gyrox rad/s,gyroy rad/s\n";
-  for (int k = 0; k < 3 * 3600; ++k) {
-    const double temp = 10.0 + 20.0 * k / (3.0 * 3600.0);
-    out << k << "," << temp << "," << 2.0 * temp + noise(rng) << "," << -temp + noise(rng) << "\n";
-  }
+  write_ramp_log(csv, "gyrox rad/s,gyroy rad/s", {2.0, -1.0}, 3.0, 10.0, 30.0, 3);
 }
 
 // allan --plot and diagnose --plots write one figure (folder) per channel,

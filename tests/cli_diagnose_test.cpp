@@ -24,15 +24,7 @@ using namespace gyrotherm::testing;
 // a bias of 2 °/h/°C and white noise: temperature bands far narrower than 1 °C.
 // A second channel, gyro2_dph, holds −1 °/h/°C and its own white noise.
 void write_narrow_record(const std::filesystem::path& csv) {
-  std::mt19937_64 rng(7);
-  std::normal_distribution<double> noise(0.0, 0.5);
-  std::ofstream out(csv);
-  out << "time_s,temp_c,gyro_dph,gyro2_dph\n";
-  for (int k = 0; k < 4 * 3600; ++k) {
-    const double temp = 13.0 + 0.6 * k / (4.0 * 3600.0);
-    const double gyro = 2.0 * temp + noise(rng);
-    out << k << "," << temp << "," << gyro << "," << -temp + noise(rng) << "\n";
-  }
+  write_ramp_log(csv, "gyro_dph,gyro2_dph", {2.0, -1.0}, 4.0, 13.0, 13.6, 7);
 }
 
 // Every "A..B °C" or "A .. B °C" in a report, as printed.

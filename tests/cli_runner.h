@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -84,6 +85,25 @@ inline void expect_refused(const ScratchDir& dir, const std::string& args, const
   const CliResult r = run_cli(dir, args);
   EXPECT_EQ(r.exit_code, 2) << args;
   EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+}
+
+// A 1 Hz log of `hours` whose temperature ramps from `from_c` to `to_c`, with
+// one gyro channel per entry of `slopes` (°/h per °C, header `columns` after
+// time_s,temp_c) and white noise of 0.5 °/h, from `seed`.
+inline void write_ramp_log(const std::filesystem::path& csv, const std::string& columns,
+                           const std::vector<double>& slopes, double hours, double from_c, double to_c,
+                           unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::ofstream out(csv);
+  out << "time_s,temp_c," << columns << "\n";
+  const int rows = static_cast<int>(hours * 3600.0);
+  for (int k = 0; k < rows; ++k) {
+    const double temp = from_c + (to_c - from_c) * k / static_cast<double>(rows);
+    out << k << "," << temp;
+    for (const double slope : slopes) out << "," << slope * temp + noise(rng);
+    out << "\n";
+  }
 }
 
 inline std::string source_path(const std::string& relative) {
