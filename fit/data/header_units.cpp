@@ -154,11 +154,14 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
       continue;
     }
     if (h.unit != nullptr) {
-      if (!c.unit->empty() && *c.unit != h.unit->name)  // the other temperature column said otherwise
-        throw InputError(fmt::format(
-            "the temperature columns state different units ({}: {}; '{}': {}); they are read "
-            "with one --temp-unit",
-            *c.from, *c.unit, c.name, h.unit->name));
+      if (!c.unit->empty()) {  // the other temperature column said it first
+        if (*c.unit != h.unit->name)
+          throw InputError(fmt::format(
+              "the temperature columns state different units ({}: {}; '{}': {}); they are read "
+              "with one --temp-unit",
+              *c.from, *c.unit, c.name, h.unit->name));
+        continue;
+      }
       *c.unit = std::string(h.unit->name);
       *c.from = fmt::format("header '{}'", c.name);
       continue;
