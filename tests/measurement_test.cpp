@@ -426,5 +426,28 @@ TEST_F(MeasurementTest, ReadsARawLogInItsOwnUnits) {
   expect_error(raw, {"converted by", "temp column in K → °C"}, columns);
 }
 
+
+// As pandas (QUOTE_NONNUMERIC, QUOTE_ALL) and spreadsheets write a CSV: the
+// quoted names and numbers read as the plain file does.
+TEST_F(MeasurementTest, QuotedNamesAndNumbersReadAsPlainOnes) {
+  const Measurement plain = read_measurement_csv(write("time_s,temp_c,gyro_dph,note\n0,20.5,1.25,x\n1,20.6,1.5,y\n", "p.csv"));
+  const Measurement names = read_measurement_csv(
+      write("\"time_s\",\"temp_c\",\"gyro_dph\",\"note\"\n0,20.5,1.25,\"x\"\n1,20.6,1.5,\"y\"\n", "n.csv"));
+  const Measurement all = read_measurement_csv(
+      write("\"time_s\",\"temp_c\",\"gyro_dph\",\"note\"\r\n\"0\",\"20.5\",\" 1.25 \",\"x\"\r\n\"1\",\"20.6\",\"1.5\",\"y\"\r\n", "a.csv"));
+  for (const Measurement* m : {&names, &all}) {
+    EXPECT_EQ(m->columns, plain.columns);
+    EXPECT_EQ(m->time_s, plain.time_s);
+    EXPECT_EQ(m->temp_c, plain.temp_c);
+    EXPECT_EQ(m->gyro_dph, plain.gyro_dph);
+  }
+  // A quote inside a quoted name is doubled; an empty quoted number is still no number.
+  ColumnMap odd;
+  odd.gyro = "gyro \"x\"";
+  EXPECT_EQ(read_measurement_csv(write("time_s,temp_c,\"gyro \"\"x\"\"\"\n0,20,1\n1,20,2\n", "q.csv"), odd).gyro_dph,
+            (std::vector<double>{1.0, 2.0}));
+  expect_error(write("time_s,temp_c,gyro_dph\n0,20,\"\"\n1,20,2\n", "e.csv"), {":2: column gyro_dph: empty field"});
+}
+
 }  // namespace
 }  // namespace gyrotherm::fit

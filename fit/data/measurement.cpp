@@ -186,6 +186,14 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
+// A field as RFC 4180 writes it when quoted ("time_s", "a ""b"""): the text inside.
+std::string unquoted(std::string_view s) {
+  if (s.size() < 2 || s.front() != '"' || s.back() != '"') return std::string(s);
+  std::string out;
+  for (std::size_t k = 1; k + 1 < s.size(); ++k) out += s[k] == '"' && s[k + 1] == '"' && k + 2 < s.size() ? s[k++] : s[k];
+  return out;
+}
+
 bool is_blank(std::string_view line) { return trim(line).empty(); }
 
 // A field as it appears in a message: quoted, and cut if very long.
@@ -246,6 +254,8 @@ bool parse_plain_decimal(std::string_view text, double& value) {
 // Parses one needed field; returns an empty string on success, else what is wrong.
 std::string parse_number(std::string_view field, double& value) {
   std::string_view text = trim(field);
+  if (parse_plain_decimal(text, value)) return {};
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = trim(text.substr(1, text.size() - 2));
   if (parse_plain_decimal(text, value)) return {};
   if (text.empty()) return "empty field, expected a number";
   std::string_view digits = text;
@@ -358,8 +368,8 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
   }
   for (std::size_t from = 0;;) {
     const std::size_t comma = line.find(',', from);
-    m.columns.emplace_back(trim(line.substr(
-        from, comma == std::string_view::npos ? std::string_view::npos : comma - from)));
+    m.columns.emplace_back(unquoted(trim(line.substr(
+        from, comma == std::string_view::npos ? std::string_view::npos : comma - from))));
     if (comma == std::string_view::npos) break;
     from = comma + 1;
   }

@@ -22,8 +22,10 @@
 // what was expected, e.g. "data.csv:57: column gyro_dph: 'abc' is not a number".
 //
 // The file is read in blocks of a fixed size and parsed line by line, so the
-// memory is that of the result, not of the text (RFC 4180 quoting is not
-// supported: a quoted field in a needed column is not a number).
+// memory is that of the result, not of the text. RFC 4180 quotes around a
+// header name or a number are read as spreadsheets and pandas write them
+// ("time_s","temp_c" or "20.5"; "" inside a name is a quote); a quoted field
+// that holds a comma is not supported (the row's fields are counted by commas).
 // Reference: Y. Shafranovich, "Common Format and MIME Type for CSV Files",
 // RFC 4180 (2005), for the comma-separated layout.
 
