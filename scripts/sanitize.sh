@@ -19,6 +19,6 @@ cd build-asan
 # tens of seeds) run the same code paths as the rest of the suite many times
 # over; they are judged in the normal build (scripts/test.sh), and left out
 # here, where they cost several minutes of the sanitizer run (CI has 60).
-studies='IntervalsCover|NineOfTen|UnbiasedAndCovered|UniformPValues|RarelyShowAStep'
+studies='IntervalsCover|NineOfTen|UnbiasedAndCovered|UniformPValues|RarelyShowAStep|RecoveryOverSeeds'
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure -j "$(nproc)" --timeout 900 -E "$studies"
