@@ -71,7 +71,7 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
                                          const std::vector<double>& parameters,
                                          const Coefficients& c,
                                          std::shared_ptr<const NoiseContext> noise,
-                                         const Engine& ols) {
+                                         const Engine& engine) {
   LinearisedIntervals out;
   out.parameters.assign(terms.size(), std::nullopt);
   std::vector<std::size_t> nonlinear;
@@ -102,7 +102,7 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
   try {
     LinearProblem problem(augmented, y, names);
     if (noise) problem.attach_noise(noise);
-    out.ols = ols.fit(problem);
+    out.ols = engine.fit(problem);  // the engine that gave the intervals (ols), its options as given
     for (std::size_t i = 0; i < nonlinear.size(); ++i) {
       const Interval& d = out.ols.intervals[static_cast<std::size_t>(x.cols()) + i];
       out.parameters[nonlinear[i]] = Interval{parameters[nonlinear[i]] * std::exp(d.lower),
@@ -213,8 +213,7 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.parameter_intervals.assign(terms.size(), std::nullopt);
   if (!fit.engine.intervals.empty()) {
     LinearisedIntervals li =
-        linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients, fit.noise,
-                             engine.name == "ols" ? *e : static_cast<const Engine&>(OlsEngine()));
+        linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients, fit.noise, *e);
     fit.parameter_intervals = std::move(li.parameters);
     if (!li.ols.intervals.empty()) {
       // The coefficients' intervals with the parameters' uncertainty in them.

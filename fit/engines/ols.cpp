@@ -127,40 +127,6 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   r.termination = Termination::exact;
   r.history = {{1, r.objective}};
 
-  Eigen::MatrixXd V;
-  std::vector<double> dofs;
-  std::string description;
-  const bool from_noise = options_.intervals != "nw" && options_.intervals != "ewc" && problem.noise();
-  const bool bootstrap =
-      from_noise && (options_.intervals == "bootstrap" ||
-                     (options_.intervals == "auto" &&
-                      bootstrap_by_default(problem.noise()->model, problem.noise()->grid, X)));
-  if (from_noise) {
-    // The identified noise's covariance (fit/model/noise_model.h).
-    const NoiseContext& noise = *problem.noise();
-    NoiseSandwich sandwich = noise_sandwich(noise.model, noise.grid, X);
-    V = std::move(sandwich.covariance);
-    dofs = std::move(sandwich.dof);
-    description = fmt::format("least-squares covariance under the identified noise ({}); Student t "
-                              "with Satterthwaite dof {:.3g}",
-                              noise.model.description(),
-                              *std::min_element(dofs.begin(), dofs.end()));
-  } else {
-    const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
-    const LongRunVariance lrv = options_.intervals == "ewc"
-                                    ? equal_weighted_cosine(u, options_.ewc_terms)
-                                    : prewhitened_newey_west(u);
-    const Eigen::MatrixXd xtx_inv =
-        (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
-    V = xtx_inv * lrv.S * xtx_inv;
-    dofs.assign(static_cast<std::size_t>(m), lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1));
-    description = fmt::format("{}{}; Student t with {:g} dof",
-                              options_.intervals != "nw" && options_.intervals != "ewc"
-                                  ? "no noise model could be identified on this record (too few "
-                                    "windows for the terms): "
-                                  : "",
-                              lrv.description, dofs.front());
-  }
   double e_num = 0.0, e_den = 0.0;
   for (Eigen::Index p = 0; p < l; ++p) {
     e_den += e[p] * e[p];
@@ -168,7 +134,12 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   }
   const double rho = e_den > 0.0 ? e_num / e_den : 0.0;
 
-  const Coefficients c = problem.physical(r.z);
+  const bool from_noise = options_.intervals != "nw" && options_.intervals != "ewc" && problem.noise();
+  const bool bootstrap =
+      from_noise && (options_.intervals == "bootstrap" ||
+                     (options_.intervals == "auto" &&
+                      bootstrap_by_default(problem.noise()->model, problem.noise()->grid, X)));
+  std::string description;
   if (bootstrap) {
     const NoiseContext& noise = *problem.noise();
     const NoiseBootstrap boot = noise_bootstrap(noise.model, noise.grid, X, options_.draws, options_.seed);
@@ -181,18 +152,47 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
                               "record supports ({}), amplitudes drawn from their uncertainty; the "
                               "widest basic interval",
                               options_.draws, noise.model.description());
-  }
-  const bool analytic = r.intervals.empty();
-  for (Eigen::Index j = 0; analytic && j < m; ++j) {
-    const boost::math::students_t t_dist(dofs[static_cast<std::size_t>(j)]);
-    const double t95 = boost::math::quantile(boost::math::complement(t_dist, 0.025));
-    const double se_beta = std::sqrt(std::max(0.0, V(j, j)));
-    const double se = se_beta / problem.scale()[j];
-    const double b = c.b[static_cast<std::size_t>(j)];
-    r.intervals.push_back({b - t95 * se, b + t95 * se});
-    const double t = se_beta > 0.0 ? std::abs(beta[j]) / se_beta : INFINITY;
-    r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t))
-                                          : 0.0);
+  } else {
+    Eigen::MatrixXd V;
+    std::vector<double> dofs;
+    if (from_noise) {
+      // The identified noise's covariance (fit/model/noise_model.h).
+      const NoiseContext& noise = *problem.noise();
+      NoiseSandwich sandwich = noise_sandwich(noise.model, noise.grid, X);
+      V = std::move(sandwich.covariance);
+      dofs = std::move(sandwich.dof);
+      description = fmt::format("least-squares covariance under the identified noise ({}); Student t "
+                                "with Satterthwaite dof {:.3g}",
+                                noise.model.description(),
+                                *std::min_element(dofs.begin(), dofs.end()));
+    } else {
+      const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
+      const LongRunVariance lrv = options_.intervals == "ewc"
+                                      ? equal_weighted_cosine(u, options_.ewc_terms)
+                                      : prewhitened_newey_west(u);
+      const Eigen::MatrixXd xtx_inv =
+          (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+      V = xtx_inv * lrv.S * xtx_inv;
+      dofs.assign(static_cast<std::size_t>(m), lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1));
+      description = fmt::format("{}{}; Student t with {:g} dof",
+                                options_.intervals != "nw" && options_.intervals != "ewc"
+                                    ? "no noise model could be identified on this record (too few "
+                                      "windows for the terms): "
+                                    : "",
+                                lrv.description, dofs.front());
+    }
+    const Coefficients c = problem.physical(r.z);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const boost::math::students_t t_dist(dofs[static_cast<std::size_t>(j)]);
+      const double t95 = boost::math::quantile(boost::math::complement(t_dist, 0.025));
+      const double se_beta = std::sqrt(std::max(0.0, V(j, j)));
+      const double se = se_beta / problem.scale()[j];
+      const double b = c.b[static_cast<std::size_t>(j)];
+      r.intervals.push_back({b - t95 * se, b + t95 * se});
+      const double t = se_beta > 0.0 ? std::abs(beta[j]) / se_beta : INFINITY;
+      r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t))
+                                            : 0.0);
+    }
   }
   r.interval_method = fmt::format("{}; residual lag-1 autocorrelation {:.2f}", description, rho);
   r.message = "least squares by column-pivoting QR";
