@@ -51,24 +51,18 @@ bool is_raw_counts(const std::string& token) {
   return std::find(kRaw.begin(), kRaw.end(), token) != kRaw.end();
 }
 
-std::string_view trimmed(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
 }  // namespace
 
 HeaderUnit unit_in_header(Quantity quantity, std::string_view column) {
   HeaderUnit out;
-  const std::string_view name = trimmed(column);
+  const std::string_view name = trim(column);
   if (name.empty()) return out;
   // In brackets at the end: a statement.
   if (name.back() == ')' || name.back() == ']') {
     const char open = name.back() == ')' ? '(' : '[';
     const std::size_t at = name.rfind(open);
     if (at != std::string_view::npos) {
-      const std::string_view inside = trimmed(name.substr(at + 1, name.size() - at - 2));
+      const std::string_view inside = trim(name.substr(at + 1, name.size() - at - 2));
       out.said = std::string(inside);
       const std::string token = normalised(inside);
       out.unit = by_alias(quantity, token);

@@ -40,6 +40,13 @@ const Unit& Units::time_unit() const { return unit_or_base(Quantity::time, time,
 const Unit& Units::gyro_unit() const { return unit_or_base(Quantity::gyro, gyro, "--gyro-unit"); }
 const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
 
+std::string_view trim(std::string_view s) {
+  const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
 ColumnMap ColumnMap::unset() {
   ColumnMap c;
   c.time = c.temp = c.gyro = c.temp2 = "";
@@ -179,13 +186,6 @@ struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
 
-std::string_view trim(std::string_view s) {
-  const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
-  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
-  return s;
-}
-
 // A field as RFC 4180 writes it when quoted ("time_s", "a ""b"""): the text inside.
 std::string unquoted(std::string_view s) {
   if (s.size() < 2 || s.front() != '"' || s.back() != '"') return std::string(s);
@@ -255,8 +255,10 @@ bool parse_plain_decimal(std::string_view text, double& value) {
 std::string parse_number(std::string_view field, double& value) {
   std::string_view text = trim(field);
   if (parse_plain_decimal(text, value)) return {};
-  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = trim(text.substr(1, text.size() - 2));
-  if (parse_plain_decimal(text, value)) return {};
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {  // RFC 4180 quotes
+    text = trim(text.substr(1, text.size() - 2));
+    if (parse_plain_decimal(text, value)) return {};
+  }
   if (text.empty()) return "empty field, expected a number";
   std::string_view digits = text;
   if (digits.size() > 1 && digits.front() == '+' && digits[1] != '-' && digits[1] != '+')

@@ -113,6 +113,9 @@ struct Measurement {
   std::size_t size() const { return time_s.size(); }
 };
 
+// The text without the spaces and tabs at either end (a field, a column's name).
+std::string_view trim(std::string_view s);
+
 // Reads and checks a measurement CSV; throws InputError (see above) on bad input.
 Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns = {});
 

@@ -16,22 +16,26 @@ constexpr double kColdestC = -100.0, kHottestC = 200.0;
 
 }  // namespace
 
-void WhiteNoiseProbe::add(double time_s, double gyro_dph) {
-  if (started_) {
-    const double dt = time_s - last_time_;
-    if (dt > 0.0 && dt < kPairWithinS) {
-      const double dg = gyro_dph - last_gyro_;
-      sum_ += dg * dg * dt / 2.0;
-      ++pairs_;
-    }
+void ReadProbe::add(double time_s, double temp_c, double gyro_dph) {
+  if (samples_++ == 0) {
+    first_time_ = time_s;
+    read_.temp_min_c = read_.temp_max_c = temp_c;
+  } else if (const double dt = time_s - last_time_; dt > 0.0 && dt < kPairWithinS) {
+    const double dg = gyro_dph - last_gyro_;
+    sum_ += dg * dg * dt / 2.0;
+    ++pairs_;
   }
-  started_ = true;
+  read_.span_s = time_s - first_time_;
+  read_.temp_min_c = std::min(read_.temp_min_c, temp_c);
+  read_.temp_max_c = std::max(read_.temp_max_c, temp_c);
   last_time_ = time_s;
   last_gyro_ = gyro_dph;
 }
 
-double WhiteNoiseProbe::arw_deg_per_sqrt_h() const {
-  return pairs_ == 0 ? 0.0 : std::sqrt(sum_ / static_cast<double>(pairs_)) / 60.0;
+ReadSummary ReadProbe::summary() const {
+  ReadSummary out = read_;
+  out.arw_deg_per_sqrt_h = pairs_ == 0 ? 0.0 : std::sqrt(sum_ / static_cast<double>(pairs_)) / 60.0;
+  return out;
 }
 
 std::vector<std::string> unit_cautions(const Units& u, const ReadSummary& r) {
@@ -71,17 +75,9 @@ std::string units_text(const Units& units, const std::vector<std::string>& cauti
 }
 
 std::vector<std::string> measurement_cautions(const Measurement& m) {
-  ReadSummary r;
-  WhiteNoiseProbe probe;
-  for (std::size_t k = 0; k < m.size(); ++k) probe.add(m.time_s[k], m.gyro_dph[k]);
-  r.arw_deg_per_sqrt_h = probe.arw_deg_per_sqrt_h();
-  if (m.size() > 0) {
-    r.span_s = m.time_s.back() - m.time_s.front();
-    const auto [lo, hi] = std::minmax_element(m.temp_c.begin(), m.temp_c.end());
-    r.temp_min_c = *lo;
-    r.temp_max_c = *hi;
-  }
-  return unit_cautions(m.units, r);
+  ReadProbe probe;
+  for (std::size_t k = 0; k < m.size(); ++k) probe.add(m.time_s[k], m.temp_c[k], m.gyro_dph[k]);
+  return unit_cautions(m.units, probe.summary());
 }
 
 }  // namespace gyrotherm::fit

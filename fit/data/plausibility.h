@@ -11,7 +11,7 @@
 //          (about 1e-4): numbers in rad/s or °/s read as °/h. Above 200 °/√h
 //          is noisier than any MEMS gyro (0.1–10): °/h read as °/s.
 //   time:  a record longer than 30 days: milliseconds or microseconds read as s.
-//   temperature: every window below −100 °C or above 200 °C: °C read as K
+//   temperature: every sample below −100 °C or above 200 °C: °C read as K
 //          (−253 °C) or raw counts.
 
 #include <cstddef>
@@ -22,23 +22,23 @@
 
 namespace gyrotherm::fit {
 
-// The gyro's white noise from consecutive samples (in s and °/h), one at a time.
-class WhiteNoiseProbe {
- public:
-  void add(double time_s, double gyro_dph);
-  // N in °/√h; 0 when no two samples were less than a minute apart.
-  double arw_deg_per_sqrt_h() const;
-
- private:
-  double last_time_ = 0.0, last_gyro_ = 0.0, sum_ = 0.0;
-  std::size_t pairs_ = 0;
-  bool started_ = false;
+struct ReadSummary {
+  double arw_deg_per_sqrt_h = 0;          // the gyro's white noise (above); 0 without two close samples
+  double span_s = 0;                      // last − first sample time
+  double temp_min_c = 0, temp_max_c = 0;  // of the temperature as read
 };
 
-struct ReadSummary {
-  double arw_deg_per_sqrt_h = 0;  // WhiteNoiseProbe's
-  double span_s = 0;              // last − first sample time
-  double temp_min_c = 0, temp_max_c = 0;  // of the temperature as read (window means or samples)
+// What the checks are judged on, gathered one sample at a time (s, °C, °/h),
+// by the in-memory and the one-pass readers alike.
+class ReadProbe {
+ public:
+  void add(double time_s, double temp_c, double gyro_dph);
+  ReadSummary summary() const;
+
+ private:
+  ReadSummary read_;
+  double first_time_ = 0.0, last_time_ = 0.0, last_gyro_ = 0.0, sum_ = 0.0;
+  std::size_t samples_ = 0, pairs_ = 0;
 };
 
 // The cautions for a record read in `units` (empty when all looks right).

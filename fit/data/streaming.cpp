@@ -49,14 +49,7 @@ class OnePassPreparer {
 
   void add(const Row& r) {
     ++d_.raw_samples;
-    probe_.add(r.t, r.gyro);
-    if (d_.raw_samples == 1) {
-      first_t_ = r.t;
-      read_ = {0.0, 0.0, r.temp, r.temp};
-    }
-    read_.span_s = r.t - first_t_;
-    read_.temp_min_c = std::min(read_.temp_min_c, r.temp);
-    read_.temp_max_c = std::max(read_.temp_max_c, r.temp);
+    probe_.add(r.t, r.temp, r.gyro);
     if (!averager_) {
       prefix_.push_back(r);
       if (prefix_.size() == kPrefixRows) begin_stream(false);
@@ -76,15 +69,12 @@ class OnePassPreparer {
     check_windows_survive(d_.file, d_.series, *averager_, o_.averaging);
     d_.derived = derive(d_.series, o_.derivative, o_.derivative_span_s);
     d_.derivative_span_s = o_.derivative_span_s;
-    read_.arw_deg_per_sqrt_h = probe_.arw_deg_per_sqrt_h();
-    d_.cautions = unit_cautions(d_.units, read_);
+    d_.cautions = unit_cautions(d_.units, probe_.summary());
     return std::move(d_);
   }
 
  private:
-  WhiteNoiseProbe probe_;  // what the units' plausibility is judged on
-  ReadSummary read_;
-  double first_t_ = 0.0;
+  ReadProbe probe_;  // what the units' plausibility is judged on
   // The rules from the prefix (the whole record if `whole`), then the prefix
   // replayed through the filter.
   void begin_stream(bool whole) {
