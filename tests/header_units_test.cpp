@@ -150,6 +150,12 @@ TEST(HeaderUnits, ARecordWrittenInOtherUnitsGivesThePlainFit) {
   EXPECT_EQ(clash.exit_code, 2);
   EXPECT_NE(clash.err.find("'gyro [rad/s]' states its unit as rad/s"), std::string::npos) << clash.err;
   EXPECT_NE(clash.err.find("--gyro-unit gives dps"), std::string::npos) << clash.err;
+  // A unit the header states that is none of gyrotherm's, and raw counts without a scale: exit 2, the option named.
+  testing::write_text(dir / "odd.csv", "time_s,temp [LSB],gyro (furlongs)\n0,5000,1\n1,5001,2\n");
+  testing::expect_refused(dir, "fit odd.csv --temp-col 'temp [LSB]' --gyro-col 'gyro (furlongs)' --gyro-unit dph",
+                          "column 'temp [LSB]' holds raw counts (LSB): give --temp-scale and --temp-offset");
+  testing::expect_refused(dir, "fit odd.csv --temp-col 'temp [LSB]' --gyro-col 'gyro (furlongs)' --temp-scale 0.01",
+                          "column 'gyro (furlongs)' states the unit 'furlongs'");
 }
 
 TEST(HeaderUnits, NumbersThatLookLikeAnotherUnitAreCautioned) {
