@@ -47,6 +47,11 @@ void add_column_options(CLI::App* cmd, fit::ColumnMap& c, bool fit_defaults) {
   cmd->add_option("--temp-scale", u.temp_scale,
                   "Temperature = A x column + B (raw counts): A, before --temp-unit" + is(" (default 1)"));
   cmd->add_option("--temp-offset", u.temp_offset, "Temperature = A x column + B: B" + is(" (default 0)"));
+  cmd->add_option("--delimiter", c.csv.delimiter,
+                  "Column delimiter: comma, semicolon, tab or auto" + is(" (default auto: the one the header uses)"));
+  cmd->add_flag("--decimal-comma", c.csv.decimal_comma, "Numbers are written with a decimal comma (20,5)" + is(""));
+  cmd->add_option("--rate", c.csv.rate_hz,
+                  "Sample rate in Hz of a log without a time column (row k at k / rate s)" + is(""));
 }
 
 void add_data_options(CLI::App* cmd, DataOptions& o, bool with_avg) {

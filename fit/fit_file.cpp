@@ -134,6 +134,10 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                      {"temp", pipeline.columns.temp},
                      {"gyro", pipeline.columns.gyro},
                      {"temp2", pipeline.columns.temp2},
+                     {"csv",
+                      {{"delimiter", pipeline.columns.csv.delimiter.empty() ? "auto" : pipeline.columns.csv.delimiter},
+                       {"decimal_comma", pipeline.columns.csv.decimal_comma},
+                       {"rate_hz", pipeline.columns.csv.rate_hz}}},
                      {"units",
                       {{"time", data.units.time_unit().name},
                        {"gyro", data.units.gyro_unit().name},
@@ -225,6 +229,19 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
   s.pipeline.columns.temp = need(columns, "temp", "name").get<std::string>();
   s.pipeline.columns.gyro = need(columns, "gyro", "name").get<std::string>();
   s.pipeline.columns.temp2 = need(columns, "temp2", "name").get<std::string>();
+  // Fit files from before the CSV forms were options have none: the defaults.
+  if (columns.contains("csv")) {
+    const nlohmann::json& c = columns["csv"];
+    CsvDialect& csv = s.pipeline.columns.csv;
+    csv.delimiter = need(c, "delimiter", "comma, semicolon, tab or auto").get<std::string>();
+    csv.decimal_comma = need(c, "decimal_comma", "bool").get<bool>();
+    csv.rate_hz = number(need(c, "rate_hz", "Hz"), "pipeline.columns.csv.rate_hz");
+    try {
+      csv.validate();
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: pipeline.columns.csv: {}", file.string(), e.what()));
+    }
+  }
   // Fit files from before units were options have none: the defaults.
   if (columns.contains("units")) {
     const nlohmann::json& u = columns["units"];

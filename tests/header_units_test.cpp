@@ -17,6 +17,7 @@
 #include "cli_runner.h"
 #include "expect_input_error.h"
 #include "fit/data/plausibility.h"
+#include "synthetic_log.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -25,6 +26,9 @@ using testing::expect_input_error;
 using testing::run_cli;
 using testing::ScratchDir;
 using testing::write_text;
+using testing::fit_json;
+using testing::LogRow;
+using testing::synthetic_log;
 
 std::string named(Quantity q, std::string_view column) {
   const HeaderUnit h = unit_in_header(q, column);
@@ -97,34 +101,11 @@ TEST(HeaderUnits, TheOptionWinsOnlyWhereTheHeaderAgreesOrIsSilent) {
   EXPECT_EQ(resolve_units(scaled, "t", "temp [LSB]", "g", "").temp, "C");
 }
 
-// A synthetic record: 2 h at 1 Hz, a temperature sine, a linear sensitivity
-// and deterministic white noise.
-struct Row {
-  double t, temp_c, gyro_dph;
-};
-std::vector<Row> synthetic() {
-  std::vector<Row> rows;
-  std::uint64_t state = 12345;
-  for (int k = 0; k < 7200; ++k) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double u = static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5;
-    const double temp = 25.0 + 15.0 * std::sin(2.0 * M_PI * k / 3600.0);
-    rows.push_back({static_cast<double>(k), temp, 5.0 + 0.2 * temp + 3.0 * u});
-  }
-  return rows;
-}
-
-nlohmann::json fit_json(const ScratchDir& dir, const std::string& args) {
-  const auto r = run_cli(dir, "fit " + args + " --model T --json");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json();
-}
-
 TEST(HeaderUnits, ARecordWrittenInOtherUnitsGivesThePlainFit) {
   ScratchDir dir;
   std::string plain = "time_s,temp_c,gyro_dph\n", other = "time (ms),temp (K),gyro [rad/s]\n";
   constexpr double kDphPerRadS = 3600.0 * 180.0 / M_PI;
-  for (const Row& r : synthetic()) {
+  for (const LogRow& r : synthetic_log()) {
     plain += fmt::format("{:.17g},{:.17g},{:.17g}\n", r.t, r.temp_c, r.gyro_dph);
     other += fmt::format("{:.17g},{:.17g},{:.17g}\n", 1000.0 * r.t, r.temp_c + 273.15, r.gyro_dph / kDphPerRadS);
   }
@@ -162,7 +143,7 @@ TEST(HeaderUnits, NumbersThatLookLikeAnotherUnitAreCautioned) {
   ScratchDir dir;
   // The same record with silent headers, each column in another unit than it is read in.
   std::string rad = "time,temp,gyro\n", ms = "time,temp,gyro\n";
-  for (const Row& r : synthetic()) {
+  for (const LogRow& r : synthetic_log()) {
     rad += fmt::format("{},{:.6f},{:.9g}\n", r.t, r.temp_c, r.gyro_dph / 206264.806);
     ms += fmt::format("{},{:.6f},{:.6f}\n", 1000.0 * r.t, r.temp_c, r.gyro_dph);
   }

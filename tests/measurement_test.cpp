@@ -295,11 +295,16 @@ TEST_F(MeasurementTest, OneColumnCannotPlayTwoRoles) {
   expect_error(path, {":1:", "--temp-col and --gyro-col both name column 'gyro_dph'"}, map);
 }
 
-TEST_F(MeasurementTest, TheDelimiterMustBeAComma) {
-  const fs::path semicolon = write("time_s;temp_c;gyro_dph\n0;1;2\n1;1;2\n");
-  expect_error(semicolon, {semicolon.string() + ":1:", "semicolon", "delimiter must be a comma"});
-  const fs::path tab = write("# c\ntime_s\ttemp_c\tgyro_dph\n0\t1\t2\n1\t1\t2\n", "tab.csv");
-  expect_error(tab, {tab.string() + ":2:", "tab", "delimiter must be a comma"});
+// Semicolons and tabs are read by the header's (the forms: tests/csv_dialect_test.cpp).
+TEST_F(MeasurementTest, SemicolonAndTabFilesAreReadByTheirHeader) {
+  const Measurement plain = read_measurement_csv(write("time_s,temp_c,gyro_dph\n0,1,2\n1,1,3\n", "p.csv"));
+  for (const char* text : {"time_s;temp_c;gyro_dph\n0;1;2\n1;1;3\n", "# c\ntime_s\ttemp_c\tgyro_dph\n0\t1\t2\n1\t1\t3\n"}) {
+    const Measurement m = read_measurement_csv(write(text, "d.csv"));
+    EXPECT_EQ(m.columns, plain.columns);
+    EXPECT_EQ(m.gyro_dph, plain.gyro_dph);
+  }
+  // A row that keeps the comma where the header has semicolons is one field short.
+  expect_error(write("time_s;temp_c;gyro_dph\n0,1,2\n", "m.csv"), {"m.csv:2:", "the row has 1 field, the header (line 1) has 3"});
 }
 
 TEST_F(MeasurementTest, FilesWithoutEnoughDataAreRejected) {

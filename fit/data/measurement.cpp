@@ -1,5 +1,6 @@
 #include "fit/data/measurement.h"
 
+#include "fit/data/csv_dialect.h"
 #include "fit/data/header_units.h"
 
 #include <fmt/format.h>
@@ -50,7 +51,7 @@ std::string_view trim(std::string_view s) {
 ColumnMap ColumnMap::unset() {
   ColumnMap c;
   c.time = c.temp = c.gyro = c.temp2 = "";
-  c.units.gyro_scale = c.units.temp_scale = c.units.temp_offset = std::nan("");
+  c.units.gyro_scale = c.units.temp_scale = c.units.temp_offset = c.csv.rate_hz = std::nan("");
   return c;
 }
 
@@ -66,8 +67,10 @@ ColumnMap ColumnMap::with(const ColumnMap& given) const {
   if (!given.units.temp.empty()) c.units.temp_from.clear();
   for (auto [mine, theirs] : {std::pair{&c.units.gyro_scale, given.units.gyro_scale},
                               {&c.units.temp_scale, given.units.temp_scale},
-                              {&c.units.temp_offset, given.units.temp_offset}})
+                              {&c.units.temp_offset, given.units.temp_offset}, {&c.csv.rate_hz, given.csv.rate_hz}})
     if (!std::isnan(theirs)) *mine = theirs;
+  if (!given.csv.delimiter.empty()) c.csv.delimiter = given.csv.delimiter;
+  c.csv.decimal_comma = c.csv.decimal_comma || given.csv.decimal_comma;
   return c;
 }
 
@@ -76,7 +79,7 @@ std::string Units::used() const {
     return fmt::format("{} {}{}", what, u.name, from.empty() ? std::string() : " (" + from + ")");
   };
   return one("time", time_unit(), time_from) + ", " + one("gyro", gyro_unit(), gyro_from) + ", " +
-         one("temperature", temp_unit(), temp_from);
+         one("temperature", temp_unit(), temp_from) + (layout.empty() ? "" : "; " + layout);
 }
 
 void Units::validate() const {
@@ -186,22 +189,7 @@ struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
 
-// A field as RFC 4180 writes it when quoted ("time_s", "a ""b"""): the text inside.
-std::string unquoted(std::string_view s) {
-  if (s.size() < 2 || s.front() != '"' || s.back() != '"') return std::string(s);
-  std::string out;
-  for (std::size_t k = 1; k + 1 < s.size(); ++k) out += s[k] == '"' && s[k + 1] == '"' && k + 2 < s.size() ? s[k++] : s[k];
-  return out;
-}
-
 bool is_blank(std::string_view line) { return trim(line).empty(); }
-
-// A field as it appears in a message: quoted, and cut if very long.
-std::string shown(std::string_view text) {
-  constexpr std::size_t kMaxChars = 40;
-  if (text.size() <= kMaxChars) return fmt::format("'{}'", text);
-  return fmt::format("'{}…'", text.substr(0, kMaxChars));
-}
 
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
@@ -219,58 +207,6 @@ constexpr std::array<const char*, kRoles> kOptionOf = {"--time-col", "--temp-col
                                                        "--temp2-col"};
 constexpr std::array<const char*, kRoles> kWhatOf = {"time", "temperature", "gyro",
                                                      "second temperature"};
-
-// Clinger's fast path: a plain decimal [-]digits[.digits] with a mantissa m
-// below 2⁵³ and f ≤ 22 fraction digits is m / 10^f, both exact doubles, so the
-// one IEEE division is correctly rounded: the value std::from_chars gives.
-// False for anything else (left to from_chars). Reference: W. D. Clinger, "How
-// to read floating point numbers accurately", PLDI 1990.
-bool parse_plain_decimal(std::string_view text, double& value) {
-  static constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                                    1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                                    1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  const char* p = text.data();
-  const char* const end = p + text.size();
-  const bool negative = p != end && *p == '-';
-  if (negative) ++p;
-  std::uint64_t mantissa = 0;
-  const char* const digits = p;
-  for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
-  const auto whole = p - digits;
-  std::ptrdiff_t fraction = 0;
-  if (p != end && *p == '.') {
-    const char* const first = ++p;
-    for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
-    fraction = p - first;
-    if (fraction == 0) return false;
-  }
-  if (p != end || whole == 0 || whole + fraction > 19 || fraction > 22 || mantissa > (std::uint64_t{1} << 53))
-    return false;
-  const double v = static_cast<double>(mantissa) / kPow10[static_cast<std::size_t>(fraction)];
-  value = negative ? -v : v;
-  return true;
-}
-
-// Parses one needed field; returns an empty string on success, else what is wrong.
-std::string parse_number(std::string_view field, double& value) {
-  std::string_view text = trim(field);
-  if (parse_plain_decimal(text, value)) return {};
-  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {  // RFC 4180 quotes
-    text = trim(text.substr(1, text.size() - 2));
-    if (parse_plain_decimal(text, value)) return {};
-  }
-  if (text.empty()) return "empty field, expected a number";
-  std::string_view digits = text;
-  if (digits.size() > 1 && digits.front() == '+' && digits[1] != '-' && digits[1] != '+')
-    digits.remove_prefix(1);  // from_chars does not take a '+'
-  const char* last = digits.data() + digits.size();
-  const auto [ptr, ec] = std::from_chars(digits.data(), last, value, std::chars_format::general);
-  if (ec == std::errc::result_out_of_range)
-    return fmt::format("{} is out of the range of a double", shown(text));
-  if (ec != std::errc() || ptr != last) return fmt::format("{} is not a number", shown(text));
-  if (!std::isfinite(value)) return fmt::format("{} is not a finite number", shown(text));
-  return {};
-}
 
 // Values no instrument produces: a guard against a wrong column or unit, and
 // against numbers whose squares overflow in the fit.
@@ -300,6 +236,7 @@ class CsvParser {
  public:
   CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {
     map_.units.validate();
+    map_.csv.validate();
     use_units(map_.units);
   }
 
@@ -333,6 +270,9 @@ class CsvParser {
   }
   void parse_header(std::string_view line, std::size_t line_number, Measurement& m);
   void parse_row(std::string_view line, std::size_t line_number, Measurement& m);
+  // The time field of a row, in the file's unit or as an ISO 8601 timestamp
+  // (seconds since the first row's): "" on success, else what is wrong.
+  std::string read_time(std::string_view field, Measurement& m, double& value);
   void reserve(Measurement& m, std::size_t line_bytes) const;
 
   std::string name_;
@@ -341,6 +281,10 @@ class CsvParser {
   double time_factor_ = 1.0, gyro_factor_ = 1.0;
   bool temp_in_c_ = true;
   std::vector<int> role_of_column_;              // Role of each header column
+  char delimiter_ = ',';
+  std::vector<std::string_view> fields_;         // of the row being read
+  bool iso_time_ = false;                        // the time column holds ISO 8601 timestamps
+  Timestamp time_origin_;                        // the first row's, when it does
   // Extra columns: header column → its vector in the measurement, and
   // whether a non-number there is an error (asked for by name) or drops it.
   struct Extra {
@@ -361,20 +305,14 @@ class CsvParser {
 };
 
 void CsvParser::parse_header(std::string_view line, std::size_t line_number, Measurement& m) {
-  if (line.find(',') == std::string_view::npos) {
-    const std::size_t other = line.find_first_of(";\t");
-    if (other != std::string_view::npos)
-      fail(line_number,
-           fmt::format("the header {} has no comma but a {}: the delimiter must be a comma",
-                       shown(line), line[other] == ';' ? "semicolon" : "tab"));
+  try {
+    delimiter_ = map_.csv.delimiter_for(line);
+  } catch (const InputError& e) {
+    fail(line_number, e.what());
   }
-  for (std::size_t from = 0;;) {
-    const std::size_t comma = line.find(',', from);
-    m.columns.emplace_back(unquoted(trim(line.substr(
-        from, comma == std::string_view::npos ? std::string_view::npos : comma - from))));
-    if (comma == std::string_view::npos) break;
-    from = comma + 1;
-  }
+  if (const std::string bad = split_fields(line, delimiter_, fields_); !bad.empty())
+    fail(line_number, "the header: " + bad);
+  for (const std::string_view field : fields_) m.columns.push_back(unquote_field(field));
   const std::vector<std::string>& names = m.columns;
   for (std::size_t i = 0; i < names.size(); ++i)
     for (std::size_t j = i + 1; j < names.size(); ++j)
@@ -392,6 +330,13 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
     const bool explicit_temp2 = optional && name != default_temp2;
     if (optional && name.empty()) continue;  // temp2 switched off
     const auto it = std::find(names.begin(), names.end(), name);
+    if (role == kTime && map_.csv.rate_hz > 0.0) {  // no time column: rows at 1 / rate
+      if (it != names.end())
+        fail(line_number, fmt::format("--rate {:g} Hz is for a log without a time column, but column '{}' "
+                                      "holds the time (drop --rate, or name another column with --time-col)",
+                                      map_.csv.rate_hz, name));
+      continue;
+    }
     if (it == names.end()) {
       if (optional && !explicit_temp2) continue;
       fail(line_number,
@@ -410,9 +355,18 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
   }
   try {
     const auto name_of = [&](int role) {
-      return role != kTemp2 || has_temp2_ ? names[column_of_[role]] : std::string();
+      const bool absent = (role == kTemp2 && !has_temp2_) || (role == kTime && map_.csv.rate_hz > 0.0);
+      return absent ? std::string() : names[column_of_[role]];
     };
-    use_units(resolve_units(map_.units, name_of(kTime), name_of(kTemp), name_of(kGyro), name_of(kTemp2)));
+    Units units = resolve_units(map_.units, name_of(kTime), name_of(kTemp), name_of(kGyro), name_of(kTemp2));
+    if (map_.csv.rate_hz > 0.0) {
+      if (!units.time_unit().is_base())
+        throw InputError(fmt::format("{} gives the time unit {}, but with --rate there is no time column",
+                                     units.time_from, units.time));
+      units.time_from = fmt::format("--rate {:g} Hz, no time column", map_.csv.rate_hz);
+    }
+    units.layout = map_.csv.describe(delimiter_);
+    use_units(units);
   } catch (const InputError& e) {
     fail(line_number, e.what());
   }
@@ -455,26 +409,43 @@ void CsvParser::reserve(Measurement& m, std::size_t line_bytes) const {
   if (has_temp2_) m.temp2_c.reserve(rows);
 }
 
+std::string CsvParser::read_time(std::string_view field, Measurement& m, double& value) {
+  Timestamp t;
+  if (iso_time_) {
+    if (!parse_iso8601(unquote_field(field), t))
+      return fmt::format("{} is not an ISO 8601 timestamp like the first row's (2026-11-26T05:38:35Z)",
+                         shown_field(trim(field)));
+    value = static_cast<double>(t.seconds - time_origin_.seconds) + (t.fraction - time_origin_.fraction);
+    return {};
+  }
+  std::string problem = parse_csv_number(field, map_.csv.decimal_comma, value);
+  if (problem.empty() || rows_ > 0 || !parse_iso8601(unquote_field(field), t)) return problem;
+  if (!units_.time_unit().is_base())
+    return fmt::format("{} is an ISO 8601 timestamp, but {} gives the time unit {}", shown_field(trim(field)),
+                       units_.time_from, units_.time);
+  iso_time_ = true;
+  time_origin_ = t;
+  units_.time_from = fmt::format("ISO 8601 timestamps, s since {}", unquote_field(field));
+  m.units = units_;
+  value = 0.0;
+  return {};
+}
+
 void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measurement& m) {
-  const std::size_t fields =
-      static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+  if (const std::string bad = split_fields(line, delimiter_, fields_); !bad.empty()) fail(line_number, bad);
+  const std::size_t fields = fields_.size();
   if (fields != role_of_column_.size())
     fail(line_number, fmt::format("the row has {} field{}, the header (line {}) has {}", fields,
                                   fields == 1 ? "" : "s", header_line_, role_of_column_.size()));
   std::array<double, kRoles> value{};
-  const char* p = line.data();
-  const char* const end = p + line.size();
   std::size_t next_extra = 0;  // extras_ in header order (see read())
-  for (std::size_t column = 0;; ++column) {
-    const char* comma =
-        static_cast<const char*>(std::memchr(p, ',', static_cast<std::size_t>(end - p)));
-    const char* field_end = comma != nullptr ? comma : end;
+  for (std::size_t column = 0; column < fields; ++column) {
+    const std::string_view field = fields_[column];
     for (; next_extra < extras_.size() && extras_[next_extra].column == column; ++next_extra) {
       Extra& e = extras_[next_extra];
       if (!e.numeric) continue;
       double v = 0.0;
-      const std::string problem =
-          parse_number(std::string_view(p, static_cast<std::size_t>(field_end - p)), v);
+      const std::string problem = parse_csv_number(field, map_.csv.decimal_comma, v);
       if (!problem.empty()) {
         if (e.strict) fail(line_number, fmt::format("column {}: {}", e.name, problem));
         e.numeric = false;  // a column of text, say: not a candidate
@@ -484,8 +455,8 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
       if (!sink_) m.extra[e.name].push_back(v);
     }
     if (const int role = role_of_column_[column]; role != kNoRole) {
-      const std::string problem =
-          parse_number(std::string_view(p, static_cast<std::size_t>(field_end - p)), value[role]);
+      const std::string problem = role == kTime ? read_time(field, m, value[role])
+                                                : parse_csv_number(field, map_.csv.decimal_comma, value[role]);
       if (!problem.empty())
         fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
       const double read = value[role];
@@ -498,14 +469,15 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
                                              : fmt::format(" (read {:g}, converted by {})", read,
                                                            units_.description())));
     }
-    if (comma == nullptr) break;
-    p = comma + 1;
   }
+  if (map_.csv.rate_hz > 0.0) value[kTime] = static_cast<double>(rows_) / map_.csv.rate_hz;
+  if (rows_ == 0 && header_sink_) header_sink_(CsvHeader{m.file, m.units, m.columns, has_temp2_, 0});
   if (rows_ > 0 && !(value[kTime] > last_time_))
     fail(line_number,
          fmt::format("column {}: time {} is not after {} on line {} (time must be strictly "
-                     "increasing)",
-                     m.columns[column_of_[kTime]], value[kTime], last_time_, previous_line_));
+                     "increasing{})",
+                     m.columns[column_of_[kTime]], value[kTime], last_time_, previous_line_,
+                     iso_time_ ? "; read as seconds since the first row's timestamp" : ""));
   last_time_ = value[kTime];
   if (sink_) {
     sink_(value[kTime], value[kTemp], value[kGyro], has_temp2_ ? value[kTemp2] : 0.0);
@@ -552,7 +524,6 @@ Measurement CsvParser::read(const fs::path& file) {
       parse_header(line, line_number, m);
       std::sort(extras_.begin(), extras_.end(), by_column);
       header_end_bytes_ = reader.consumed_bytes();
-      if (header_sink_) header_sink_(CsvHeader{m.file, m.units, m.columns, has_temp2_, 0});
       continue;
     }
     if (rows_ == 0 && !sink_) reserve(m, line.size());

@@ -7,8 +7,12 @@
 //   file    = { comment | blank } header { row | blank }
 //   comment = "#" anything          (only before the header)
 //   blank   = only spaces, tabs      (anywhere)
-//   header  = name { "," name }      (names trimmed of spaces and tabs)
-//   row     = field { "," field }    (exactly as many fields as the header)
+//   header  = name { d name }        (names trimmed of spaces and tabs)
+//   row     = field { d field }      (exactly as many fields as the header)
+//
+// d is the delimiter: a comma unless the header uses semicolons or tabs more,
+// or --delimiter says (fit/data/csv_dialect.h, with the decimal comma, RFC
+// 4180 quotes, ISO 8601 timestamps and --rate for a log without time).
 //
 // The columns the pipeline needs — time (s), temperature (°C), gyro output (°/h)
 // and, if present, the second temperature (°C) — are found by name (ColumnMap,
@@ -22,12 +26,7 @@
 // what was expected, e.g. "data.csv:57: column gyro_dph: 'abc' is not a number".
 //
 // The file is read in blocks of a fixed size and parsed line by line, so the
-// memory is that of the result, not of the text. RFC 4180 quotes around a
-// header name or a number are read as spreadsheets and pandas write them
-// ("time_s","temp_c" or "20.5"; "" inside a name is a quote); a quoted field
-// that holds a comma is not supported (the row's fields are counted by commas).
-// Reference: Y. Shafranovich, "Common Format and MIME Type for CSV Files",
-// RFC 4180 (2005), for the comma-separated layout.
+// memory is that of the result, not of the text.
 
 #include <cstddef>
 #include <filesystem>
@@ -36,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/data/csv_dialect.h"
 #include "fit/data/units.h"
 
 namespace gyrotherm::fit {
@@ -56,6 +56,9 @@ namespace gyrotherm::fit {
 struct Units {
   std::string time, gyro, temp;
   std::string time_from, gyro_from, temp_from;
+  // How the file's text was read, when not plain comma-separated with decimal
+  // points ("semicolon-separated, decimal comma"; CsvDialect::describe).
+  std::string layout;
   // The table's entries, the base unit for an empty name (throw InputError
   // naming the option for an unknown name).
   const Unit& time_unit() const;
@@ -87,6 +90,7 @@ struct ColumnMap {
                                   // name may be absent, another name must exist, and an
                                   // empty name ignores the column
   Units units;                    // applied as each value is read
+  CsvDialect csv;                 // delimiter, decimal comma, --rate
   // Other columns to read as numbers, for model terms named after them
   // (fit/model/terms.h): each must exist and hold numbers. With
   // other_numeric, every further column that holds only numbers is read too
@@ -94,7 +98,7 @@ struct ColumnMap {
   std::vector<std::string> extra;
   bool other_numeric = false;
 
-  // A map that sets nothing (empty names and units, NaN scales): what an
+  // A map that sets nothing (empty names and units, NaN scales and rate): what an
   // option set holds when every option keeps another map's value.
   static ColumnMap unset();
   // This map with each name, unit and scale `given` sets in place of its own.

@@ -1,0 +1,251 @@
+#include "fit/data/csv_dialect.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <system_error>
+
+#include "fit/data/measurement.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+
+namespace {
+
+struct Delimiter {
+  const char* name;
+  char character;
+};
+constexpr std::array<Delimiter, 3> kDelimiters = {{{"comma", ','}, {"semicolon", ';'}, {"tab", '\t'}}};
+
+// Clinger's fast path: a plain decimal [-]digits[.digits] with a mantissa m
+// below 2⁵³ and f ≤ 22 fraction digits is m / 10^f, both exact doubles, so the
+// one IEEE division is correctly rounded: the value std::from_chars gives.
+// False for anything else (left to from_chars). Reference: W. D. Clinger, "How
+// to read floating point numbers accurately", PLDI 1990.
+bool parse_plain_decimal(std::string_view text, double& value) {
+  static constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                                    1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                                    1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  const bool negative = p != end && *p == '-';
+  if (negative) ++p;
+  std::uint64_t mantissa = 0;
+  const char* const digits = p;
+  for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
+  const auto whole = p - digits;
+  std::ptrdiff_t fraction = 0;
+  if (p != end && *p == '.') {
+    const char* const first = ++p;
+    for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
+    fraction = p - first;
+    if (fraction == 0) return false;
+  }
+  if (p != end || whole == 0 || whole + fraction > 19 || fraction > 22 || mantissa > (std::uint64_t{1} << 53))
+    return false;
+  const double v = static_cast<double>(mantissa) / kPow10[static_cast<std::size_t>(fraction)];
+  value = negative ? -v : v;
+  return true;
+}
+
+// The general case: from_chars, after a leading '+' (which it does not take).
+std::string parse_general(std::string_view text, std::string_view as_written, double& value) {
+  if (text.empty()) return "empty field, expected a number";
+  std::string_view digits = text;
+  if (digits.size() > 1 && digits.front() == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
+  const char* last = digits.data() + digits.size();
+  const auto [ptr, ec] = std::from_chars(digits.data(), last, value, std::chars_format::general);
+  if (ec == std::errc::result_out_of_range)
+    return fmt::format("{} is out of the range of a double", shown_field(as_written));
+  if (ec != std::errc() || ptr != last) return fmt::format("{} is not a number", shown_field(as_written));
+  if (!std::isfinite(value)) return fmt::format("{} is not a finite number", shown_field(as_written));
+  return {};
+}
+
+// Reads `count` digits at text[at] into value; false if any is not a digit.
+bool digits_at(std::string_view text, std::size_t at, std::size_t count, int& value) {
+  if (at + count > text.size()) return false;
+  value = 0;
+  for (std::size_t k = at; k < at + count; ++k) {
+    if (static_cast<unsigned>(text[k] - '0') >= 10u) return false;
+    value = 10 * value + (text[k] - '0');
+  }
+  return true;
+}
+
+}  // namespace
+
+void CsvDialect::validate() const {
+  if (!delimiter.empty() && delimiter != "auto") {
+    bool known = false;
+    for (const Delimiter& d : kDelimiters)
+      known = known || delimiter == d.name || delimiter == std::string(1, d.character) ||
+              (d.character == '\t' && delimiter == "\\t");
+    if (!known)
+      throw InputError(fmt::format("--delimiter '{}': expected comma, semicolon, tab or auto", delimiter));
+  }
+  if (!std::isfinite(rate_hz) || rate_hz < 0.0)
+    throw InputError(fmt::format("--rate {}: expected the sample rate in Hz, a number > 0", rate_hz));
+}
+
+char CsvDialect::delimiter_for(std::string_view header) const {
+  char chosen = ',';
+  if (delimiter.empty() || delimiter == "auto") {
+    std::array<std::size_t, kDelimiters.size()> count{};
+    bool quoted = false;
+    for (const char c : header) {
+      if (c == '"') quoted = !quoted;
+      for (std::size_t k = 0; k < kDelimiters.size(); ++k)
+        if (!quoted && c == kDelimiters[k].character) ++count[k];
+    }
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < kDelimiters.size(); ++k)
+      if (count[k] > count[best]) best = k;
+    chosen = kDelimiters[best].character;
+  } else {
+    for (const Delimiter& d : kDelimiters)
+      if (delimiter == d.name || delimiter == std::string(1, d.character) ||
+          (d.character == '\t' && delimiter == "\\t"))
+        chosen = d.character;
+  }
+  if (decimal_comma && chosen == ',')
+    throw InputError("--decimal-comma: the columns are separated by commas too; a file with decimal commas "
+                     "separates them by semicolons or tabs (give --delimiter semicolon or tab)");
+  return chosen;
+}
+
+std::string CsvDialect::describe(char d) const {
+  std::string out = d == ',' ? "" : fmt::format("{}-separated", delimiter_name(d));
+  if (decimal_comma) out += out.empty() ? "decimal comma" : ", decimal comma";
+  return out;
+}
+
+std::string_view delimiter_name(char delimiter) {
+  for (const Delimiter& d : kDelimiters)
+    if (d.character == delimiter) return d.name;
+  return "delimiter";
+}
+
+std::string split_fields(std::string_view line, char delimiter, std::vector<std::string_view>& fields) {
+  fields.clear();
+  const char* p = line.data();
+  const char* const end = p + line.size();
+  if (std::memchr(p, '"', line.size()) == nullptr) {  // the common case: no quotes
+    for (;;) {
+      const auto* d = static_cast<const char*>(std::memchr(p, delimiter, static_cast<std::size_t>(end - p)));
+      fields.emplace_back(p, static_cast<std::size_t>((d != nullptr ? d : end) - p));
+      if (d == nullptr) return {};
+      p = d + 1;
+    }
+  }
+  const char* start = p;
+  bool quoted = false;
+  for (; p != end; ++p) {
+    if (*p == '"') quoted = !quoted;  // "" inside quotes toggles twice: stays quoted
+    else if (*p == delimiter && !quoted) {
+      fields.emplace_back(start, static_cast<std::size_t>(p - start));
+      start = p + 1;
+    }
+  }
+  if (quoted)
+    return fmt::format("field {} opens a quote that the line does not close (a field spanning lines is "
+                       "not read)",
+                       fields.size() + 1);
+  fields.emplace_back(start, static_cast<std::size_t>(end - start));
+  return {};
+}
+
+std::string shown_field(std::string_view text) {
+  constexpr std::size_t kMaxChars = 40;
+  if (text.size() <= kMaxChars) return fmt::format("'{}'", text);
+  return fmt::format("'{}…'", text.substr(0, kMaxChars));
+}
+
+std::string unquote_field(std::string_view field) {
+  const std::string_view s = trim(field);
+  if (s.size() < 2 || s.front() != '"' || s.back() != '"') return std::string(s);
+  std::string out;
+  for (std::size_t k = 1; k + 1 < s.size(); ++k) out += s[k] == '"' && s[k + 1] == '"' && k + 2 < s.size() ? s[k++] : s[k];
+  return out;
+}
+
+std::string parse_csv_number(std::string_view field, bool decimal_comma, double& value) {
+  std::string_view text = trim(field);
+  if (parse_plain_decimal(text, value)) return {};
+  const std::string_view as_written = text;
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {  // RFC 4180 quotes
+    text = trim(text.substr(1, text.size() - 2));
+    if (parse_plain_decimal(text, value)) return {};
+  }
+  const bool has_comma = text.find(',') != std::string_view::npos;
+  if (decimal_comma && has_comma) {
+    if (text.find('.') != std::string_view::npos || text.size() > 64)
+      return fmt::format("{} is not a number with a decimal comma (thousands separators are not read)",
+                         shown_field(as_written));
+    std::array<char, 64> buffer{};
+    std::memcpy(buffer.data(), text.data(), text.size());
+    for (std::size_t k = 0; k < text.size(); ++k)
+      if (buffer[k] == ',') buffer[k] = '.';
+    const std::string_view pointed(buffer.data(), text.size());
+    if (parse_plain_decimal(pointed, value)) return {};
+    return parse_general(pointed, as_written, value);
+  }
+  std::string problem = parse_general(text, as_written, value);
+  if (!problem.empty() && has_comma && !decimal_comma)
+    problem += " (a decimal comma? give --decimal-comma)";
+  return problem;
+}
+
+bool parse_iso8601(std::string_view text, Timestamp& out) {
+  // YYYY-MM-DD[T ]hh:mm[:ss[.fff]][Z|±hh[:mm]]
+  int year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
+  if (!digits_at(text, 0, 4, year) || text.size() < 16 || text[4] != '-' || !digits_at(text, 5, 2, month) ||
+      text[7] != '-' || !digits_at(text, 8, 2, day) || (text[10] != 'T' && text[10] != 't' && text[10] != ' ') ||
+      !digits_at(text, 11, 2, hour) || text[13] != ':' || !digits_at(text, 14, 2, minute))
+    return false;
+  std::size_t at = 16;
+  double fraction = 0.0;
+  if (at < text.size() && text[at] == ':') {
+    if (!digits_at(text, at + 1, 2, second)) return false;
+    at += 3;
+    if (at < text.size() && (text[at] == '.' || text[at] == ',')) {
+      double scale = 0.1;
+      const std::size_t first = ++at;
+      for (; at < text.size() && static_cast<unsigned>(text[at] - '0') < 10u; ++at, scale /= 10)
+        fraction += (text[at] - '0') * scale;
+      if (at == first) return false;
+    }
+  }
+  int offset_minutes = 0;
+  if (at < text.size() && (text[at] == 'Z' || text[at] == 'z')) {
+    ++at;
+  } else if (at < text.size() && (text[at] == '+' || text[at] == '-')) {
+    const int sign = text[at] == '-' ? -1 : 1;
+    int oh = 0, om = 0;
+    if (!digits_at(text, at + 1, 2, oh)) return false;
+    at += 3;
+    if (at < text.size() && text[at] == ':') ++at;
+    if (at < text.size()) {
+      if (!digits_at(text, at, 2, om)) return false;
+      at += 2;
+    }
+    if (oh > 23 || om > 59) return false;
+    offset_minutes = sign * (60 * oh + om);
+  }
+  if (at != text.size() || hour > 23 || minute > 59 || second > 60) return false;
+  using namespace std::chrono;
+  const year_month_day date{std::chrono::year{year}, std::chrono::month{static_cast<unsigned>(month)},
+                            std::chrono::day{static_cast<unsigned>(day)}};
+  if (!date.ok()) return false;
+  const std::int64_t days = sys_days(date).time_since_epoch().count();
+  out.seconds = days * 86400 + 3600 * hour + 60 * minute + second - 60 * offset_minutes;
+  out.fraction = fraction;
+  return true;
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,189 @@
+// CSV as spreadsheets and loggers write it (fit/data/csv_dialect.h): fields
+// split outside quotes, decimal commas, ISO 8601 timestamps, the delimiter
+// from the header; a record written in each form gives the plain CSV's fit
+// bit for bit, and each form's mistakes stop with the line and the option.
+
+#include "fit/data/csv_dialect.h"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "expect_input_error.h"
+#include "synthetic_log.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+using testing::expect_input_error;
+using testing::expect_refused;
+using testing::fit_json;
+using testing::run_cli;
+using testing::ScratchDir;
+using testing::write_text;
+
+std::vector<std::string> split(std::string_view line, char d) {
+  std::vector<std::string_view> fields;
+  EXPECT_EQ(split_fields(line, d, fields), "") << line;
+  return {fields.begin(), fields.end()};
+}
+
+TEST(CsvDialect, FieldsAreSplitOutsideQuotes) {
+  using V = std::vector<std::string>;
+  EXPECT_EQ(split("0,20.5,1", ','), (V{"0", "20.5", "1"}));
+  EXPECT_EQ(split("0;20,5;1", ';'), (V{"0", "20,5", "1"}));
+  EXPECT_EQ(split("0\t\t1", '\t'), (V{"0", "", "1"}));
+  EXPECT_EQ(split("0,\"a, b\",\"say \"\"hi, there\"\"\",2", ','),
+            (V{"0", "\"a, b\"", "\"say \"\"hi, there\"\"\"", "2"}));
+  std::vector<std::string_view> fields;
+  EXPECT_NE(split_fields("0,\"open,2", ',', fields).find("field 2 opens a quote"), std::string::npos);
+  EXPECT_EQ(unquote_field(" \"say \"\"hi\"\"\" "), "say \"hi\"");
+}
+
+TEST(CsvDialect, DecimalCommasReadAsTheirPointedTwins) {
+  double v = 0.0, w = 0.0;
+  for (const char* text : {"20,5", "-0,125", "1,5e-3", "\"3,25\"", " +7,0 "}) {
+    std::string pointed = text;
+    for (char& c : pointed)
+      if (c == ',') c = '.';
+    ASSERT_EQ(parse_csv_number(text, true, v), "") << text;
+    ASSERT_EQ(parse_csv_number(pointed, false, w), "") << pointed;
+    EXPECT_EQ(v, w) << text;
+  }
+  // A decimal point still reads with the option; thousands separators do not.
+  EXPECT_EQ(parse_csv_number("2.5", true, v), "");
+  EXPECT_EQ(v, 2.5);
+  EXPECT_NE(parse_csv_number("1.234,5", true, v).find("thousands separators"), std::string::npos);
+  // Without the option a decimal comma is no number, and the message says which option reads it.
+  EXPECT_NE(parse_csv_number("20,5", false, v).find("give --decimal-comma"), std::string::npos);
+}
+
+TEST(CsvDialect, Iso8601TimestampsAreUtcSeconds) {
+  Timestamp t;
+  ASSERT_TRUE(parse_iso8601("1970-01-01T00:00:00Z", t));
+  EXPECT_EQ(t.seconds, 0);
+  ASSERT_TRUE(parse_iso8601("2026-11-26T05:38:35.25Z", t));
+  EXPECT_EQ(t.seconds, 1795671515);  // date -d 2026-11-26T05:38:35Z +%s
+  EXPECT_EQ(t.fraction, 0.25);
+  Timestamp local;
+  ASSERT_TRUE(parse_iso8601("2026-11-26 06:38:35.25+01:00", local));
+  EXPECT_EQ(local.seconds, t.seconds);
+  ASSERT_TRUE(parse_iso8601("2026-11-26T00:08:35.25-0530", local));
+  EXPECT_EQ(local.seconds, t.seconds);
+  ASSERT_TRUE(parse_iso8601("2024-02-29T12:00", t));  // a leap day; no seconds: :00
+  EXPECT_EQ(t.seconds, 1709208000);
+  for (const char* bad : {"2023-02-29T12:00:00Z", "2026-13-01T00:00:00Z", "2026-11-26T24:00:00Z",
+                          "2026-11-26T05:38:35.Z", "2026-11-26", "2026-11-26T05:38:35Q", "20261126T053835Z",
+                          "12.5"})
+    EXPECT_FALSE(parse_iso8601(bad, t)) << bad;
+}
+
+TEST(CsvDialect, TheDelimiterComesFromTheHeaderUnlessGiven) {
+  CsvDialect d;
+  EXPECT_EQ(d.delimiter_for("time_s,temp_c,gyro_dph"), ',');
+  EXPECT_EQ(d.delimiter_for("time_s;temp_c;gyro_dph"), ';');
+  EXPECT_EQ(d.delimiter_for("time_s\ttemp_c\tgyro_dph"), '\t');
+  EXPECT_EQ(d.delimiter_for("time;temp;gyro (x,y)"), ';');        // the one used most
+  EXPECT_EQ(d.delimiter_for("\"a;b\",\"c;d\",e"), ',');           // not inside quotes
+  d.delimiter = "tab";
+  EXPECT_EQ(d.delimiter_for("time_s,temp_c"), '\t');
+  d.delimiter = ";";
+  EXPECT_EQ(d.describe(d.delimiter_for("a,b")), "semicolon-separated");
+  d.decimal_comma = true;
+  EXPECT_EQ(d.describe(';'), "semicolon-separated, decimal comma");
+  d.delimiter = "comma";
+  expect_input_error([&] { d.delimiter_for("a;b"); }, {"--decimal-comma", "--delimiter semicolon or tab"});
+  d.delimiter = "pipe";
+  expect_input_error([&] { d.validate(); }, {"--delimiter 'pipe'", "comma, semicolon, tab or auto"});
+  d.delimiter = "auto";
+  d.rate_hz = -1.0;
+  expect_input_error([&] { d.validate(); }, {"--rate -1", "> 0"});
+}
+
+// The synthetic log written as spreadsheets and loggers write it, each form's
+// fit equal to the plain CSV's to the last bit (the numbers read are the same).
+TEST(CsvDialect, ARecordWrittenInEachFormGivesThePlainFit) {
+  ScratchDir dir;
+  struct Form {
+    std::string file, header, options;
+    std::string (*row)(const testing::LogRow&);
+  };
+  const std::vector<Form> forms = {
+      {"plain.csv", "time_s,temp_c,gyro_dph", "",
+       [](const testing::LogRow& r) { return fmt::format("{:.17g},{:.17g},{:.17g}", r.t, r.temp_c, r.gyro_dph); }},
+      {"excel.csv", "time_s;temp_c;gyro_dph", "--decimal-comma",
+       [](const testing::LogRow& r) {
+         std::string s = fmt::format("{:.17g};{:.17g};{:.17g}", r.t, r.temp_c, r.gyro_dph);
+         for (char& c : s)
+           if (c == '.') c = ',';
+         return s;
+       }},
+      {"tabs.tsv", "\"time_s\"\t\"temp_c\"\t\"gyro_dph\"", "--delimiter tab",
+       [](const testing::LogRow& r) { return fmt::format("{:.17g}\t{:.17g}\t{:.17g}", r.t, r.temp_c, r.gyro_dph); }},
+      {"quoted.csv", "time_s,\"note, free\",temp_c,gyro_dph", "",
+       [](const testing::LogRow& r) {
+         return fmt::format("{:.17g},\"ok, \"\"fine\"\"\",\"{:.17g}\",{:.17g}", r.t, r.temp_c, r.gyro_dph);
+       }},
+      {"iso.csv", "timestamp,temp_c,gyro_dph", "--time-col timestamp",
+       [](const testing::LogRow& r) {
+         const auto s = static_cast<int>(r.t);  // from 2026-11-26T23:00:00+01:00, across midnight
+         return fmt::format("2026-11-{:02d}T{:02d}:{:02d}:{:02d}.000+01:00,{:.17g},{:.17g}", 26 + (23 + s / 3600) / 24,
+                            (23 + s / 3600) % 24, s / 60 % 60, s % 60, r.temp_c, r.gyro_dph);
+       }},
+      {"serial.csv", "temp_c,gyro_dph", "--rate 1",
+       [](const testing::LogRow& r) { return fmt::format("{:.17g},{:.17g}", r.temp_c, r.gyro_dph); }},
+  };
+  nlohmann::json plain;
+  for (const Form& form : forms) {
+    std::string text = form.header + "\r\n";
+    for (const testing::LogRow& r : testing::synthetic_log()) text += form.row(r) + "\r\n";
+    write_text(dir / form.file, text);
+    const nlohmann::json j = fit_json(dir, form.file + " " + form.options);
+    ASSERT_FALSE(j.is_null()) << form.file;
+    if (plain.is_null()) plain = j;
+    EXPECT_EQ(j["coefficients"], plain["coefficients"]) << form.file;
+    EXPECT_EQ(j["instability_after_dph"], plain["instability_after_dph"]) << form.file;
+    EXPECT_EQ(j["data"]["windows"], plain["data"]["windows"]) << form.file;
+  }
+  // Each report says how the file was read; the fit file keeps the options,
+  // so compensate reads the same file again without them.
+  const nlohmann::json excel = fit_json(dir, "excel.csv --decimal-comma -o excel.json");
+  EXPECT_NE(excel["data"]["units"].get<std::string>().find("semicolon-separated, decimal comma"), std::string::npos)
+      << excel["data"]["units"];
+  EXPECT_EQ(excel["pipeline"]["columns"]["csv"]["decimal_comma"], true);
+  EXPECT_EQ(run_cli(dir, "compensate --fit excel.json excel.csv -o out.csv").exit_code, 0);
+  const nlohmann::json iso = fit_json(dir, "iso.csv --time-col timestamp");
+  EXPECT_NE(iso["data"]["units"].get<std::string>().find("ISO 8601 timestamps, s since 2026-11-26T23:00:00.000+01:00"),
+            std::string::npos)
+      << iso["data"]["units"];
+  const nlohmann::json serial = fit_json(dir, "serial.csv --rate 1");
+  EXPECT_NE(serial["data"]["units"].get<std::string>().find("--rate 1 Hz, no time column"), std::string::npos);
+}
+
+TEST(CsvDialect, EachFormsMistakesNameTheLineAndTheOption) {
+  ScratchDir dir;
+  write_text(dir / "comma.csv", "time_s;temp_c;gyro_dph\n0;20,5;1\n1;20,6;2\n");
+  expect_refused(dir, "fit comma.csv", "comma.csv:2: column temp_c: '20,5' is not a number (a decimal comma? give --decimal-comma)");
+  expect_refused(dir, "fit comma.csv --decimal-comma --delimiter comma", "--delimiter semicolon or tab");
+  expect_refused(dir, "fit comma.csv --delimiter pipe", "--delimiter 'pipe'");
+  write_text(dir / "open.csv", "time_s,temp_c,gyro_dph\n0,\"20.5,1\n1,20.6,2\n");
+  expect_refused(dir, "fit open.csv", "open.csv:2: field 2 opens a quote that the line does not close");
+  write_text(dir / "mixed.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:00Z,20,1\n2026-11-26T00:00:01Z,20,1\n1.5,20,1\n");
+  expect_refused(dir, "fit mixed.csv --time-col t", "mixed.csv:4: column t: '1.5' is not an ISO 8601 timestamp");
+  expect_refused(dir, "fit mixed.csv --time-col t --time-unit ms", "is an ISO 8601 timestamp, but --time-unit gives the time unit ms");
+  write_text(dir / "back.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:01Z,20,1\n2026-11-26T01:00:00+01:00,20,1\n");
+  expect_refused(dir, "fit back.csv --time-col t", "time -1 is not after 0 on line 2 (time must be strictly increasing; read as seconds since the first row's timestamp)");
+  write_text(dir / "timed.csv", "time_s,temp_c,gyro_dph\n0,20,1\n1,20,1\n");
+  expect_refused(dir, "fit timed.csv --rate 10", "--rate 10 Hz is for a log without a time column, but column 'time_s' holds the time");
+  write_text(dir / "serial.csv", "temp_c,gyro_dph\n20,1\n20,1\n");
+  expect_refused(dir, "fit serial.csv --rate 10 --time-unit ms", "--time-unit gives the time unit ms, but with --rate there is no time column");
+  expect_refused(dir, "fit serial.csv --rate 0", "no column 'time_s'");
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
