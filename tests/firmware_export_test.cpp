@@ -210,6 +210,10 @@ TEST(CliExport, AModelTheFirmwareCannotExpressIsRefusedOrDroppedWithItsCost) {
   EXPECT_NE(dropped.err.find("gyrotherm: warning: gyro_dph: the exported model takes the instability"),
             std::string::npos) << dropped.err;
   ASSERT_EQ(run_cli(dir, "fit d.csv --model 'T + T^2 + T^3' -o poly.json").exit_code, 0);
+  // What dropping leaves is set beside the best the firmware can express: the cubic refitted on the same data.
+  const double cubic = nlohmann::json::parse(slurp(dir / "poly.json"))["instability_after_dph"];
+  EXPECT_NE(dropped.out.find(fmt::format("B = b0 + T + T^2 + T^3 refitted on the same data, leaves {:.6g} °/h", cubic)),
+            std::string::npos) << dropped.out;
   const auto poly = run_cli(dir, "export poly.json --format ardupilot -o poly.param");
   ASSERT_EQ(poly.exit_code, 0) << poly.err;
   EXPECT_NE(poly.err.find("it compensates little"), std::string::npos) << poly.err;

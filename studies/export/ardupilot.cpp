@@ -3,13 +3,15 @@
 // (studies/export/firmware.h).
 #include <fmt/format.h>
 
+#include "sim/util/input_error.h"
 #include "studies/export/firmware.h"
+#include "studies/export/firmware_outcome.h"
 
 namespace gyrotherm::studies {
 
-std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, int instance, const ExportHeader& header) {
+std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, const std::string& prefix,
+                                 const ExportHeader& header) {
   const ExportRange r = export_range(axes);
-  constexpr double kReference = 35.0;  // TEMP_REFERENCE in AP_InertialSensor_tempcal.cpp
   std::string out = provenance(header, "#");
   out += fmt::format(
       "#   ArduPilot IMU temperature calibration (AP_InertialSensor::TCal::correct_sensor):\n"
@@ -18,25 +20,25 @@ std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, int insta
       "#   taken out by the gyro offsets (INS_GYROFFS_*), so the model's constant is not a parameter here.\n");
   for (std::size_t i = 0; i < 3; ++i)
     out += fmt::format("#   axis {}: {}\n", "XYZ"[i], axes[i].present ? axes[i].channel : "not compensated (zeros)");
-  out += fmt::format("INS_TCAL{}_ENABLE,1\n", instance);
-  out += fmt::format("INS_TCAL{}_TMIN,{}\n", instance, as_float(r.tmin_c));
-  out += fmt::format("INS_TCAL{}_TMAX,{}\n", instance, as_float(r.tmax_c));
-  for (int k = 1; k <= 3; ++k)
-    for (std::size_t i = 0; i < 3; ++i) {
-      const double v = axes[i].present
-                           ? reexpand(axes[i].model, kReference)[static_cast<std::size_t>(k)] * kRadPerSecPerDegPerHour * 1e6
-                           : 0.0;
-      out += fmt::format("INS_TCAL{}_GYR{}_{},{}\n", instance, k, "XYZ"[i], as_float(v));
-    }
+  out += fmt::format("{}ENABLE,1\n", prefix);
+  out += fmt::format("{}TMIN,{}\n", prefix, as_float(r.tmin_c));
+  out += fmt::format("{}TMAX,{}\n", prefix, as_float(r.tmax_c));
+  const std::array<std::array<float, 3>, 3> g = {ardupilot_coefficients(axes[0]), ardupilot_coefficients(axes[1]),
+                                                  ardupilot_coefficients(axes[2])};
+  for (std::size_t k = 0; k < 3; ++k)
+    for (std::size_t i = 0; i < 3; ++i) out += fmt::format("{}GYR{}_{},{}\n", prefix, k + 1, "XYZ"[i], as_float(g[i][k]));
   return out;
 }
 
 ExporterInfo ardupilot_exporter() {
   return {"ardupilot", "ArduPilot (.param): the INS_TCAL* IMU temperature calibration, a cubic in T",
           [](const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
+            const std::string prefix = ardupilot_prefix(r.instance.value_or(1));
+            if (r.device_id != 0) throw InputError("--device-id is PX4's (TC_G{n}_ID); ArduPilot has none");
             FirmwareFile f = firmware_file(r, fits, "ArduPilot");
-            f.out.text = ardupilot_parameters(f.axes, r.instance < 0 ? 1 : r.instance, f.header);
+            f.out.text = ardupilot_parameters(f.axes, prefix, f.header);
             f.out.lines.push_back(firmware_wrote(r, f, "ArduPilot"));
+            add_outcome(firmware_outcome(Firmware::ardupilot, f, r.data, r.boot_temp_c), &f.out);
             return f.out;
           }};
 }

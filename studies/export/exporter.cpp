@@ -79,6 +79,13 @@ void warn_if_little_compensation(const fit::SavedFit& f, double after_dph, Expor
       100.0 * (1.0 - after_dph / before)));
 }
 
+nlohmann::ordered_json export_json(const ExportRequest& request, const ExportOutput& out) {
+  nlohmann::ordered_json j{{"format", request.format}, {"output", request.output}, {"lines", out.lines},
+                           {"warnings", out.warnings}};
+  for (const auto& [key, value] : out.json.items()) j[key] = value;
+  return j;
+}
+
 ExportOutput run_export(const ExportRequest& request) {
   const ExporterInfo& exporter = find_exporter(request.format);
   ExportOutput out = exporter.write(request, fit::load_fits(request.fit_file));

@@ -17,6 +17,9 @@
 // is exported with a warning (for stderr, not in the file) giving the numbers.
 
 #include <functional>
+#include <optional>
+
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,8 +35,9 @@ struct ExportRequest {
   std::string axes;     // firmware: the fit's channels for X, Y, Z, '-' for none
   std::string channel;  // C: the channel to export
   std::string prefix = "gt_comp";
-  int instance = -1;    // the firmware's gyro instance; -1: its default
-  long device_id = 0;   // PX4's TC_G{n}_ID
+  std::optional<int> instance;  // the firmware's gyro instance (default: its first)
+  long long device_id = 0;      // PX4's TC_G{n}_ID
+  std::optional<double> boot_temp_c;  // ArduPilot: the gyro offsets' boot temperature (default: the record's first)
   bool drop_unsupported = false;
   std::string data;     // the fitted data, for the cost of dropping terms
   std::string output;
@@ -44,6 +48,7 @@ struct ExportOutput {
   std::string text;                   // the file
   std::vector<std::string> lines;     // for the terminal, in order
   std::vector<std::string> warnings;  // for stderr: the file does not hold them
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();  // the format's own fields for --json
 };
 
 // An exported model that leaves more than this share of the instability of
@@ -74,6 +79,8 @@ std::string exporter_names(std::string_view last = " or ");
 // Loads the fit, writes request.output with the chosen format, returns what
 // to print (lines, warnings). Throws InputError (no file written) on bad input.
 ExportOutput run_export(const ExportRequest& request);
+// export --json: format, output, lines, warnings and the format's own fields.
+nlohmann::ordered_json export_json(const ExportRequest& request, const ExportOutput& out);
 
 // Shared by the formats: a fit's channel name, the header of the file
 // exported from `fit` (its SHA-256 and the time now), and the fit a

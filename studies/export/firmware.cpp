@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include "fit/compensation.h"
+#include "fit/engines/engine.h"
+#include "fit/model/formula.h"
 #include "fit/pipeline.h"
 #include "sim/util/comma_list.h"
 #include "sim/util/input_error.h"
@@ -13,32 +15,105 @@
 namespace gyrotherm::studies {
 namespace {
 
+// The best polynomial the firmware can express, refitted by least squares
+// on the same windows: the cubic, else (collinear on this record) the
+// quadratic, else the line; its instability, or NaN when none can be fitted.
+std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data) {
+  for (const char* model : {"T + T^2 + T^3", "T + T^2", "T"}) {
+    try {
+      fit::EngineSettings settings;
+      settings.options["intervals"] = "model";  // only the σ is wanted
+      return {model, fit::fit_model(data, fit::parse_formula(model), fit::find_engine("ols"), settings)
+                         .instability_after_dph};
+    } catch (const InputError&) {
+      continue;
+    }
+  }
+  return {"", std::nan("")};
+}
+
 // With terms dropped: the instability of the fitted data with the whole
-// model and with the cubic alone (the same coefficients, not refitted).
+// model, with the cubic alone (the same coefficients, not refitted), and
+// with the best polynomial the firmware can express refitted on that data.
 std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, const std::string& data_option,
                            DroppedCost* cost_out) {
-  std::filesystem::path data = data_option;
-  if (data.empty()) {
-    const std::filesystem::path named = f.data_file;
-    if (!named.empty() && std::filesystem::exists(named)) data = named;
-    else if (!named.empty() && std::filesystem::exists(f.file.parent_path() / named)) data = f.file.parent_path() / named;
-    else
-      throw InputError(fmt::format("--drop-unsupported: the data {} was fitted on ('{}') is not here; give it with "
-                                   "--data so that export can say how much dropping {} costs",
-                                   f.file.string(), f.data_file, cubic.dropped.front()));
-  }
+  const std::filesystem::path data = fitted_data(f, data_option);
+  if (data.empty())
+    throw InputError(fmt::format("--drop-unsupported: the data {} was fitted on ('{}') is not here; give it with "
+                                 "--data so that export can say how much dropping {} costs",
+                                 f.file.string(), f.data_file, cubic.dropped.front()));
   const fit::PipelineOptions pipeline = fit::reading_columns_of(f.pipeline, f.terms);
-  const DroppedCost cost = dropped_cost(f, cubic, fit::read_measurement_csv(data, pipeline.columns));
+  const fit::Measurement m = fit::read_measurement_csv(data, pipeline.columns);
+  const DroppedCost cost = dropped_cost(f, cubic, m);
   *cost_out = cost;
   std::string names;
   for (const std::string& n : cubic.dropped) names += (names.empty() ? "" : ", ") + n;
-  return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); a polynomial "
-                     "refitted alone (fit --model 'T + T^2') can do no worse than these coefficients",
+  const auto [model, refitted] = refitted_polynomial(fit::prepare_data(m, pipeline));
+  const std::string refit =
+      model.empty() ? "no polynomial in T can be fitted on this record"
+                    : fmt::format("the best the firmware can express, B = b0 + {} refitted on the same data, leaves "
+                                  "{:.6g} °/h{} (gyrotherm fit {} --model '{}', then export that fit)",
+                                  model, refitted,
+                                  refitted < cost.without_dph ? "" : " (no better than these coefficients)",
+                                  data.string(), model);
+  return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); {}",
                      channel_name(f), names, data.string(), cost.with_dph, cost.without_dph,
-                     cost.without_dph / cost.with_dph);
+                     cost.without_dph / cost.with_dph, refit);
 }
 
 }  // namespace
+
+std::filesystem::path fitted_data(const fit::SavedFit& f, const std::string& option) {
+  if (!option.empty()) return option;
+  const std::filesystem::path named = f.data_file;
+  if (named.empty()) return {};
+  if (std::filesystem::exists(named)) return named;
+  if (std::filesystem::exists(f.file.parent_path() / named)) return f.file.parent_path() / named;
+  return {};
+}
+
+std::array<float, 4> px4_coefficients(const AxisModel& axis, float tref) {
+  std::array<float, 4> x{};
+  if (!axis.present) return x;
+  const std::array<double, 4> a = reexpand(axis.model, tref);  // about the float TREF the firmware uses
+  for (std::size_t k = 0; k < 4; ++k) x[k] = static_cast<float>(a[k] * kRadPerSecPerDegPerHour);
+  return x;
+}
+
+std::array<float, 3> ardupilot_coefficients(const AxisModel& axis) {
+  std::array<float, 3> g{};
+  if (!axis.present) return g;
+  constexpr double kReference = 35.0;  // TEMP_REFERENCE in AP_InertialSensor_tempcal.cpp
+  const std::array<double, 4> a = reexpand(axis.model, kReference);
+  for (std::size_t k = 1; k < 4; ++k) g[k - 1] = static_cast<float>(a[k] * kRadPerSecPerDegPerHour * 1e6);
+  return g;
+}
+
+std::string ardupilot_prefix(int instance) {
+  if (instance >= 1 && instance <= 3) return fmt::format("INS_TCAL{}_", instance);
+  if (instance == 4 || instance == 5) return fmt::format("INS{}_TCAL_", instance);
+  throw InputError(fmt::format("--instance {}: ArduPilot numbers its IMUs 1 to 5 (INS_TCAL1_ to INS_TCAL3_, "
+                               "INS4_TCAL_, INS5_TCAL_)",
+                               instance));
+}
+
+int px4_instance(const std::optional<int>& instance) {
+  const int n = instance.value_or(0);
+  if (n < 0 || n > 3)
+    throw InputError(fmt::format("--instance {}: PX4 has the gyro thermal compensation sets TC_G0 to TC_G3 "
+                                 "(instances 0 to 3)",
+                                 n));
+  return n;
+}
+
+long long px4_device_id(long long id) {
+  // TC_G{n}_ID is an int32 parameter compared as uint32 with the device id.
+  if (id < -2147483648LL || id > 4294967295LL)
+    throw InputError(fmt::format("--device-id {}: a PX4 device id is a 32-bit number (0 to 4294967295, as "
+                                 "CAL_GYRO{{n}}_ID shows it)",
+                                 id));
+  return id > 2147483647LL ? id - 4294967296LL : id;
+}
 
 std::string as_float(double v) { return fmt::format("{:.9g}", static_cast<float>(v)); }
 

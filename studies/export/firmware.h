@@ -40,6 +40,8 @@
 // fitted (not refitted).
 
 #include <array>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,11 +81,12 @@ struct AxisModel {
 
 // The QGroundControl parameter file (vehicle 1, component 1; tab-separated
 // "vehicle component name value type", type 9 a float, 6 an integer).
-std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, long device_id,
+std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, long long device_id,
                            const ExportHeader& header);
 
 // A Mission Planner / MAVProxy parameter file ("NAME,VALUE" lines).
-std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, int instance, const ExportHeader& header);
+std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, const std::string& prefix,
+                                 const ExportHeader& header);
 
 // What dropping terms costs on the data the fit was made on: the instability
 // of the window means with the whole model and with the cubic alone.
@@ -118,6 +121,23 @@ FirmwareFile firmware_file(const ExportRequest& request, const std::vector<fit::
                            const std::string& format);
 // "wrote FILE: PX4 gyro thermal compensation (X: gx, Y: -, Z: gz); valid A to B °C"
 std::string firmware_wrote(const ExportRequest& request, const FirmwareFile& file, const std::string& format);
+
+// The coefficients as each firmware stores them (32-bit floats): PX4's
+// X0..X3 in rad/s about `tref`; ArduPilot's GYR1..3 (×10⁶ rad/s) about 35 °C.
+std::array<float, 4> px4_coefficients(const AxisModel& axis, float tref);
+std::array<float, 3> ardupilot_coefficients(const AxisModel& axis);
+
+// The parameter names' stem of ArduPilot's IMU `instance` (1..5): INS_TCAL1_
+// .. INS_TCAL3_, INS4_TCAL_, INS5_TCAL_; throws InputError for another.
+std::string ardupilot_prefix(int instance);
+// PX4's TC_G{n} instance (0..3) and TC_G{n}_ID (a 32-bit device id, written
+// as the int32 parameter holds it); throw InputError naming the valid ones.
+int px4_instance(const std::optional<int>& instance);
+long long px4_device_id(long long device_id);
+
+// The data `fit` was made on: `option` (--data) if given, else the fit's own
+// data file (as given to fit, or beside the fit file); empty when not here.
+std::filesystem::path fitted_data(const fit::SavedFit& fit, const std::string& option);
 
 // A value as the firmware stores it (a 32-bit float), written so that it
 // reads back to the same float.

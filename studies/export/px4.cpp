@@ -2,11 +2,13 @@
 // QGroundControl .params file (studies/export/firmware.h).
 #include <fmt/format.h>
 
+#include "sim/util/input_error.h"
 #include "studies/export/firmware.h"
+#include "studies/export/firmware_outcome.h"
 
 namespace gyrotherm::studies {
 
-std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, long device_id,
+std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, long long device_id,
                            const ExportHeader& header) {
   const ExportRange r = export_range(axes);
   const float tref = static_cast<float>(r.tref_c);
@@ -31,27 +33,28 @@ std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, l
   line(fmt::format("TC_G{}_TMAX", instance), as_float(r.tmax_c), 9);
   line(fmt::format("TC_G{}_TMIN", instance), as_float(r.tmin_c), 9);
   line(fmt::format("TC_G{}_TREF", instance), as_float(tref), 9);
-  for (int k = 0; k <= 3; ++k)
-    for (std::size_t i = 0; i < 3; ++i) {
-      // Re-expanded about the float TREF the firmware will use.
-      const double v = axes[i].present ? reexpand(axes[i].model, tref)[static_cast<std::size_t>(k)] * kRadPerSecPerDegPerHour
-                                       : 0.0;
-      line(fmt::format("TC_G{}_X{}_{}", instance, k, i), as_float(v), 9);
-    }
+  const std::array<std::array<float, 4>, 3> x = {px4_coefficients(axes[0], tref), px4_coefficients(axes[1], tref),
+                                                  px4_coefficients(axes[2], tref)};
+  for (std::size_t k = 0; k <= 3; ++k)
+    for (std::size_t i = 0; i < 3; ++i) line(fmt::format("TC_G{}_X{}_{}", instance, k, i), as_float(x[i][k]), 9);
   return out;
 }
 
 ExporterInfo px4_exporter() {
   return {"px4", "PX4 (QGroundControl .params): the TC_G* gyro thermal compensation, a cubic in T",
           [](const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
+            const int instance = px4_instance(r.instance);
+            const long long device_id = px4_device_id(r.device_id);
+            if (r.boot_temp_c)
+              throw InputError("--boot-temp is ArduPilot's (the temperature of its boot gyro calibration); PX4 has none");
             FirmwareFile f = firmware_file(r, fits, "PX4");
-            const int instance = r.instance < 0 ? 0 : r.instance;
-            f.out.text = px4_parameters(f.axes, instance, r.device_id, f.header);
+            f.out.text = px4_parameters(f.axes, instance, device_id, f.header);
             f.out.lines.push_back(firmware_wrote(r, f, "PX4") +
                                   fmt::format(", TREF {:.2f} °C", static_cast<float>(f.range.tref_c)));
             if (r.device_id == 0)
               f.out.lines.push_back(fmt::format(
                   "set TC_G{0}_ID to your gyro's device id (CAL_GYRO{0}_ID), or pass --device-id", instance));
+            add_outcome(firmware_outcome(Firmware::px4, f, r.data, std::nullopt), &f.out);
             return f.out;
           }};
 }

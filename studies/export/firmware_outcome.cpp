@@ -1,0 +1,201 @@
+#include "studies/export/firmware_outcome.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "fit/pipeline.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+constexpr double kTooCostly = 1.2;  // the firmware's rule leaves more than 20 % above the model
+constexpr float kPx4HysteresisC = 1.0f;
+constexpr double kPx4PeriodS = 1.0;
+constexpr float kArduPilotReference = 35.0f;
+
+float clamped(float t, float lo, float hi) { return std::min(std::max(t, lo), hi); }
+
+double std_dev(const std::vector<double>& v) {
+  double mean = 0.0, ss = 0.0;
+  for (const double x : v) mean += x;
+  mean /= static_cast<double>(v.size());
+  for (const double x : v) ss += (x - mean) * (x - mean);
+  return std::sqrt(ss / static_cast<double>(v.size() - 1));
+}
+
+// The instability (std of the window averages, the fit's preparation) of
+// the record's gyro less `subtracted`.
+double instability_less(const fit::Measurement& m, const std::vector<double>& subtracted,
+                        const fit::PipelineOptions& pipeline) {
+  fit::Measurement rest = m;
+  for (std::size_t i = 0; i < rest.size(); ++i) rest.gyro_dph[i] -= subtracted[i];
+  return std_dev(fit::prepare_data(rest, pipeline).series.gyro_dph);
+}
+
+}  // namespace
+
+std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std::vector<double>& temp_c,
+                                    const std::array<float, 4>& x, float tref, float tmin, float tmax) {
+  std::vector<double> out(time_s.size());
+  const auto offset_dph = [&](float t) {
+    const float d = clamped(t, tmin, tmax) - tref, d2 = d * d, d3 = d2 * d;
+    return static_cast<double>(x[0] + x[1] * d + x[2] * d2 + x[3] * d3) / kRadPerSecPerDegPerHour;
+  };
+  if (time_s.empty()) return out;
+  const double t0 = time_s.front();
+  double applied = 0.0, next_run = t0;
+  float last_published = 0.0f;
+  bool published = false;
+  for (std::size_t i = 0; i < time_s.size(); ++i) {
+    // A run of the module (every second from the first sample; runs in a gap
+    // see the same sample): the first sample at or after its time.
+    if (time_s[i] >= next_run) {
+      const auto t = static_cast<float>(temp_c[i]);
+      if (!published || std::fabs(t - last_published) > kPx4HysteresisC) {
+        applied = offset_dph(t);
+        last_published = t;
+        published = true;
+      }
+      next_run = t0 + (std::floor((time_s[i] - t0) / kPx4PeriodS) + 1.0) * kPx4PeriodS;
+    }
+    out[i] = applied;
+  }
+  return out;
+}
+
+std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, const std::array<float, 3>& g,
+                                          float tmin, float tmax, float boot_c, double bias_at_boot_dph) {
+  const auto p = [&](float t) {
+    const float x = clamped(t, tmin, tmax) - kArduPilotReference;
+    return (g[0] + (g[1] + g[2] * x) * x) * x * 1.0e-6f;
+  };
+  const float at_boot = p(boot_c);
+  std::vector<double> out(temp_c.size());
+  for (std::size_t i = 0; i < temp_c.size(); ++i)
+    out[i] = static_cast<double>(p(static_cast<float>(temp_c[i])) - at_boot) / kRadPerSecPerDegPerHour +
+             bias_at_boot_dph;
+  return out;
+}
+
+FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, const std::string& data_option,
+                                 std::optional<double> boot_c) {
+  FirmwareOutcome o;
+  const ExportRange& r = file.range;
+  const auto tmin = static_cast<float>(r.tmin_c), tmax = static_cast<float>(r.tmax_c);
+  const auto tref = static_cast<float>(r.tref_c);
+  o.rule = firmware == Firmware::px4
+               ? "PX4 recomputes the offsets once a second and applies them only when the temperature has moved "
+                 "more than 1 °C since the last applied"
+               : "ArduPilot corrects every sample, relative to the gyro offsets taken at boot";
+  for (std::size_t i = 0; i < 3; ++i) {
+    const AxisModel& a = file.axes[i];
+    if (!a.present) continue;
+    const std::filesystem::path data = fitted_data(*a.fit, data_option);
+    if (data.empty()) {
+      o.notes.push_back(fmt::format("what {} will achieve is not predicted: the data {} was fitted on ('{}') is not "
+                                    "here; give it with --data",
+                                    firmware == Firmware::px4 ? "PX4" : "ArduPilot", a.fit->file.string(),
+                                    a.fit->data_file));
+      o.axes.clear();
+      return o;
+    }
+    o.data = data.string();
+    const fit::PipelineOptions pipeline = fit::reading_columns_of(a.fit->pipeline, a.fit->terms);
+    const fit::Measurement m = fit::read_measurement_csv(data, pipeline.columns);
+    AxisOutcome out;
+    out.axis = "XYZ"[i];
+    out.channel = a.channel;
+    out.model_dph = a.fit->instability_after_dph;
+    out.before_dph = instability_less(m, std::vector<double>(m.size(), 0.0), pipeline);
+    std::vector<double> continuous(m.size());
+    if (firmware == Firmware::px4) {
+      const std::array<float, 4> x = px4_coefficients(a, tref);
+      for (std::size_t k = 0; k < m.size(); ++k) {
+        const float d = clamped(static_cast<float>(m.temp_c[k]), tmin, tmax) - tref;
+        continuous[k] = static_cast<double>(x[0] + x[1] * d + x[2] * d * d + x[3] * d * d * d) / kRadPerSecPerDegPerHour;
+      }
+      out.exported_dph = instability_less(m, continuous, pipeline);
+      out.firmware_dph = instability_less(m, px4_applied_dph(m.time_s, m.temp_c, x, tref, tmin, tmax), pipeline);
+    } else {
+      const float boot = static_cast<float>(boot_c.value_or(m.temp_c.front()));
+      const std::array<float, 3> g = ardupilot_coefficients(a);
+      const double bias_at_boot = a.model.evaluate(boot);  // what the boot offsets take out (the model's word)
+      const std::vector<double> applied = ardupilot_applied_dph(m.temp_c, g, tmin, tmax, boot, bias_at_boot);
+      for (std::size_t k = 0; k < m.size(); ++k)
+        continuous[k] = a.model.evaluate(std::clamp(m.temp_c[k], r.tmin_c, r.tmax_c));
+      out.exported_dph = instability_less(m, continuous, pipeline);
+      out.firmware_dph = instability_less(m, applied, pipeline);
+      out.boot_error_dph = a.model.evaluate(boot) - a.model.evaluate(std::clamp<double>(boot, r.tmin_c, r.tmax_c));
+    }
+    o.axes.push_back(out);
+  }
+  if (firmware == Firmware::ardupilot && !o.axes.empty()) {
+    const double boot = boot_c.value_or(std::nan(""));
+    if (boot_c && (boot < r.tmin_c || boot > r.tmax_c)) {
+      std::string errors;
+      for (const AxisOutcome& a : o.axes) errors += fmt::format("{}{}: {:.4g}", errors.empty() ? "" : ", ", a.axis, a.boot_error_dph);
+      o.warnings.push_back(fmt::format(
+          "--boot-temp {:g} °C is outside the fitted range [{:.2f}, {:.2f}] °C: ArduPilot clamps it, and a gyro "
+          "calibrated at boot there keeps a constant error all flight ({} °/h, by the model extrapolated); boot "
+          "within the range, or fit over the temperatures the vehicle boots at",
+          boot, r.tmin_c, r.tmax_c, errors));
+    }
+  }
+  for (const AxisOutcome& a : o.axes) {
+    if (a.firmware_dph <= kTooCostly * a.model_dph) continue;
+    std::string help;
+    if (a.exported_dph > kTooCostly * a.model_dph)
+      help = "the exported cubic already leaves this much (terms dropped, or samples outside the fitted range held at "
+             "its edge): fit a polynomial over the temperature range the vehicle will see";
+    else if (firmware == Firmware::px4)
+      help = "the cost is PX4's 1 °C step, not the model: it grows with how fast the bias changes per °C; a "
+             "compensation applied at every sample (--format c in your own code) avoids it";
+    else
+      help = "samples outside the fitted range are held at its edge: fit over the temperature range the vehicle "
+             "will see";
+    o.notes.push_back(fmt::format("{} ({}): as {} applies it {:.4g} °/h against the model's {:.4g} ({:.2f}x): {}",
+                                  a.axis, a.channel, firmware == Firmware::px4 ? "PX4" : "ArduPilot", a.firmware_dph,
+                                  a.model_dph, a.firmware_dph / a.model_dph, help));
+  }
+  return o;
+}
+
+void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out) {
+  for (const std::string& line : outcome.lines()) out->lines.push_back(line);
+  for (const std::string& w : outcome.warnings) out->warnings.push_back(w);
+  out->json["firmware_outcome"] = outcome.json();
+}
+
+nlohmann::ordered_json FirmwareOutcome::json() const {
+  nlohmann::ordered_json j;
+  j["data"] = data.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(data);
+  j["rule"] = rule;
+  j["axes"] = nlohmann::ordered_json::array();
+  for (const AxisOutcome& a : axes)
+    j["axes"].push_back({{"axis", std::string(1, a.axis)},
+                         {"channel", a.channel},
+                         {"instability_before_dph", a.before_dph},
+                         {"model_dph", a.model_dph},
+                         {"exported_dph", a.exported_dph},
+                         {"firmware_dph", a.firmware_dph},
+                         {"boot_error_dph", a.boot_error_dph}});
+  j["notes"] = notes;
+  return j;
+}
+
+std::vector<std::string> FirmwareOutcome::lines() const {
+  std::vector<std::string> out;
+  if (!axes.empty()) {
+    out.push_back(fmt::format("on {} (instability of the window averages, °/h): {}", data, rule));
+    for (const AxisOutcome& a : axes)
+      out.push_back(fmt::format("  {} ({}): raw {:.4g}, model {:.4g}, exported cubic {:.4g}, as the firmware applies it "
+                                "{:.4g}",
+                                a.axis, a.channel, a.before_dph, a.model_dph, a.exported_dph, a.firmware_dph));
+  }
+  for (const std::string& n : notes) out.push_back(n);
+  return out;
+}
+
+}  // namespace gyrotherm::studies

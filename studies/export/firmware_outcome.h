@@ -1,0 +1,82 @@
+#pragma once
+// What a firmware export achieves, predicted on the record the model was
+// fitted on, with the firmware's own rule for applying the parameters (the
+// formula alone is the model's to 1e-7: studies/export/firmware.h). Three
+// numbers per axis, each the instability (std of the window averages, as
+// `fit` reports it) of the gyro less what is subtracted:
+//
+//   model     the fit's model on the windows (the fit file's instability);
+//   exported  the exported cubic as stored (32-bit floats), the temperature
+//             clamped to [TMIN, TMAX], subtracted from every sample;
+//   firmware  as the firmware applies it:
+//     PX4 (src/modules/temperature_compensation: TemperatureCompensationModule
+//         runs once a second; TemperatureCompensation::update_offsets_gyro
+//         re-publishes the offsets only when the temperature has moved more
+//         than 1 °C since the last publication): the offsets of the
+//         temperature at the last publication, held until the next;
+//     ArduPilot (AP_InertialSensor_tempcal.cpp, TCal::correct_sensor, every
+//         sample): raw − p(clamp(T) − 35) + p(clamp(T_boot) − 35), the gyro
+//         offsets taken at boot at T_boot removing the bias there; a boot
+//         outside [TMIN, TMAX] leaves a constant error B(T_boot) −
+//         B(clamp(T_boot)) all flight (by the model, extrapolated), which a
+//         standard deviation does not show, so it is reported beside it.
+//
+// Where the firmware's rule leaves more than 20 % above the model, a note
+// says so and what would help.
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fit/data/measurement.h"
+#include "studies/export/firmware.h"
+
+namespace gyrotherm::studies {
+
+// What PX4 subtracts from each sample (°/h): offsets (X0..X3 in rad/s, as
+// stored) recomputed once a second from the latest sample's temperature and
+// applied from the first update on, then only when the temperature has moved
+// more than 1 °C since the last applied one.
+std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std::vector<double>& temp_c,
+                                    const std::array<float, 4>& x, float tref, float tmin, float tmax);
+
+// What ArduPilot subtracts from each sample (°/h), GYR1..3 as stored (×1e6),
+// after gyro offsets taken at boot at boot_c: p(clamp(T) − 35) −
+// p(clamp(boot) − 35) + B_boot, where B_boot (°/h, the bias at boot) is what
+// the offsets remove.
+std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, const std::array<float, 3>& g,
+                                          float tmin, float tmax, float boot_c, double bias_at_boot_dph);
+
+struct AxisOutcome {
+  char axis = 'X';
+  std::string channel;
+  double before_dph = 0, model_dph = 0, exported_dph = 0, firmware_dph = 0;
+  double boot_error_dph = 0;  // ArduPilot: the constant a boot outside the range leaves
+};
+
+struct FirmwareOutcome {
+  std::string data;                // the record it was computed on; empty: not here
+  std::string rule;                // how the firmware applies the parameters, one line
+  std::vector<AxisOutcome> axes;   // the axes exported
+  std::vector<std::string> notes;  // where the rule costs more than 20 %, and what would help
+  std::vector<std::string> warnings;
+  nlohmann::ordered_json json() const;
+  std::vector<std::string> lines() const;  // for the terminal
+};
+
+enum class Firmware { px4, ardupilot };
+
+// The outcome of `file` applied by `firmware` on the data each axis's fit was
+// made on (`data_option`, else the fit's own file); without that data, an
+// outcome with an empty `data` and a note saying what to give.
+// `boot_c`: ArduPilot's boot temperature (default: the record's first).
+FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, const std::string& data_option,
+                                 std::optional<double> boot_c);
+
+// Export's lines, warnings and JSON ("firmware_outcome") with the outcome's.
+void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out);
+
+}  // namespace gyrotherm::studies
