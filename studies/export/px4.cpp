@@ -18,8 +18,11 @@ std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, l
       "#   offset = X0 + X1 d + X2 d^2 + X3 d^3 (rad/s), d = clamp(T, TMIN, TMAX) - TREF; corrected = raw - offset\n"
       "#   TMIN/TMAX: the window temperatures the model was fitted on. TC_G{0}_ID must be your gyro's device id\n"
       "#   (CAL_GYRO{0}_ID){1}.\n"
-      "#   X0 carries the whole bias at TREF: if CAL_GYRO{0}_XOFF/YOFF/ZOFF are also applied, zero them, or the\n"
-      "#   bias is taken out twice.\n",
+      "#   Loading: PX4 lists the TC_G* parameters only once TC_G_ENABLE is 1 and the board rebooted: load this\n"
+      "#   file, reboot, load it again. Then redo PX4's gyro calibration (X0 holds the whole bias at TREF; offsets\n"
+      "#   taken before compensation was enabled would take it out twice). MAVProxy's param load skips a value\n"
+      "#   within 1e-6 of the vehicle's: tiny X2/X3 never load that way (use QGroundControl, or param set each).\n"
+      "#   Axes are the gyro's sensor frame, before the board rotation (SENS_BOARD_ROT).\n",
       instance, device_id == 0 ? "; it is 0 here: set it, or pass --device-id" : "");
   for (std::size_t i = 0; i < 3; ++i)
     out += fmt::format("#   axis {}: {}{}\n", i, axes[i].present ? axes[i].channel : "not compensated (zeros)",
