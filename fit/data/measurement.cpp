@@ -21,26 +21,6 @@
 
 namespace gyrotherm::fit {
 
-namespace {
-
-void check_scale(const char* option, double value, bool zero_allowed) {
-  if (!std::isfinite(value) || (!zero_allowed && value == 0.0))
-    throw InputError(fmt::format("{} {}: must be a finite number{}", option, value,
-                                 zero_allowed ? "" : " other than 0"));
-}
-
-}  // namespace
-
-namespace {
-const Unit& unit_or_base(Quantity q, const std::string& name, std::string_view option) {
-  return find_unit(q, name.empty() ? base_unit(q) : std::string_view(name), option);
-}
-}  // namespace
-
-const Unit& Units::time_unit() const { return unit_or_base(Quantity::time, time, "--time-unit"); }
-const Unit& Units::gyro_unit() const { return unit_or_base(Quantity::gyro, gyro, "--gyro-unit"); }
-const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
-
 std::string_view trim(std::string_view s) {
   const auto is_space = [](char c) { return c == ' ' || c == '\t'; };
   while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
@@ -48,82 +28,6 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-ColumnMap ColumnMap::unset() {
-  ColumnMap c;
-  c.time = c.temp = c.gyro = c.temp2 = "";
-  c.units.gyro_scale = c.units.temp_scale = c.units.temp_offset = c.csv.rate_hz = std::nan("");
-  return c;
-}
-
-ColumnMap ColumnMap::with(const ColumnMap& given) const {
-  ColumnMap c = *this;
-  for (auto [mine, theirs] : {std::pair{&c.time, &given.time}, {&c.temp, &given.temp}, {&c.gyro, &given.gyro},
-                              {&c.temp2, &given.temp2}, {&c.units.time, &given.units.time},
-                              {&c.units.gyro, &given.units.gyro}, {&c.units.temp, &given.units.temp}})
-    if (!theirs->empty()) *mine = *theirs;
-  // A unit given anew comes from the option, not from where this map had it.
-  if (!given.units.time.empty()) c.units.time_from.clear();
-  if (!given.units.gyro.empty()) c.units.gyro_from.clear();
-  if (!given.units.temp.empty()) c.units.temp_from.clear();
-  for (auto [mine, theirs] : {std::pair{&c.units.gyro_scale, given.units.gyro_scale},
-                              {&c.units.temp_scale, given.units.temp_scale},
-                              {&c.units.temp_offset, given.units.temp_offset}, {&c.csv.rate_hz, given.csv.rate_hz}})
-    if (!std::isnan(theirs)) *mine = theirs;
-  if (!given.csv.delimiter.empty()) c.csv.delimiter = given.csv.delimiter;
-  c.csv.decimal_comma = c.csv.decimal_comma || given.csv.decimal_comma;
-  return c;
-}
-
-std::string Units::used() const {
-  auto one = [](std::string_view what, const Unit& u, const std::string& from) {
-    return fmt::format("{} {}{}", what, u.name, from.empty() ? std::string() : " (" + from + ")");
-  };
-  return one("time", time_unit(), time_from) + ", " + one("gyro", gyro_unit(), gyro_from) + ", " +
-         one("temperature", temp_unit(), temp_from) + (layout.empty() ? "" : "; " + layout);
-}
-
-void Units::validate() const {
-  time_unit();
-  gyro_unit();
-  temp_unit();
-  check_scale("--gyro-scale", gyro_scale, false);
-  check_scale("--temp-scale", temp_scale, false);
-  check_scale("--temp-offset", temp_offset, true);
-}
-
-bool Units::identity() const {
-  return time_unit().is_base() && gyro_unit().is_base() && temp_unit().is_base() && gyro_scale == 1.0 &&
-         temp_scale == 1.0 && temp_offset == 0.0;
-}
-
-double Units::time_s(double t) const { return time_unit().to_base(t); }
-
-double Units::gyro_dph(double g) const { return gyro_scale * g * gyro_unit().factor; }
-
-double Units::temp_c(double x) const {
-  // Untouched unless asked (so that −0.0 stays −0.0, as written).
-  const double v = temp_scale == 1.0 && temp_offset == 0.0 ? x : temp_scale * x + temp_offset;
-  const Unit& unit = temp_unit();
-  return unit.is_base() ? v : unit.to_base(v);
-}
-
-std::string Units::description() const {
-  if (identity()) return "none";
-  std::vector<std::string> parts;
-  if (!time_unit().is_base()) parts.push_back(fmt::format("time {} → s (× {:g})", time_unit().name, time_unit().factor));
-  if (!gyro_unit().is_base() || gyro_scale != 1.0)
-    parts.push_back(fmt::format("gyro {}{} → °/h (× {:.9g})",
-                                gyro_scale != 1.0 ? fmt::format("{:g} × ", gyro_scale) : "", gyro_unit().name,
-                                gyro_scale * gyro_unit().factor));
-  if (!temp_unit().is_base() || temp_scale != 1.0 || temp_offset != 0.0) {
-    std::string raw = temp_scale != 1.0 ? fmt::format("{:g} × column", temp_scale) : "column";
-    if (temp_offset != 0.0) raw += fmt::format(" {} {:g}", temp_offset < 0 ? "−" : "+", std::abs(temp_offset));
-    parts.push_back(fmt::format("temp {}{} → °C", raw, !temp_unit().is_base() ? " in " + std::string(temp_unit().name) : std::string()));
-  }
-  std::string out;
-  for (const std::string& p : parts) out += (out.empty() ? "" : "; ") + p;
-  return out;
-}
 namespace {
 
 namespace fs = std::filesystem;
