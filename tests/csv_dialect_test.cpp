@@ -167,22 +167,27 @@ TEST(CsvDialect, ARecordWrittenInEachFormGivesThePlainFit) {
 
 TEST(CsvDialect, EachFormsMistakesNameTheLineAndTheOption) {
   ScratchDir dir;
-  write_text(dir / "comma.csv", "time_s;temp_c;gyro_dph\n0;20,5;1\n1;20,6;2\n");
-  expect_refused(dir, "fit comma.csv", "comma.csv:2: column temp_c: '20,5' is not a number (a decimal comma? give --decimal-comma)");
-  expect_refused(dir, "fit comma.csv --decimal-comma --delimiter comma", "--delimiter semicolon or tab");
-  expect_refused(dir, "fit comma.csv --delimiter pipe", "--delimiter 'pipe'");
-  write_text(dir / "open.csv", "time_s,temp_c,gyro_dph\n0,\"20.5,1\n1,20.6,2\n");
-  expect_refused(dir, "fit open.csv", "open.csv:2: field 2 opens a quote that the line does not close");
-  write_text(dir / "mixed.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:00Z,20,1\n2026-11-26T00:00:01Z,20,1\n1.5,20,1\n");
-  expect_refused(dir, "fit mixed.csv --time-col t", "mixed.csv:4: column t: '1.5' is not an ISO 8601 timestamp");
-  expect_refused(dir, "fit mixed.csv --time-col t --time-unit ms", "is an ISO 8601 timestamp, but --time-unit gives the time unit ms");
-  write_text(dir / "back.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:01Z,20,1\n2026-11-26T01:00:00+01:00,20,1\n");
-  expect_refused(dir, "fit back.csv --time-col t", "time -1 is not after 0 on line 2 (time must be strictly increasing; read as seconds since the first row's timestamp)");
-  write_text(dir / "timed.csv", "time_s,temp_c,gyro_dph\n0,20,1\n1,20,1\n");
-  expect_refused(dir, "fit timed.csv --rate 10", "--rate 10 Hz is for a log without a time column, but column 'time_s' holds the time");
-  write_text(dir / "serial.csv", "temp_c,gyro_dph\n20,1\n20,1\n");
-  expect_refused(dir, "fit serial.csv --rate 10 --time-unit ms", "--time-unit gives the time unit ms, but with --rate there is no time column");
-  expect_refused(dir, "fit serial.csv --rate 0", "no column 'time_s'");
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"comma.csv", "time_s;temp_c;gyro_dph\n0;20,5;1\n1;20,6;2\n"},
+      {"open.csv", "time_s,temp_c,gyro_dph\n0,\"20.5,1\n1,20.6,2\n"},
+      {"mixed.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:00Z,20,1\n2026-11-26T00:00:01Z,20,1\n1.5,20,1\n"},
+      {"back.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:01Z,20,1\n2026-11-26T01:00:00+01:00,20,1\n"},
+      {"timed.csv", "time_s,temp_c,gyro_dph\n0,20,1\n1,20,1\n"},
+      {"serial.csv", "temp_c,gyro_dph\n20,1\n20,1\n"}};
+  for (const auto& [name, text] : files) write_text(dir / name, text);
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"comma.csv", "comma.csv:2: column temp_c: '20,5' is not a number (a decimal comma? give --decimal-comma)"},
+      {"comma.csv --decimal-comma --delimiter comma", "--delimiter semicolon or tab"},
+      {"comma.csv --delimiter pipe", "--delimiter 'pipe'"},
+      {"open.csv", "open.csv:2: field 2 opens a quote that the line does not close"},
+      {"mixed.csv --time-col t", "mixed.csv:4: column t: '1.5' is not an ISO 8601 timestamp"},
+      {"mixed.csv --time-col t --time-unit ms", "is an ISO 8601 timestamp, but --time-unit gives the time unit ms"},
+      {"back.csv --time-col t", "time -1 is not after 0 on line 2 (time must be strictly increasing; read as seconds "
+                                "since the first row's timestamp)"},
+      {"timed.csv --rate 10", "--rate 10 Hz is for a log without a time column, but column 'time_s' holds the time"},
+      {"serial.csv --rate 10 --time-unit ms", "--time-unit gives the time unit ms, but with --rate there is no time column"},
+      {"serial.csv --rate 0", "no column 'time_s'"}};
+  for (const auto& [args, expected] : refused) expect_refused(dir, "fit " + args, expected);
 }
 
 }  // namespace

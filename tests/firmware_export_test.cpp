@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "cli_runner.h"
+#include "parameter_files.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -27,60 +28,6 @@ namespace {
 using namespace gyrotherm::testing;
 
 constexpr double kDphToRadS = 3.14159265358979323846 / (180.0 * 3600.0);
-
-// name → value of a QGroundControl .params file (tab-separated, '#' comments).
-std::map<std::string, float> read_qgc(const std::string& text) {
-  std::map<std::string, float> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream f(line);
-    std::string vehicle, component, name, value;
-    std::getline(f, vehicle, '\t');
-    std::getline(f, component, '\t');
-    std::getline(f, name, '\t');
-    std::getline(f, value, '\t');
-    out[name] = std::stof(value);
-  }
-  return out;
-}
-
-// name → value of a NAME,VALUE .param file.
-std::map<std::string, float> read_ap(const std::string& text) {
-  std::map<std::string, float> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto comma = line.find(',');
-    out[line.substr(0, comma)] = std::stof(line.substr(comma + 1));
-  }
-  return out;
-}
-
-// PX4's calc_thermal_offsets_3D for one axis, in float as the firmware does.
-float px4_offset(const std::map<std::string, float>& p, int axis, float temp) {
-  const float tmax = p.at("TC_G0_TMAX"), tmin = p.at("TC_G0_TMIN"), tref = p.at("TC_G0_TREF");
-  float delta_temp;
-  if (temp > tmax) delta_temp = tmax - tref;
-  else if (temp < tmin) delta_temp = tmin - tref;
-  else delta_temp = temp - tref;
-  const float delta_temp_2 = delta_temp * delta_temp;
-  const float delta_temp_3 = delta_temp_2 * delta_temp;
-  const auto x = [&](int k) { return p.at("TC_G0_X" + std::to_string(k) + "_" + std::to_string(axis)); };
-  return x(0) + x(1) * delta_temp + x(2) * delta_temp_2 + x(3) * delta_temp_3;
-}
-
-// ArduPilot's correct_sensor for one axis: what it subtracts from the gyro.
-float ardupilot_subtracted(const std::map<std::string, float>& p, char axis, float temp, float cal_temp) {
-  const float tmin = p.at("INS_TCAL1_TMIN"), tmax = p.at("INS_TCAL1_TMAX");
-  const auto g = [&](int k) { return p.at("INS_TCAL1_GYR" + std::to_string(k) + "_" + axis); };
-  const auto poly = [&](float tdiff) { return (g(1) + (g(2) + g(3) * tdiff) * tdiff) * tdiff * 1.0e-6f; };
-  temp = std::clamp(temp, tmin, tmax);
-  cal_temp = std::clamp(cal_temp, tmin, tmax);
-  return poly(temp - 35.0f) - poly(cal_temp - 35.0f);
-}
 
 struct Fitted {
   double c[4] = {0, 0, 0, 0};

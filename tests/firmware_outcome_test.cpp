@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "cli_runner.h"
+#include "parameter_files.h"
 #include "fit/data/prepare.h"
 
 namespace gyrotherm::studies {
@@ -61,30 +62,6 @@ TEST(FirmwareOutcome, ArduPilotSubtractsTheBiasAtBootThere) {
   EXPECT_NEAR(applied[2] - 7.5, (0.0 - (-5.0 * (50.0 + (-2.0 + 0.01 * -5.0) * -5.0)) * 1e-6) / kDphToRadS, 1e-4);
 }
 
-// name → value of a parameter file: QGroundControl's tab-separated
-// "vehicle component name value type", or ArduPilot's NAME,VALUE.
-std::map<std::string, double> read_parameters(const std::string& text) {
-  std::map<std::string, double> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream f(line);
-    std::string a, b, name, value;
-    if (line.find('\t') != std::string::npos) {
-      std::getline(f, a, '\t');
-      std::getline(f, b, '\t');
-      std::getline(f, name, '\t');
-      std::getline(f, value, '\t');
-    } else {
-      std::getline(f, name, ',');
-      std::getline(f, value, ',');
-    }
-    out[name] = std::stod(value);
-  }
-  return out;
-}
-
 double instability(const fit::Measurement& m, const std::vector<double>& subtracted_dph) {
   fit::Measurement rest = m;
   for (std::size_t i = 0; i < m.size(); ++i) rest.gyro_dph[i] -= subtracted_dph[i];
@@ -93,6 +70,31 @@ double instability(const fit::Measurement& m, const std::vector<double>& subtrac
   for (const double v : w) mean += v / static_cast<double>(w.size());
   for (const double v : w) ss += (v - mean) * (v - mean);
   return std::sqrt(ss / static_cast<double>(w.size() - 1));
+}
+
+// What PX4 subtracts from each sample of `m` (°/h) with the parameters `p`:
+// the module runs once a second and publishes the offsets of the temperature
+// it sees when that has moved more than 1 °C since the last published.
+std::vector<double> px4_as_applied(const fit::Measurement& m, const std::map<std::string, float>& p, int axis) {
+  std::vector<double> applied(m.size());
+  double held = 0.0, next_run = m.time_s[0];
+  float last = -1e9f;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (m.time_s[i] >= next_run) {
+      const auto temp = static_cast<float>(m.temp_c[i]);
+      if (std::fabs(temp - last) > 1.0f) held = px4_offset(p, axis, last = temp) / kDphToRadS;
+      while (next_run <= m.time_s[i]) next_run += 1.0;
+    }
+    applied[i] = held;
+  }
+  return applied;
+}
+
+// `export fit.json ARGS --json`'s firmware_outcome (null, and a failure, when it fails).
+nlohmann::json outcome(const ScratchDir& dir, const std::string& args) {
+  const auto r = run_cli(dir, "export fit.json " + args + " --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return r.exit_code == 0 ? nlohmann::json::parse(r.out)["firmware_outcome"] : nlohmann::json();
 }
 
 // A simulated cycle made three MEMS-like axes (20, −8, 0.5 °/h per °C and a
@@ -112,58 +114,27 @@ TEST(CliExport, WhatTheFirmwareAchievesIsItsRuleAppliedToTheExportedFile) {
   }
   const nlohmann::json fits = nlohmann::json::parse(slurp(dir / "fit.json"));
 
-  const auto px4 = run_cli(dir, "export fit.json --format px4 --json -o p.params");
-  ASSERT_EQ(px4.exit_code, 0) << px4.err;
-  const nlohmann::json pj = nlohmann::json::parse(px4.out);
-  const auto p = read_parameters(slurp(dir / "p.params"));
+  const nlohmann::json px4 = outcome(dir, "--format px4 -o p.params");
+  const auto p = read_qgc(slurp(dir / "p.params"));
   for (std::size_t a = 0; a < 3; ++a) {
-    const fit::Measurement& m = axes[a];
-    const auto x = [&](int k) { return static_cast<float>(p.at(fmt::format("TC_G0_X{}_{}", k, a))); };
-    const auto offset = [&](float temp) {
-      const float tmin = static_cast<float>(p.at("TC_G0_TMIN")), tmax = static_cast<float>(p.at("TC_G0_TMAX"));
-      const float d = std::min(std::max(temp, tmin), tmax) - static_cast<float>(p.at("TC_G0_TREF"));
-      const float d2 = d * d, d3 = d2 * d;  // calc_thermal_offsets_3D's order
-      return static_cast<double>(x(0) + x(1) * d + x(2) * d2 + x(3) * d3) / kDphToRadS;
-    };
-    std::vector<double> applied(m.size());
-    double held = 0.0, next_run = m.time_s[0];
-    float last = -1e9f;
-    for (std::size_t i = 0; i < m.size(); ++i) {
-      if (m.time_s[i] >= next_run) {  // the module's run, once a second
-        const auto temp = static_cast<float>(m.temp_c[i]);
-        if (std::fabs(temp - last) > 1.0f) held = offset(last = temp);
-        while (next_run <= m.time_s[i]) next_run += 1.0;
-      }
-      applied[i] = held;
-    }
-    const nlohmann::json& o = pj["firmware_outcome"]["axes"][a];
-    EXPECT_NEAR(o["firmware_dph"].get<double>(), instability(m, applied), 1e-9 * instability(m, applied)) << a;
-    EXPECT_EQ(o["model_dph"], fits["channels"][a]["instability_after_dph"]);
+    const double expected = instability(axes[a], px4_as_applied(axes[a], p, static_cast<int>(a)));
+    EXPECT_NEAR(px4["axes"][a]["firmware_dph"].get<double>(), expected, 1e-9 * expected) << a;
+    EXPECT_EQ(px4["axes"][a]["model_dph"], fits["channels"][a]["instability_after_dph"]);
   }
   // 20 °/h per °C held for up to 1 °C: PX4's steps cost gx far more than the
   // model (and than the exported cubic applied at every sample); said in a note.
-  const nlohmann::json& gx = pj["firmware_outcome"]["axes"][0];
-  EXPECT_GT(gx["firmware_dph"].get<double>(), 10.0 * gx["exported_dph"].get<double>());
-  ASSERT_FALSE(pj["firmware_outcome"]["notes"].empty());
-  EXPECT_NE(pj["firmware_outcome"]["notes"][0].get<std::string>().find("X (gx): as PX4 applies it"), std::string::npos);
+  EXPECT_GT(px4["axes"][0]["firmware_dph"].get<double>(), 10.0 * px4["axes"][0]["exported_dph"].get<double>());
+  ASSERT_FALSE(px4["notes"].empty());
+  EXPECT_NE(px4["notes"][0].get<std::string>().find("X (gx): as PX4 applies it"), std::string::npos);
 
-  const auto ap = run_cli(dir, "export fit.json --format ardupilot --boot-temp 30 --json -o a.param");
-  ASSERT_EQ(ap.exit_code, 0) << ap.err;
-  const nlohmann::json aj = nlohmann::json::parse(ap.out);
-  const auto q = read_parameters(slurp(dir / "a.param"));
+  const nlohmann::json ap = outcome(dir, "--format ardupilot --boot-temp 30 -o a.param");
+  const auto q = read_ap(slurp(dir / "a.param"));
   for (std::size_t a = 0; a < 3; ++a) {
-    const fit::Measurement& m = axes[a];
-    const auto poly = [&](float temp) {
-      const float tmin = static_cast<float>(q.at("INS_TCAL1_TMIN")), tmax = static_cast<float>(q.at("INS_TCAL1_TMAX"));
-      const float d = std::min(std::max(temp, tmin), tmax) - 35.0f;
-      const auto g = [&](int k) { return static_cast<float>(q.at(fmt::format("INS_TCAL1_GYR{}_{}", k, "XYZ"[a]))); };
-      return (g(1) + (g(2) + g(3) * d) * d) * d * 1.0e-6f;
-    };
-    std::vector<double> subtracted(m.size());
-    for (std::size_t i = 0; i < m.size(); ++i)
-      subtracted[i] = static_cast<double>(poly(static_cast<float>(m.temp_c[i])) - poly(30.0f)) / kDphToRadS;
-    const double expected = instability(m, subtracted);
-    EXPECT_NEAR(aj["firmware_outcome"]["axes"][a]["firmware_dph"].get<double>(), expected, 1e-9 * expected) << a;
+    std::vector<double> subtracted;
+    for (const double temp : axes[a].temp_c)
+      subtracted.push_back(ardupilot_subtracted(q, "XYZ"[a], static_cast<float>(temp), 30.0f) / kDphToRadS);
+    const double expected = instability(axes[a], subtracted);
+    EXPECT_NEAR(ap["axes"][a]["firmware_dph"].get<double>(), expected, 1e-9 * expected) << a;
   }
   // The same file without the data it was fitted on: written, and what it achieves is not claimed.
   run_shell(dir, "mv three.csv moved.csv");
