@@ -13,15 +13,15 @@ std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, const std
                                  const ExportHeader& header) {
   const ExportRange r = export_range(axes);
   std::string out = provenance(header, "#");
-  out += fmt::format(
-      "#   ArduPilot IMU temperature calibration (AP_InertialSensor::TCal::correct_sensor):\n"
-      "#   p(x) = (GYR1 + (GYR2 + GYR3 x) x) x 1e-6 (rad/s), x = clamp(T, TMIN, TMAX) - 35;\n"
-      "#   corrected = raw - p(x) + p(clamp(T_cal) - 35). The bias at the boot calibration temperature T_cal is\n"
-      "#   taken out by the gyro offsets (INS_GYROFFS_*), so the model's constant is not a parameter here.\n"
-      "#   Loading: the other INS_TCAL parameters appear once ENABLE is 1 and the board rebooted: load this file,\n"
-      "#   reboot, load it again. Boot (INS_GYR_CAL) within TMIN..TMAX: outside, the boot offsets leave a\n"
-      "#   constant error all flight. MAVProxy's param load skips a value within 1e-6 of the vehicle's: use\n"
-      "#   Mission Planner, or param set each. Axes are the IMU's sensor frame, before AHRS_ORIENTATION.\n");
+  out += R"(#   ArduPilot IMU temperature calibration (AP_InertialSensor::TCal::correct_sensor):
+#   p(x) = (GYR1 + (GYR2 + GYR3 x) x) x 1e-6 (rad/s), x = clamp(T, TMIN, TMAX) - 35;
+#   corrected = raw - p(x) + p(clamp(T_cal) - 35). The bias at the boot calibration temperature T_cal is
+#   taken out by the gyro offsets (INS_GYROFFS_*), so the model's constant is not a parameter here.
+#   Loading: the other INS_TCAL parameters appear once ENABLE is 1 and the board rebooted: load this file,
+#   reboot, load it again. Boot (INS_GYR_CAL) within TMIN..TMAX: outside, the boot offsets leave a
+#   constant error all flight. MAVProxy's param load skips a value within 1e-6 of the vehicle's: use
+#   Mission Planner, or param set each. Axes are the IMU's sensor frame, before AHRS_ORIENTATION.
+)";
   for (std::size_t i = 0; i < 3; ++i)
     out += fmt::format("#   axis {}: {}\n", "XYZ"[i], axes[i].present ? axes[i].channel : "not compensated (zeros)");
   out += fmt::format("{}ENABLE,1\n", prefix);
