@@ -12,7 +12,7 @@
 
 #include "fit/data/measurement.h"
 #include "fit/data/streaming.h"
-#include "fit/pipeline.h"
+#include "fit/data/prepare.h"
 #include "fuzz_support.h"
 #include "sim/util/input_error.h"
 
