@@ -12,11 +12,11 @@ flags="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=undefin
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DGYROTHERM_FUZZ=ON -DGYROTHERM_BUILD_TESTS=OFF -DGYROTHERM_BUILD_BENCH=OFF \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" > build-fuzz.log 2>&1 || { cat build-fuzz.log; exit 1; }
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_csv fuzz_toml fuzz_formula >> build-fuzz.log 2>&1 || { tail -50 build-fuzz.log; exit 1; }
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_csv fuzz_toml fuzz_formula fuzz_ulog fuzz_dataflash >> build-fuzz.log 2>&1 || { tail -50 build-fuzz.log; exit 1; }
 rm -f build-fuzz.log
 
 mkdir -p build-fuzz/artifacts
-for target in csv toml formula; do
+for target in csv toml formula ulog dataflash; do
   corpus="build-fuzz/corpus/$target"
   mkdir -p "$corpus"
   cp tests/fuzz/corpus/$target/* "$corpus/"

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <system_error>
 
 #include "fit/data/binary_file.h"
 #include "sim/util/input_error.h"
@@ -22,7 +23,10 @@ namespace binary {
 BinaryFile::BinaryFile(const std::filesystem::path& file)
     : name_(file.string()), file_(std::fopen(file.c_str(), "rb")) {
   if (!file_) throw InputError(located(name_, 0, fmt::format("cannot open: {}", std::strerror(errno))));
-  buffer_.resize(kBlockBytes);
+  // A block, or the whole file when it is smaller (want() grows it for a longer message).
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(file, error);
+  buffer_.resize(error ? kBlockBytes : static_cast<std::size_t>(std::clamp<std::uintmax_t>(bytes, 4096, kBlockBytes)));
 }
 
 void BinaryFile::fail(std::uint64_t at_byte, const std::string& message) const {

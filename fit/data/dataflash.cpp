@@ -96,7 +96,7 @@ class DataFlashReader {
   void on_fmt(std::uint64_t at, const std::uint8_t* payload);
   ImuLayout imu_layout(std::uint64_t at, const std::string& name, const std::string& format,
                        const std::string& labels) const;
-  void on_imu(const ImuLayout& layout, const std::string& name, const std::uint8_t* payload);
+  void on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name, const std::uint8_t* payload);
   std::string defined_types() const;
 
   BinaryFile in_;
@@ -141,7 +141,7 @@ LogContents DataFlashReader::read() {
     if (type == kFmtType)
       on_fmt(at, payload);
     else if (known.imu)
-      on_imu(*known.imu, known.name, payload);
+      on_imu(at, *known.imu, known.name, payload);
     in_.advance(length);
   }
   binary::sort_gyros(contents_);
@@ -233,9 +233,14 @@ ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name,
   return layout;
 }
 
-void DataFlashReader::on_imu(const ImuLayout& layout, const std::string& name, const std::uint8_t* payload) {
-  const int instance =
-      layout.instance.present ? static_cast<int>(layout.instance.read(payload)) : layout.fixed_instance;
+void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name, const std::uint8_t* payload) {
+  int instance = layout.fixed_instance;
+  if (layout.instance.present) {
+    const double value = layout.instance.read(payload);
+    if (!(value >= 0.0 && value <= 255.0 && value == std::floor(value)))
+      in_.fail(at, fmt::format("IMU message: instance I = {}, expected a whole number 0..255", value));
+    instance = static_cast<int>(value);
+  }
   auto gyro = std::find_if(contents_.gyros.begin(), contents_.gyros.end(),
                            [&](const LogGyro& g) { return g.instance == instance; });
   if (gyro == contents_.gyros.end()) {

@@ -355,8 +355,10 @@ void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t si
                              kGyroTopic, gyro.instance, size - 2, layout.needed_bytes));
   const double time_s = layout.timestamp.read(data) / 1e6;
   const double temp_c = layout.temperature.present ? layout.temperature.read(data) : NAN;
-  if (gyro.samples == 0 && layout.device_id.present)
-    gyro.device_id = static_cast<std::uint32_t>(layout.device_id.read(data));
+  if (gyro.samples == 0 && layout.device_id.present) {
+    const double id = layout.device_id.read(data);  // an integer type in every PX4 version
+    gyro.device_id = id >= 0.0 && id <= 4294967295.0 ? static_cast<std::uint32_t>(id) : 0;
+  }
   binary::tally(gyro, time_s, temp_c);
   if (sink_ && gyro.instance == instance_)
     sink_(time_s, temp_c, layout.x.read(data), layout.y.read(data), layout.z.read(data));
