@@ -116,6 +116,21 @@ double load_number(Kind kind, const std::uint8_t* p) {
   return 0.0;
 }
 
+std::string printable(std::string_view text, std::size_t max) {
+  std::string out;
+  for (const char c : text.substr(0, max)) {
+    const auto u = static_cast<unsigned char>(c);
+    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+  }
+  return text.size() > max ? out + "..." : out;
+}
+
+std::string hex_bytes(const std::uint8_t* p, std::size_t n) {
+  std::string out;
+  for (std::size_t i = 0; i < n; ++i) out += fmt::format("{}{:02x}", i == 0 ? "" : " ", p[i]);
+  return out;
+}
+
 void tally(LogGyro& gyro, double time_s, double temp_c) {
   if (gyro.samples == 0) gyro.first_time_s = time_s;
   gyro.last_time_s = time_s;

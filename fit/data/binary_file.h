@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fit/data/autopilot_log.h"
@@ -83,6 +84,12 @@ struct Field {
   bool present = false;
   double read(const std::uint8_t* payload) const { return scale * load_number(kind, payload + offset); }
 };
+
+// Text from a file, for a message: bytes outside printable ASCII as \xNN,
+// cut after `max` characters with "...".
+std::string printable(std::string_view text, std::size_t max = 80);
+// "55 4c 6f 67": bytes as hex, for a message.
+std::string hex_bytes(const std::uint8_t* p, std::size_t n);
 
 // Counts a sample of a gyro into its summary.
 void tally(LogGyro& gyro, double time_s, double temp_c);

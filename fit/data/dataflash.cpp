@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 using binary::BinaryFile;
 using binary::Field;
 using binary::Kind;
+using binary::printable;
 
 constexpr std::uint8_t kSync1 = 0xA3, kSync2 = 0x95;
 constexpr std::size_t kHeaderBytes = 3;  // A3 95 type
@@ -60,15 +61,6 @@ const FormatChar* format_char(char c) {
 std::string text_field(const std::uint8_t* p, std::size_t bytes) {
   const char* s = reinterpret_cast<const char*>(p);
   return std::string(s, strnlen(s, bytes));
-}
-
-std::string printable(std::string_view s) {
-  std::string out;
-  for (const char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
-  }
-  return out;
 }
 
 // Where an IMU message's fields are.

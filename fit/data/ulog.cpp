@@ -25,6 +25,8 @@ namespace fs = std::filesystem;
 using binary::BinaryFile;
 using binary::Field;
 using binary::Kind;
+using binary::hex_bytes;
+using binary::printable;
 
 constexpr std::size_t kHeaderBytes = 16;
 constexpr std::size_t kMessageHeaderBytes = 3;  // uint16 size, uint8 type
@@ -68,21 +70,6 @@ std::string_view trimmed(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\0')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.remove_suffix(1);
   return s;
-}
-
-std::string printable(std::string_view s, std::size_t max = 60) {
-  std::string out;
-  for (const char c : s.substr(0, max)) {
-    const auto u = static_cast<unsigned char>(c);
-    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
-  }
-  return s.size() > max ? out + "..." : out;
-}
-
-std::string hex_bytes(const std::uint8_t* p, std::size_t n) {
-  std::string out;
-  for (std::size_t i = 0; i < n; ++i) out += fmt::format("{}{:02x}", i == 0 ? "" : " ", p[i]);
-  return out;
 }
 
 // Where sensor_gyro's fields are in a data message of one subscription.
