@@ -1,0 +1,224 @@
+// What the two binary log readers share (fit/data/binary_file.h) and the
+// summary of a log's gyros (fit/data/autopilot_log.h).
+
+#include "fit/data/autopilot_log.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <system_error>
+
+#include "fit/data/binary_file.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+
+namespace binary {
+
+BinaryFile::BinaryFile(const std::filesystem::path& file)
+    : name_(file.string()), file_(std::fopen(file.c_str(), "rb")) {
+  if (!file_) throw InputError(located(name_, 0, fmt::format("cannot open: {}", std::strerror(errno))));
+  // A block, or the whole file when it is smaller (want() grows it for a longer message).
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(file, error);
+  buffer_.resize(error ? kBlockBytes : static_cast<std::size_t>(std::clamp<std::uintmax_t>(bytes, 4096, kBlockBytes)));
+}
+
+void BinaryFile::fail(std::uint64_t at_byte, const std::string& message) const {
+  throw InputError(located(name_, 0, fmt::format("byte {}: {}", at_byte, message)));
+}
+
+std::size_t BinaryFile::want(std::size_t n) {
+  while (end_ - begin_ < n && !at_end_) {
+    if (begin_ > 0) {
+      std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
+      end_ -= begin_;
+      begin_ = 0;
+    }
+    if (buffer_.size() < n) buffer_.resize(n);
+    const std::size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_.get());
+    end_ += got;
+    if (got == 0) {
+      if (std::ferror(file_.get()) != 0) fail(offset_ + (end_ - begin_), "the file cannot be read further");
+      at_end_ = true;
+    }
+  }
+  return std::min(n, end_ - begin_);
+}
+
+void BinaryFile::seek_forward(std::uint64_t offset) {
+  if (offset <= offset_) return;
+  const std::uint64_t ahead = offset - offset_;
+  if (ahead <= end_ - begin_) {
+    advance(static_cast<std::size_t>(ahead));
+    return;
+  }
+  if (offset > static_cast<std::uint64_t>(std::numeric_limits<long>::max()) ||
+      std::fseek(file_.get(), static_cast<long>(offset), SEEK_SET) != 0)
+    fail(offset_, fmt::format("cannot move to byte {}", offset));
+  begin_ = end_ = 0;
+  offset_ = offset;
+  at_end_ = false;
+}
+
+std::size_t size_of(Kind kind) {
+  switch (kind) {
+    case Kind::i8:
+    case Kind::u8: return 1;
+    case Kind::i16:
+    case Kind::u16:
+    case Kind::f16: return 2;
+    case Kind::i32:
+    case Kind::u32:
+    case Kind::f32: return 4;
+    case Kind::i64:
+    case Kind::u64:
+    case Kind::f64: return 8;
+  }
+  return 0;
+}
+
+namespace {
+// IEEE 754 binary16: sign, 5 exponent bits (bias 15), 10 fraction bits.
+double half_to_double(std::uint16_t h) {
+  const int exponent = (h >> 10) & 0x1f;
+  const double fraction = h & 0x3ff;
+  double magnitude;
+  if (exponent == 0)
+    magnitude = std::ldexp(fraction, -24);
+  else if (exponent == 31)
+    magnitude = fraction == 0 ? std::numeric_limits<double>::infinity() : std::numeric_limits<double>::quiet_NaN();
+  else
+    magnitude = std::ldexp(1024.0 + fraction, exponent - 25);
+  return (h & 0x8000) != 0 ? -magnitude : magnitude;
+}
+}  // namespace
+
+double load_number(Kind kind, const std::uint8_t* p) {
+  switch (kind) {
+    case Kind::i8: return static_cast<std::int8_t>(p[0]);
+    case Kind::u8: return p[0];
+    case Kind::i16: return static_cast<std::int16_t>(load_u16(p));
+    case Kind::u16: return load_u16(p);
+    case Kind::i32: return static_cast<std::int32_t>(load_u32(p));
+    case Kind::u32: return load_u32(p);
+    case Kind::i64: return static_cast<double>(static_cast<std::int64_t>(load_u64(p)));
+    case Kind::u64: return static_cast<double>(load_u64(p));
+    case Kind::f16: return half_to_double(load_u16(p));
+    case Kind::f32: return std::bit_cast<float>(load_u32(p));
+    case Kind::f64: return std::bit_cast<double>(load_u64(p));
+  }
+  return 0.0;
+}
+
+std::string printable(std::string_view text, std::size_t max) {
+  std::string out;
+  for (const char c : text.substr(0, max)) {
+    const auto u = static_cast<unsigned char>(c);
+    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+  }
+  return text.size() > max ? out + "..." : out;
+}
+
+std::string hex_bytes(const std::uint8_t* p, std::size_t n) {
+  std::string out;
+  for (std::size_t i = 0; i < n; ++i) out += fmt::format("{}{:02x}", i == 0 ? "" : " ", p[i]);
+  return out;
+}
+
+void tally(LogGyro& gyro, double time_s, double temp_c) {
+  if (gyro.samples == 0) gyro.first_time_s = time_s;
+  gyro.last_time_s = time_s;
+  ++gyro.samples;
+  if (std::isfinite(temp_c)) {
+    gyro.temp_min_c = gyro.samples_with_temperature == 0 ? temp_c : std::min(gyro.temp_min_c, temp_c);
+    gyro.temp_max_c = gyro.samples_with_temperature == 0 ? temp_c : std::max(gyro.temp_max_c, temp_c);
+    ++gyro.samples_with_temperature;
+  }
+}
+
+void sort_gyros(LogContents& contents) {
+  std::stable_sort(contents.gyros.begin(), contents.gyros.end(),
+                   [](const LogGyro& a, const LogGyro& b) { return a.instance < b.instance; });
+}
+
+LogContents read_choosing(const std::filesystem::path& file, int instance, const GyroSampleSink& sink,
+                          const OnePass& pass) {
+  if (sink && instance < 0) {
+    const LogContents contents = pass(file, -1, {});
+    instance = contents.default_instance();
+    if (instance < 0)
+      throw InputError(located(file.string(), 0,
+                               fmt::format("no gyro has 2 samples with a temperature, so none is chosen by "
+                                           "default; the file holds: {}",
+                                           contents.describe())));
+  }
+  LogContents contents = pass(file, instance, sink);
+  if (instance >= 0 && std::none_of(contents.gyros.begin(), contents.gyros.end(),
+                                    [&](const LogGyro& g) { return g.instance == instance; }))
+    throw InputError(located(file.string(), 0,
+                             contents.gyros.empty()
+                                 ? fmt::format("no gyro instance {} in the file; it holds no gyro", instance)
+                                 : fmt::format("no gyro instance {} in the file; it holds instance{} {}", instance,
+                                               contents.gyros.size() == 1 ? "" : "s", contents.instances())));
+  return contents;
+}
+
+}  // namespace binary
+
+std::string LogContents::instances() const {
+  if (gyros.empty()) return "none";
+  std::string out;
+  for (std::size_t i = 0; i < gyros.size(); ++i) {
+    if (i > 0) out += i + 1 == gyros.size() ? " and " : ", ";
+    out += std::to_string(gyros[i].instance);
+  }
+  return out;
+}
+
+std::string LogContents::describe() const {
+  std::string out = format + ":";
+  if (gyros.empty()) out += " no gyro samples";
+  for (std::size_t i = 0; i < gyros.size(); ++i) {
+    const LogGyro& g = gyros[i];
+    out += fmt::format("{} {} instance {}", i == 0 ? "" : ";", g.message, g.instance);
+    if (g.device_id != 0) out += fmt::format(" (device {})", g.device_id);
+    out += fmt::format(": {} sample{}", g.samples, g.samples == 1 ? "" : "s");
+    if (g.samples > 0) out += fmt::format(", {:.3f}..{:.3f} s", g.first_time_s, g.last_time_s);
+    if (g.samples_with_temperature == 0)
+      out += ", temperature NaN throughout";
+    else
+      out += fmt::format(", {:.2f}..{:.2f} °C", g.temp_min_c, g.temp_max_c);
+    if (g.samples_with_temperature > 0 && g.samples_with_temperature < g.samples)
+      out += fmt::format(" ({} of {} samples with a temperature)", g.samples_with_temperature, g.samples);
+  }
+  if (truncated)
+    out += fmt::format("; the file ends inside the message at byte {} (a power cut?): read up to there",
+                       truncated_at_byte);
+  return out;
+}
+
+int LogContents::default_instance() const {
+  for (const LogGyro& g : gyros)
+    if (g.samples_with_temperature >= 2) return g.instance;
+  return -1;
+}
+
+std::string autopilot_log_format(const std::filesystem::path& file) {
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (f == nullptr) return "";
+  std::array<unsigned char, 7> head{};
+  const std::size_t got = std::fread(head.data(), 1, head.size(), f);
+  std::fclose(f);
+  static constexpr std::array<unsigned char, 7> kULog = {'U', 'L', 'o', 'g', 0x01, 0x12, 0x35};
+  if (got == head.size() && head == kULog) return "ulog";
+  if (got >= 3 && head[0] == 0xA3 && head[1] == 0x95) return "dataflash";
+  return "";
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,101 @@
+#pragma once
+// Reading the gyros of an autopilot's binary flight log (docs/contracts.md,
+// "Autopilot logs (ULog, DataFlash)"): for each gyro (IMU instance) the log
+// holds, its samples — time, temperature and the three rates — read in one
+// pass over the file in blocks (memory: the format table and one message).
+//
+// PX4 ULog (fit/data/ulog.cpp). Reference: PX4-Autopilot,
+// docs/en/dev_log/ulog_file_format.md ("ULog File Format").
+//
+//   file    = header { message }
+//   header  = "ULog" 01 12 35, version (uint8), start time (uint64 µs)  16 bytes
+//   message = size (uint16, the payload's), type (char), payload
+//
+// 'F' defines a format "name:type field;type field;..." (types: the C
+// integer types, float, double, bool, char, arrays "float[3]", other formats
+// nested; fields named _padding* are skipped and a trailing one may be left
+// out of a data message); 'A' subscribes a format as msg_id with a multi_id
+// (the instance); 'D' is msg_id and the packed fields. The gyros are the
+// subscriptions of `sensor_gyro`: fields read by name at the offsets the
+// file's own format gives (`timestamp` µs, `x` `y` `z` rad/s, `temperature`
+// °C when present, `device_id` when present), since PX4 versions differ in
+// the set, order and padding of the fields. 'B' flag bits: data appended after
+// a cut message (incompat bit 0) is read as the spec says; any other
+// incompatible bit is refused. Other message types are skipped, as the spec
+// asks of a parser.
+//
+// ArduPilot DataFlash (.bin, fit/data/dataflash.cpp). Reference: ArduPilot,
+// libraries/AP_Logger/LogStructure.h (the FMT message and the format
+// characters) and libraries/AP_InertialSensor/LogStructure.h (IMU).
+//
+//   message = A3 95, type (uint8), payload (length from the type's FMT)
+//   FMT (type 128) = type B, length B (whole message), name n, format N, labels Z
+//   format characters: b B h H i I f d n N Z c C e E L M q Q a g (sizes 1 1 2 2
+//   4 4 4 8 4 16 64 2 2 4 4 4 1 8 8 64 2; c C ×0.01, e E ×0.01, L ×1e-7)
+//
+// The gyros are the IMU messages, fields read by label from the file's FMT:
+// Copter 4.x `IMU` with the instance in `I`; Copter 3.6 `IMU`, `IMU2`, `IMU3`
+// (instances 0, 1, 2); time `TimeUS` (µs; `TimeMS` in ms in logs before 3.3),
+// `GyrX` `GyrY` `GyrZ` rad/s, temperature `T` (`Temp` before 3.6) °C.
+//
+// Bad input — a file that is not the format, a corrupt message, a format
+// that cannot be read, an instance the file does not hold — throws
+// gyrotherm::InputError naming the file, the byte offset, what was expected
+// and what is there. A file ending inside a message (power cut) is not an
+// error: it is read up to there and LogContents::truncated says so.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gyrotherm::fit {
+
+// One gyro (IMU instance) the log holds.
+struct LogGyro {
+  int instance = 0;              // ULog multi_id of sensor_gyro; DataFlash the I field, or IMU/IMU2/IMU3 -> 0/1/2
+  std::string message;           // "sensor_gyro", "IMU", "IMU2", "IMU3"
+  std::uint32_t device_id = 0;   // ULog sensor_gyro.device_id (first sample) when present, else 0
+  std::size_t samples = 0;
+  std::size_t samples_with_temperature = 0;  // a finite temperature
+  double first_time_s = NAN, last_time_s = NAN, temp_min_c = NAN, temp_max_c = NAN;
+};
+
+struct LogContents {
+  std::string format;           // "ULog v1" / "DataFlash"
+  std::vector<LogGyro> gyros;   // by instance, lowest first
+  bool truncated = false;       // the file ends inside a message (power cut): read up to there
+  std::uint64_t truncated_at_byte = 0;  // where that message starts, when truncated
+
+  // "ULog v1: sensor_gyro instance 0 (device 2621450): 6 samples, 12.5..17.5 s,
+  // 40.03..40.36 °C; sensor_gyro instance 2 (...): ..., temperature NaN throughout"
+  std::string describe() const;
+  // The default choice: the first gyro (lowest instance) with at least 2
+  // samples with a finite temperature; -1 if none.
+  int default_instance() const;
+  // "0, 1 and 2" (the instances held), or "none".
+  std::string instances() const;
+};
+
+// One sample of the chosen gyro: time in s (the log's µs timestamp / 1e6),
+// temperature °C (NaN if the sample has none), x y z rad/s.
+using GyroSampleSink = std::function<void(double time_s, double temp_c, double x, double y, double z)>;
+
+// Reads the whole file once and returns what it holds. With a sink, every
+// sample of gyro `instance` goes to it in file order; with an empty sink only
+// the contents are gathered. A sink with instance -1 takes the default
+// instance (the file is then read twice: contents, then samples). Throws
+// InputError (file, byte offset, what was expected) on a file that is not that
+// format, a corrupt message, or an `instance` not held (listing those held).
+LogContents read_ulog(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
+LogContents read_dataflash(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
+
+// Which format a file is by its first bytes: "ulog", "dataflash" or ""
+// (anything else, e.g. a CSV, and a file that cannot be opened: its reader
+// reports that).
+std::string autopilot_log_format(const std::filesystem::path& file);
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,109 @@
+#pragma once
+// Shared by the binary log readers (fit/data/autopilot_log.h), not a public
+// header: a file read forward in blocks with the byte offset kept for
+// messages, little-endian numbers of the C types both formats log, and the
+// tally of one gyro's samples.
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fit/data/autopilot_log.h"
+
+namespace gyrotherm::fit::binary {
+
+// Reads a file forward in blocks: want(n) makes n bytes from the current
+// offset readable at data() (fewer only at the end of the file), so a file
+// of any size costs one block plus the longest message.
+class BinaryFile {
+ public:
+  static constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
+
+  // Throws InputError naming the file when it cannot be opened.
+  explicit BinaryFile(const std::filesystem::path& file);
+
+  // How many of the n bytes from offset() are readable at data().
+  std::size_t want(std::size_t n);
+  const std::uint8_t* data() const { return buffer_.data() + begin_; }
+  // n no more than the last want() returned.
+  void advance(std::size_t n) {
+    begin_ += n;
+    offset_ += n;
+  }
+  // Moves forward to `offset` (past the buffered bytes too).
+  void seek_forward(std::uint64_t offset);
+  std::uint64_t offset() const { return offset_; }
+  const std::string& name() const { return name_; }
+
+  // "FILE: byte N: message", the form of every error of these readers.
+  [[noreturn]] void fail(std::uint64_t at_byte, const std::string& message) const;
+
+ private:
+  struct Closer {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+  };
+  std::string name_;
+  std::unique_ptr<std::FILE, Closer> file_;
+  std::vector<std::uint8_t> buffer_;
+  std::size_t begin_ = 0, end_ = 0;
+  std::uint64_t offset_ = 0;
+  bool at_end_ = false;
+};
+
+// The C types the two formats log, as a number.
+enum class Kind { i8, u8, i16, u16, i32, u32, i64, u64, f16, f32, f64 };
+
+std::size_t size_of(Kind kind);
+
+// An unsigned little-endian integer of `bytes` bytes (1, 2, 4 or 8).
+inline std::uint64_t load_unsigned(const std::uint8_t* p, std::size_t bytes) {
+  std::uint64_t u = 0;
+  for (std::size_t i = 0; i < bytes; ++i) u |= std::uint64_t{p[i]} << (8 * i);
+  return u;
+}
+inline std::uint16_t load_u16(const std::uint8_t* p) { return static_cast<std::uint16_t>(load_unsigned(p, 2)); }
+inline std::uint32_t load_u32(const std::uint8_t* p) { return static_cast<std::uint32_t>(load_unsigned(p, 4)); }
+inline std::uint64_t load_u64(const std::uint8_t* p) { return load_unsigned(p, 8); }
+
+// The value of a field of that kind at p, as a double (an integer beyond 2⁵³
+// rounded; IEEE half, single and double exactly).
+double load_number(Kind kind, const std::uint8_t* p);
+
+// Where a number the reader needs is in a message, and how to read it.
+struct Field {
+  std::size_t offset = 0;
+  Kind kind = Kind::f32;
+  double scale = 1.0;  // value = scale × the number stored
+  bool present = false;
+  double read(const std::uint8_t* payload) const { return scale * load_number(kind, payload + offset); }
+};
+
+// Text from a file, for a message: bytes outside printable ASCII as \xNN,
+// cut after `max` characters with "...".
+std::string printable(std::string_view text, std::size_t max = 80);
+// "55 4c 6f 67": bytes as hex, for a message.
+std::string hex_bytes(const std::uint8_t* p, std::size_t n);
+
+// Counts a sample of a gyro into its summary.
+void tally(LogGyro& gyro, double time_s, double temp_c);
+
+// A reader's one pass: fills `contents` and hands the samples of `instance`
+// (-1: none) to the sink.
+using OnePass = std::function<LogContents(const std::filesystem::path& file, int instance,
+                                          const GyroSampleSink& sink)>;
+// The public readers' contract on top of one pass: the default instance for
+// a sink with instance -1 (two passes), and an instance not held refused.
+LogContents read_choosing(const std::filesystem::path& file, int instance, const GyroSampleSink& sink,
+                          const OnePass& pass);
+
+// Sorts the gyros by instance.
+void sort_gyros(LogContents& contents);
+
+}  // namespace gyrotherm::fit::binary

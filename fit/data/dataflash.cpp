@@ -1,0 +1,260 @@
+// ArduPilot DataFlash (.bin): the gyros of the IMU messages
+// (fit/data/autopilot_log.h), written from ArduPilot's
+// libraries/AP_Logger/LogStructure.h (FMT, the format characters) and
+// libraries/AP_InertialSensor/LogStructure.h (IMU). One pass: a table of the
+// 256 message types the FMT messages define; an IMU type's field offsets are
+// worked out from its format and labels when its FMT is read.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <string_view>
+
+#include "fit/data/autopilot_log.h"
+#include "fit/data/binary_file.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+
+namespace {
+
+namespace fs = std::filesystem;
+using binary::BinaryFile;
+using binary::Field;
+using binary::Kind;
+using binary::printable;
+
+constexpr std::uint8_t kSync1 = 0xA3, kSync2 = 0x95;
+constexpr std::size_t kHeaderBytes = 3;  // A3 95 type
+constexpr std::uint8_t kFmtType = 128;
+// FMT: type (B), length (B), name (n, char[4]), format (N, char[16]), labels (Z, char[64]).
+constexpr std::size_t kFmtBytes = kHeaderBytes + 1 + 1 + 4 + 16 + 64;
+
+// One format character: its size, and how it reads as a number (none for text).
+struct FormatChar {
+  char c;
+  std::size_t bytes;
+  std::optional<Kind> kind;
+  double scale;
+};
+constexpr FormatChar kFormatChars[] = {
+    {'b', 1, Kind::i8, 1.0},   {'B', 1, Kind::u8, 1.0},    {'h', 2, Kind::i16, 1.0},  {'H', 2, Kind::u16, 1.0},
+    {'i', 4, Kind::i32, 1.0},  {'I', 4, Kind::u32, 1.0},   {'f', 4, Kind::f32, 1.0},  {'d', 8, Kind::f64, 1.0},
+    {'n', 4, std::nullopt, 1}, {'N', 16, std::nullopt, 1}, {'Z', 64, std::nullopt, 1}, {'c', 2, Kind::i16, 0.01},
+    {'C', 2, Kind::u16, 0.01}, {'e', 4, Kind::i32, 0.01},  {'E', 4, Kind::u32, 0.01}, {'L', 4, Kind::i32, 1e-7},
+    {'M', 1, Kind::u8, 1.0},   {'q', 8, Kind::i64, 1.0},   {'Q', 8, Kind::u64, 1.0},  {'a', 64, std::nullopt, 1},
+    {'g', 2, Kind::f16, 1.0},
+};
+constexpr std::string_view kFormatCharList = "bBhHiIfdnNZcCeELMqQag";
+
+const FormatChar* format_char(char c) {
+  for (const FormatChar& f : kFormatChars)
+    if (f.c == c) return &f;
+  return nullptr;
+}
+
+// A fixed-size char field, up to its first NUL.
+std::string text_field(const std::uint8_t* p, std::size_t bytes) {
+  const char* s = reinterpret_cast<const char*>(p);
+  return std::string(s, strnlen(s, bytes));
+}
+
+// Where an IMU message's fields are.
+struct ImuLayout {
+  Field time, instance, x, y, z, temperature;
+  double time_units_per_s = 1e6;  // TimeUS; TimeMS (1e3) in older logs
+  int fixed_instance = 0;   // IMU2 -> 1, IMU3 -> 2, IMU without I -> 0
+};
+
+struct MessageType {
+  bool defined = false;
+  std::size_t length = 0;  // of the whole message, header included
+  std::string name;
+  std::optional<ImuLayout> imu;
+};
+
+class DataFlashReader {
+ public:
+  DataFlashReader(const fs::path& file, int instance, const GyroSampleSink& sink)
+      : in_(file), instance_(instance), sink_(sink) {}
+
+  LogContents read();
+
+ private:
+  void on_fmt(std::uint64_t at, const std::uint8_t* payload);
+  ImuLayout imu_layout(std::uint64_t at, const std::string& name, const std::string& format,
+                       const std::string& labels) const;
+  void on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name, const std::uint8_t* payload);
+  std::string defined_types() const;
+
+  BinaryFile in_;
+  int instance_;
+  const GyroSampleSink& sink_;
+  LogContents contents_;
+  std::array<MessageType, 256> types_{};
+};
+
+LogContents DataFlashReader::read() {
+  contents_.format = "DataFlash";
+  for (;;) {
+    const std::uint64_t at = in_.offset();
+    const std::size_t head = in_.want(kHeaderBytes);
+    if (head == 0) break;
+    const std::uint8_t* p = in_.data();
+    const bool sync = p[0] == kSync1 && (head < 2 || p[1] == kSync2);
+    if (!sync) {
+      const std::string found = head >= 2 ? fmt::format("{:02x} {:02x}", p[0], p[1]) : fmt::format("{:02x}", p[0]);
+      if (at == 0) in_.fail(0, fmt::format("not a DataFlash log: expected a message starting a3 95, found {}", found));
+      in_.fail(at, fmt::format("expected a message starting a3 95 after the previous one, found {} (a corrupt "
+                               "log, or a message longer than its FMT says)",
+                               found));
+    }
+    if (head < kHeaderBytes) {
+      contents_.truncated = true;
+      contents_.truncated_at_byte = at;
+      break;
+    }
+    const std::uint8_t type = p[2];
+    const MessageType& known = types_[type];
+    if (type != kFmtType && !known.defined)
+      in_.fail(at, fmt::format("message type {} has no FMT message before it (a corrupt log; types defined: {})",
+                               type, defined_types()));
+    const std::size_t length = type == kFmtType ? kFmtBytes : known.length;
+    if (in_.want(length) < length) {
+      contents_.truncated = true;
+      contents_.truncated_at_byte = at;
+      break;
+    }
+    const std::uint8_t* payload = in_.data() + kHeaderBytes;
+    if (type == kFmtType)
+      on_fmt(at, payload);
+    else if (known.imu)
+      on_imu(at, *known.imu, known.name, payload);
+    in_.advance(length);
+  }
+  binary::sort_gyros(contents_);
+  return std::move(contents_);
+}
+
+std::string DataFlashReader::defined_types() const {
+  std::string out = fmt::format("{} FMT", kFmtType);
+  for (std::size_t t = 0; t < types_.size(); ++t)
+    if (types_[t].defined && t != kFmtType) out += fmt::format(", {} {}", t, printable(types_[t].name));
+  return out.size() > 400 ? out.substr(0, 400) + "..." : out;
+}
+
+void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
+  const std::uint8_t type = payload[0];
+  const std::size_t length = payload[1];
+  const std::string name = text_field(payload + 2, 4);
+  const std::string format = text_field(payload + 6, 16);
+  const std::string labels = text_field(payload + 22, 64);
+  const std::string what = fmt::format("FMT of type {} '{}' (format '{}')", type, printable(name), printable(format));
+  if (length < kHeaderBytes) in_.fail(at, fmt::format("{}: length {}, less than the 3-byte header", what, length));
+  if (type == kFmtType) {
+    if (length != kFmtBytes || format != "BBnNZ")
+      in_.fail(at, fmt::format("{}: length {}, expected FMT's own: {} bytes, format 'BBnNZ'", what, length, kFmtBytes));
+    return;
+  }
+  // The length must be the format's, when every character is known (a
+  // character this reader does not know only matters in a message it reads).
+  std::size_t bytes = kHeaderBytes;
+  bool all_known = true;
+  for (const char c : format) {
+    const FormatChar* f = format_char(c);
+    all_known = all_known && f != nullptr;
+    if (f != nullptr) bytes += f->bytes;
+  }
+  if (all_known && bytes != length)
+    in_.fail(at, fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length));
+  MessageType& entry = types_[type];
+  entry = MessageType{true, length, name, std::nullopt};
+  if (name == "IMU" || name == "IMU2" || name == "IMU3") entry.imu = imu_layout(at, name, format, labels);
+}
+
+ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name, const std::string& format,
+                                      const std::string& labels) const {
+  std::vector<std::string> columns;
+  for (std::size_t begin = 0;;) {
+    const std::size_t comma = labels.find(',', begin);
+    columns.push_back(labels.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
+  }
+  const std::string what = fmt::format("FMT of '{}' (format '{}', labels '{}')", name, printable(format), printable(labels));
+  if (columns.size() != format.size())
+    in_.fail(at, fmt::format("{}: {} labels for {} format characters", what, columns.size(), format.size()));
+  ImuLayout layout;
+  layout.fixed_instance = name == "IMU2" ? 1 : name == "IMU3" ? 2 : 0;
+  std::size_t offset = 0;
+  Field time_ms;
+  for (std::size_t i = 0; i < format.size(); ++i) {
+    const FormatChar* f = format_char(format[i]);
+    if (f == nullptr)
+      in_.fail(at, fmt::format("{}: unknown format character '{}' (expected one of {})", what,
+                               printable(std::string(1, format[i])), kFormatCharList));
+    const std::string& label = columns[i];
+    Field* slot = label == "TimeUS"              ? &layout.time
+                  : label == "TimeMS"            ? &time_ms
+                  : label == "I"                 ? &layout.instance
+                  : label == "GyrX"              ? &layout.x
+                  : label == "GyrY"              ? &layout.y
+                  : label == "GyrZ"              ? &layout.z
+                  : label == "T" || label == "Temp" ? &layout.temperature
+                                                 : nullptr;
+    if (slot != nullptr) {
+      if (!f->kind)
+        in_.fail(at, fmt::format("{}: field '{}' is of format '{}', text, expected a number", what, label, f->c));
+      *slot = Field{offset, *f->kind, f->scale, true};
+    }
+    offset += f->bytes;
+  }
+  if (!layout.time.present && time_ms.present) {
+    layout.time = time_ms;
+    layout.time_units_per_s = 1e3;
+  }
+  for (const auto& [label, field] : {std::pair{"TimeUS", &layout.time}, {"GyrX", &layout.x}, {"GyrY", &layout.y},
+                                     {"GyrZ", &layout.z}})
+    if (!field->present) in_.fail(at, fmt::format("{}: no field '{}' (expected TimeUS or TimeMS, GyrX, GyrY, GyrZ)", what, label));
+  if (layout.instance.present && name != "IMU")
+    in_.fail(at, fmt::format("{}: an instance field 'I' in {}, expected only in IMU", what, name));
+  return layout;
+}
+
+void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name, const std::uint8_t* payload) {
+  int instance = layout.fixed_instance;
+  if (layout.instance.present) {
+    const double value = layout.instance.read(payload);
+    if (!(value >= 0.0 && value <= 255.0 && value == std::floor(value)))
+      in_.fail(at, fmt::format("IMU message: instance I = {}, expected a whole number 0..255", value));
+    instance = static_cast<int>(value);
+  }
+  auto gyro = std::find_if(contents_.gyros.begin(), contents_.gyros.end(),
+                           [&](const LogGyro& g) { return g.instance == instance; });
+  if (gyro == contents_.gyros.end()) {
+    LogGyro added;
+    added.instance = instance;
+    added.message = name;
+    contents_.gyros.push_back(added);
+    gyro = contents_.gyros.end() - 1;
+  }
+  const double time_s = layout.time.read(payload) / layout.time_units_per_s;
+  const double temp_c = layout.temperature.present ? layout.temperature.read(payload) : NAN;
+  binary::tally(*gyro, time_s, temp_c);
+  if (sink_ && instance == instance_)
+    sink_(time_s, temp_c, layout.x.read(payload), layout.y.read(payload), layout.z.read(payload));
+}
+
+}  // namespace
+
+LogContents read_dataflash(const fs::path& file, int instance, const GyroSampleSink& sink) {
+  return binary::read_choosing(file, instance, sink, [](const fs::path& f, int i, const GyroSampleSink& s) {
+    return DataFlashReader(f, i, s).read();
+  });
+}
+
+}  // namespace gyrotherm::fit

@@ -1,0 +1,362 @@
+// PX4 ULog: the gyros of `sensor_gyro` (fit/data/autopilot_log.h), written
+// from PX4-Autopilot's docs/en/dev_log/ulog_file_format.md. One pass: the
+// format definitions are kept as parsed field lists (a few hundred in a PX4
+// log); a format's size and a field's offset are worked out when a topic is
+// subscribed, since the spec lets a type be used before it is defined.
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <string_view>
+#include <unordered_map>
+
+#include "fit/data/autopilot_log.h"
+#include "fit/data/binary_file.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+
+namespace {
+
+namespace fs = std::filesystem;
+using binary::BinaryFile;
+using binary::Field;
+using binary::Kind;
+using binary::hex_bytes;
+using binary::printable;
+
+constexpr std::size_t kHeaderBytes = 16;
+constexpr std::size_t kMessageHeaderBytes = 3;  // uint16 size, uint8 type
+constexpr std::string_view kGyroTopic = "sensor_gyro";
+// Deeper nesting than any PX4 message (about 3 levels) means a broken file,
+// and bounds the recursion on one.
+constexpr int kMaxNesting = 32;
+constexpr std::size_t kMaxFormatBytes = std::size_t{1} << 24;
+
+struct BasicType {
+  std::string_view name;
+  Kind kind;
+};
+constexpr BasicType kBasicTypes[] = {
+    {"int8_t", Kind::i8},   {"uint8_t", Kind::u8},   {"int16_t", Kind::i16}, {"uint16_t", Kind::u16},
+    {"int32_t", Kind::i32}, {"uint32_t", Kind::u32}, {"int64_t", Kind::i64}, {"uint64_t", Kind::u64},
+    {"float", Kind::f32},   {"double", Kind::f64},   {"bool", Kind::u8},     {"char", Kind::i8},
+};
+constexpr std::string_view kBasicTypeList =
+    "int8_t, uint8_t, int16_t, uint16_t, int32_t, uint32_t, int64_t, uint64_t, float, double, bool, char";
+
+const BasicType* basic_type(std::string_view name) {
+  for (const BasicType& t : kBasicTypes)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+// "type name" or "type[count] name" of a format definition.
+struct FieldDef {
+  std::string type, name;
+  std::size_t count = 1;
+  bool array = false;
+};
+
+struct FormatDef {
+  std::uint64_t at_byte = 0;  // of its 'F' message
+  std::vector<FieldDef> fields;
+};
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\0')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.remove_suffix(1);
+  return s;
+}
+
+// Where sensor_gyro's fields are in a data message of one subscription.
+struct GyroLayout {
+  Field timestamp, x, y, z, temperature, device_id;
+  std::size_t needed_bytes = 0;  // the end of the last field read
+};
+
+struct Subscription {
+  int gyro = -1;  // index into LogContents::gyros, -1 for another topic
+};
+
+class ULogReader {
+ public:
+  ULogReader(const fs::path& file, int instance, const GyroSampleSink& sink)
+      : in_(file), instance_(instance), sink_(sink) {}
+
+  LogContents read();
+
+ private:
+  void read_header();
+  void on_flag_bits(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  void on_format(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  void on_subscription(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  void on_data(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  std::size_t size_of_type(const std::string& type, const std::string& within, int depth);
+  std::size_t size_of_format(const std::string& name, int depth);
+  GyroLayout gyro_layout(const std::string& name, std::uint64_t subscribed_at);
+
+  BinaryFile in_;
+  int instance_;
+  const GyroSampleSink& sink_;
+  LogContents contents_;
+  std::map<std::string, FormatDef, std::less<>> formats_;
+  std::unordered_map<std::string, std::size_t> format_bytes_;  // sizes worked out so far
+  std::unordered_map<std::uint16_t, Subscription> subscriptions_;
+  std::vector<GyroLayout> layouts_;   // of each gyro's format, by index in contents_.gyros
+  std::vector<std::uint64_t> appended_offsets_;  // where appended data starts, ascending
+};
+
+LogContents ULogReader::read() {
+  read_header();
+  for (;;) {
+    const std::uint64_t at = in_.offset();
+    // Data appended after a message cut short (flag bits, DATA_APPENDED): the
+    // cut message is dropped and reading goes on where the appended data starts.
+    while (!appended_offsets_.empty() && appended_offsets_.front() <= at)
+      appended_offsets_.erase(appended_offsets_.begin());
+    const std::size_t head = in_.want(kMessageHeaderBytes);
+    if (head == 0) break;
+    std::size_t size = 0;
+    if (head == kMessageHeaderBytes) size = binary::load_u16(in_.data());
+    const std::size_t whole = kMessageHeaderBytes + size;
+    if (!appended_offsets_.empty() && at + (head < kMessageHeaderBytes ? kMessageHeaderBytes : whole) >
+                                          appended_offsets_.front()) {
+      in_.seek_forward(appended_offsets_.front());
+      continue;
+    }
+    if (head < kMessageHeaderBytes || in_.want(whole) < whole) {
+      contents_.truncated = true;
+      contents_.truncated_at_byte = at;
+      break;
+    }
+    const char type = static_cast<char>(in_.data()[2]);
+    const std::uint8_t* payload = in_.data() + kMessageHeaderBytes;
+    switch (type) {
+      case 'B': on_flag_bits(at, payload, size); break;
+      case 'F': on_format(at, payload, size); break;
+      case 'A': on_subscription(at, payload, size); break;
+      case 'D': on_data(at, payload, size); break;
+      case 'R':
+        if (size < 2) in_.fail(at, fmt::format("an unsubscription ('R') needs 2 bytes (msg_id), it holds {}", size));
+        subscriptions_.erase(binary::load_u16(payload));
+        break;
+      default: break;  // information, parameters, strings, sync, dropouts; unknown types are ignored (the spec)
+    }
+    in_.advance(whole);
+  }
+  binary::sort_gyros(contents_);
+  return std::move(contents_);
+}
+
+void ULogReader::read_header() {
+  static constexpr std::uint8_t kMagic[] = {'U', 'L', 'o', 'g', 0x01, 0x12, 0x35};
+  const std::size_t got = in_.want(kHeaderBytes);
+  const std::size_t compared = std::min(got, sizeof kMagic);
+  if (compared == 0 || !std::equal(kMagic, kMagic + compared, in_.data()))
+    in_.fail(0, fmt::format("not a ULog file: expected the magic 'ULog' 01 12 35, found {}",
+                            compared == 0 ? std::string("an empty file") : hex_bytes(in_.data(), compared)));
+  if (got < kHeaderBytes)
+    in_.fail(0, fmt::format("the ULog header is cut short: the file holds {} bytes, the header needs {} "
+                            "(magic, version, start time)",
+                            got, kHeaderBytes));
+  contents_.format = fmt::format("ULog v{}", in_.data()[7]);
+  in_.advance(kHeaderBytes);
+}
+
+void ULogReader::on_flag_bits(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
+  // compat_flags[8], incompat_flags[8], appended_offsets[3] (uint64); more may follow.
+  if (size < 16) in_.fail(at, fmt::format("a flag bits message ('B') needs at least 16 bytes, it holds {}", size));
+  const std::uint8_t* incompat = p + 8;
+  const bool appended = (incompat[0] & 1) != 0;
+  bool unknown = (incompat[0] & ~1) != 0;
+  for (int i = 1; i < 8; ++i) unknown = unknown || incompat[i] != 0;
+  if (unknown)
+    in_.fail(at, fmt::format("the log sets incompatible flag bits this reader does not know ({}); the ULog "
+                             "spec asks a reader to refuse it",
+                             hex_bytes(incompat, 8)));
+  if (!appended) return;
+  if (size < 40)
+    in_.fail(at, fmt::format("the flag bits say data is appended, but the message holds {} bytes, not the 40 "
+                             "with the appended offsets",
+                             size));
+  for (int i = 0; i < 3; ++i)
+    if (const std::uint64_t offset = binary::load_u64(p + 16 + 8 * i); offset != 0) {
+      if (offset <= at)
+        in_.fail(at, fmt::format("appended data at byte {}, before the flag bits message itself", offset));
+      appended_offsets_.push_back(offset);
+    }
+  std::sort(appended_offsets_.begin(), appended_offsets_.end());
+}
+
+void ULogReader::on_format(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(p), size);
+  const std::size_t colon = text.find(':');
+  const std::string_view name = colon == std::string_view::npos ? std::string_view() : trimmed(text.substr(0, colon));
+  if (name.empty())
+    in_.fail(at, fmt::format("a format definition ('F') must read 'name:type field;...', it reads '{}'",
+                             printable(text)));
+  FormatDef def{at, {}};
+  std::string_view rest = text.substr(colon + 1);
+  while (!rest.empty()) {
+    const std::size_t semicolon = rest.find(';');
+    const std::string_view item = trimmed(rest.substr(0, semicolon));
+    rest = semicolon == std::string_view::npos ? std::string_view() : rest.substr(semicolon + 1);
+    if (item.empty()) continue;
+    const std::size_t space = item.rfind(' ');
+    FieldDef field;
+    std::string_view type = space == std::string_view::npos ? std::string_view() : trimmed(item.substr(0, space));
+    field.name = space == std::string_view::npos ? std::string() : std::string(item.substr(space + 1));
+    if (const std::size_t open = type.find('['); open != std::string_view::npos) {
+      const std::string_view count = type.substr(open + 1, type.size() - open - 2);
+      const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), field.count);
+      if (type.back() != ']' || ec != std::errc() || end != count.data() + count.size() || field.count == 0 ||
+          field.count > kMaxFormatBytes)
+        in_.fail(at, fmt::format("format '{}': field '{}': expected an array 'type[length] name' with a length "
+                                 "of 1 or more, found '{}'",
+                                 printable(name), printable(item), printable(type)));
+      field.array = true;
+      type = type.substr(0, open);
+    }
+    field.type = std::string(type);
+    if (field.type.empty() || field.name.empty())
+      in_.fail(at, fmt::format("format '{}': expected a field 'type name', found '{}'", printable(name),
+                               printable(item)));
+    def.fields.push_back(std::move(field));
+  }
+  if (def.fields.empty()) in_.fail(at, fmt::format("format '{}' has no fields", printable(name)));
+  formats_.insert_or_assign(std::string(name), std::move(def));
+  format_bytes_.clear();
+}
+
+std::size_t ULogReader::size_of_type(const std::string& type, const std::string& within, int depth) {
+  if (const BasicType* basic = basic_type(type)) return binary::size_of(basic->kind);
+  if (formats_.count(type) == 0) {
+    const FormatDef& def = formats_.find(within)->second;
+    in_.fail(def.at_byte, fmt::format("format '{}': unknown type '{}' (expected one of {}, or a format the "
+                                      "file defines)",
+                                      printable(within), printable(type), kBasicTypeList));
+  }
+  return size_of_format(type, depth + 1);
+}
+
+std::size_t ULogReader::size_of_format(const std::string& name, int depth) {
+  if (const auto known = format_bytes_.find(name); known != format_bytes_.end()) return known->second;
+  const FormatDef& def = formats_.find(name)->second;
+  if (depth > kMaxNesting)
+    in_.fail(def.at_byte, fmt::format("format '{}' is nested more than {} deep (a format that contains itself?)",
+                                      printable(name), kMaxNesting));
+  std::size_t bytes = 0;
+  for (const FieldDef& field : def.fields) {
+    bytes += field.count * size_of_type(field.type, name, depth);
+    if (bytes > kMaxFormatBytes)
+      in_.fail(def.at_byte, fmt::format("format '{}' is larger than {} bytes, more than any message can hold",
+                                        printable(name), kMaxFormatBytes));
+  }
+  format_bytes_[name] = bytes;
+  return bytes;
+}
+
+GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscribed_at) {
+  const FormatDef& def = formats_.find(name)->second;
+  GyroLayout layout;
+  std::size_t offset = 0;
+  const std::pair<std::string_view, Field*> wanted[] = {{"timestamp", &layout.timestamp},
+                                                        {"x", &layout.x},
+                                                        {"y", &layout.y},
+                                                        {"z", &layout.z},
+                                                        {"temperature", &layout.temperature},
+                                                        {"device_id", &layout.device_id}};
+  for (const FieldDef& field : def.fields) {
+    const std::size_t bytes = field.count * size_of_type(field.type, name, 0);
+    for (const auto& [wanted_name, slot] : wanted) {
+      if (field.name != wanted_name) continue;
+      const BasicType* basic = basic_type(field.type);
+      if (basic == nullptr || field.array)
+        in_.fail(def.at_byte, fmt::format("format '{}': field '{}' is a '{}{}', expected a number", name,
+                                          field.name, printable(field.type),
+                                          field.array ? fmt::format("[{}]", field.count) : ""));
+      *slot = Field{offset, basic->kind, 1.0, true};
+      layout.needed_bytes = std::max(layout.needed_bytes, offset + bytes);
+    }
+    offset += bytes;
+  }
+  for (const auto& [wanted_name, slot] : wanted)
+    if (!slot->present && wanted_name != "temperature" && wanted_name != "device_id") {
+      std::string fields;
+      for (const FieldDef& field : def.fields) fields += (fields.empty() ? "" : ", ") + field.name;
+      in_.fail(subscribed_at, fmt::format("the subscribed format '{}' has no field '{}' (it has {}; expected "
+                                          "timestamp, x, y, z)",
+                                          name, wanted_name, printable(fields, 400)));
+    }
+  return layout;
+}
+
+void ULogReader::on_subscription(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
+  // multi_id (uint8), msg_id (uint16), message_name
+  if (size < 4)
+    in_.fail(at, fmt::format("a subscription ('A') needs multi_id, msg_id and a name (4 bytes or more), it holds {}",
+                             size));
+  const int multi_id = p[0];
+  const std::uint16_t msg_id = binary::load_u16(p + 1);
+  const std::string name(trimmed(std::string_view(reinterpret_cast<const char*>(p + 3), size - 3)));
+  if (formats_.count(name) == 0)
+    in_.fail(at, fmt::format("subscription to '{}' (msg_id {}): no format definition ('F') of that name before it",
+                             printable(name), msg_id));
+  size_of_format(name, 0);  // every type known, no cycle
+  Subscription sub;
+  if (name == kGyroTopic) {
+    const auto same = std::find_if(contents_.gyros.begin(), contents_.gyros.end(),
+                                   [&](const LogGyro& g) { return g.instance == multi_id; });
+    if (same == contents_.gyros.end()) {
+      LogGyro gyro;
+      gyro.instance = multi_id;
+      gyro.message = std::string(kGyroTopic);
+      contents_.gyros.push_back(gyro);
+      layouts_.push_back(gyro_layout(name, at));
+      sub.gyro = static_cast<int>(contents_.gyros.size()) - 1;
+    } else {
+      sub.gyro = static_cast<int>(same - contents_.gyros.begin());
+    }
+  }
+  subscriptions_[msg_id] = sub;
+}
+
+void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
+  if (size < 2) in_.fail(at, fmt::format("a data message ('D') needs 2 bytes or more (msg_id), it holds {}", size));
+  const std::uint16_t msg_id = binary::load_u16(p);
+  const auto sub = subscriptions_.find(msg_id);
+  if (sub == subscriptions_.end())
+    in_.fail(at, fmt::format("a data message ('D') for msg_id {}, which no subscription ('A') before it defines",
+                             msg_id));
+  if (sub->second.gyro < 0) return;
+  const GyroLayout& layout = layouts_[static_cast<std::size_t>(sub->second.gyro)];
+  LogGyro& gyro = contents_.gyros[static_cast<std::size_t>(sub->second.gyro)];
+  const std::uint8_t* data = p + 2;
+  if (size - 2 < layout.needed_bytes)
+    in_.fail(at, fmt::format("a {} data message (instance {}) holds {} bytes, its format needs {} for the "
+                             "fields read",
+                             kGyroTopic, gyro.instance, size - 2, layout.needed_bytes));
+  const double time_s = layout.timestamp.read(data) / 1e6;
+  const double temp_c = layout.temperature.present ? layout.temperature.read(data) : NAN;
+  if (gyro.samples == 0 && layout.device_id.present) {
+    const double id = layout.device_id.read(data);  // an integer type in every PX4 version
+    gyro.device_id = id >= 0.0 && id <= 4294967295.0 ? static_cast<std::uint32_t>(id) : 0;
+  }
+  binary::tally(gyro, time_s, temp_c);
+  if (sink_ && gyro.instance == instance_)
+    sink_(time_s, temp_c, layout.x.read(data), layout.y.read(data), layout.z.read(data));
+}
+
+}  // namespace
+
+LogContents read_ulog(const fs::path& file, int instance, const GyroSampleSink& sink) {
+  return binary::read_choosing(file, instance, sink, [](const fs::path& f, int i, const GyroSampleSink& s) {
+    return ULogReader(f, i, s).read();
+  });
+}
+
+}  // namespace gyrotherm::fit
