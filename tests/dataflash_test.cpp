@@ -252,6 +252,11 @@ TEST(DataFlash, FormatsThatCannotBeRead) {
           {"field 'GyrZ' is of format 'N', text, expected a number"});
   refused(DataFlashWriter().fmt(128, "FMT", "BBnNZ", "Type,Length,Name,Format,Columns", 90),
           {"length 90, expected FMT's own: 89 bytes"});
+  DataFlashWriter half_instance;
+  half_instance.fmt(140, "IMU", "QffffI", "TimeUS,I,GyrX,GyrY,GyrZ,EG");
+  const std::size_t imu_at = half_instance.size();
+  half_instance.message(140, Packer().put<std::uint64_t>(1).put(1.5f).put(0.f).put(0.f).put(0.f).put(0u).bytes());
+  refused(half_instance, {"byte " + std::to_string(imu_at), "instance I = 1.5, expected a whole number 0..255"});
   // A type this reader cannot size is skipped by its length when it is not an IMU.
   DataFlashWriter fine = copter4(2);
   fine.fmt(150, "NEW", "QX", "TimeUS,Thing", 13)
