@@ -26,7 +26,8 @@ class Packer {
                                  std::conditional_t<sizeof(T) == 2, std::uint16_t,
                                                     std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>>;
     const auto u = std::bit_cast<U>(value);
-    for (std::size_t i = 0; i < sizeof(T); ++i) bytes_ += static_cast<char>((static_cast<std::uint64_t>(u) >> (8 * i)) & 0xff);
+    for (std::size_t i = 0; i < sizeof(T); ++i)
+      bytes_ += static_cast<char>((static_cast<std::uint64_t>(u) >> (8 * i)) & 0xff);
     return *this;
   }
   // A fixed-size char field, NUL-filled.
@@ -130,13 +131,41 @@ class DataFlashWriter {
     std::size_t n = 3;
     for (const char c : format) {
       switch (c) {
-        case 'b': case 'B': case 'M': n += 1; break;
-        case 'h': case 'H': case 'c': case 'C': case 'g': n += 2; break;
-        case 'i': case 'I': case 'f': case 'e': case 'E': case 'L': case 'n': n += 4; break;
-        case 'd': case 'q': case 'Q': n += 8; break;
-        case 'N': n += 16; break;
-        case 'Z': case 'a': n += 64; break;
-        default: throw std::logic_error(std::string("no size for format character ") + c);
+        case 'b':
+        case 'B':
+        case 'M':
+          n += 1;
+          break;
+        case 'h':
+        case 'H':
+        case 'c':
+        case 'C':
+        case 'g':
+          n += 2;
+          break;
+        case 'i':
+        case 'I':
+        case 'f':
+        case 'e':
+        case 'E':
+        case 'L':
+        case 'n':
+          n += 4;
+          break;
+        case 'd':
+        case 'q':
+        case 'Q':
+          n += 8;
+          break;
+        case 'N':
+          n += 16;
+          break;
+        case 'Z':
+        case 'a':
+          n += 64;
+          break;
+        default:
+          throw std::logic_error(std::string("no size for format character ") + c);
       }
     }
     return n;

@@ -36,12 +36,14 @@ std::ostream& operator<<(std::ostream& os, const Sample& s) {
 }
 
 std::uint64_t time_us(int i, int k) { return 60'000'000 + 2'500 * static_cast<std::uint64_t>(k) + 10 * i; }
-float gyr(int i, int k, int axis) { return 0.0078125f * static_cast<float>(k - 2 * axis) + 0.03f * static_cast<float>(i); }
+float gyr(int i, int k, int axis) {
+  return 0.0078125f * static_cast<float>(k - 2 * axis) + 0.03f * static_cast<float>(i);
+}
 float temp(int i, int k) { return 45.25f + 0.125f * static_cast<float>(k) - static_cast<float>(i); }
 
 Sample expected(int i, int k, double time_divisor = 1e6, std::uint64_t time = 0) {
-  return {static_cast<double>(time != 0 ? time : time_us(i, k)) / time_divisor, temp(i, k), gyr(i, k, 0),
-          gyr(i, k, 1), gyr(i, k, 2)};
+  return {static_cast<double>(time != 0 ? time : time_us(i, k)) / time_divisor, temp(i, k), gyr(i, k, 0), gyr(i, k, 1),
+          gyr(i, k, 2)};
 }
 
 std::vector<Sample> read_samples(const std::filesystem::path& file, int instance, LogContents* contents = nullptr) {
@@ -213,8 +215,8 @@ TEST(DataFlash, NotADataFlashLog) {
   const auto file = dir / "flight.ulg";
   testing::write_bytes(file, testing::ULogWriter().bytes());
   EXPECT_EQ(autopilot_log_format(file), "ulog");
-  expect_input_error([&] { read_dataflash(file); }, {"flight.ulg: byte 0: not a DataFlash log",
-                                                     "a3 95", "found 55 4c"});
+  expect_input_error([&] { read_dataflash(file); },
+                     {"flight.ulg: byte 0: not a DataFlash log", "a3 95", "found 55 4c"});
 }
 
 TEST(DataFlash, AnUnknownTypeInTheMiddleIsCorrupt) {
@@ -224,13 +226,13 @@ TEST(DataFlash, AnUnknownTypeInTheMiddleIsCorrupt) {
   const std::size_t at = w.size();
   w.message(200, std::string(20, 'x'));
   w.save(file);
-  expect_input_error([&] { read_dataflash(file); }, {"corrupt.bin: byte " + std::to_string(at),
-                                                     "message type 200 has no FMT", "140 IMU"});
+  expect_input_error([&] { read_dataflash(file); },
+                     {"corrupt.bin: byte " + std::to_string(at), "message type 200 has no FMT", "140 IMU"});
   DataFlashWriter lost = copter4(2);
   lost.raw("\x01\x02\x03\x04");
   lost.save(file);
-  expect_input_error([&] { read_dataflash(file); }, {"byte " + std::to_string(at), "expected a message starting a3 95",
-                                                     "found 01 02"});
+  expect_input_error([&] { read_dataflash(file); },
+                     {"byte " + std::to_string(at), "expected a message starting a3 95", "found 01 02"});
 }
 
 TEST(DataFlash, FormatsThatCannotBeRead) {
@@ -250,9 +252,16 @@ TEST(DataFlash, FormatsThatCannotBeRead) {
           {"field 'GyrZ' is of format 'N', text, expected a number"});
   refused(DataFlashWriter().fmt(128, "FMT", "BBnNZ", "Type,Length,Name,Format,Columns", 90),
           {"length 90, expected FMT's own: 89 bytes"});
+  DataFlashWriter half_instance;
+  half_instance.fmt(140, "IMU", "QffffI", "TimeUS,I,GyrX,GyrY,GyrZ,EG");
+  const std::size_t imu_at = half_instance.size();
+  half_instance.message(140, Packer().put<std::uint64_t>(1).put(1.5f).put(0.f).put(0.f).put(0.f).put(0u).bytes());
+  refused(half_instance, {"byte " + std::to_string(imu_at), "instance I = 1.5, expected a whole number 0..255"});
   // A type this reader cannot size is skipped by its length when it is not an IMU.
   DataFlashWriter fine = copter4(2);
-  fine.fmt(150, "NEW", "QX", "TimeUS,Thing", 13).message(150, std::string(10, '\0')).message(140, imu4(1, 2, 1.0f).bytes());
+  fine.fmt(150, "NEW", "QX", "TimeUS,Thing", 13)
+      .message(150, std::string(10, '\0'))
+      .message(140, imu4(1, 2, 1.0f).bytes());
   fine.save(file);
   EXPECT_EQ(read_dataflash(file).gyros.at(1).samples, 3u);
 }

@@ -43,8 +43,8 @@ float rate_z(int i, int) { return 0.25f + 0.1f * static_cast<float>(i); }
 float temp(int i, int k, bool nan) { return nan ? NAN : 30.0f + 0.5f * static_cast<float>(k) + static_cast<float>(i); }
 
 Sample expected(int i, int k, bool nan, bool has_temp = true) {
-  return {static_cast<double>(time_us(i, k)) / 1e6, has_temp ? static_cast<double>(temp(i, k, nan)) : NAN,
-          rate_x(i, k), rate_y(i, k), rate_z(i, k)};
+  return {static_cast<double>(time_us(i, k)) / 1e6, has_temp ? static_cast<double>(temp(i, k, nan)) : NAN, rate_x(i, k),
+          rate_y(i, k), rate_z(i, k)};
 }
 
 std::vector<Sample> read_samples(const std::filesystem::path& file, int instance, LogContents* contents = nullptr) {
@@ -134,10 +134,11 @@ TEST(Ulog, OlderLayoutWithDeviceIdAfterTheTemperature) {
   ScratchDir dir;
   const auto file = dir / "old.ulg";
   ULogWriter w(1);
-  w.format("sensor_gyro:uint64_t timestamp;uint64_t integral_dt;uint64_t error_count;float x;float y;float z;"
-           "float x_integral;float y_integral;float z_integral;float temperature;float range_rad_s;float scaling;"
-           "uint32_t device_id;int16_t x_raw;int16_t y_raw;int16_t z_raw;int16_t temperature_raw;"
-           "uint8_t[4] _padding0;");
+  w.format(
+      "sensor_gyro:uint64_t timestamp;uint64_t integral_dt;uint64_t error_count;float x;float y;float z;"
+      "float x_integral;float y_integral;float z_integral;float temperature;float range_rad_s;float scaling;"
+      "uint32_t device_id;int16_t x_raw;int16_t y_raw;int16_t z_raw;int16_t temperature_raw;"
+      "uint8_t[4] _padding0;");
   w.subscribe(0, 0, "sensor_gyro");
   for (int k = 0; k < 3; ++k) {
     Packer p;
@@ -253,8 +254,8 @@ TEST(Ulog, NotAULogFile) {
   const auto file = dir / "data.csv";
   testing::write_bytes(file, "time_s,temp_c,gyro_dph\n0,20,1\n");
   EXPECT_EQ(autopilot_log_format(file), "");
-  expect_input_error([&] { read_ulog(file); }, {"data.csv: byte 0: not a ULog file", "'ULog' 01 12 35",
-                                                "found 74 69 6d 65 5f 73 2c"});
+  expect_input_error([&] { read_ulog(file); },
+                     {"data.csv: byte 0: not a ULog file", "'ULog' 01 12 35", "found 74 69 6d 65 5f 73 2c"});
   testing::write_bytes(file, "");
   expect_input_error([&] { read_ulog(file); }, {"not a ULog file", "an empty file"});
   expect_input_error([&] { read_ulog(dir / "absent.ulg"); }, {"absent.ulg", "cannot open"});
@@ -264,8 +265,8 @@ TEST(Ulog, TruncatedHeader) {
   ScratchDir dir;
   const auto file = dir / "short.ulg";
   testing::write_bytes(file, ULogWriter().bytes().substr(0, 11));
-  expect_input_error([&] { read_ulog(file); }, {"short.ulg: byte 0", "header is cut short", "holds 11 bytes",
-                                                "needs 16"});
+  expect_input_error([&] { read_ulog(file); },
+                     {"short.ulg: byte 0", "header is cut short", "holds 11 bytes", "needs 16"});
 }
 
 TEST(Ulog, DataForAnUnknownMsgId) {
@@ -276,8 +277,8 @@ TEST(Ulog, DataForAnUnknownMsgId) {
   const std::size_t at = w.size();
   w.data(9, current_fields(0, 1, false, 1));
   w.save(file);
-  expect_input_error([&] { read_ulog(file); }, {"orphan.ulg: byte " + std::to_string(at), "msg_id 9",
-                                                "no subscription ('A')"});
+  expect_input_error([&] { read_ulog(file); },
+                     {"orphan.ulg: byte " + std::to_string(at), "msg_id 9", "no subscription ('A')"});
 }
 
 TEST(Ulog, AFormatWithAnUnknownType) {
@@ -302,9 +303,11 @@ TEST(Ulog, MalformedFormatsAndSubscriptions) {
   refused(std::move(ULogWriter().format("sensor_gyro uint64_t timestamp")), {"byte 16", "'name:type field;...'"});
   refused(std::move(ULogWriter().format("sensor_gyro:uint64_t timestamp;float[x] x;")),
           {"field 'float[x] x'", "type[length] name"});
-  refused(std::move(ULogWriter().format("sensor_gyro:uint64_t timestamp;float y;float z;").subscribe(0, 0, "sensor_gyro")),
-          {"no field 'x'", "it has timestamp, y, z"});
-  refused(std::move(ULogWriter().format("sensor_gyro:uint64_t timestamp;float[3] x;float y;float z;")
+  refused(
+      std::move(ULogWriter().format("sensor_gyro:uint64_t timestamp;float y;float z;").subscribe(0, 0, "sensor_gyro")),
+      {"no field 'x'", "it has timestamp, y, z"});
+  refused(std::move(ULogWriter()
+                        .format("sensor_gyro:uint64_t timestamp;float[3] x;float y;float z;")
                         .subscribe(0, 0, "sensor_gyro")),
           {"field 'x' is a 'float[3]', expected a number"});
   refused(std::move(ULogWriter().format("a:uint64_t timestamp;b inner;").format("b:a outer;").subscribe(0, 0, "a")),

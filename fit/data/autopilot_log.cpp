@@ -69,16 +69,20 @@ void BinaryFile::seek_forward(std::uint64_t offset) {
 std::size_t size_of(Kind kind) {
   switch (kind) {
     case Kind::i8:
-    case Kind::u8: return 1;
+    case Kind::u8:
+      return 1;
     case Kind::i16:
     case Kind::u16:
-    case Kind::f16: return 2;
+    case Kind::f16:
+      return 2;
     case Kind::i32:
     case Kind::u32:
-    case Kind::f32: return 4;
+    case Kind::f32:
+      return 4;
     case Kind::i64:
     case Kind::u64:
-    case Kind::f64: return 8;
+    case Kind::f64:
+      return 8;
   }
   return 0;
 }
@@ -101,17 +105,28 @@ double half_to_double(std::uint16_t h) {
 
 double load_number(Kind kind, const std::uint8_t* p) {
   switch (kind) {
-    case Kind::i8: return static_cast<std::int8_t>(p[0]);
-    case Kind::u8: return p[0];
-    case Kind::i16: return static_cast<std::int16_t>(load_u16(p));
-    case Kind::u16: return load_u16(p);
-    case Kind::i32: return static_cast<std::int32_t>(load_u32(p));
-    case Kind::u32: return load_u32(p);
-    case Kind::i64: return static_cast<double>(static_cast<std::int64_t>(load_u64(p)));
-    case Kind::u64: return static_cast<double>(load_u64(p));
-    case Kind::f16: return half_to_double(load_u16(p));
-    case Kind::f32: return std::bit_cast<float>(load_u32(p));
-    case Kind::f64: return std::bit_cast<double>(load_u64(p));
+    case Kind::i8:
+      return static_cast<std::int8_t>(p[0]);
+    case Kind::u8:
+      return p[0];
+    case Kind::i16:
+      return static_cast<std::int16_t>(load_u16(p));
+    case Kind::u16:
+      return load_u16(p);
+    case Kind::i32:
+      return static_cast<std::int32_t>(load_u32(p));
+    case Kind::u32:
+      return load_u32(p);
+    case Kind::i64:
+      return static_cast<double>(static_cast<std::int64_t>(load_u64(p)));
+    case Kind::u64:
+      return static_cast<double>(load_u64(p));
+    case Kind::f16:
+      return half_to_double(load_u16(p));
+    case Kind::f32:
+      return std::bit_cast<float>(load_u32(p));
+    case Kind::f64:
+      return std::bit_cast<double>(load_u64(p));
   }
   return 0.0;
 }

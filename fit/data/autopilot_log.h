@@ -56,18 +56,18 @@ namespace gyrotherm::fit {
 
 // One gyro (IMU instance) the log holds.
 struct LogGyro {
-  int instance = 0;              // ULog multi_id of sensor_gyro; DataFlash the I field, or IMU/IMU2/IMU3 -> 0/1/2
-  std::string message;           // "sensor_gyro", "IMU", "IMU2", "IMU3"
-  std::uint32_t device_id = 0;   // ULog sensor_gyro.device_id (first sample) when present, else 0
+  int instance = 0;             // ULog multi_id of sensor_gyro; DataFlash the I field, or IMU/IMU2/IMU3 -> 0/1/2
+  std::string message;          // "sensor_gyro", "IMU", "IMU2", "IMU3"
+  std::uint32_t device_id = 0;  // ULog sensor_gyro.device_id (first sample) when present, else 0
   std::size_t samples = 0;
   std::size_t samples_with_temperature = 0;  // a finite temperature
   double first_time_s = NAN, last_time_s = NAN, temp_min_c = NAN, temp_max_c = NAN;
 };
 
 struct LogContents {
-  std::string format;           // "ULog v1" / "DataFlash"
-  std::vector<LogGyro> gyros;   // by instance, lowest first
-  bool truncated = false;       // the file ends inside a message (power cut): read up to there
+  std::string format;                   // "ULog v1" / "DataFlash"
+  std::vector<LogGyro> gyros;           // by instance, lowest first
+  bool truncated = false;               // the file ends inside a message (power cut): read up to there
   std::uint64_t truncated_at_byte = 0;  // where that message starts, when truncated
 
   // "ULog v1: sensor_gyro instance 0 (device 2621450): 6 samples, 12.5..17.5 s,

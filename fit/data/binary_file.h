@@ -96,8 +96,7 @@ void tally(LogGyro& gyro, double time_s, double temp_c);
 
 // A reader's one pass: fills `contents` and hands the samples of `instance`
 // (-1: none) to the sink.
-using OnePass = std::function<LogContents(const std::filesystem::path& file, int instance,
-                                          const GyroSampleSink& sink)>;
+using OnePass = std::function<LogContents(const std::filesystem::path& file, int instance, const GyroSampleSink& sink)>;
 // The public readers' contract on top of one pass: the default instance for
 // a sink with instance -1 (two passes), and an instance not held refused.
 LogContents read_choosing(const std::filesystem::path& file, int instance, const GyroSampleSink& sink,

@@ -42,11 +42,11 @@ struct FormatChar {
   double scale;
 };
 constexpr FormatChar kFormatChars[] = {
-    {'b', 1, Kind::i8, 1.0},   {'B', 1, Kind::u8, 1.0},    {'h', 2, Kind::i16, 1.0},  {'H', 2, Kind::u16, 1.0},
-    {'i', 4, Kind::i32, 1.0},  {'I', 4, Kind::u32, 1.0},   {'f', 4, Kind::f32, 1.0},  {'d', 8, Kind::f64, 1.0},
+    {'b', 1, Kind::i8, 1.0},   {'B', 1, Kind::u8, 1.0},    {'h', 2, Kind::i16, 1.0},   {'H', 2, Kind::u16, 1.0},
+    {'i', 4, Kind::i32, 1.0},  {'I', 4, Kind::u32, 1.0},   {'f', 4, Kind::f32, 1.0},   {'d', 8, Kind::f64, 1.0},
     {'n', 4, std::nullopt, 1}, {'N', 16, std::nullopt, 1}, {'Z', 64, std::nullopt, 1}, {'c', 2, Kind::i16, 0.01},
-    {'C', 2, Kind::u16, 0.01}, {'e', 4, Kind::i32, 0.01},  {'E', 4, Kind::u32, 0.01}, {'L', 4, Kind::i32, 1e-7},
-    {'M', 1, Kind::u8, 1.0},   {'q', 8, Kind::i64, 1.0},   {'Q', 8, Kind::u64, 1.0},  {'a', 64, std::nullopt, 1},
+    {'C', 2, Kind::u16, 0.01}, {'e', 4, Kind::i32, 0.01},  {'E', 4, Kind::u32, 0.01},  {'L', 4, Kind::i32, 1e-7},
+    {'M', 1, Kind::u8, 1.0},   {'q', 8, Kind::i64, 1.0},   {'Q', 8, Kind::u64, 1.0},   {'a', 64, std::nullopt, 1},
     {'g', 2, Kind::f16, 1.0},
 };
 constexpr std::string_view kFormatCharList = "bBhHiIfdnNZcCeELMqQag";
@@ -67,7 +67,7 @@ std::string text_field(const std::uint8_t* p, std::size_t bytes) {
 struct ImuLayout {
   Field time, instance, x, y, z, temperature;
   double time_units_per_s = 1e6;  // TimeUS; TimeMS (1e3) in older logs
-  int fixed_instance = 0;   // IMU2 -> 1, IMU3 -> 2, IMU without I -> 0
+  int fixed_instance = 0;         // IMU2 -> 1, IMU3 -> 2, IMU without I -> 0
 };
 
 struct MessageType {
@@ -121,8 +121,8 @@ LogContents DataFlashReader::read() {
     const std::uint8_t type = p[2];
     const MessageType& known = types_[type];
     if (type != kFmtType && !known.defined)
-      in_.fail(at, fmt::format("message type {} has no FMT message before it (a corrupt log; types defined: {})",
-                               type, defined_types()));
+      in_.fail(at, fmt::format("message type {} has no FMT message before it (a corrupt log; types defined: {})", type,
+                               defined_types()));
     const std::size_t length = type == kFmtType ? kFmtBytes : known.length;
     if (in_.want(length) < length) {
       contents_.truncated = true;
@@ -170,7 +170,8 @@ void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
     if (f != nullptr) bytes += f->bytes;
   }
   if (all_known && bytes != length)
-    in_.fail(at, fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length));
+    in_.fail(at,
+             fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length));
   MessageType& entry = types_[type];
   entry = MessageType{true, length, name, std::nullopt};
   if (name == "IMU" || name == "IMU2" || name == "IMU3") entry.imu = imu_layout(at, name, format, labels);
@@ -185,7 +186,8 @@ ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name,
     if (comma == std::string::npos) break;
     begin = comma + 1;
   }
-  const std::string what = fmt::format("FMT of '{}' (format '{}', labels '{}')", name, printable(format), printable(labels));
+  const std::string what =
+      fmt::format("FMT of '{}' (format '{}', labels '{}')", name, printable(format), printable(labels));
   if (columns.size() != format.size())
     in_.fail(at, fmt::format("{}: {} labels for {} format characters", what, columns.size(), format.size()));
   ImuLayout layout;
@@ -198,14 +200,14 @@ ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name,
       in_.fail(at, fmt::format("{}: unknown format character '{}' (expected one of {})", what,
                                printable(std::string(1, format[i])), kFormatCharList));
     const std::string& label = columns[i];
-    Field* slot = label == "TimeUS"              ? &layout.time
-                  : label == "TimeMS"            ? &time_ms
-                  : label == "I"                 ? &layout.instance
-                  : label == "GyrX"              ? &layout.x
-                  : label == "GyrY"              ? &layout.y
-                  : label == "GyrZ"              ? &layout.z
+    Field* slot = label == "TimeUS"                 ? &layout.time
+                  : label == "TimeMS"               ? &time_ms
+                  : label == "I"                    ? &layout.instance
+                  : label == "GyrX"                 ? &layout.x
+                  : label == "GyrY"                 ? &layout.y
+                  : label == "GyrZ"                 ? &layout.z
                   : label == "T" || label == "Temp" ? &layout.temperature
-                                                 : nullptr;
+                                                    : nullptr;
     if (slot != nullptr) {
       if (!f->kind)
         in_.fail(at, fmt::format("{}: field '{}' is of format '{}', text, expected a number", what, label, f->c));
@@ -217,15 +219,17 @@ ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name,
     layout.time = time_ms;
     layout.time_units_per_s = 1e3;
   }
-  for (const auto& [label, field] : {std::pair{"TimeUS", &layout.time}, {"GyrX", &layout.x}, {"GyrY", &layout.y},
-                                     {"GyrZ", &layout.z}})
-    if (!field->present) in_.fail(at, fmt::format("{}: no field '{}' (expected TimeUS or TimeMS, GyrX, GyrY, GyrZ)", what, label));
+  for (const auto& [label, field] :
+       {std::pair{"TimeUS", &layout.time}, {"GyrX", &layout.x}, {"GyrY", &layout.y}, {"GyrZ", &layout.z}})
+    if (!field->present)
+      in_.fail(at, fmt::format("{}: no field '{}' (expected TimeUS or TimeMS, GyrX, GyrY, GyrZ)", what, label));
   if (layout.instance.present && name != "IMU")
     in_.fail(at, fmt::format("{}: an instance field 'I' in {}, expected only in IMU", what, name));
   return layout;
 }
 
-void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name, const std::uint8_t* payload) {
+void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name,
+                             const std::uint8_t* payload) {
   int instance = layout.fixed_instance;
   if (layout.instance.present) {
     const double value = layout.instance.read(payload);

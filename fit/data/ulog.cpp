@@ -24,8 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using binary::BinaryFile;
 using binary::Field;
-using binary::Kind;
 using binary::hex_bytes;
+using binary::Kind;
 using binary::printable;
 
 constexpr std::size_t kHeaderBytes = 16;
@@ -106,7 +106,7 @@ class ULogReader {
   std::map<std::string, FormatDef, std::less<>> formats_;
   std::unordered_map<std::string, std::size_t> format_bytes_;  // sizes worked out so far
   std::unordered_map<std::uint16_t, Subscription> subscriptions_;
-  std::vector<GyroLayout> layouts_;   // of each gyro's format, by index in contents_.gyros
+  std::vector<GyroLayout> layouts_;              // of each gyro's format, by index in contents_.gyros
   std::vector<std::uint64_t> appended_offsets_;  // where appended data starts, ascending
 };
 
@@ -123,8 +123,8 @@ LogContents ULogReader::read() {
     std::size_t size = 0;
     if (head == kMessageHeaderBytes) size = binary::load_u16(in_.data());
     const std::size_t whole = kMessageHeaderBytes + size;
-    if (!appended_offsets_.empty() && at + (head < kMessageHeaderBytes ? kMessageHeaderBytes : whole) >
-                                          appended_offsets_.front()) {
+    if (!appended_offsets_.empty() &&
+        at + (head < kMessageHeaderBytes ? kMessageHeaderBytes : whole) > appended_offsets_.front()) {
       in_.seek_forward(appended_offsets_.front());
       continue;
     }
@@ -136,15 +136,24 @@ LogContents ULogReader::read() {
     const char type = static_cast<char>(in_.data()[2]);
     const std::uint8_t* payload = in_.data() + kMessageHeaderBytes;
     switch (type) {
-      case 'B': on_flag_bits(at, payload, size); break;
-      case 'F': on_format(at, payload, size); break;
-      case 'A': on_subscription(at, payload, size); break;
-      case 'D': on_data(at, payload, size); break;
+      case 'B':
+        on_flag_bits(at, payload, size);
+        break;
+      case 'F':
+        on_format(at, payload, size);
+        break;
+      case 'A':
+        on_subscription(at, payload, size);
+        break;
+      case 'D':
+        on_data(at, payload, size);
+        break;
       case 'R':
         if (size < 2) in_.fail(at, fmt::format("an unsubscription ('R') needs 2 bytes (msg_id), it holds {}", size));
         subscriptions_.erase(binary::load_u16(payload));
         break;
-      default: break;  // information, parameters, strings, sync, dropouts; unknown types are ignored (the spec)
+      default:
+        break;  // information, parameters, strings, sync, dropouts; unknown types are ignored (the spec)
     }
     in_.advance(whole);
   }
@@ -197,8 +206,8 @@ void ULogReader::on_format(std::uint64_t at, const std::uint8_t* p, std::size_t 
   const std::size_t colon = text.find(':');
   const std::string_view name = colon == std::string_view::npos ? std::string_view() : trimmed(text.substr(0, colon));
   if (name.empty())
-    in_.fail(at, fmt::format("a format definition ('F') must read 'name:type field;...', it reads '{}'",
-                             printable(text)));
+    in_.fail(at,
+             fmt::format("a format definition ('F') must read 'name:type field;...', it reads '{}'", printable(text)));
   FormatDef def{at, {}};
   std::string_view rest = text.substr(colon + 1);
   while (!rest.empty()) {
@@ -223,8 +232,8 @@ void ULogReader::on_format(std::uint64_t at, const std::uint8_t* p, std::size_t 
     }
     field.type = std::string(type);
     if (field.type.empty() || field.name.empty())
-      in_.fail(at, fmt::format("format '{}': expected a field 'type name', found '{}'", printable(name),
-                               printable(item)));
+      in_.fail(at,
+               fmt::format("format '{}': expected a field 'type name', found '{}'", printable(name), printable(item)));
     def.fields.push_back(std::move(field));
   }
   if (def.fields.empty()) in_.fail(at, fmt::format("format '{}' has no fields", printable(name)));
@@ -276,9 +285,8 @@ GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscr
       if (field.name != wanted_name) continue;
       const BasicType* basic = basic_type(field.type);
       if (basic == nullptr || field.array)
-        in_.fail(def.at_byte, fmt::format("format '{}': field '{}' is a '{}{}', expected a number", name,
-                                          field.name, printable(field.type),
-                                          field.array ? fmt::format("[{}]", field.count) : ""));
+        in_.fail(def.at_byte, fmt::format("format '{}': field '{}' is a '{}{}', expected a number", name, field.name,
+                                          printable(field.type), field.array ? fmt::format("[{}]", field.count) : ""));
       *slot = Field{offset, basic->kind, 1.0, true};
       layout.needed_bytes = std::max(layout.needed_bytes, offset + bytes);
     }
@@ -298,8 +306,8 @@ GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscr
 void ULogReader::on_subscription(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
   // multi_id (uint8), msg_id (uint16), message_name
   if (size < 4)
-    in_.fail(at, fmt::format("a subscription ('A') needs multi_id, msg_id and a name (4 bytes or more), it holds {}",
-                             size));
+    in_.fail(
+        at, fmt::format("a subscription ('A') needs multi_id, msg_id and a name (4 bytes or more), it holds {}", size));
   const int multi_id = p[0];
   const std::uint16_t msg_id = binary::load_u16(p + 1);
   const std::string name(trimmed(std::string_view(reinterpret_cast<const char*>(p + 3), size - 3)));
@@ -330,8 +338,8 @@ void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t si
   const std::uint16_t msg_id = binary::load_u16(p);
   const auto sub = subscriptions_.find(msg_id);
   if (sub == subscriptions_.end())
-    in_.fail(at, fmt::format("a data message ('D') for msg_id {}, which no subscription ('A') before it defines",
-                             msg_id));
+    in_.fail(at,
+             fmt::format("a data message ('D') for msg_id {}, which no subscription ('A') before it defines", msg_id));
   if (sub->second.gyro < 0) return;
   const GyroLayout& layout = layouts_[static_cast<std::size_t>(sub->second.gyro)];
   LogGyro& gyro = contents_.gyros[static_cast<std::size_t>(sub->second.gyro)];

@@ -60,14 +60,16 @@ int main() {
   gyrotherm::testing::write_bytes(ulog / "truncated.ulg", current.bytes().substr(0, current.size() - 9));
 
   ULogWriter nested(1);
-  nested.format("sensor_gyro:uint64_t timestamp;gyro_raw raw;uint8_t[3] _padding0;float x;float y;float z;"
-                "float temperature;uint32_t device_id;");
+  nested.format(
+      "sensor_gyro:uint64_t timestamp;gyro_raw raw;uint8_t[3] _padding0;float x;float y;float z;"
+      "float temperature;uint32_t device_id;");
   nested.format("gyro_raw:int16_t[3] v;uint8_t flags;");
   nested.subscribe(2, 3, "sensor_gyro");
   for (int k = 0; k < 3; ++k) {
     Packer p;
     p.put(1'000'000 + 4000 * static_cast<std::uint64_t>(k)).put<std::int16_t>(1).put<std::int16_t>(2);
-    p.put<std::int16_t>(3).put<std::uint8_t>(0).zeros(3).put(0.5f).put(-0.5f).put(0.25f).put(29.0f + static_cast<float>(k));
+    p.put<std::int16_t>(3).put<std::uint8_t>(0).zeros(3).put(0.5f).put(-0.5f).put(0.25f).put(29.0f +
+                                                                                             static_cast<float>(k));
     p.put<std::uint32_t>(1311244);
     nested.data(3, p);
   }
