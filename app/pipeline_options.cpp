@@ -50,6 +50,8 @@ void add_column_options(CLI::App* cmd, fit::ColumnMap& c, bool fit_defaults) {
   cmd->add_option("--delimiter", c.csv.delimiter,
                   "Column delimiter: comma, semicolon, tab or auto" + is(" (default auto: the one the header uses)"));
   cmd->add_flag("--decimal-comma", c.csv.decimal_comma, "Numbers are written with a decimal comma (20,5)" + is(""));
+  cmd->add_option("--imu", c.imu,
+                  "The gyro instance of a PX4 ULog or ArduPilot DataFlash log" + is(" (default: the first with a temperature)"));
   cmd->add_option("--rate", c.csv.rate_hz,
                   "Sample rate in Hz of a log without a time column (row k at k / rate s)" + is(""));
 }

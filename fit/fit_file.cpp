@@ -134,6 +134,7 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                      {"temp", pipeline.columns.temp},
                      {"gyro", pipeline.columns.gyro},
                      {"temp2", pipeline.columns.temp2},
+                     {"imu", pipeline.columns.imu ? nlohmann::ordered_json(*pipeline.columns.imu) : nlohmann::ordered_json()},
                      {"csv",
                       {{"delimiter", pipeline.columns.csv.delimiter.empty() ? "auto" : pipeline.columns.csv.delimiter},
                        {"decimal_comma", pipeline.columns.csv.decimal_comma},
@@ -229,6 +230,12 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
   s.pipeline.columns.temp = need(columns, "temp", "name").get<std::string>();
   s.pipeline.columns.gyro = need(columns, "gyro", "name").get<std::string>();
   s.pipeline.columns.temp2 = need(columns, "temp2", "name").get<std::string>();
+  if (columns.contains("imu") && !columns["imu"].is_null()) {
+    const double imu = number(columns["imu"], "pipeline.columns.imu");
+    if (imu != std::floor(imu) || imu < 0 || imu > 255)
+      throw InputError(fmt::format("{}: pipeline.columns.imu: {} is not a gyro instance (0..255)", file.string(), imu));
+    s.pipeline.columns.imu = static_cast<int>(imu);
+  }
   // Fit files from before the CSV forms were options have none: the defaults.
   if (columns.contains("csv")) {
     const nlohmann::json& c = columns["csv"];

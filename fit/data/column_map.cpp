@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "fit/data/autopilot_log.h"
 #include "fit/data/measurement.h"
 #include "sim/util/input_error.h"
 
@@ -33,6 +34,11 @@ const Unit& Units::time_unit() const { return unit_or_base(Quantity::time, time,
 const Unit& Units::gyro_unit() const { return unit_or_base(Quantity::gyro, gyro, "--gyro-unit"); }
 const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
 
+ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns) {
+  if (columns.gyro == ColumnMap{}.gyro && !autopilot_log_format(file).empty()) columns.gyro = "gyro_x,gyro_y,gyro_z";
+  return columns;
+}
+
 ColumnMap ColumnMap::unset() {
   ColumnMap c;
   c.time = c.temp = c.gyro = c.temp2 = "";
@@ -55,6 +61,7 @@ ColumnMap ColumnMap::with(const ColumnMap& given) const {
                               {&c.units.temp_offset, given.units.temp_offset}, {&c.csv.rate_hz, given.csv.rate_hz}})
     if (!std::isnan(theirs)) *mine = theirs;
   if (!given.csv.delimiter.empty()) c.csv.delimiter = given.csv.delimiter;
+  if (given.imu) c.imu = given.imu;
   c.csv.decimal_comma = c.csv.decimal_comma || given.csv.decimal_comma;
   return c;
 }

@@ -1,5 +1,6 @@
 #include "fit/data/measurement.h"
 
+#include "fit/data/autopilot_log.h"
 #include "fit/data/csv_dialect.h"
 #include "fit/data/header_units.h"
 
@@ -16,6 +17,7 @@
 #include <memory>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 
 #include "sim/util/input_error.h"
 
@@ -153,6 +155,7 @@ class CsvParser {
 
  private:
   [[noreturn]] void fail(std::size_t line, const std::string& message) const {
+    if (!log_gyro_.empty()) throw InputError(fmt::format("{}: sample {} of {}: {}", name_, line, log_gyro_, message));
     throw InputError(located(name_, line, message));
   }
   void use_units(const Units& u) {
@@ -174,6 +177,12 @@ class CsvParser {
   }
   void parse_header(std::string_view line, std::size_t line_number, Measurement& m);
   void parse_row(std::string_view line, std::size_t line_number, Measurement& m);
+  // The row in values_ (one number per header column, as read): converted,
+  // checked, and stored or handed to the sink.
+  void take_values(std::size_t line_number, Measurement& m);
+  // An autopilot log (fit/data/autopilot_log.h) read as the table
+  // time_s, temp_c, gyro_x, gyro_y, gyro_z (s, °C, rad/s) of one gyro.
+  void read_log(const fs::path& file, const std::string& format, Measurement& m);
   // The time field of a row, in the file's unit or as an ISO 8601 timestamp
   // (seconds since the first row's): "" on success, else what is wrong.
   std::string read_time(std::string_view field, Measurement& m, double& value);
@@ -187,6 +196,8 @@ class CsvParser {
   std::vector<int> role_of_column_;              // Role of each header column
   char delimiter_ = ',';
   std::vector<std::string_view> fields_;         // of the row being read
+  std::vector<double> values_;                   // its numbers, by column
+  std::string log_gyro_;                         // an autopilot log's gyro ("sensor_gyro instance 1")
   bool iso_time_ = false;                        // the time column holds ISO 8601 timestamps
   Timestamp time_origin_;                        // the first row's, when it does
   // Extra columns: header column → its vector in the measurement, and
@@ -335,44 +346,107 @@ std::string CsvParser::read_time(std::string_view field, Measurement& m, double&
   return {};
 }
 
+void CsvParser::read_log(const fs::path& file, const std::string& format, Measurement& m) {
+  const bool ulog = format == "ulog";
+  const auto read = ulog ? read_ulog : read_dataflash;
+  const LogContents contents = read(file, -1, {});
+  const int instance = map_.imu.value_or(contents.default_instance());
+  if (instance < 0)
+    throw InputError(fmt::format("{}: no gyro with a temperature to fit against ({})", name_, contents.describe()));
+  const auto gyro = std::find_if(contents.gyros.begin(), contents.gyros.end(),
+                                 [&](const LogGyro& g) { return g.instance == instance; });
+  if (gyro == contents.gyros.end())
+    throw InputError(fmt::format("{}: --imu {}: the log holds gyro instances {} ({})", name_, instance,
+                                 contents.instances(), contents.describe()));
+  // The format states every unit: an option may only repeat it.
+  const std::array<std::tuple<const std::string*, const char*, const char*>, 3> stated = {
+      std::tuple{&map_.units.time, "s", "--time-unit"}, {&map_.units.gyro, "rad/s", "--gyro-unit"},
+      {&map_.units.temp, "C", "--temp-unit"}};
+  for (const auto& [given, unit, option] : stated)
+    if (!given->empty() && *given != unit)
+      throw InputError(fmt::format("{}: {} {}: the log is {}, whose units are fixed (time µs, gyro rad/s, "
+                                   "temperature °C); leave {} out",
+                                   name_, option, *given, contents.format, option));
+  parse_header("time_s,temp_c,gyro_x,gyro_y,gyro_z", 0, m);
+  std::sort(extras_.begin(), extras_.end(), [](const Extra& a, const Extra& b) { return a.column < b.column; });
+  log_gyro_ = fmt::format("{} instance {}", gyro->message, instance);
+  Units u = units_;
+  // Named strings, not literals: g++ 12 warns of a false overlap when a literal is assigned here.
+  static const std::string kSeconds = "s", kRadPerSecond = "rad/s", kCelsius = "C";
+  u.time = kSeconds;
+  u.gyro = kRadPerSecond;
+  u.temp = kCelsius;
+  u.time_from = fmt::format("{} timestamps", contents.format);
+  u.gyro_from = u.temp_from = fmt::format("{} {}", contents.format, log_gyro_);
+  u.layout = fmt::format("{}{} of the log's gyro instances {}", log_gyro_,
+                         gyro->device_id != 0 ? fmt::format(" (device {})", gyro->device_id) : std::string(),
+                         contents.instances());
+  use_units(u);
+  m.units = units_;
+  std::size_t sample = 0, without_temperature = 0;
+  read(file, instance, [&](double t, double temp, double x, double y, double z) {
+    ++sample;
+    if (!std::isfinite(temp)) {
+      ++without_temperature;
+      return;
+    }
+    values_ = {t, temp, x, y, z};
+    take_values(sample, m);
+  });
+  if (without_temperature > 0) {
+    units_.layout += fmt::format("; {} of its {} samples have no temperature and are left out", without_temperature,
+                                 sample);
+    m.units = units_;
+  }
+  if (rows_ < 2)
+    throw InputError(fmt::format("{}: {} has {} samples with a temperature; at least 2 are needed ({})", name_,
+                                 log_gyro_, rows_, contents.describe()));
+}
+
 void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measurement& m) {
   if (const std::string bad = split_fields(line, delimiter_, fields_); !bad.empty()) fail(line_number, bad);
   const std::size_t fields = fields_.size();
   if (fields != role_of_column_.size())
     fail(line_number, fmt::format("the row has {} field{}, the header (line {}) has {}", fields,
                                   fields == 1 ? "" : "s", header_line_, role_of_column_.size()));
-  std::array<double, kRoles> value{};
+  values_.assign(fields, 0.0);
   std::size_t next_extra = 0;  // extras_ in header order (see read())
   for (std::size_t column = 0; column < fields; ++column) {
     const std::string_view field = fields_[column];
     for (; next_extra < extras_.size() && extras_[next_extra].column == column; ++next_extra) {
       Extra& e = extras_[next_extra];
       if (!e.numeric) continue;
-      double v = 0.0;
-      const std::string problem = parse_csv_number(field, map_.csv.decimal_comma, v);
+      const std::string problem = parse_csv_number(field, map_.csv.decimal_comma, values_[column]);
       if (!problem.empty()) {
         if (e.strict) fail(line_number, fmt::format("column {}: {}", e.name, problem));
         e.numeric = false;  // a column of text, say: not a candidate
         m.extra.erase(e.name);
-        continue;
       }
-      if (!sink_) m.extra[e.name].push_back(v);
     }
     if (const int role = role_of_column_[column]; role != kNoRole) {
-      const std::string problem = role == kTime ? read_time(field, m, value[role])
-                                                : parse_csv_number(field, map_.csv.decimal_comma, value[role]);
-      if (!problem.empty())
-        fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
-      const double read = value[role];
-      value[role] = convert(static_cast<Role>(role), read);
-      const std::string range = out_of_range(static_cast<Role>(role), value[role]);
-      if (!range.empty())
-        fail(line_number,
-             fmt::format("column {}: {}{}", m.columns[column], range,
-                         read == value[role] ? std::string()
-                                             : fmt::format(" (read {:g}, converted by {})", read,
-                                                           units_.description())));
+      const std::string problem = role == kTime ? read_time(field, m, values_[column])
+                                                : parse_csv_number(field, map_.csv.decimal_comma, values_[column]);
+      if (!problem.empty()) fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
     }
+  }
+  take_values(line_number, m);
+}
+
+void CsvParser::take_values(std::size_t line_number, Measurement& m) {
+  std::array<double, kRoles> value{};
+  for (const Extra& e : extras_)
+    if (e.numeric && !sink_) m.extra[e.name].push_back(values_[e.column]);
+  for (std::size_t column = 0; column < values_.size(); ++column) {
+    const int role = role_of_column_[column];
+    if (role < 0 || role >= kRoles) continue;  // kNoRole
+    const double read = values_[column];
+    value[role] = convert(static_cast<Role>(role), read);
+    const std::string range = out_of_range(static_cast<Role>(role), value[role]);
+    if (!range.empty())
+      fail(line_number,
+           fmt::format("column {}: {}{}", m.columns[column], range,
+                       read == value[role] ? std::string()
+                                           : fmt::format(" (read {:g}, converted by {})", read, units_.description())));
   }
   if (map_.csv.rate_hz > 0.0) value[kTime] = static_cast<double>(rows_) / map_.csv.rate_hz;
   if (rows_ == 0 && header_sink_) header_sink_(CsvHeader{m.file, m.units, m.columns, has_temp2_, 0});
@@ -402,14 +476,18 @@ Measurement CsvParser::read(const fs::path& file) {
   if (!fs::exists(status)) throw InputError(located(name_, 0, "no such file"));
   if (fs::is_directory(status))
     throw InputError(located(name_, 0, "cannot read: it is a folder, expected a CSV file"));
+  Measurement m;
+  m.file = name_;
+  if (const std::string format = autopilot_log_format(file); !format.empty()) {
+    read_log(file, format, m);
+    return m;
+  }
   std::unique_ptr<std::FILE, FileCloser> handle(std::fopen(file.c_str(), "rb"));
   if (!handle)
     throw InputError(located(name_, 0, fmt::format("cannot read ({})", std::strerror(errno))));
   file_bytes_ = fs::file_size(file, ec);
   if (ec) file_bytes_ = 0;
 
-  Measurement m;
-  m.file = name_;
   LineReader reader(handle.get());
   const auto by_column = [](const Extra& a, const Extra& b) { return a.column < b.column; };
   std::string_view line;

@@ -32,6 +32,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,10 @@ struct ColumnMap {
                                   // empty name ignores the column
   Units units;                    // applied as each value is read
   CsvDialect csv;                 // delimiter, decimal comma, --rate
+  // An autopilot log's gyro instance (--imu; default: the first with a
+  // temperature). Such a log (fit/data/autopilot_log.h) reads as the columns
+  // time_s, temp_c, gyro_x, gyro_y, gyro_z of that gyro (s, °C, rad/s).
+  std::optional<int> imu;
   // Other columns to read as numbers, for model terms named after them
   // (fit/model/terms.h): each must exist and hold numbers. With
   // other_numeric, every further column that holds only numbers is read too
@@ -116,6 +121,10 @@ struct Measurement {
   bool has_temp2() const { return !temp2_c.empty(); }
   std::size_t size() const { return time_s.size(); }
 };
+
+// The columns to read `file` with: for an autopilot log whose gyro column is
+// left at its default, its three axes gyro_x, gyro_y, gyro_z (one channel each).
+ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns);
 
 // The text without the spaces and tabs at either end (a field, a column's name).
 std::string_view trim(std::string_view s);

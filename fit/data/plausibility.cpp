@@ -48,7 +48,14 @@ std::vector<std::string> unit_cautions(const Units& u, const ReadSummary& r) {
         "built (the best reach about 1e-4): {}, are its numbers really in that unit (rad/s or °/s read "
         "as °/h?); give --gyro-unit",
         n, gyro_read));
-  if (n > kNoisiestArw)
+  const bool log_format = u.gyro_from.starts_with("ULog") || u.gyro_from.starts_with("DataFlash");
+  if (n > kNoisiestArw && log_format)  // the format states the unit: the gyro turned
+    out.push_back(fmt::format(
+        "the gyro's sample-to-sample changes are an angle random walk of {:.3g} °/√h, more than any MEMS gyro's "
+        "noise (0.1 to 10), in the unit the log's format states ({}): the vehicle turned, and a rotation is read "
+        "as bias; a thermal test holds the gyro still",
+        n, u.gyro_from));
+  else if (n > kNoisiestArw)
     out.push_back(fmt::format(
         "the gyro's sample-to-sample noise is an angle random walk of {:.3g} °/√h, noisier than any MEMS "
         "gyro (0.1 to 10): {}, are its numbers really in that unit (°/h read as °/s?); give --gyro-unit",

@@ -269,8 +269,10 @@ std::vector<AllanStudy> run_allan(const AllanRequest& r) {
       }
     }
   } else {
-    const std::vector<std::string> channels = fit::parse_channels(r.pipeline.columns.gyro);
-    studies = fit::for_each_channel(channels, r.pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
+    fit::PipelineOptions pipeline = r.pipeline;
+    pipeline.columns = fit::columns_for(r.data, pipeline.columns);
+    const std::vector<std::string> channels = fit::parse_channels(pipeline.columns.gyro);
+    studies = fit::for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
       AllanStudy s = allan_study(fit::read_measurement_csv(r.data, p.columns), nullptr, r.options);
       if (channels.size() > 1) s.channel = channel;
       return s;

@@ -104,9 +104,10 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
 DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
   DiagnoseRun run;
   run.request = request;
+  run.request.pipeline.columns = fit::columns_for(request.data, request.pipeline.columns);
   const fit::EngineInfo& engine = fit::find_engine(request.engine);
   engine.make(request.settings);  // validates the settings before any work
-  const std::vector<std::string> channels = fit::parse_channels(request.pipeline.columns.gyro);
+  const std::vector<std::string> channels = fit::parse_channels(run.request.pipeline.columns.gyro);
   DiagnosisOptions options = request.options;
   options.excluded_columns = channels;  // no gyro channel explains another
   // Progress only where the work is long: a large log, or one streamed.
@@ -119,7 +120,7 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
     if (show)
       request.progress(what, (static_cast<double>(channel_index) + within) / static_cast<double>(channels.size()));
   };
-  const fit::PipelineOptions with_columns = fit::reading_columns_of(request.pipeline, request.terms);
+  const fit::PipelineOptions with_columns = fit::reading_columns_of(run.request.pipeline, request.terms);
   run.channels =
       fit::for_each_channel(channels, with_columns, [&](const std::string& channel, const fit::PipelineOptions& p) {
         ChannelDiagnosis c;

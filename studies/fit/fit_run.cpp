@@ -82,7 +82,8 @@ FitRun run_fit(const FitRequest& request) {
   run.engine = &fit::find_engine(request.engine);
   run.engine->make(request.settings);  // validates the options before any work
   const std::vector<const fit::Term*>& terms = request.terms;
-  const fit::PipelineOptions pipeline = fit::reading_columns_of(request.pipeline, terms);
+  fit::PipelineOptions pipeline = fit::reading_columns_of(request.pipeline, terms);
+  pipeline.columns = fit::columns_for(request.data, pipeline.columns);
   const std::vector<std::string> channels = fit::parse_channels(pipeline.columns.gyro);
   run.channels =
       fit::for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
