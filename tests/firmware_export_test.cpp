@@ -27,7 +27,6 @@ namespace {
 
 using namespace gyrotherm::testing;
 
-constexpr double kDphToRadS = 3.14159265358979323846 / (180.0 * 3600.0);
 
 struct Fitted {
   double c[4] = {0, 0, 0, 0};

@@ -24,7 +24,6 @@ namespace {
 
 using namespace gyrotherm::testing;
 
-constexpr double kDphToRadS = 3.14159265358979323846 / (180.0 * 3600.0);
 
 TEST(FirmwareOutcome, Px4HoldsTheOffsetsOfTheLastPublishedTemperature) {
   // 0.25 s samples, warming 0.3 °C/s, a gap from 3.5 to 7.25 s.
@@ -60,34 +59,6 @@ TEST(FirmwareOutcome, ArduPilotSubtractsTheBiasAtBootThere) {
   EXPECT_EQ(applied[4], ardupilot_applied_dph({70.0}, g, 15.0f, 70.0f, 30.0f, 7.5)[0]);  // and above
   // At 35 °C p is 0: what is subtracted is the bias at boot less p(30 − 35) (float: 1e-4 °/h).
   EXPECT_NEAR(applied[2] - 7.5, (0.0 - (-5.0 * (50.0 + (-2.0 + 0.01 * -5.0) * -5.0)) * 1e-6) / kDphToRadS, 1e-4);
-}
-
-double instability(const fit::Measurement& m, const std::vector<double>& subtracted_dph) {
-  fit::Measurement rest = m;
-  for (std::size_t i = 0; i < m.size(); ++i) rest.gyro_dph[i] -= subtracted_dph[i];
-  const std::vector<double> w = fit::prepare_data(rest, {}).series.gyro_dph;
-  double mean = 0.0, ss = 0.0;
-  for (const double v : w) mean += v / static_cast<double>(w.size());
-  for (const double v : w) ss += (v - mean) * (v - mean);
-  return std::sqrt(ss / static_cast<double>(w.size() - 1));
-}
-
-// What PX4 subtracts from each sample of `m` (°/h) with the parameters `p`:
-// the module runs once a second and publishes the offsets of the temperature
-// it sees when that has moved more than 1 °C since the last published.
-std::vector<double> px4_as_applied(const fit::Measurement& m, const std::map<std::string, float>& p, int axis) {
-  std::vector<double> applied(m.size());
-  double held = 0.0, next_run = m.time_s[0];
-  float last = -1e9f;
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    if (m.time_s[i] >= next_run) {
-      const auto temp = static_cast<float>(m.temp_c[i]);
-      if (std::fabs(temp - last) > 1.0f) held = px4_offset(p, axis, last = temp) / kDphToRadS;
-      while (next_run <= m.time_s[i]) next_run += 1.0;
-    }
-    applied[i] = held;
-  }
-  return applied;
 }
 
 // `export fit.json ARGS --json`'s firmware_outcome (null, and a failure, when it fails).

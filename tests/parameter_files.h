@@ -10,11 +10,17 @@
 // v −= p(T − 35), v += p(T_cal − 35), both temperatures constrained).
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "fit/data/prepare.h"
 
 namespace gyrotherm::testing {
+
+inline constexpr double kDphToRadS = 3.14159265358979323846 / (180.0 * 3600.0);
 
 // name → value of a QGroundControl .params file (tab-separated, '#' comments).
 inline std::map<std::string, float> read_qgc(const std::string& text) {
@@ -68,6 +74,35 @@ inline float ardupilot_subtracted(const std::map<std::string, float>& p, char ax
   temp = std::clamp(temp, tmin, tmax);
   cal_temp = std::clamp(cal_temp, tmin, tmax);
   return poly(temp - 35.0f) - poly(cal_temp - 35.0f);
+}
+
+// The instability (std of the 100 s window averages) of m's gyro less `subtracted_dph`.
+inline double instability(const fit::Measurement& m, const std::vector<double>& subtracted_dph) {
+  fit::Measurement rest = m;
+  for (std::size_t i = 0; i < m.size(); ++i) rest.gyro_dph[i] -= subtracted_dph[i];
+  const std::vector<double> w = fit::prepare_data(rest, {}).series.gyro_dph;
+  double mean = 0.0, ss = 0.0;
+  for (const double v : w) mean += v / static_cast<double>(w.size());
+  for (const double v : w) ss += (v - mean) * (v - mean);
+  return std::sqrt(ss / static_cast<double>(w.size() - 1));
+}
+
+// What PX4 subtracts from each sample of `m` (°/h) with the parameters `p`:
+// the module runs once a second and publishes the offsets of the temperature
+// it sees when that has moved more than 1 °C since the last published.
+inline std::vector<double> px4_as_applied(const fit::Measurement& m, const std::map<std::string, float>& p, int axis) {
+  std::vector<double> applied(m.size());
+  double held = 0.0, next_run = m.time_s[0];
+  float last = -1e9f;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (m.time_s[i] >= next_run) {
+      const auto temp = static_cast<float>(m.temp_c[i]);
+      if (std::fabs(temp - last) > 1.0f) held = px4_offset(p, axis, last = temp) / kDphToRadS;
+      while (next_run <= m.time_s[i]) next_run += 1.0;
+    }
+    applied[i] = held;
+  }
+  return applied;
 }
 
 }  // namespace gyrotherm::testing
