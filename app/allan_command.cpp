@@ -47,7 +47,7 @@ void add_allan_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<AllanCli>();
   CLI::App* cmd = app.add_subcommand(
       "allan", "Allan deviation with intervals and noise coefficients, before and after compensation");
-  cmd->add_option("data", o->request.data, "Measurement CSV")->required();
+  cmd->add_option("data", o->request.data, "Measurement CSV, or a PX4 ULog / ArduPilot DataFlash log")->required();
   cmd->add_option("--fit", o->request.fit_file,
                   "Also the output compensated by this saved fit (as compensate --causal), side by side");
   cmd->add_option("--taus", o->taus, "τ set: octave (default: 1, 2, 4, … samples), decade, or all");

@@ -14,7 +14,7 @@ void add_compensate_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<studies::CompensateRequest>();
   auto json = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("compensate", "Apply a saved fit to other data");
-  cmd->add_option("data", o->data, "Measurement CSV")->required();
+  cmd->add_option("data", o->data, "Measurement CSV, or a PX4 ULog / ArduPilot DataFlash log")->required();
   cmd->add_option("--fit", o->fit_file, "Fit saved by 'gyrotherm fit -o'")->required();
   cmd->add_option("-o,--output", o->output, "Write time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier");
   cmd->add_flag("--causal", o->causal, "Real-time compensation: backward differences and only past windows");

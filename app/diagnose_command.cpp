@@ -45,7 +45,7 @@ void add_diagnose_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<DiagnoseCli>();
   CLI::App* cmd = app.add_subcommand(
       "diagnose", "Where a bias model fails on measurements, and which physical effect is missing");
-  cmd->add_option("data", o->data, "Measurement CSV")->required();
+  cmd->add_option("data", o->data, "Measurement CSV, or a PX4 ULog / ArduPilot DataFlash log")->required();
   add_model_options(cmd, o->model, "Add a term and compare before/after (repeatable)");
   cmd->add_option("--candidates", o->candidates,
                   "Candidates to try: a comma list (terms, columns, 'step'), or +NAME/-NAME to add to or "

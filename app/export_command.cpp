@@ -15,10 +15,7 @@ void add_export_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<studies::ExportRequest>();
   CLI::App* cmd = app.add_subcommand("export", "Export a saved fit as autopilot parameters (PX4, ArduPilot) or C");
   cmd->add_option("fit", o->fit_file, "Fit saved by 'gyrotherm fit -o'")->required();
-  std::string formats;
-  for (const studies::ExporterInfo& e : studies::exporter_registry())
-    formats += fmt::format("{}{} ({})", formats.empty() ? "" : ", ", e.name, e.description);
-  cmd->add_option("--format", o->format, "The format: " + formats)->required();
+  cmd->add_option("--format", o->format, "The format: " + studies::exporter_descriptions())->required();
   cmd->add_option("--axes", o->axes,
                   "The fit's channels for the X, Y and Z axes, '-' for none (default: the channels in order)");
   cmd->add_option("--channel", o->channel, "The channel to export in C (--format c)");
@@ -32,14 +29,11 @@ void add_export_command(CLI::App& app, Run* run) {
                 "Leave out terms the firmware cannot express, and say how much the instability rises");
   cmd->add_option("--data", o->data,
                   "The data the fit was made on, for what the firmware achieves and --drop-unsupported (default: the fit's own)");
-  auto json = std::make_shared<bool>(false);
-  cmd->add_flag("--json", *json, "Print one JSON object (what was written, and what the firmware achieves)");
+  cmd->add_flag("--json", o->json, "Print one JSON object (what was written, and what the firmware achieves)");
   cmd->add_option("-o,--output", o->output, "The parameter file to write")->required();
-  when_chosen(cmd, run, [o, json] {
+  when_chosen(cmd, run, [o] {
     const studies::ExportOutput out = studies::run_export(*o);
-    if (*json) fmt::print("{}\n", studies::export_json(*o, out).dump());
-    else
-      for (const std::string& line : out.lines) fmt::print("{}\n", line);
+    fmt::print("{}", o->json ? studies::export_json(*o, out).dump() + "\n" : studies::export_text(out));
     for (const std::string& warning : out.warnings) fmt::print(stderr, "gyrotherm: warning: {}\n", warning);
     return 0;
   });

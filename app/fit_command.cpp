@@ -44,7 +44,7 @@ int run_fit(const FitCli& o) {
 void add_fit_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<FitCli>();
   CLI::App* cmd = app.add_subcommand("fit", "Fit a bias model to measurements (CSV)");
-  cmd->add_option("data", o->data, "Measurement CSV (time_s, temp_c, gyro_dph[, temp2_c])")->required();
+  cmd->add_option("data", o->data, "Measurement CSV (time_s, temp_c, gyro_dph[, temp2_c]), or a PX4 / ArduPilot log")->required();
   add_model_options(cmd, o->model, "Add a term to the model (repeatable)");
   cmd->add_option("--budget", o->budget, "Maximum objective evaluations (0: the engine's default)");
   cmd->add_option("--target", o->target, "Stop when sigma <= this, °/h (0: none)");

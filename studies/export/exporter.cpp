@@ -79,6 +79,18 @@ void warn_if_little_compensation(const fit::SavedFit& f, double after_dph, Expor
       100.0 * (1.0 - after_dph / before)));
 }
 
+std::string exporter_descriptions() {
+  std::string out;
+  for (const ExporterInfo& e : exporter_registry()) out += fmt::format("{}{} ({})", out.empty() ? "" : ", ", e.name, e.description);
+  return out;
+}
+
+std::string export_text(const ExportOutput& out) {
+  std::string text;
+  for (const std::string& line : out.lines) text += line + "\n";
+  return text;
+}
+
 nlohmann::ordered_json export_json(const ExportRequest& request, const ExportOutput& out) {
   nlohmann::ordered_json j{{"format", request.format}, {"output", request.output}, {"lines", out.lines},
                            {"warnings", out.warnings}};

@@ -41,6 +41,7 @@ struct ExportRequest {
   bool drop_unsupported = false;
   std::string data;     // the fitted data, for the cost of dropping terms
   std::string output;
+  bool json = false;    // --json: export_json on stdout instead of export_text
 };
 
 // What a format writes, and what export prints about it.
@@ -75,10 +76,14 @@ const std::vector<ExporterInfo>& exporter_registry();
 const ExporterInfo& find_exporter(std::string_view name);
 // "c, px4 or ardupilot"
 std::string exporter_names(std::string_view last = " or ");
+// "c (a C99 header …), px4 (…), ardupilot (…)", for --help.
+std::string exporter_descriptions();
 
 // Loads the fit, writes request.output with the chosen format, returns what
 // to print (lines, warnings). Throws InputError (no file written) on bad input.
 ExportOutput run_export(const ExportRequest& request);
+// What export prints: its lines, one a line.
+std::string export_text(const ExportOutput& out);
 // export --json: format, output, lines, warnings and the format's own fields.
 nlohmann::ordered_json export_json(const ExportRequest& request, const ExportOutput& out);
 
