@@ -100,7 +100,8 @@ void expect_gyro_choice(LogReaderFn read, const std::filesystem::path& file, con
   const fit::LogContents c = read(file, -1, {});
   EXPECT_EQ(c.default_instance(), -1);
   EXPECT_EQ(c.describe(), format + ": no gyro samples");
-  expect_input_error([&] { read_samples(read, file, -1); }, {"none is chosen by default", format + ": no gyro samples"});
+  expect_input_error([&] { read_samples(read, file, -1); },
+                     {"none is chosen by default", format + ": no gyro samples"});
   expect_input_error([&] { read(file, 0, {}); }, {"no gyro instance 0", "it holds no gyro"});
 }
 
