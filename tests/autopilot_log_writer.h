@@ -58,8 +58,25 @@ inline void write_bytes(const std::filesystem::path& path, const std::string& by
   std::fclose(f);
 }
 
+// What the two writers share: the bytes written so far.
+template <class Writer>
+class LogWriter {
+ public:
+  // Bytes as they are, outside any message (a message cut short, garbage).
+  Writer& raw(const std::string& bytes) {
+    out_.raw(bytes);
+    return static_cast<Writer&>(*this);
+  }
+  const std::string& bytes() const { return out_.bytes(); }
+  std::size_t size() const { return out_.bytes().size(); }
+  void save(const std::filesystem::path& path) const { write_bytes(path, bytes()); }
+
+ protected:
+  Packer out_;
+};
+
 // ULog: the 16-byte header, then messages {uint16 size, uint8 type, payload}.
-class ULogWriter {
+class ULogWriter : public LogWriter<ULogWriter> {
  public:
   explicit ULogWriter(std::uint8_t version = 1, std::uint64_t start_us = 1000) {
     out_.raw("ULog").put<std::uint8_t>(0x01).put<std::uint8_t>(0x12).put<std::uint8_t>(0x35);
@@ -109,20 +126,10 @@ class ULogWriter {
     return message('S', p.bytes());
   }
   ULogWriter& dropout(std::uint16_t ms) { return message('O', Packer().put(ms).bytes()); }
-  ULogWriter& raw(const std::string& bytes) {
-    out_.raw(bytes);
-    return *this;
-  }
-  const std::string& bytes() const { return out_.bytes(); }
-  std::size_t size() const { return out_.bytes().size(); }
-  void save(const std::filesystem::path& path) const { write_bytes(path, bytes()); }
-
- private:
-  Packer out_;
 };
 
 // DataFlash: messages A3 95 type payload; FMT (type 128) defines the others.
-class DataFlashWriter {
+class DataFlashWriter : public LogWriter<DataFlashWriter> {
  public:
   DataFlashWriter() { fmt(128, "FMT", "BBnNZ", "Type,Length,Name,Format,Columns"); }
 
@@ -181,16 +188,6 @@ class DataFlashWriter {
     out_.put<std::uint8_t>(0xA3).put<std::uint8_t>(0x95).put(type).raw(payload);
     return *this;
   }
-  DataFlashWriter& raw(const std::string& bytes) {
-    out_.raw(bytes);
-    return *this;
-  }
-  const std::string& bytes() const { return out_.bytes(); }
-  std::size_t size() const { return out_.bytes().size(); }
-  void save(const std::filesystem::path& path) const { write_bytes(path, bytes()); }
-
- private:
-  Packer out_;
 };
 
 }  // namespace gyrotherm::testing

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "autopilot_log_samples.h"
 #include "autopilot_log_writer.h"
 #include "cli_runner.h"
 #include "expect_input_error.h"
@@ -24,16 +25,7 @@ using testing::expect_input_error;
 using testing::Packer;
 using testing::ScratchDir;
 
-struct Sample {
-  double time_s, temp_c, x, y, z;
-  bool operator==(const Sample& o) const {
-    const auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
-    return same(time_s, o.time_s) && same(temp_c, o.temp_c) && x == o.x && y == o.y && z == o.z;
-  }
-};
-std::ostream& operator<<(std::ostream& os, const Sample& s) {
-  return os << "{" << s.time_s << ", " << s.temp_c << ", " << s.x << ", " << s.y << ", " << s.z << "}";
-}
+using Sample = testing::LogSample;
 
 std::uint64_t time_us(int i, int k) { return 60'000'000 + 2'500 * static_cast<std::uint64_t>(k) + 10 * i; }
 float gyr(int i, int k, int axis) {
@@ -47,12 +39,7 @@ Sample expected(int i, int k, double time_divisor = 1e6, std::uint64_t time = 0)
 }
 
 std::vector<Sample> read_samples(const std::filesystem::path& file, int instance, LogContents* contents = nullptr) {
-  std::vector<Sample> out;
-  const LogContents c = read_dataflash(file, instance, [&](double t, double tc, double x, double y, double z) {
-    out.push_back({t, tc, x, y, z});
-  });
-  if (contents != nullptr) *contents = c;
-  return out;
+  return testing::read_samples(read_dataflash, file, instance, contents);
 }
 
 // Other messages a log holds between the IMU ones.
@@ -183,14 +170,7 @@ TEST(DataFlash, ABlockBoundaryInsideMessagesChangesNothing) {
   const auto file = dir / "large.bin";
   const int n = 30000;  // 1.5 MB: messages straddle the 1 MiB block
   copter4(n, false).save(file);
-  std::size_t count = 0;
-  bool all_equal = true;
-  read_dataflash(file, 0, [&](double t, double tc, double x, double y, double z) {
-    all_equal = all_equal && Sample{t, tc, x, y, z} == expected(0, static_cast<int>(count));
-    ++count;
-  });
-  EXPECT_EQ(count, static_cast<std::size_t>(n));
-  EXPECT_TRUE(all_equal);
+  testing::expect_every_sample(read_dataflash, file, 0, n, [](int k) { return expected(0, k); });
 }
 
 TEST(DataFlash, AMessageRunningPastTheEndIsATruncationNotAnError) {
@@ -201,12 +181,7 @@ TEST(DataFlash, AMessageRunningPastTheEndIsATruncationNotAnError) {
   w.message(140, imu4(1, 3, temp(1, 3)).bytes());
   for (const std::size_t keep : {w.size() - 7, last + 2, last + 1}) {
     testing::write_bytes(file, w.bytes().substr(0, keep));
-    LogContents c;
-    const std::vector<Sample> got = read_samples(file, 1, &c);
-    EXPECT_EQ(got.size(), 3u);
-    EXPECT_TRUE(c.truncated);
-    EXPECT_EQ(c.truncated_at_byte, last);
-    EXPECT_NE(c.describe().find("ends inside the message at byte " + std::to_string(last)), std::string::npos);
+    testing::expect_truncated_at(read_dataflash, file, 1, last, 3);
   }
 }
 
@@ -225,22 +200,17 @@ TEST(DataFlash, AnUnknownTypeInTheMiddleIsCorrupt) {
   DataFlashWriter w = copter4(2);
   const std::size_t at = w.size();
   w.message(200, std::string(20, 'x'));
-  w.save(file);
-  expect_input_error([&] { read_dataflash(file); },
-                     {"corrupt.bin: byte " + std::to_string(at), "message type 200 has no FMT", "140 IMU"});
-  DataFlashWriter lost = copter4(2);
-  lost.raw("\x01\x02\x03\x04");
-  lost.save(file);
-  expect_input_error([&] { read_dataflash(file); },
-                     {"byte " + std::to_string(at), "expected a message starting a3 95", "found 01 02"});
+  testing::expect_refused(read_dataflash, file, w,
+                          {"corrupt.bin: byte " + std::to_string(at), "message type 200 has no FMT", "140 IMU"});
+  testing::expect_refused(read_dataflash, file, copter4(2).raw("\x01\x02\x03\x04"),
+                          {"byte " + std::to_string(at), "expected a message starting a3 95", "found 01 02"});
 }
 
 TEST(DataFlash, FormatsThatCannotBeRead) {
   ScratchDir dir;
   const auto file = dir / "fmt.bin";
   const auto refused = [&](const DataFlashWriter& w, const std::vector<std::string>& words) {
-    w.save(file);
-    expect_input_error([&] { read_dataflash(file); }, words);
+    testing::expect_refused(read_dataflash, file, w, words);
   };
   refused(DataFlashWriter().fmt(140, "IMU", "QBfffX", "TimeUS,I,GyrX,GyrY,GyrZ,W", 40),
           {"byte 89", "FMT of 'IMU'", "unknown format character 'X'"});
@@ -268,16 +238,9 @@ TEST(DataFlash, FormatsThatCannotBeRead) {
 
 TEST(DataFlash, AnInstanceTheFileDoesNotHold) {
   ScratchDir dir;
-  const auto file = dir / "copter4.bin";
-  copter4().save(file);
-  expect_input_error([&] { read_samples(file, 3); }, {"copter4.bin", "no gyro instance 3", "instances 0 and 1"});
   DataFlashWriter none;
   other_messages(none);
-  none.save(file);
-  const LogContents c = read_dataflash(file);
-  EXPECT_EQ(c.default_instance(), -1);
-  EXPECT_EQ(c.describe(), "DataFlash: no gyro samples");
-  expect_input_error([&] { read_samples(file, -1); }, {"none is chosen by default", "DataFlash: no gyro samples"});
+  testing::expect_gyro_choice(read_dataflash, dir / "copter4.bin", copter4(), 3, "0 and 1", none, "DataFlash");
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fit/data/prepare.h"
@@ -22,35 +23,38 @@ namespace gyrotherm::testing {
 
 inline constexpr double kDphToRadS = 3.14159265358979323846 / (180.0 * 3600.0);
 
-// name → value of a QGroundControl .params file (tab-separated, '#' comments).
-inline std::map<std::string, float> read_qgc(const std::string& text) {
+// name → value over the lines of a parameter file, passing over empty lines
+// and '#' comments; split(line) gives a line's name and its value's text.
+template <class Split>
+std::map<std::string, float> read_parameters(const std::string& text, Split split) {
   std::map<std::string, float> out;
   std::istringstream in(text);
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
-    std::istringstream f(line);
-    std::string vehicle, component, name, value;
-    std::getline(f, vehicle, '\t');
-    std::getline(f, component, '\t');
-    std::getline(f, name, '\t');
-    std::getline(f, value, '\t');
+    const auto [name, value] = split(line);
     out[name] = std::stof(value);
   }
   return out;
 }
 
+// name → value of a QGroundControl .params file (tab-separated: vehicle,
+// component, name, value, type).
+inline std::map<std::string, float> read_qgc(const std::string& text) {
+  return read_parameters(text, [](const std::string& line) {
+    std::istringstream f(line);
+    std::string field[4];  // vehicle, component, name, value
+    for (std::string& s : field) std::getline(f, s, '\t');
+    return std::pair{field[2], field[3]};
+  });
+}
+
 // name → value of a NAME,VALUE .param file.
 inline std::map<std::string, float> read_ap(const std::string& text) {
-  std::map<std::string, float> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
+  return read_parameters(text, [](const std::string& line) {
     const auto comma = line.find(',');
-    out[line.substr(0, comma)] = std::stof(line.substr(comma + 1));
-  }
-  return out;
+    return std::pair{line.substr(0, comma), line.substr(comma + 1)};
+  });
 }
 
 // PX4's calc_thermal_offsets_3D for one axis, in float as the firmware does.

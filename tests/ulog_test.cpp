@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "autopilot_log_samples.h"
 #include "autopilot_log_writer.h"
 #include "cli_runner.h"
 #include "expect_input_error.h"
@@ -24,16 +25,7 @@ using testing::Packer;
 using testing::ScratchDir;
 using testing::ULogWriter;
 
-struct Sample {
-  double time_s, temp_c, x, y, z;
-  bool operator==(const Sample& o) const {
-    const auto same = [](double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); };
-    return same(time_s, o.time_s) && same(temp_c, o.temp_c) && x == o.x && y == o.y && z == o.z;
-  }
-};
-std::ostream& operator<<(std::ostream& os, const Sample& s) {
-  return os << "{" << s.time_s << ", " << s.temp_c << ", " << s.x << ", " << s.y << ", " << s.z << "}";
-}
+using Sample = testing::LogSample;
 
 // The values of instance i's sample k, as the firmware holds them (floats).
 std::uint64_t time_us(int i, int k) { return 2'000'000 + 250'000 * static_cast<std::uint64_t>(k) + i; }
@@ -48,12 +40,7 @@ Sample expected(int i, int k, bool nan, bool has_temp = true) {
 }
 
 std::vector<Sample> read_samples(const std::filesystem::path& file, int instance, LogContents* contents = nullptr) {
-  std::vector<Sample> out;
-  const LogContents c = read_ulog(file, instance, [&](double t, double tc, double x, double y, double z) {
-    out.push_back({t, tc, x, y, z});
-  });
-  if (contents != nullptr) *contents = c;
-  return out;
+  return testing::read_samples(read_ulog, file, instance, contents);
 }
 
 // sensor_gyro as PX4 v1.14 logs it: device_id third, a trailing _padding0
@@ -220,14 +207,7 @@ TEST(Ulog, ABlockBoundaryInsideMessagesChangesNothing) {
   const int n = 30000;  // 1.4 MB: messages straddle the 1 MiB block
   for (int k = 0; k < n; ++k) w.data(0, current_fields(0, k, false, 1));
   w.save(file);
-  std::size_t count = 0;
-  bool all_equal = true;
-  read_ulog(file, 0, [&](double t, double tc, double x, double y, double z) {
-    all_equal = all_equal && Sample{t, tc, x, y, z} == expected(0, static_cast<int>(count), false);
-    ++count;
-  });
-  EXPECT_EQ(count, static_cast<std::size_t>(n));
-  EXPECT_TRUE(all_equal);
+  testing::expect_every_sample(read_ulog, file, 0, n, [](int k) { return expected(0, k, false); });
 }
 
 TEST(Ulog, AMessageRunningPastTheEndIsATruncationNotAnError) {
@@ -237,13 +217,7 @@ TEST(Ulog, AMessageRunningPastTheEndIsATruncationNotAnError) {
   const std::uint64_t last = w.size();
   w.data(1, current_fields(0, 3, false, 2621450));
   testing::write_bytes(file, w.bytes().substr(0, w.size() - 5));
-  LogContents c;
-  const std::vector<Sample> got = read_samples(file, 0, &c);
-  EXPECT_EQ(got.size(), 3u);
-  EXPECT_TRUE(c.truncated);
-  EXPECT_EQ(c.truncated_at_byte, last);
-  EXPECT_NE(c.describe().find("the file ends inside the message at byte " + std::to_string(last)), std::string::npos)
-      << c.describe();
+  testing::expect_truncated_at(read_ulog, file, 0, last, 3);
   // A header cut after its size byte.
   testing::write_bytes(file, w.bytes().substr(0, last + 1));
   EXPECT_TRUE(read_ulog(file).truncated);
@@ -276,9 +250,8 @@ TEST(Ulog, DataForAnUnknownMsgId) {
   w.format(kCurrentFormat).subscribe(0, 0, "sensor_gyro").data(0, current_fields(0, 0, false, 1));
   const std::size_t at = w.size();
   w.data(9, current_fields(0, 1, false, 1));
-  w.save(file);
-  expect_input_error([&] { read_ulog(file); },
-                     {"orphan.ulg: byte " + std::to_string(at), "msg_id 9", "no subscription ('A')"});
+  testing::expect_refused(read_ulog, file, w,
+                          {"orphan.ulg: byte " + std::to_string(at), "msg_id 9", "no subscription ('A')"});
 }
 
 TEST(Ulog, AFormatWithAnUnknownType) {
@@ -288,17 +261,16 @@ TEST(Ulog, AFormatWithAnUnknownType) {
   w.flag_bits();
   const std::size_t at = w.size();
   w.format("sensor_gyro:uint64_t timestamp;flaot x;float y;float z;").subscribe(0, 0, "sensor_gyro");
-  w.save(file);
-  expect_input_error([&] { read_ulog(file); }, {"type.ulg: byte " + std::to_string(at), "format 'sensor_gyro'",
-                                                "unknown type 'flaot'", "uint64_t", "a format the file defines"});
+  testing::expect_refused(read_ulog, file, w,
+                          {"type.ulg: byte " + std::to_string(at), "format 'sensor_gyro'", "unknown type 'flaot'",
+                           "uint64_t", "a format the file defines"});
 }
 
 TEST(Ulog, MalformedFormatsAndSubscriptions) {
   ScratchDir dir;
   const auto file = dir / "bad.ulg";
-  const auto refused = [&](ULogWriter w, const std::vector<std::string>& words) {
-    w.save(file);
-    expect_input_error([&] { read_ulog(file); }, words);
+  const auto refused = [&](const ULogWriter& w, const std::vector<std::string>& words) {
+    testing::expect_refused(read_ulog, file, w, words);
   };
   refused(std::move(ULogWriter().format("sensor_gyro uint64_t timestamp")), {"byte 16", "'name:type field;...'"});
   refused(std::move(ULogWriter().format("sensor_gyro:uint64_t timestamp;float[x] x;")),
@@ -321,13 +293,9 @@ TEST(Ulog, MalformedFormatsAndSubscriptions) {
 
 TEST(Ulog, AnInstanceTheFileDoesNotHold) {
   ScratchDir dir;
-  const auto file = dir / "current.ulg";
-  current_log().save(file);
-  expect_input_error([&] { read_samples(file, 5); }, {"current.ulg", "no gyro instance 5", "instances 0, 1 and 2"});
   ULogWriter empty;
   empty.format(kCurrentFormat);
-  empty.save(file);
-  expect_input_error([&] { read_ulog(file, 0); }, {"no gyro instance 0", "it holds no gyro"});
+  testing::expect_gyro_choice(read_ulog, dir / "current.ulg", current_log(), 5, "0, 1 and 2", empty, "ULog v1");
 }
 
 // The real logs (PX4/pyulog and Auterion/px4-ulog-rs test fixtures; see their README).

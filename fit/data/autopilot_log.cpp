@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <system_error>
 
@@ -67,24 +68,9 @@ void BinaryFile::seek_forward(std::uint64_t offset) {
 }
 
 std::size_t size_of(Kind kind) {
-  switch (kind) {
-    case Kind::i8:
-    case Kind::u8:
-      return 1;
-    case Kind::i16:
-    case Kind::u16:
-    case Kind::f16:
-      return 2;
-    case Kind::i32:
-    case Kind::u32:
-    case Kind::f32:
-      return 4;
-    case Kind::i64:
-    case Kind::u64:
-    case Kind::f64:
-      return 8;
-  }
-  return 0;
+  static constexpr std::size_t kBytes[] = {1, 1, 2, 2, 4, 4, 8, 8, 2, 4, 8};  // in the order of Kind
+  static_assert(std::size(kBytes) == static_cast<std::size_t>(Kind::f64) + 1);
+  return kBytes[static_cast<std::size_t>(kind)];
 }
 
 namespace {
@@ -157,9 +143,28 @@ void tally(LogGyro& gyro, double time_s, double temp_c) {
   }
 }
 
-void sort_gyros(LogContents& contents) {
-  std::stable_sort(contents.gyros.begin(), contents.gyros.end(),
+std::size_t LogReader::gyro_of(int instance, std::string_view message) {
+  std::vector<LogGyro>& gyros = contents_.gyros;
+  const auto same = std::find_if(gyros.begin(), gyros.end(), [&](const LogGyro& g) { return g.instance == instance; });
+  if (same != gyros.end()) return static_cast<std::size_t>(same - gyros.begin());
+  LogGyro added;
+  added.instance = instance;
+  added.message = std::string(message);
+  gyros.push_back(added);
+  return gyros.size() - 1;
+}
+
+void LogReader::take_sample(LogGyro& gyro, double time_s, const Field& temperature, const Field& x, const Field& y,
+                            const Field& z, const std::uint8_t* payload) {
+  const double temp_c = temperature.present ? temperature.read(payload) : NAN;
+  tally(gyro, time_s, temp_c);
+  if (sink_ && gyro.instance == instance_) sink_(time_s, temp_c, x.read(payload), y.read(payload), z.read(payload));
+}
+
+LogContents LogReader::finish() {
+  std::stable_sort(contents_.gyros.begin(), contents_.gyros.end(),
                    [](const LogGyro& a, const LogGyro& b) { return a.instance < b.instance; });
+  return std::move(contents_);
 }
 
 LogContents read_choosing(const std::filesystem::path& file, int instance, const GyroSampleSink& sink,

@@ -1,8 +1,9 @@
 #pragma once
 // Shared by the binary log readers (fit/data/autopilot_log.h), not a public
 // header: a file read forward in blocks with the byte offset kept for
-// messages, little-endian numbers of the C types both formats log, and the
-// tally of one gyro's samples.
+// messages, little-endian numbers of the C types both formats log, and what
+// a reader holds while it reads (LogReader: the gyros found, the samples
+// tallied and handed to the sink).
 
 #include <bit>
 #include <cstddef>
@@ -94,6 +95,37 @@ std::string hex_bytes(const std::uint8_t* p, std::size_t n);
 // Counts a sample of a gyro into its summary.
 void tally(LogGyro& gyro, double time_s, double temp_c);
 
+// What a reader of either format holds during its one pass: the file, the
+// instance whose samples go to the sink (-1: none), and the contents so far.
+class LogReader {
+ public:
+  LogReader(const std::filesystem::path& file, int instance, const GyroSampleSink& sink)
+      : in_(file), instance_(instance), sink_(sink) {}
+
+ protected:
+
+  // The index in contents_.gyros of the gyro of `instance`, added (logged
+  // as `message`) when it is not there yet.
+  std::size_t gyro_of(int instance, std::string_view message);
+  // One sample of `gyro` at time_s: its temperature (NaN when the format has
+  // none) and rates read from `payload`, tallied, and handed to the sink when
+  // the gyro is the instance asked for.
+  void take_sample(LogGyro& gyro, double time_s, const Field& temperature, const Field& x, const Field& y,
+                   const Field& z, const std::uint8_t* payload);
+  // The file ends inside the message starting at byte `at`.
+  void truncate_at(std::uint64_t at) {
+    contents_.truncated = true;
+    contents_.truncated_at_byte = at;
+  }
+  // The contents, gyros sorted by instance.
+  LogContents finish();
+
+  BinaryFile in_;
+  int instance_;
+  const GyroSampleSink& sink_;
+  LogContents contents_;
+};
+
 // A reader's one pass: fills `contents` and hands the samples of `instance`
 // (-1: none) to the sink.
 using OnePass = std::function<LogContents(const std::filesystem::path& file, int instance, const GyroSampleSink& sink)>;
@@ -101,8 +133,12 @@ using OnePass = std::function<LogContents(const std::filesystem::path& file, int
 // a sink with instance -1 (two passes), and an instance not held refused.
 LogContents read_choosing(const std::filesystem::path& file, int instance, const GyroSampleSink& sink,
                           const OnePass& pass);
-
-// Sorts the gyros by instance.
-void sort_gyros(LogContents& contents);
+// read_choosing with the one pass of a Reader(file, instance, sink).read().
+template <class Reader>
+LogContents read_with(const std::filesystem::path& file, int instance, const GyroSampleSink& sink) {
+  return read_choosing(file, instance, sink, [](const std::filesystem::path& f, int i, const GyroSampleSink& s) {
+    return Reader(f, i, s).read();
+  });
+}
 
 }  // namespace gyrotherm::fit::binary

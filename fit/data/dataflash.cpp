@@ -23,7 +23,6 @@ namespace gyrotherm::fit {
 namespace {
 
 namespace fs = std::filesystem;
-using binary::BinaryFile;
 using binary::Field;
 using binary::Kind;
 using binary::printable;
@@ -77,10 +76,9 @@ struct MessageType {
   std::optional<ImuLayout> imu;
 };
 
-class DataFlashReader {
+class DataFlashReader : binary::LogReader {
  public:
-  DataFlashReader(const fs::path& file, int instance, const GyroSampleSink& sink)
-      : in_(file), instance_(instance), sink_(sink) {}
+  using LogReader::LogReader;
 
   LogContents read();
 
@@ -91,10 +89,6 @@ class DataFlashReader {
   void on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name, const std::uint8_t* payload);
   std::string defined_types() const;
 
-  BinaryFile in_;
-  int instance_;
-  const GyroSampleSink& sink_;
-  LogContents contents_;
   std::array<MessageType, 256> types_{};
 };
 
@@ -114,8 +108,7 @@ LogContents DataFlashReader::read() {
                                found));
     }
     if (head < kHeaderBytes) {
-      contents_.truncated = true;
-      contents_.truncated_at_byte = at;
+      truncate_at(at);
       break;
     }
     const std::uint8_t type = p[2];
@@ -125,8 +118,7 @@ LogContents DataFlashReader::read() {
                                defined_types()));
     const std::size_t length = type == kFmtType ? kFmtBytes : known.length;
     if (in_.want(length) < length) {
-      contents_.truncated = true;
-      contents_.truncated_at_byte = at;
+      truncate_at(at);
       break;
     }
     const std::uint8_t* payload = in_.data() + kHeaderBytes;
@@ -136,8 +128,7 @@ LogContents DataFlashReader::read() {
       on_imu(at, *known.imu, known.name, payload);
     in_.advance(length);
   }
-  binary::sort_gyros(contents_);
-  return std::move(contents_);
+  return finish();
 }
 
 std::string DataFlashReader::defined_types() const {
@@ -237,28 +228,14 @@ void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const st
       in_.fail(at, fmt::format("IMU message: instance I = {}, expected a whole number 0..255", value));
     instance = static_cast<int>(value);
   }
-  auto gyro = std::find_if(contents_.gyros.begin(), contents_.gyros.end(),
-                           [&](const LogGyro& g) { return g.instance == instance; });
-  if (gyro == contents_.gyros.end()) {
-    LogGyro added;
-    added.instance = instance;
-    added.message = name;
-    contents_.gyros.push_back(added);
-    gyro = contents_.gyros.end() - 1;
-  }
-  const double time_s = layout.time.read(payload) / layout.time_units_per_s;
-  const double temp_c = layout.temperature.present ? layout.temperature.read(payload) : NAN;
-  binary::tally(*gyro, time_s, temp_c);
-  if (sink_ && instance == instance_)
-    sink_(time_s, temp_c, layout.x.read(payload), layout.y.read(payload), layout.z.read(payload));
+  take_sample(contents_.gyros[gyro_of(instance, name)], layout.time.read(payload) / layout.time_units_per_s,
+              layout.temperature, layout.x, layout.y, layout.z, payload);
 }
 
 }  // namespace
 
 LogContents read_dataflash(const fs::path& file, int instance, const GyroSampleSink& sink) {
-  return binary::read_choosing(file, instance, sink, [](const fs::path& f, int i, const GyroSampleSink& s) {
-    return DataFlashReader(f, i, s).read();
-  });
+  return binary::read_with<DataFlashReader>(file, instance, sink);
 }
 
 }  // namespace gyrotherm::fit

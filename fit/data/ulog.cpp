@@ -12,6 +12,7 @@
 #include <map>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 
 #include "fit/data/autopilot_log.h"
 #include "fit/data/binary_file.h"
@@ -22,7 +23,6 @@ namespace gyrotherm::fit {
 namespace {
 
 namespace fs = std::filesystem;
-using binary::BinaryFile;
 using binary::Field;
 using binary::hex_bytes;
 using binary::Kind;
@@ -82,10 +82,9 @@ struct Subscription {
   int gyro = -1;  // index into LogContents::gyros, -1 for another topic
 };
 
-class ULogReader {
+class ULogReader : binary::LogReader {
  public:
-  ULogReader(const fs::path& file, int instance, const GyroSampleSink& sink)
-      : in_(file), instance_(instance), sink_(sink) {}
+  using LogReader::LogReader;
 
   LogContents read();
 
@@ -94,15 +93,12 @@ class ULogReader {
   void on_flag_bits(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   void on_format(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   void on_subscription(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  void on_unsubscription(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   void on_data(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   std::size_t size_of_type(const std::string& type, const std::string& within, int depth);
   std::size_t size_of_format(const std::string& name, int depth);
   GyroLayout gyro_layout(const std::string& name, std::uint64_t subscribed_at);
 
-  BinaryFile in_;
-  int instance_;
-  const GyroSampleSink& sink_;
-  LogContents contents_;
   std::map<std::string, FormatDef, std::less<>> formats_;
   std::unordered_map<std::string, std::size_t> format_bytes_;  // sizes worked out so far
   std::unordered_map<std::uint16_t, Subscription> subscriptions_;
@@ -129,36 +125,23 @@ LogContents ULogReader::read() {
       continue;
     }
     if (head < kMessageHeaderBytes || in_.want(whole) < whole) {
-      contents_.truncated = true;
-      contents_.truncated_at_byte = at;
+      truncate_at(at);
       break;
     }
+    // The types read; information, parameters, strings, sync, dropouts and
+    // unknown types are passed over (the spec).
+    using Handler = void (ULogReader::*)(std::uint64_t, const std::uint8_t*, std::size_t);
+    static constexpr std::pair<char, Handler> kHandlers[] = {{'B', &ULogReader::on_flag_bits},
+                                                             {'F', &ULogReader::on_format},
+                                                             {'A', &ULogReader::on_subscription},
+                                                             {'R', &ULogReader::on_unsubscription},
+                                                             {'D', &ULogReader::on_data}};
     const char type = static_cast<char>(in_.data()[2]);
-    const std::uint8_t* payload = in_.data() + kMessageHeaderBytes;
-    switch (type) {
-      case 'B':
-        on_flag_bits(at, payload, size);
-        break;
-      case 'F':
-        on_format(at, payload, size);
-        break;
-      case 'A':
-        on_subscription(at, payload, size);
-        break;
-      case 'D':
-        on_data(at, payload, size);
-        break;
-      case 'R':
-        if (size < 2) in_.fail(at, fmt::format("an unsubscription ('R') needs 2 bytes (msg_id), it holds {}", size));
-        subscriptions_.erase(binary::load_u16(payload));
-        break;
-      default:
-        break;  // information, parameters, strings, sync, dropouts; unknown types are ignored (the spec)
-    }
+    for (const auto& [handled, handler] : kHandlers)
+      if (type == handled) (this->*handler)(at, in_.data() + kMessageHeaderBytes, size);
     in_.advance(whole);
   }
-  binary::sort_gyros(contents_);
-  return std::move(contents_);
+  return finish();
 }
 
 void ULogReader::read_header() {
@@ -199,6 +182,11 @@ void ULogReader::on_flag_bits(std::uint64_t at, const std::uint8_t* p, std::size
       appended_offsets_.push_back(offset);
     }
   std::sort(appended_offsets_.begin(), appended_offsets_.end());
+}
+
+void ULogReader::on_unsubscription(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
+  if (size < 2) in_.fail(at, fmt::format("an unsubscription ('R') needs 2 bytes (msg_id), it holds {}", size));
+  subscriptions_.erase(binary::load_u16(p));
 }
 
 void ULogReader::on_format(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
@@ -317,18 +305,9 @@ void ULogReader::on_subscription(std::uint64_t at, const std::uint8_t* p, std::s
   size_of_format(name, 0);  // every type known, no cycle
   Subscription sub;
   if (name == kGyroTopic) {
-    const auto same = std::find_if(contents_.gyros.begin(), contents_.gyros.end(),
-                                   [&](const LogGyro& g) { return g.instance == multi_id; });
-    if (same == contents_.gyros.end()) {
-      LogGyro gyro;
-      gyro.instance = multi_id;
-      gyro.message = std::string(kGyroTopic);
-      contents_.gyros.push_back(gyro);
-      layouts_.push_back(gyro_layout(name, at));
-      sub.gyro = static_cast<int>(contents_.gyros.size()) - 1;
-    } else {
-      sub.gyro = static_cast<int>(same - contents_.gyros.begin());
-    }
+    const std::size_t gyro = gyro_of(multi_id, kGyroTopic);
+    if (gyro == layouts_.size()) layouts_.push_back(gyro_layout(name, at));  // a new instance
+    sub.gyro = static_cast<int>(gyro);
   }
   subscriptions_[msg_id] = sub;
 }
@@ -348,23 +327,17 @@ void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t si
     in_.fail(at, fmt::format("a {} data message (instance {}) holds {} bytes, its format needs {} for the "
                              "fields read",
                              kGyroTopic, gyro.instance, size - 2, layout.needed_bytes));
-  const double time_s = layout.timestamp.read(data) / 1e6;
-  const double temp_c = layout.temperature.present ? layout.temperature.read(data) : NAN;
   if (gyro.samples == 0 && layout.device_id.present) {
     const double id = layout.device_id.read(data);  // an integer type in every PX4 version
     gyro.device_id = id >= 0.0 && id <= 4294967295.0 ? static_cast<std::uint32_t>(id) : 0;
   }
-  binary::tally(gyro, time_s, temp_c);
-  if (sink_ && gyro.instance == instance_)
-    sink_(time_s, temp_c, layout.x.read(data), layout.y.read(data), layout.z.read(data));
+  take_sample(gyro, layout.timestamp.read(data) / 1e6, layout.temperature, layout.x, layout.y, layout.z, data);
 }
 
 }  // namespace
 
 LogContents read_ulog(const fs::path& file, int instance, const GyroSampleSink& sink) {
-  return binary::read_choosing(file, instance, sink, [](const fs::path& f, int i, const GyroSampleSink& s) {
-    return ULogReader(f, i, s).read();
-  });
+  return binary::read_with<ULogReader>(file, instance, sink);
 }
 
 }  // namespace gyrotherm::fit

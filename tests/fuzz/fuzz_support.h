@@ -11,6 +11,9 @@
 #include <filesystem>
 #include <string>
 
+#include "fit/data/autopilot_log.h"
+#include "sim/util/input_error.h"
+
 namespace gyrotherm::fuzz {
 
 inline std::filesystem::path scratch_file(const char* name) {
@@ -24,6 +27,28 @@ inline void write_input(const std::filesystem::path& file, const std::uint8_t* d
   if (f == nullptr) std::abort();
   if (size > 0 && std::fwrite(data, 1, size, f) != size) std::abort();
   std::fclose(f);
+}
+
+// The body of an autopilot log reader's target (fit/data/autopilot_log.h;
+// `read` is fit::read_ulog or fit::read_dataflash): the input as a file is
+// sorted by autopilot_log_format and read; a file it reads must give, for
+// each gyro it lists, exactly that many samples to a sink (a difference
+// traps), and a description.
+template <class Reader>
+int read_autopilot_log(const std::filesystem::path& file, Reader read, const std::uint8_t* data, std::size_t size) {
+  write_input(file, data, size);
+  (void)fit::autopilot_log_format(file);
+  try {
+    const auto contents = read(file, -1, {});
+    (void)contents.describe();
+    for (const auto& gyro : contents.gyros) {
+      std::size_t samples = 0;
+      read(file, gyro.instance, [&](double, double, double, double, double) { ++samples; });
+      if (samples != gyro.samples) __builtin_trap();
+    }
+  } catch (const InputError&) {
+  }
+  return 0;
 }
 
 }  // namespace gyrotherm::fuzz
