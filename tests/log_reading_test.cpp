@@ -41,7 +41,7 @@ void write_ulog(const std::filesystem::path& file, const std::vector<ImuSample>&
       "float temperature;uint32_t error_count;uint8_t[3] clip_counter;uint8_t samples;uint8_t[4] _padding0;");
   w.subscribe(0, 0, "sensor_gyro").subscribe(1, 1, "sensor_gyro");
   for (const ImuSample& s : samples)
-    for (const std::uint16_t id : {0, 1}) {
+    for (const std::uint16_t id : {std::uint16_t{0}, std::uint16_t{1}}) {
       Packer p;
       p.put(s.time_us).put(s.time_us).put<std::uint32_t>(id == 0 ? 2621450 : 2490378);
       p.put(s.x).put(s.y).put(s.z).put(id == 0 ? std::nanf("") : s.temp_c).put<std::uint32_t>(0).zeros(3);
