@@ -103,7 +103,11 @@ TEST(LogReading, ALogGivesTheFitOfACsvOfTheSameNumbers) {
   // The gyro of instance 0 has no temperature: instance 1 is taken, and said.
   const std::string units = fit_json(dir, "t.ulg --gyro-col gyro_z")["data"]["units"];
   EXPECT_NE(units.find("gyro rad/s (ULog v1 sensor_gyro instance 1)"), std::string::npos) << units;
-  EXPECT_NE(units.find("(device 2490378) of the log's gyro instances 0 and 1"), std::string::npos) << units;
+  // The report lists what the log holds: instance 0 without a temperature.
+  EXPECT_NE(units.find("(device 2490378) chosen; the log holds ULog v1: sensor_gyro instance 0 (device 2621450): 7200 "
+                       "samples"),
+            std::string::npos) << units;
+  EXPECT_NE(units.find("temperature NaN throughout"), std::string::npos) << units;
   expect_refused(dir, "fit t.ulg --imu 0", "sensor_gyro instance 0 has 0 samples with a temperature; at least 2 are needed");
   expect_refused(dir, "fit t.ulg --imu 4", "--imu 4: the log holds gyro instances 0 and 1");
   expect_refused(dir, "fit t.bin --gyro-unit dph", "--gyro-unit dph: the log is DataFlash, whose units are fixed");

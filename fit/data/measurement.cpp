@@ -378,9 +378,9 @@ void CsvParser::read_log(const fs::path& file, const std::string& format, Measur
   u.temp = kCelsius;
   u.time_from = fmt::format("{} timestamps", contents.format);
   u.gyro_from = u.temp_from = fmt::format("{} {}", contents.format, log_gyro_);
-  u.layout = fmt::format("{}{} of the log's gyro instances {}", log_gyro_,
+  u.layout = fmt::format("{}{} chosen; the log holds {}", log_gyro_,
                          gyro->device_id != 0 ? fmt::format(" (device {})", gyro->device_id) : std::string(),
-                         contents.instances());
+                         contents.describe());
   use_units(u);
   m.units = units_;
   std::size_t sample = 0, without_temperature = 0;
