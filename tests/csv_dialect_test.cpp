@@ -55,10 +55,12 @@ TEST(CsvDialect, DecimalCommasReadAsTheirPointedTwins) {
     ASSERT_EQ(parse_csv_number(pointed, false, w), "") << pointed;
     EXPECT_EQ(v, w) << text;
   }
-  // A decimal point still reads with the option; thousands separators do not.
-  EXPECT_EQ(parse_csv_number("2.5", true, v), "");
-  EXPECT_EQ(v, 2.5);
-  EXPECT_NE(parse_csv_number("1.234,5", true, v).find("thousands separators"), std::string::npos);
+  // Beside decimal commas a '.' separates thousands ("1.234" is 1234): refused, not misread.
+  for (const char* text : {"1.234", "1.234,5", "2.5"})
+    EXPECT_NE(parse_csv_number(text, true, v).find("a thousands separator?"), std::string::npos) << text;
+  // A long field reads whole (no fixed buffer).
+  ASSERT_EQ(parse_csv_number("0,000000000000000000000000000000000000000000000000000000000000000000000012", true, v), "");
+  EXPECT_DOUBLE_EQ(v, 1.2e-71);
   // Without the option a decimal comma is no number, and the message says which option reads it.
   EXPECT_NE(parse_csv_number("20,5", false, v).find("give --decimal-comma"), std::string::npos);
 }
@@ -78,6 +80,7 @@ TEST(CsvDialect, Iso8601TimestampsAreUtcSeconds) {
   ASSERT_TRUE(parse_iso8601("2024-02-29T12:00", t));  // a leap day; no seconds: :00
   EXPECT_EQ(t.seconds, 1709208000);
   for (const char* bad : {"2023-02-29T12:00:00Z", "2026-13-01T00:00:00Z", "2026-11-26T24:00:00Z",
+                          "2026-11-26T12:00:60Z", "2026-11-26T05:38:35+01:",
                           "2026-11-26T05:38:35.Z", "2026-11-26", "2026-11-26T05:38:35Q", "20261126T053835Z",
                           "12.5"})
     EXPECT_FALSE(parse_iso8601(bad, t)) << bad;

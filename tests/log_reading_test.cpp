@@ -112,6 +112,20 @@ TEST(LogReading, ALogGivesTheFitOfACsvOfTheSameNumbers) {
   expect_refused(dir, "fit t.ulg --imu 4", "--imu 4: the log holds gyro instances 0 and 1");
   expect_refused(dir, "fit t.bin --gyro-unit dph", "--gyro-unit dph: the log is DataFlash, whose units are fixed");
   expect_refused(dir, "fit t.ulg --gyro-col gx", "no column 'gx' (the header has: time_s, temp_c, gyro_x, gyro_y, gyro_z)");
+  expect_refused(dir, "fit t.ulg --imu -1", "--imu -1: a gyro instance is a number from 0");
+  expect_refused(dir, "fit t.bin --gyro-scale 2", "--gyro-scale, --temp-scale and --temp-offset are for raw counts");
+  // A CSV's form does not concern a log; nor do the units a fit made on a CSV in other units brings.
+  EXPECT_EQ(fit_json(dir, "t.ulg --decimal-comma --rate 5 --gyro-col gyro_y")["coefficients"],
+            csv["channels"][1]["coefficients"]);
+  {
+    std::ofstream out(dir / "dph.csv");
+    out << "time_s,temp_c,gyro_dph\n";
+    for (const LogRow& r : synthetic_log()) out << r.t << "," << r.temp_c << "," << r.gyro_dph << "\n";
+  }
+  const auto dph = run_cli(dir, "fit dph.csv --model T --temp-scale 1 -o dph.json");
+  ASSERT_EQ(dph.exit_code, 0) << dph.err;
+  const auto applied = run_cli(dir, "compensate --fit dph.json t.ulg --gyro-col gyro_y -o dph_on_log.csv");
+  EXPECT_EQ(applied.exit_code, 0) << applied.err;
   // A saved fit keeps the gyro it was made on; compensate reads the log again.
   ASSERT_EQ(run_cli(dir, "fit t.ulg --imu 1 --gyro-col gyro_x -o fit.json").exit_code, 0);
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "fit.json"))["pipeline"]["columns"]["imu"], 1);

@@ -176,25 +176,22 @@ std::string unquote_field(std::string_view field) {
 
 std::string parse_csv_number(std::string_view field, bool decimal_comma, double& value) {
   std::string_view text = trim(field);
-  if (parse_plain_decimal(text, value)) return {};
   const std::string_view as_written = text;
-  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {  // RFC 4180 quotes
-    text = trim(text.substr(1, text.size() - 2));
-    if (parse_plain_decimal(text, value)) return {};
-  }
-  const bool has_comma = text.find(',') != std::string_view::npos;
-  if (decimal_comma && has_comma) {
-    if (text.find('.') != std::string_view::npos || text.size() > 64)
-      return fmt::format("{} is not a number with a decimal comma (thousands separators are not read)",
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = trim(text.substr(1, text.size() - 2));
+  if (decimal_comma) {
+    // A '.' beside decimal commas separates thousands ("1.234" is 1234): not read.
+    if (text.find('.') != std::string_view::npos)
+      return fmt::format("{} has a '.' in a file of decimal commas (a thousands separator?): write the number "
+                         "without it",
                          shown_field(as_written));
-    std::array<char, 64> buffer{};
-    std::memcpy(buffer.data(), text.data(), text.size());
-    for (std::size_t k = 0; k < text.size(); ++k)
-      if (buffer[k] == ',') buffer[k] = '.';
-    const std::string_view pointed(buffer.data(), text.size());
+    std::string pointed(text);
+    for (char& c : pointed)
+      if (c == ',') c = '.';
     if (parse_plain_decimal(pointed, value)) return {};
     return parse_general(pointed, as_written, value);
   }
+  if (parse_plain_decimal(text, value)) return {};
+  const bool has_comma = text.find(',') != std::string_view::npos;
   std::string problem = parse_general(text, as_written, value);
   if (!problem.empty() && has_comma && !decimal_comma)
     problem += " (a decimal comma? give --decimal-comma)";
@@ -211,7 +208,7 @@ bool parse_iso8601(std::string_view text, Timestamp& out) {
   std::size_t at = 16;
   double fraction = 0.0;
   if (at < text.size() && text[at] == ':') {
-    if (!digits_at(text, at + 1, 2, second)) return false;
+    if (!digits_at(text, at + 1, 2, second) || second > 59) return false;  // no leap second
     at += 3;
     if (at < text.size() && (text[at] == '.' || text[at] == ',')) {
       double scale = 0.1;
@@ -229,15 +226,16 @@ bool parse_iso8601(std::string_view text, Timestamp& out) {
     int oh = 0, om = 0;
     if (!digits_at(text, at + 1, 2, oh)) return false;
     at += 3;
-    if (at < text.size() && text[at] == ':') ++at;
-    if (at < text.size()) {
+    const bool colon = at < text.size() && text[at] == ':';
+    if (colon) ++at;
+    if (colon || at < text.size()) {  // the minutes: after a ':' they must be there
       if (!digits_at(text, at, 2, om)) return false;
       at += 2;
     }
     if (oh > 23 || om > 59) return false;
     offset_minutes = sign * (60 * oh + om);
   }
-  if (at != text.size() || hour > 23 || minute > 59 || second > 60) return false;
+  if (at != text.size() || hour > 23 || minute > 59) return false;
   using namespace std::chrono;
   const year_month_day date{std::chrono::year{year}, std::chrono::month{static_cast<unsigned>(month)},
                             std::chrono::day{static_cast<unsigned>(day)}};

@@ -8,8 +8,8 @@
 //                  and "" inside it is one quote; a quote that is not closed
 //                  on its line is an error (fields spanning lines are not read)
 //   decimal comma  "20,5" is 20.5 (--decimal-comma; needs a delimiter other
-//                  than the comma); a field with a '.' as well is refused
-//                  (thousands separators are not read)
+//                  than the comma); a field with a '.' is refused (beside
+//                  decimal commas a '.' separates thousands: not read)
 //   time           a number in the time unit, an ISO 8601 timestamp
 //                  (2026-11-26T05:38:35.25Z, a space for the T, an offset
 //                  +01:00 or none: UTC assumed), read as seconds since the

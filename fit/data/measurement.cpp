@@ -143,6 +143,7 @@ class CsvParser {
   CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {
     map_.units.validate();
     map_.csv.validate();
+    csv_ = map_.csv;
     use_units(map_.units);
   }
 
@@ -195,6 +196,7 @@ class CsvParser {
   bool temp_in_c_ = true;
   std::vector<int> role_of_column_;              // Role of each header column
   char delimiter_ = ',';
+  CsvDialect csv_;                               // the text's form (none for an autopilot log)
   std::vector<std::string_view> fields_;         // of the row being read
   std::vector<double> values_;                   // its numbers, by column
   std::string log_gyro_;                         // an autopilot log's gyro ("sensor_gyro instance 1")
@@ -221,7 +223,7 @@ class CsvParser {
 
 void CsvParser::parse_header(std::string_view line, std::size_t line_number, Measurement& m) {
   try {
-    delimiter_ = map_.csv.delimiter_for(line);
+    delimiter_ = csv_.delimiter_for(line);
   } catch (const InputError& e) {
     fail(line_number, e.what());
   }
@@ -245,11 +247,11 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
     const bool explicit_temp2 = optional && name != default_temp2;
     if (optional && name.empty()) continue;  // temp2 switched off
     const auto it = std::find(names.begin(), names.end(), name);
-    if (role == kTime && map_.csv.rate_hz > 0.0) {  // no time column: rows at 1 / rate
+    if (role == kTime && csv_.rate_hz > 0.0) {  // no time column: rows at 1 / rate
       if (it != names.end())
         fail(line_number, fmt::format("--rate {:g} Hz is for a log without a time column, but column '{}' "
                                       "holds the time (drop --rate, or name another column with --time-col)",
-                                      map_.csv.rate_hz, name));
+                                      csv_.rate_hz, name));
       continue;
     }
     if (it == names.end()) {
@@ -270,17 +272,17 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
   }
   try {
     const auto name_of = [&](int role) {
-      const bool absent = (role == kTemp2 && !has_temp2_) || (role == kTime && map_.csv.rate_hz > 0.0);
+      const bool absent = (role == kTemp2 && !has_temp2_) || (role == kTime && csv_.rate_hz > 0.0);
       return absent ? std::string() : names[column_of_[role]];
     };
     Units units = resolve_units(map_.units, name_of(kTime), name_of(kTemp), name_of(kGyro), name_of(kTemp2));
-    if (map_.csv.rate_hz > 0.0) {
+    if (csv_.rate_hz > 0.0) {
       if (!units.time_unit().is_base())
         throw InputError(fmt::format("{} gives the time unit {}, but with --rate there is no time column",
                                      units.time_from, units.time));
-      units.time_from = fmt::format("--rate {:g} Hz, no time column", map_.csv.rate_hz);
+      units.time_from = fmt::format("--rate {:g} Hz, no time column", csv_.rate_hz);
     }
-    units.layout = map_.csv.describe(delimiter_);
+    units.layout = csv_.describe(delimiter_);
     use_units(units);
   } catch (const InputError& e) {
     fail(line_number, e.what());
@@ -333,7 +335,7 @@ std::string CsvParser::read_time(std::string_view field, Measurement& m, double&
     value = static_cast<double>(t.seconds - time_origin_.seconds) + (t.fraction - time_origin_.fraction);
     return {};
   }
-  std::string problem = parse_csv_number(field, map_.csv.decimal_comma, value);
+  std::string problem = parse_csv_number(field, csv_.decimal_comma, value);
   if (problem.empty() || rows_ > 0 || !parse_iso8601(unquote_field(field), t)) return problem;
   if (!units_.time_unit().is_base())
     return fmt::format("{} is an ISO 8601 timestamp, but {} gives the time unit {}", shown_field(trim(field)),
@@ -350,6 +352,9 @@ void CsvParser::read_log(const fs::path& file, const std::string& format, Measur
   const bool ulog = format == "ulog";
   const auto read = ulog ? read_ulog : read_dataflash;
   const LogContents contents = read(file, -1, {});
+  if (map_.imu && *map_.imu < 0)
+    throw InputError(fmt::format("{}: --imu {}: a gyro instance is a number from 0 (the log holds {})", name_,
+                                 *map_.imu, contents.instances()));
   const int instance = map_.imu.value_or(contents.default_instance());
   if (instance < 0)
     throw InputError(fmt::format("{}: no gyro with a temperature to fit against ({})", name_, contents.describe()));
@@ -358,19 +363,30 @@ void CsvParser::read_log(const fs::path& file, const std::string& format, Measur
   if (gyro == contents.gyros.end())
     throw InputError(fmt::format("{}: --imu {}: the log holds gyro instances {} ({})", name_, instance,
                                  contents.instances(), contents.describe()));
-  // The format states every unit: an option may only repeat it.
+  // The format states every unit: an option may only repeat it. Units and
+  // scales a fit file brings (of the CSV it was fitted on) do not apply; the
+  // CSV's form (delimiter, decimal comma, --rate) neither.
+  const bool from_fit_file = map_.units.gyro_from.starts_with("the fit file");
   const std::array<std::tuple<const std::string*, const char*, const char*>, 3> stated = {
       std::tuple{&map_.units.time, "s", "--time-unit"}, {&map_.units.gyro, "rad/s", "--gyro-unit"},
       {&map_.units.temp, "C", "--temp-unit"}};
   for (const auto& [given, unit, option] : stated)
-    if (!given->empty() && *given != unit)
+    if (!from_fit_file && !given->empty() && *given != unit)
       throw InputError(fmt::format("{}: {} {}: the log is {}, whose units are fixed (time µs, gyro rad/s, "
                                    "temperature °C); leave {} out",
                                    name_, option, *given, contents.format, option));
+  const Units& scales = map_.units;
+  if (!from_fit_file && (scales.gyro_scale != 1.0 || scales.temp_scale != 1.0 || scales.temp_offset != 0.0))
+    throw InputError(fmt::format("{}: --gyro-scale, --temp-scale and --temp-offset are for raw counts; the log is {}, "
+                                 "in rad/s and °C",
+                                 name_, contents.format));
+  csv_ = CsvDialect{};
   parse_header("time_s,temp_c,gyro_x,gyro_y,gyro_z", 0, m);
   std::sort(extras_.begin(), extras_.end(), [](const Extra& a, const Extra& b) { return a.column < b.column; });
   log_gyro_ = fmt::format("{} instance {}", gyro->message, instance);
   Units u = units_;
+  u.gyro_scale = u.temp_scale = 1.0;
+  u.temp_offset = 0.0;
   // Named strings, not literals: g++ 12 warns of a false overlap when a literal is assigned here.
   static const std::string kSeconds = "s", kRadPerSecond = "rad/s", kCelsius = "C";
   u.time = kSeconds;
@@ -416,7 +432,7 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
     for (; next_extra < extras_.size() && extras_[next_extra].column == column; ++next_extra) {
       Extra& e = extras_[next_extra];
       if (!e.numeric) continue;
-      const std::string problem = parse_csv_number(field, map_.csv.decimal_comma, values_[column]);
+      const std::string problem = parse_csv_number(field, csv_.decimal_comma, values_[column]);
       if (!problem.empty()) {
         if (e.strict) fail(line_number, fmt::format("column {}: {}", e.name, problem));
         e.numeric = false;  // a column of text, say: not a candidate
@@ -425,7 +441,7 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
     }
     if (const int role = role_of_column_[column]; role != kNoRole) {
       const std::string problem = role == kTime ? read_time(field, m, values_[column])
-                                                : parse_csv_number(field, map_.csv.decimal_comma, values_[column]);
+                                                : parse_csv_number(field, csv_.decimal_comma, values_[column]);
       if (!problem.empty()) fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
     }
   }
@@ -448,7 +464,11 @@ void CsvParser::take_values(std::size_t line_number, Measurement& m) {
                        read == value[role] ? std::string()
                                            : fmt::format(" (read {:g}, converted by {})", read, units_.description())));
   }
-  if (map_.csv.rate_hz > 0.0) value[kTime] = static_cast<double>(rows_) / map_.csv.rate_hz;
+  if (csv_.rate_hz > 0.0) {
+    value[kTime] = static_cast<double>(rows_) / csv_.rate_hz;
+    if (const std::string range = out_of_range(kTime, value[kTime]); !range.empty())
+      fail(line_number, fmt::format("row {} at --rate {:g} Hz: {}", rows_, csv_.rate_hz, range));
+  }
   if (rows_ == 0 && header_sink_) header_sink_(CsvHeader{m.file, m.units, m.columns, has_temp2_, 0});
   if (rows_ > 0 && !(value[kTime] > last_time_))
     fail(line_number,
