@@ -119,13 +119,15 @@ TEST(CliExport, OnlyParametersTheFirmwareHas) {
   ScratchDir dir;
   write_ramp_log(dir / "d.csv", "gyro_dph", {3.0}, 3.0, 10.0, 40.0, 7);
   ASSERT_EQ(run_cli(dir, "fit d.csv --model 'T + T^2' -o fit.json").exit_code, 0);
-  expect_refused(dir, "export fit.json --format px4 --instance 4 -o p.params", "PX4 has the gyro thermal compensation sets TC_G0 to TC_G3");
-  expect_refused(dir, "export fit.json --format px4 --instance -1 -o p.params", "--instance -1");
-  expect_refused(dir, "export fit.json --format px4 --device-id 4294967296 -o p.params", "a 32-bit number");
-  expect_refused(dir, "export fit.json --format ardupilot --instance 0 -o a.param", "ArduPilot numbers its IMUs 1 to 5");
-  expect_refused(dir, "export fit.json --format ardupilot --instance 6 -o a.param", "INS4_TCAL_, INS5_TCAL_");
-  expect_refused(dir, "export fit.json --format ardupilot --device-id 5 -o a.param", "--device-id is PX4's");
-  expect_refused(dir, "export fit.json --format px4 --boot-temp 20 -o p.params", "--boot-temp is ArduPilot's");
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"px4 --instance 4 -o p.params", "PX4 has the gyro thermal compensation sets TC_G0 to TC_G3"},
+           {"px4 --instance -1 -o p.params", "--instance -1"},
+           {"px4 --device-id 4294967296 -o p.params", "a 32-bit number"},
+           {"px4 --boot-temp 20 -o p.params", "--boot-temp is ArduPilot's"},
+           {"ardupilot --instance 0 -o a.param", "ArduPilot numbers its IMUs 1 to 5"},
+           {"ardupilot --instance 6 -o a.param", "INS4_TCAL_, INS5_TCAL_"},
+           {"ardupilot --device-id 5 -o a.param", "--device-id is PX4's"}})
+    expect_refused(dir, "export fit.json --format " + args, expected);
   EXPECT_FALSE(std::filesystem::exists(dir / "p.params"));
   EXPECT_FALSE(std::filesystem::exists(dir / "a.param"));
   // A device id above 2^31 is written as the int32 PX4's parameter holds.

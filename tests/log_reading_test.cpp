@@ -108,12 +108,14 @@ TEST(LogReading, ALogGivesTheFitOfACsvOfTheSameNumbers) {
                        "samples"),
             std::string::npos) << units;
   EXPECT_NE(units.find("temperature NaN throughout"), std::string::npos) << units;
-  expect_refused(dir, "fit t.ulg --imu 0", "sensor_gyro instance 0 has 0 samples with a temperature; at least 2 are needed");
-  expect_refused(dir, "fit t.ulg --imu 4", "--imu 4: the log holds gyro instances 0 and 1");
-  expect_refused(dir, "fit t.bin --gyro-unit dph", "--gyro-unit dph: the log is DataFlash, whose units are fixed");
-  expect_refused(dir, "fit t.ulg --gyro-col gx", "no column 'gx' (the header has: time_s, temp_c, gyro_x, gyro_y, gyro_z)");
-  expect_refused(dir, "fit t.ulg --imu -1", "--imu -1: a gyro instance is a number from 0");
-  expect_refused(dir, "fit t.bin --gyro-scale 2", "--gyro-scale, --temp-scale and --temp-offset are for raw counts");
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"t.ulg --imu 0", "sensor_gyro instance 0 has 0 samples with a temperature; at least 2 are needed"},
+           {"t.ulg --imu 4", "--imu 4: the log holds gyro instances 0 and 1"},
+           {"t.ulg --imu -1", "--imu -1: a gyro instance is a number from 0"},
+           {"t.bin --gyro-unit dph", "--gyro-unit dph: the log is DataFlash, whose units are fixed"},
+           {"t.bin --gyro-scale 2", "--gyro-scale, --temp-scale and --temp-offset are for raw counts"},
+           {"t.ulg --gyro-col gx", "no column 'gx' (the header has: time_s, temp_c, gyro_x, gyro_y, gyro_z)"}})
+    expect_refused(dir, "fit " + args, expected);
   // A CSV's form does not concern a log; nor do the units a fit made on a CSV in other units brings.
   EXPECT_EQ(fit_json(dir, "t.ulg --decimal-comma --rate 5 --gyro-col gyro_y")["coefficients"],
             csv["channels"][1]["coefficients"]);
