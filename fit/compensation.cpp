@@ -17,9 +17,8 @@
 #include "sim/util/fast_number.h"
 
 namespace gyrotherm::fit {
-namespace {
 
-double std_dev(const std::vector<double>& v) {
+double instability_of(const std::vector<double>& v) {
   double mean = 0.0;
   for (double x : v) mean += x;
   mean /= static_cast<double>(v.size());
@@ -27,6 +26,8 @@ double std_dev(const std::vector<double>& v) {
   for (double x : v) ss += (x - mean) * (x - mean);
   return std::sqrt(ss / static_cast<double>(v.size() - 1));
 }
+
+namespace {
 
 // B of every window, the compensated windows, the instability before and after.
 void window_models(Compensation& c, const SavedFit& fit) {
@@ -36,8 +37,8 @@ void window_models(Compensation& c, const SavedFit& fit) {
   for (std::size_t p = 0; p < s.size(); ++p)
     c.window_compensated_dph.push_back(s.gyro_dph[p] - c.window_model_dph[p]);
   if (s.size() >= 2) {
-    c.before_dph = std_dev(s.gyro_dph);
-    c.after_dph = std_dev(c.window_compensated_dph);
+    c.before_dph = instability_of(s.gyro_dph);
+    c.after_dph = instability_of(c.window_compensated_dph);
   }
 }
 

@@ -39,6 +39,10 @@ struct Compensation {
   double ratio() const { return before_dph / after_dph; }
 };
 
+// The instability of a series of window averages: its standard deviation
+// (two-pass, n − 1), as before_dph and after_dph are computed.
+double instability_of(const std::vector<double>& window_averages);
+
 Compensation compensate(const Measurement& measurement, const SavedFit& fit,
                         const PipelineOptions& pipeline);
 

@@ -159,11 +159,7 @@ DroppedCost dropped_cost(const fit::SavedFit& fit, const CubicModel& cubic, cons
   std::vector<double> residual;
   for (std::size_t p = 0; p < c.data.series.size(); ++p)
     residual.push_back(c.data.series.gyro_dph[p] - cubic.evaluate(c.data.series.temp_c[p]));
-  double mean = 0.0, ss = 0.0;
-  for (const double x : residual) mean += x;
-  mean /= static_cast<double>(residual.size());
-  for (const double x : residual) ss += (x - mean) * (x - mean);
-  return {c.after_dph, std::sqrt(ss / static_cast<double>(residual.size() - 1))};
+  return {c.after_dph, fit::instability_of(residual)};
 }
 
 std::array<double, 4> reexpand(const CubicModel& m, double r) {

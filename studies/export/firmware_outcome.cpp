@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "fit/compensation.h"
 #include "fit/pipeline.h"
 
 namespace gyrotherm::studies {
@@ -17,12 +18,11 @@ constexpr float kArduPilotReference = 35.0f;
 
 float clamped(float t, float lo, float hi) { return std::min(std::max(t, lo), hi); }
 
-double std_dev(const std::vector<double>& v) {
-  double mean = 0.0, ss = 0.0;
-  for (const double x : v) mean += x;
-  mean /= static_cast<double>(v.size());
-  for (const double x : v) ss += (x - mean) * (x - mean);
-  return std::sqrt(ss / static_cast<double>(v.size() - 1));
+// What PX4's calc_thermal_offsets_3D gives for one axis at temperature t, in
+// °/h: float arithmetic in its order, t clamped to [tmin, tmax].
+double px4_offset_dph(const std::array<float, 4>& x, float tref, float tmin, float tmax, float t) {
+  const float d = clamped(t, tmin, tmax) - tref, d2 = d * d, d3 = d2 * d;
+  return static_cast<double>(x[0] + x[1] * d + x[2] * d2 + x[3] * d3) / kRadPerSecPerDegPerHour;
 }
 
 // The instability (std of the window averages, the fit's preparation) of
@@ -31,7 +31,7 @@ double instability_less(const fit::Measurement& m, const std::vector<double>& su
                         const fit::PipelineOptions& pipeline) {
   fit::Measurement rest = m;
   for (std::size_t i = 0; i < rest.size(); ++i) rest.gyro_dph[i] -= subtracted[i];
-  return std_dev(fit::prepare_data(rest, pipeline).series.gyro_dph);
+  return fit::instability_of(fit::prepare_data(rest, pipeline).series.gyro_dph);
 }
 
 }  // namespace
@@ -39,10 +39,6 @@ double instability_less(const fit::Measurement& m, const std::vector<double>& su
 std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std::vector<double>& temp_c,
                                     const std::array<float, 4>& x, float tref, float tmin, float tmax) {
   std::vector<double> out(time_s.size());
-  const auto offset_dph = [&](float t) {
-    const float d = clamped(t, tmin, tmax) - tref, d2 = d * d, d3 = d2 * d;
-    return static_cast<double>(x[0] + x[1] * d + x[2] * d2 + x[3] * d3) / kRadPerSecPerDegPerHour;
-  };
   if (time_s.empty()) return out;
   const double t0 = time_s.front();
   double applied = 0.0, next_run = t0;
@@ -54,7 +50,7 @@ std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std
     if (time_s[i] >= next_run) {
       const auto t = static_cast<float>(temp_c[i]);
       if (!published || std::fabs(t - last_published) > kPx4HysteresisC) {
-        applied = offset_dph(t);
+        applied = px4_offset_dph(x, tref, tmin, tmax, t);
         last_published = t;
         published = true;
       }
@@ -112,10 +108,8 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
     std::vector<double> continuous(m.size());
     if (firmware == Firmware::px4) {
       const std::array<float, 4> x = px4_coefficients(a, tref);
-      for (std::size_t k = 0; k < m.size(); ++k) {
-        const float d = clamped(static_cast<float>(m.temp_c[k]), tmin, tmax) - tref;
-        continuous[k] = static_cast<double>(x[0] + x[1] * d + x[2] * d * d + x[3] * d * d * d) / kRadPerSecPerDegPerHour;
-      }
+      for (std::size_t k = 0; k < m.size(); ++k)
+        continuous[k] = px4_offset_dph(x, tref, tmin, tmax, static_cast<float>(m.temp_c[k]));
       out.exported_dph = instability_less(m, continuous, pipeline);
       out.firmware_dph = instability_less(m, px4_applied_dph(m.time_s, m.temp_c, x, tref, tmin, tmax), pipeline);
     } else {
