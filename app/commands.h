@@ -20,6 +20,10 @@ using Run = std::function<int()>;
 #include "app/commands.def"
 #undef COMMAND
 
+// The shipped scenarios: ./scenarios when run from the source tree, else the
+// source tree's (reproduce's and plan's defaults).
+std::string default_scenarios_dir();
+
 // When the user picks `command`, *run becomes `work`.
 void when_chosen(CLI::App* command, Run* run, Run work);
 

@@ -24,10 +24,6 @@ struct ReproduceCli {
   bool json = false;
 };
 
-std::string default_scenarios_dir() {
-  if (std::filesystem::exists("scenarios/cycle.toml")) return "scenarios";
-  return std::string(GYROTHERM_SOURCE_DIR) + "/scenarios";
-}
 
 int run_reproduce(const ReproduceCli& o) {
   const std::string dir = o.scenarios.empty() ? default_scenarios_dir() : o.scenarios;
@@ -46,6 +42,11 @@ int run_reproduce(const ReproduceCli& o) {
 }
 
 }  // namespace
+
+std::string default_scenarios_dir() {
+  if (std::filesystem::exists("scenarios/cycle.toml")) return "scenarios";
+  return std::string(GYROTHERM_SOURCE_DIR) + "/scenarios";
+}
 
 void add_reproduce_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<ReproduceCli>();

@@ -1,0 +1,238 @@
+#include "studies/plan/plan.h"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "sim/util/format.h"
+#include "sim/util/input_error.h"
+#include "studies/plan/plan_files.h"
+#include "studies/plan/plan_setup.h"
+#include "studies/plan/search.h"
+#include "studies/plan/verify.h"
+
+namespace gyrotherm::studies::plan {
+
+namespace {
+
+std::vector<double> targets_of(const std::vector<TermPlan>& terms) {
+  std::vector<double> t;
+  for (const TermPlan& p : terms) t.push_back(p.target_se);
+  return t;
+}
+
+// "se(T^2) = 4.1e-07, 1.3 × its target 3.2e-07" for each term short of its target.
+std::string shortfalls(const std::vector<TermPlan>& terms, const Precision& p) {
+  std::string out;
+  for (std::size_t j = 0; j < terms.size(); ++j)
+    if (std::isfinite(terms[j].target_se) && !(p.se[j] <= terms[j].target_se))
+      out += fmt::format("{}se({}) = {:.3g} {}, {:.3g} × its target {:.3g}", out.empty() ? "" : "; ", terms[j].term,
+                         p.se[j], terms[j].unit, p.se[j] / terms[j].target_se, terms[j].target_se);
+  return out;
+}
+
+std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
+
+}  // namespace
+
+PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  auto report = [&](const std::string& stage, int done, int total) {
+    if (progress.report) progress.report(stage, done, total);
+  };
+  if (request.verify < 0 || request.verify == 1 || request.verify > 100000)
+    throw InputError(fmt::format("--verify {}: give the number of simulated tests, 2..100000 (0: none)",
+                                 request.verify));
+  PlanSetup setup = plan_setup(request);
+  PlanResult r;
+  r.request = request;
+  r.terms = setup.terms;
+  r.limits = setup.limits;
+  r.thermal_path = setup.thermal_path;
+  r.noise = setup.noise.description() + " (" + setup.noise.source + ")";
+  r.notes = setup.notes;
+  sim::Scenario predicted = setup.base;
+  predicted.sample_rate_hz = kPredictionRateHz;
+  const DesignEvaluator evaluator(predicted, setup.rig, setup.gyro, setup.noise, setup.model);
+  const std::vector<double> target = targets_of(setup.terms);
+
+  // The standard recipes at the same limits and target.
+  const std::vector<Recipe> recipes = standard_recipes(setup.limits);
+  for (std::size_t i = 0; i < recipes.size(); ++i) {
+    report("standard recipes", static_cast<int>(i), static_cast<int>(recipes.size()));
+    const SearchOutcome o = shortest_recipe(evaluator, recipes[i], target);
+    Baseline b{recipes[i].name, recipes[i].about};
+    b.met = o.met;
+    b.duration_s = o.best.precision.duration_s;
+    b.shortfall = o.best.shortfall;
+    b.closest_s = o.best.precision.duration_s;
+    if (!o.met)
+      b.why = o.best.precision.refused.empty() ? shortfalls(setup.terms, o.best.precision) : o.best.precision.refused;
+    r.baselines.push_back(b);
+    r.evaluations += o.evaluations;
+  }
+  report("standard recipes", static_cast<int>(recipes.size()), static_cast<int>(recipes.size()));
+
+  // The planned profile.
+  const SearchOutcome plan = shortest_plan(evaluator, setup.limits, target,
+                                           [&](int done, int total) { report("planning", done, total); });
+  r.evaluations += plan.evaluations;
+  if (!plan.met) {
+    const Precision& p = plan.best.precision;
+    if (!p.refused.empty() || !std::isfinite(plan.best.shortfall))
+      throw InputError(fmt::format(
+          "the model cannot be identified at these limits at any length: {}. The rig's thermal path ({}) "
+          "over {}..{} °C at {} °C/min does not make these terms differ",
+          p.refused.empty() ? "its terms do not vary apart" : p.refused, setup.thermal_path, setup.limits.low_c,
+          setup.limits.high_c, setup.limits.max_rate_c_per_min));
+    throw InputError(fmt::format(
+        "no test of at most {} at these limits ({}..{} °C, {} °C/min, soaks ≥ {} s) meets the precision "
+        "wanted: the closest ({}) gives {}. Under this gyro's noise ({}) a longer test does not always help "
+        "(slow noise grows with the record). Relax --se/--rel-se, widen --range, raise --max-rate, or allow "
+        "a longer test (--longest)",
+        hours(setup.limits.longest_s), setup.limits.low_c, setup.limits.high_c, setup.limits.max_rate_c_per_min,
+        setup.limits.min_soak_s, hours(p.duration_s), shortfalls(setup.terms, p), setup.noise.description()));
+  }
+  r.profile = plan.best.profile;
+  r.duration_s = plan.best.precision.duration_s;
+  r.sensor_min_c = plan.best.precision.sensor_min_c;
+  r.sensor_max_c = plan.best.precision.sensor_max_c;
+  r.windows = plan.best.precision.windows;
+  for (std::size_t j = 0; j < r.terms.size(); ++j) r.terms[j].predicted_se = plan.best.precision.se[j];
+
+  if (request.verify > 0) {
+    const auto t0 = std::chrono::steady_clock::now();
+    sim::Scenario sc = setup.base;
+    sc.start_c = r.profile.start_c;
+    sc.segments = r.profile.segments;
+    const std::uint64_t first = request.seed.value_or(setup.base.seed);
+    const VerifyOutcome v = verify_plan(sc, setup.rig, setup.gyro, setup.model.terms, request.verify, first,
+                                        [&](int done, int total) { report("verifying", done, total); });
+    Verification out;
+    out.seeds = v.seeds;
+    out.first_seed = first;
+    out.achieved_se = v.achieved_se;
+    out.mean_reported_se = v.reported_se;
+    out.coverage_95 = v.coverage_95;
+    out.truth = v.truth;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    r.verification = out;
+  }
+  write_plan_files(r, setup, evaluator.detail(r.profile));
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+nlohmann::ordered_json plan_json(const PlanResult& r) {
+  using Json = nlohmann::ordered_json;
+  auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+  Json j;
+  j["model"] = r.request.model;
+  j["duration_s"] = r.duration_s;
+  j["scenario_file"] = r.scenario_file;
+  j["setpoint_file"] = r.setpoint_file;
+  j["rig_file"] = r.rig_file;
+  j["gyro_file"] = r.gyro_file;
+  j["figure"] = r.figure_file;
+  Json predicted = Json::object(), target = Json::object(), prior = Json::object(), from = Json::object();
+  for (const TermPlan& t : r.terms) {
+    predicted[t.term] = number(t.predicted_se);
+    target[t.term] = number(t.target_se);
+    prior[t.term] = t.prior == 0.0 ? Json(nullptr) : Json(t.prior);
+    from[t.term] = t.target_from;
+  }
+  j["predicted_se"] = predicted;
+  j["target_se"] = target;
+  j["target_from"] = from;
+  j["prior"] = prior;
+  Json baselines = Json::array();
+  for (const Baseline& b : r.baselines)
+    baselines.push_back({{"recipe", b.recipe},
+                         {"duration_s", b.met ? Json(b.duration_s) : Json(nullptr)},
+                         {"about", b.about},
+                         {"closest_s", b.met ? Json(nullptr) : Json(b.closest_s)},
+                         {"shortfall", number(b.shortfall)},
+                         {"why", b.why}});
+  j["baselines"] = baselines;
+  Json segments = Json::array();
+  for (const sim::Segment& s : r.profile.segments) {
+    Json seg = {{"kind", sim::to_string(s.kind)}, {"temp_c", s.temp_c}};
+    if (s.kind == sim::SegmentKind::ramp) seg["rate_c_per_min"] = s.rate_c_per_min;
+    else seg["duration_s"] = s.duration_s;
+    segments.push_back(seg);
+  }
+  j["profile"] = {{"start_c", r.profile.start_c}, {"segments", segments}};
+  j["limits"] = {{"range_c", {r.limits.low_c, r.limits.high_c}},
+                 {"max_rate_c_per_min", r.limits.max_rate_c_per_min},
+                 {"min_soak_s", r.limits.min_soak_s},
+                 {"longest_s", r.limits.longest_s}};
+  j["thermal_path"] = r.thermal_path;
+  j["noise"] = r.noise;
+  j["sensor_range_c"] = {r.sensor_min_c, r.sensor_max_c};
+  j["windows"] = r.windows;
+  if (r.verification) {
+    const Verification& v = *r.verification;
+    Json achieved = Json::object(), coverage = Json::object(), reported = Json::object(), truth = Json::object();
+    for (std::size_t k = 0; k < r.terms.size(); ++k) {
+      achieved[r.terms[k].term] = number(v.achieved_se[k]);
+      coverage[r.terms[k].term] = number(v.coverage_95[k]);
+      reported[r.terms[k].term] = number(v.mean_reported_se[k]);
+      truth[r.terms[k].term] = v.truth[k];
+    }
+    j["achieved_se"] = achieved;
+    j["coverage_95"] = coverage;
+    j["reported_se"] = reported;
+    j["verify"] = {{"seeds", v.seeds}, {"first_seed", v.first_seed}, {"truth", truth}, {"seconds", v.seconds}};
+  }
+  j["notes"] = r.notes;
+  j["evaluations"] = r.evaluations;
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+std::string plan_text(const PlanResult& r) {
+  std::string out = fmt::format("plan for B = b0 + {}\n", r.request.model);
+  out += fmt::format("  rig: {}; chamber {}..{} °C, at most {} °C/min, soaks ≥ {} s\n", r.thermal_path,
+                     r.limits.low_c, r.limits.high_c, r.limits.max_rate_c_per_min, r.limits.min_soak_s);
+  out += fmt::format("  noise: {}\n\n", r.noise);
+  out += fmt::format("planned test: {} ({} windows; the sensor {:.1f}..{:.1f} °C)\n", hours(r.duration_s),
+                     r.windows, r.sensor_min_c, r.sensor_max_c);
+  out += fmt::format("  start soaked at {} °C, switched on at t = 0\n", r.profile.start_c);
+  for (const sim::Segment& s : r.profile.segments)
+    out += s.kind == sim::SegmentKind::ramp ? fmt::format("  ramp to {} °C at {:g} °C/min\n", s.temp_c, s.rate_c_per_min)
+                                            : fmt::format("  soak at {} °C for {:.0f} min\n", s.temp_c, s.duration_s / 60.0);
+  const bool verified = r.verification.has_value();
+  out += fmt::format("\n{:<8} {:>12} {:>12} {:>12}", "term", "prior", "target se", "predicted");
+  if (verified) out += fmt::format(" {:>12} {:>12} {:>9}", "achieved", "reported", "covered");
+  out += "  unit\n";
+  for (std::size_t k = 0; k < r.terms.size(); ++k) {
+    const TermPlan& t = r.terms[k];
+    out += fmt::format("{:<8} {:>12} {:>12} {:>12.4g}", t.term, t.prior == 0.0 ? "-" : fmt::format("{:.4g}", t.prior),
+                       std::isfinite(t.target_se) ? fmt::format("{:.4g}", t.target_se) : "-", t.predicted_se);
+    if (verified) {
+      const Verification& v = *r.verification;
+      out += fmt::format(" {:>12.4g} {:>12.4g} {:>8.1f}%", v.achieved_se[k], v.mean_reported_se[k],
+                         100.0 * v.coverage_95[k]);
+    }
+    out += "  " + t.unit + "\n";
+  }
+  if (verified)
+    out += fmt::format("(achieved: the coefficients' spread over {} simulated tests, seeds {}..; reported: the fits' "
+                       "own mean standard error; covered: their 95 % intervals holding the truth)\n",
+                       r.verification->seeds, r.verification->first_seed);
+  out += "\nthe same precision by the standard recipes at the same limits:\n";
+  for (const Baseline& b : r.baselines) {
+    if (b.met)
+      out += fmt::format("  {:<22} {:>9}  ({:+.0f} %)\n", b.recipe, hours(b.duration_s),
+                         100.0 * (b.duration_s / r.duration_s - 1.0));
+    else
+      out += fmt::format("  {:<22} {:>9}  (the closest, {}: {})\n", b.recipe, "never", hours(b.closest_s), b.why);
+  }
+  for (const std::string& n : r.notes) out += "note: " + n + "\n";
+  out += fmt::format("\nwrote {}, {} (chamber programme), {}, {} and {}\n", r.scenario_file, r.setpoint_file, r.rig_file,
+                     r.gyro_file, r.figure_file);
+  out += fmt::format("run it: gyrotherm simulate {} --output plan.csv\n", r.scenario_file);
+  return out;
+}
+
+}  // namespace gyrotherm::studies::plan

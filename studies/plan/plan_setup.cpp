@@ -1,0 +1,325 @@
+#include "studies/plan/plan_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "fit/model/formula.h"
+#include "sim/config_loader.h"
+#include "sim/util/comma_list.h"
+#include "sim/util/fast_number.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::studies::plan {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+double number_of(const std::string& text, const std::string& option) {
+  double v = 0.0;
+  std::size_t used = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw InputError(fmt::format("{}: '{}' is not a number", option, text));
+  return v;
+}
+
+// "NAME=VALUE" → (NAME, VALUE); `value_optional`: "NAME" alone gives NaN.
+std::pair<std::string, double> name_value(const std::string& item, const std::string& option,
+                                          bool value_optional = false) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos) {
+    if (value_optional) return {item, std::nan("")};
+    throw InputError(fmt::format("{}: expected NAME=VALUE, got '{}'", option, item));
+  }
+  return {item.substr(0, eq), number_of(item.substr(eq + 1), option + " " + item.substr(0, eq))};
+}
+
+nlohmann::json read_json(const std::filesystem::path& file, const std::string& option) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{} {}: cannot open the file", option, file.string()));
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{} {}: not valid JSON ({})", option, file.string(), e.what()));
+  }
+}
+
+std::size_t index_of(const PlanModel& m, std::string_view name) {
+  for (std::size_t j = 0; j < m.terms.size(); ++j)
+    if (m.terms[j]->name == name) return j;
+  return m.terms.size();
+}
+
+void add_term(PlanModel& m, const fit::Term* t) {
+  if (index_of(m, t->name) < m.terms.size()) return;
+  m.terms.push_back(t);
+  m.parameters.push_back(std::nan(""));
+  m.prior.push_back(0.0);
+}
+
+const fit::Term* term_named(const std::string& name, const std::string& option) {
+  const fit::Term* t = fit::term_by_name(name);
+  if (!t) throw InputError(fmt::format("{}: unknown term '{}' (terms: {})", option, name, fit::term_list()));
+  return t;
+}
+
+// Set points of a scenario, for the default range and rate.
+void scenario_limits(const sim::Scenario& s, RigLimits& limits, bool want_range, bool want_rate) {
+  double lo = s.start_c, hi = s.start_c, rate = 0.0;
+  for (const sim::Segment& seg : s.segments) {
+    if (seg.kind == sim::SegmentKind::free) continue;
+    lo = std::min(lo, seg.temp_c);
+    hi = std::max(hi, seg.temp_c);
+    if (seg.kind == sim::SegmentKind::ramp) rate = std::max(rate, seg.rate_c_per_min);
+  }
+  if (want_range) {
+    if (!(hi > lo))
+      throw InputError(fmt::format("{} holds one temperature: give the chamber's range with --range LO,HI",
+                                   s.file.filename().string()));
+    limits.low_c = lo;
+    limits.high_c = hi;
+  }
+  if (want_rate) {
+    if (!(rate > 0.0))
+      throw InputError(fmt::format("{} has no ramp: give the chamber's rate limit with --max-rate",
+                                   s.file.filename().string()));
+    limits.max_rate_c_per_min = rate;
+  }
+}
+
+}  // namespace
+
+sim::RigConfig first_order_rig(double tau_s, const sim::RigConfig& chamber_of) {
+  sim::RigConfig r;
+  r.chamber = chamber_of.chamber;
+  r.sensor = chamber_of.sensor;
+  r.case_.capacity_j_per_k = 1000.0;
+  r.case_.convection_w_per_k = 1000.0 / tau_s;
+  r.case_.natural_convection = false;
+  r.case_.emissivity = 0.0;
+  r.case_.area_m2 = 0.0;
+  r.block.anode_capacity_j_per_k = r.block.far_capacity_j_per_k = 1.0;
+  r.block.anode_far_w_per_k = 0.0;
+  r.block.anode_case_w_per_k = r.block.far_case_w_per_k = 10.0;
+  r.sensor.time_constant_s = 1.0;
+  r.power = {0.0, 0.0, 0.0};
+  return r;
+}
+
+PlanSetup plan_setup(const PlanRequest& rq) {
+  PlanSetup s;
+  if (rq.scenario.empty()) throw InputError("plan: no scenario given");
+  s.base = sim::load_scenario(rq.scenario);
+  const std::filesystem::path rig_file = rq.rig.empty() ? s.base.rig_file : std::filesystem::path(rq.rig);
+  const std::filesystem::path gyro_file = rq.gyro.empty() ? s.base.gyro_file : std::filesystem::path(rq.gyro);
+  s.rig = sim::load_rig(rig_file);
+  s.gyro = sim::load_gyro(gyro_file);
+  s.base.rig_file = rig_file;
+  s.base.gyro_file = gyro_file;
+  if (!s.base.chamber)
+    throw InputError(fmt::format("{} has no chamber (chamber = false): plan designs chamber tests; use a "
+                                 "scenario with a chamber, e.g. scenarios/cycle.toml",
+                                 rq.scenario));
+
+  // The rig's limits.
+  scenario_limits(s.base, s.limits, !rq.range_c, !rq.max_rate_c_per_min);
+  if (rq.range_c) {
+    s.limits.low_c = rq.range_c->first;
+    s.limits.high_c = rq.range_c->second;
+    if (!(s.limits.high_c > s.limits.low_c))
+      throw InputError(fmt::format("--range {},{}: the low end must be below the high end", s.limits.low_c,
+                                   s.limits.high_c));
+  }
+  if (s.limits.low_c < s.rig.chamber.min_c || s.limits.high_c > s.rig.chamber.max_c)
+    throw InputError(fmt::format("--range {},{} is outside the chamber's working range {}..{} °C ({})",
+                                 s.limits.low_c, s.limits.high_c, s.rig.chamber.min_c, s.rig.chamber.max_c,
+                                 rig_file.filename().string()));
+  if (rq.max_rate_c_per_min) s.limits.max_rate_c_per_min = *rq.max_rate_c_per_min;
+  if (!(s.limits.max_rate_c_per_min > 0.0))
+    throw InputError(fmt::format("--max-rate {}: must be > 0 °C/min (a chamber that cannot change its "
+                                 "temperature identifies no temperature term)",
+                                 s.limits.max_rate_c_per_min));
+  if (!(rq.min_soak_s >= 0.0)) throw InputError(fmt::format("--min-soak {}: must be >= 0 s", rq.min_soak_s));
+  if (!(rq.longest_h > 0.0) || rq.longest_h > 24.0 * 30)
+    throw InputError(fmt::format("--longest {}: must be > 0 and at most 720 h", rq.longest_h));
+  s.limits.min_soak_s = rq.min_soak_s;
+  s.limits.longest_s = rq.longest_h * 3600.0;
+  s.limits.start_c = std::clamp(s.base.start_c, s.limits.low_c, s.limits.high_c);
+  if (s.limits.start_c != s.base.start_c)
+    s.notes.push_back(fmt::format("the scenario starts at {} °C, outside --range: the tests start soaked at {} °C",
+                                  s.base.start_c, s.limits.start_c));
+  s.base.start_c = s.limits.start_c;
+  s.base.initial = sim::InitialCondition::soaked;
+  if (rq.tau_s) {
+    if (!(*rq.tau_s > 0.0)) throw InputError(fmt::format("--tau {}: must be > 0 s", *rq.tau_s));
+    s.rig = first_order_rig(*rq.tau_s, s.rig);
+    s.thermal_path = fmt::format("first-order lag from the chamber air to the sensor, τ = {:g} s", *rq.tau_s);
+  } else {
+    s.thermal_path = fmt::format("{} (the thermal network of {})", rig_file.filename().string(),
+                                 std::filesystem::path(rq.scenario).filename().string());
+  }
+
+  // The model, the group to separate and their priors.
+  for (const fit::Term* t : fit::parse_formula(rq.model)) {
+    if (fit::is_column_term(t))
+      throw InputError(fmt::format("--model: '{}' is a column of a log; a planned test has the simulator's "
+                                   "temperatures only (T, T2 and what is made from them)",
+                                   t->name));
+    add_term(s.model, t);
+  }
+  const std::size_t model_terms = s.model.terms.size();
+  std::vector<std::string> group;
+  std::vector<double> group_size;
+  std::string noise_file = rq.noise;
+  nlohmann::json fit_prior;
+  if (rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
+    const nlohmann::json d = read_json(rq.separate[0], "--separate");
+    if (!d.contains("confounded") || !d["confounded"].is_array() || d["confounded"].empty())
+      throw InputError(fmt::format("--separate {}: the diagnosis names no confounded group ('confounded' is "
+                                   "empty or absent): there is nothing to separate",
+                                   rq.separate[0]));
+    for (const auto& name : d["confounded"][0])
+      if (name.is_string() && name.get<std::string>() != "1") group.push_back(name.get<std::string>());
+    for (const std::string& g : group) {
+      double size = std::nan("");
+      if (d.contains("missing_effects"))
+        for (const auto& e : d["missing_effects"])
+          if (e.value("term", "") == g && e.contains("coefficient") && e["coefficient"].is_number())
+            size = e["coefficient"].get<double>();
+      group_size.push_back(size);
+    }
+    if (noise_file.empty() && d.contains("noise_model")) noise_file = rq.separate[0];
+  } else {
+    for (const std::string& item : rq.separate) {
+      const auto [name, size] = name_value(item, "--separate", true);
+      group.push_back(name);
+      group_size.push_back(size);
+    }
+  }
+  if (!rq.separate.empty() && group.size() < 2 && model_terms == 0)
+    throw InputError("--separate: name at least two terms to tell apart");
+  for (const std::string& g : group) add_term(s.model, term_named(g, "--separate"));
+
+  // Priors: the gyro's truth, a fit JSON's coefficients, --separate's sizes.
+  for (std::size_t j = 0; j < s.model.terms.size(); ++j) {
+    const fit::Term* t = s.model.terms[j];
+    if (t->effect) {
+      s.model.prior[j] = s.gyro.coefficient_of(*t->effect);
+      if (t->parameter) s.model.parameters[j] = s.gyro.parameter_of(*t->effect);
+    } else if (t->parameter) {
+      s.model.parameters[j] = fit::default_parameters({t})[0];
+    }
+  }
+  s.noise_from_gyro_file = noise_file.empty();
+  if (!noise_file.empty()) {
+    s.noise = noise_of_json(noise_file);
+    const nlohmann::json j = read_json(noise_file, "--noise");
+    if (j.contains("coefficients") && j["coefficients"].is_object())
+      for (std::size_t k = 0; k < s.model.terms.size(); ++k) {
+        const std::string name(s.model.terms[k]->name);
+        if (j["coefficients"].contains(name) && j["coefficients"][name].is_number())
+          s.model.prior[k] = j["coefficients"][name].get<double>();
+        if (s.model.terms[k]->parameter && j.contains("parameters") && j["parameters"].contains(name))
+          for (const auto& [key, v] : j["parameters"][name].items())
+            if (v.is_number()) s.model.parameters[k] = v.get<double>();
+      }
+    std::string note;
+    s.gyro.noise = noise_config_of(s.noise, s.gyro.noise, false, &note);
+    if (!note.empty()) s.notes.push_back(note);
+  } else {
+    s.noise = noise_of_gyro(s.gyro.noise, 1.0 / s.base.sample_rate_hz, "gyro file " + gyro_file.filename().string());
+  }
+  for (std::size_t g = 0; g < group.size(); ++g)
+    if (std::isfinite(group_size[g])) s.model.prior[index_of(s.model, group[g])] = group_size[g];
+  for (const std::string& item : rq.param) {
+    const auto [name, value] = name_value(item, "--param");
+    const std::size_t k = index_of(s.model, name);
+    if (k == s.model.terms.size() || !s.model.terms[k]->parameter)
+      throw InputError(fmt::format("--param {}: not a term of the model with a parameter", item));
+    const auto& p = *s.model.terms[k]->parameter;
+    if (!(value >= p.lower && value <= p.upper))
+      throw InputError(fmt::format("--param {}: {} must lie in [{:g}, {:g}]", item, p.name, p.lower, p.upper));
+    s.model.parameters[k] = value;
+  }
+
+  // The targets.
+  s.terms.resize(s.model.terms.size());
+  for (std::size_t j = 0; j < s.model.terms.size(); ++j) {
+    TermPlan& t = s.terms[j];
+    t.term = s.model.terms[j]->name;
+    t.unit = s.model.terms[j]->coefficient_unit();
+    t.prior = s.model.prior[j];
+    t.target_se = kInfinity;
+  }
+  auto need_prior = [&](std::size_t j, const std::string& option) {
+    if (s.model.prior[j] == 0.0)
+      throw InputError(fmt::format("{}: no prior value of {}'s coefficient to take a fraction of (the gyro "
+                                   "file has none, nor a --noise fit file); give --se {}=VALUE or "
+                                   "--separate {}=SIZE",
+                                   option, s.terms[j].term, s.terms[j].term, s.terms[j].term));
+    return std::abs(s.model.prior[j]);
+  };
+  for (std::size_t g = 0; g < group.size(); ++g) {
+    const std::size_t j = index_of(s.model, group[g]);
+    s.terms[j].target_se = need_prior(j, "--separate " + group[g]) / kDetectableInSe;
+    s.terms[j].target_from = "--separate (p < 0.01, 90 % power)";
+  }
+  for (const std::string& item : rq.rel_se) {
+    if (item.find('=') == std::string::npos) {
+      const double f = number_of(item, "--rel-se");
+      if (!(f > 0.0)) throw InputError(fmt::format("--rel-se {}: must be > 0", item));
+      for (std::size_t j = 0; j < model_terms; ++j)
+        if (s.model.prior[j] != 0.0) {
+          s.terms[j].target_se = f * std::abs(s.model.prior[j]);
+          s.terms[j].target_from = "--rel-se " + item;
+        }
+      continue;
+    }
+    const auto [name, f] = name_value(item, "--rel-se");
+    const std::size_t j = index_of(s.model, name);
+    if (j == s.model.terms.size()) throw InputError(fmt::format("--rel-se {}: {} is not in the model", item, name));
+    if (!(f > 0.0)) throw InputError(fmt::format("--rel-se {}: must be > 0", item));
+    s.terms[j].target_se = f * need_prior(j, "--rel-se " + item);
+    s.terms[j].target_from = "--rel-se " + item;
+  }
+  for (const std::string& item : rq.se) {
+    const auto [name, v] = name_value(item, "--se");
+    const std::size_t j = index_of(s.model, name);
+    if (j == s.model.terms.size()) throw InputError(fmt::format("--se {}: {} is not in the model", item, name));
+    if (!(v > 0.0)) throw InputError(fmt::format("--se {}: must be > 0 (in {})", item, s.terms[j].unit));
+    s.terms[j].target_se = v;
+    s.terms[j].target_from = "--se";
+  }
+  if (rq.se.empty() && rq.rel_se.empty())
+    for (std::size_t j = 0; j < model_terms; ++j)
+      if (s.model.prior[j] != 0.0 && !std::isfinite(s.terms[j].target_se)) {
+        s.terms[j].target_se = std::abs(s.model.prior[j]) / kDetectableInSe;
+        s.terms[j].target_from = "detect (p < 0.01, 90 % power)";
+      }
+  if (std::none_of(s.terms.begin(), s.terms.end(), [](const TermPlan& t) { return std::isfinite(t.target_se); }))
+    throw InputError("no precision to plan for: no term has a prior value to detect; give --se TERM=VALUE");
+  for (std::size_t j = 0; j < s.model.terms.size(); ++j)
+    if (s.model.terms[j]->parameter && s.model.prior[j] == 0.0)
+      s.notes.push_back(fmt::format("{}'s {} is taken as known ({:g}): without a prior coefficient its "
+                                    "uncertainty cannot be predicted",
+                                    s.terms[j].term, s.model.terms[j]->parameter->name, s.model.parameters[j]));
+  // The gyro --verify simulates: priors as the truth where the gyro had none.
+  for (std::size_t j = 0; j < s.model.terms.size(); ++j)
+    if (s.model.terms[j]->effect && s.model.prior[j] != 0.0) {
+      s.gyro.coefficient[std::string(s.model.terms[j]->name)] = s.model.prior[j];
+      if (s.model.terms[j]->parameter && std::isfinite(s.model.parameters[j]))
+        s.gyro.parameter[std::string(s.model.terms[j]->name)] = s.model.parameters[j];
+    }
+  return s;
+}
+
+}  // namespace gyrotherm::studies::plan

@@ -1,0 +1,58 @@
+#pragma once
+// The shortest profile that meets the precision wanted.
+//
+// A profile meets the target when every term's predicted standard error is
+// at most its target (studies/plan/design_precision.h); its shortfall is the
+// largest ratio se_j / target_j (≤ 1: met).
+//
+// A recipe (studies/plan/profiles.h) has one length parameter: its range is
+// scanned on a geometric grid from the shortest test to the longest, and the
+// first grid step that meets the target is narrowed by bisection. A recipe
+// that meets it nowhere within the longest test is reported as never (the
+// precision is not monotone in length for every shape; the scan, not an
+// assumption, finds the first length that works).
+//
+// The planned profile: legs alternating between the range's ends at the rate
+// limit, 1 to kMostLegs of them, either end first, each with its own soak.
+// For a shape u of the soaks (soak_i = s·u_i, a soak shorter than the
+// minimum soak lengthened to it, u_i = 0 turning at once) the shortest scale
+// s is found as for a recipe; the shape is improved by a pattern search
+// (each soak doubled, halved or removed in turn, the best move kept, until
+// none shortens the test). Every family runs on its own thread.
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "studies/plan/design_precision.h"
+#include "studies/plan/profiles.h"
+
+namespace gyrotherm::studies::plan {
+
+inline constexpr int kMostLegs = 6;
+
+double shortfall(const Precision& p, const std::vector<double>& target);
+
+struct Candidate {
+  ChamberProfile profile;
+  Precision precision;
+  double shortfall = 0;
+  bool met() const { return shortfall <= 1.0; }
+};
+
+struct SearchOutcome {
+  bool met = false;
+  Candidate best;  // the shortest that meets the target; else the one closest to it
+  std::size_t evaluations = 0;
+};
+
+SearchOutcome shortest_recipe(const DesignEvaluator& evaluator, const Recipe& recipe,
+                              const std::vector<double>& target);
+
+// `progress(done, total)` after each family.
+SearchOutcome shortest_plan(const DesignEvaluator& evaluator, const RigLimits& limits,
+                            const std::vector<double>& target,
+                            const std::function<void(int, int)>& progress = {});
+
+}  // namespace gyrotherm::studies::plan

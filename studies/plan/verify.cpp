@@ -1,0 +1,88 @@
+#include "studies/plan/verify.h"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <mutex>
+#include <thread>
+
+#include "fit/pipeline.h"
+#include "sim/simulator.h"
+#include "studies/simulated.h"
+
+namespace gyrotherm::studies::plan {
+
+namespace {
+
+constexpr double kZ95 = 1.959963984540054;
+
+struct SeedFit {
+  std::vector<double> b, half_width, lower, upper;
+};
+
+}  // namespace
+
+VerifyOutcome verify_plan(const sim::Scenario& scenario, const sim::RigConfig& rig, const sim::GyroConfig& gyro,
+                          const std::vector<const fit::Term*>& terms, int seeds, std::uint64_t first_seed,
+                          const std::function<void(int, int)>& progress) {
+  const sim::ThermalTrace trace = sim::Simulator(scenario, rig, gyro).run_thermal();
+  std::vector<SeedFit> fits(static_cast<std::size_t>(seeds));
+  std::mutex mutex;
+  int next = 0, done = 0;
+  auto worker = [&] {
+    for (;;) {
+      int mine = 0;
+      {
+        const std::lock_guard lock(mutex);
+        if (next >= seeds) return;
+        mine = next++;
+      }
+      sim::Scenario sc = scenario;
+      sc.seed = first_seed + static_cast<std::uint64_t>(mine);
+      const fit::Measurement m = measurement_of(sim::Simulator(sc, rig, gyro).record(trace), scenario.name);
+      const fit::PreparedData data = fit::prepare_data(m, {});
+      const fit::ModelFit f = fit::fit_model(data, terms, fit::find_engine("ols"), {});
+      SeedFit s;
+      s.b = f.coefficients.b;
+      for (const fit::Interval& iv : f.engine.intervals) {
+        s.lower.push_back(iv.lower);
+        s.upper.push_back(iv.upper);
+      }
+      const std::lock_guard lock(mutex);
+      fits[static_cast<std::size_t>(mine)] = std::move(s);
+      ++done;
+      if (progress) progress(done, seeds);
+    }
+  };
+  std::vector<std::future<void>> running;
+  if (std::thread::hardware_concurrency() > 1) running.push_back(std::async(std::launch::async, worker));
+  worker();
+  for (auto& f : running) f.get();
+
+  VerifyOutcome out;
+  out.seeds = seeds;
+  const std::size_t m = terms.size();
+  for (std::size_t j = 0; j < m; ++j) {
+    const double truth = terms[j]->effect ? gyro.coefficient_of(*terms[j]->effect) : 0.0;
+    double sum = 0.0, sum2 = 0.0, reported = 0.0;
+    int covered = 0, with_interval = 0;
+    for (const SeedFit& s : fits) sum += s.b[j];
+    const double mean = sum / seeds;
+    for (const SeedFit& s : fits) {
+      sum2 += (s.b[j] - mean) * (s.b[j] - mean);
+      if (j < s.lower.size()) {
+        ++with_interval;
+        covered += s.lower[j] <= truth && truth <= s.upper[j];
+        reported += 0.5 * (s.upper[j] - s.lower[j]) / kZ95;
+      }
+    }
+    out.truth.push_back(truth);
+    out.mean.push_back(mean);
+    out.achieved_se.push_back(seeds > 1 ? std::sqrt(sum2 / (seeds - 1)) : 0.0);
+    out.reported_se.push_back(with_interval ? reported / with_interval : std::nan(""));
+    out.coverage_95.push_back(with_interval ? static_cast<double>(covered) / with_interval : std::nan(""));
+  }
+  return out;
+}
+
+}  // namespace gyrotherm::studies::plan
