@@ -1,4 +1,5 @@
 // gyrotherm plan [--model M] [--se T=V,…] [--rel-se [T=]F,…] [--separate A[=S],B… | DIAGNOSE.json]
+//                [--prior T=V,…]
 //                [--scenario F] [--rig F] [--gyro F] [--noise F.json] [--tau S] [--range LO,HI]
 //                [--max-rate R] [--min-soak S] [--longest H] [--param T=V] [--out DIR]
 //                [--verify N] [--seed N] [--json]
@@ -58,6 +59,8 @@ void add_plan_command(CLI::App& app, Run* run) {
       ->delimiter(',');
   cmd->add_option("--separate", rq.separate,
                   "Terms to tell apart, NAME or NAME=SIZE (prior coefficient), or a diagnose --json file")
+      ->delimiter(',');
+  cmd->add_option("--prior", rq.prior, "A coefficient's prior value, TERM=VALUE (default: the gyro file's)")
       ->delimiter(',');
   cmd->add_option("--param", rq.param, "A nonlinear term's parameter, TERM=VALUE (e.g. lag=1200)")->delimiter(',');
   cmd->add_option("--scenario", rq.scenario, "Room, start temperature, rig and gyro (default scenarios/cycle.toml)");

@@ -62,6 +62,7 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   p.duration_s = trace.time_s.empty() ? 0.0 : trace.time_s.back() - trace.time_s.front();
   p.windows = data.series.size();
   p.se.assign(m_terms, kInfinity);
+  p.log_parameter_se.assign(m_terms, std::nan(""));
   if (!data.series.temp_c.empty()) {
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
     p.sensor_min_c = *lo;
@@ -79,9 +80,11 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
 
   // The design, augmented for each nonlinear parameter with a prior coefficient.
   Eigen::MatrixXd X = fit::design_matrix(data.derived, model_.terms, model_.parameters);
+  std::vector<std::size_t> augmented_for;  // the term of each column beyond the model's
   for (std::size_t j = 0; j < m_terms; ++j) {
     const double theta = model_.parameters[j];
     if (!model_.terms[j]->parameter || !std::isfinite(theta) || model_.prior[j] == 0.0) continue;
+    augmented_for.push_back(j);
     std::vector<double> up(p.windows), down(p.windows);
     model_.terms[j]->compute(data.derived, theta * std::exp(kLogStep), up);
     model_.terms[j]->compute(data.derived, theta * std::exp(-kLogStep), down);
@@ -138,6 +141,10 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   for (std::size_t j = 0; j < m_terms; ++j) {
     const auto jj = static_cast<Eigen::Index>(j);
     p.se[j] = std::sqrt(std::max(0.0, cov(jj, jj))) / norm[jj];
+  }
+  for (std::size_t a = 0; a < augmented_for.size(); ++a) {
+    const auto c = static_cast<Eigen::Index>(m_terms + a);
+    p.log_parameter_se[augmented_for[a]] = std::sqrt(std::max(0.0, cov(c, c))) / norm[c];
   }
   if (detail) {
     for (std::size_t j = 0; j < m_terms; ++j) {

@@ -21,7 +21,13 @@
 // 4. A term with a nonlinear parameter (lag's τ, warmup's τ) is fitted by
 //    variable projection; as the fitter does for its intervals
 //    (fit/pipeline.h), the design is augmented with b_j·∂x_j/∂ln θ_j at the
-//    prior b_j, so the coefficient's error includes the parameter's.
+//    prior b_j, so the coefficient's error includes the parameter's. That
+//    linearisation holds only while the parameter is pinned down: where
+//    se(ln θ_j) is large the fitted θ wanders over its range and the
+//    coefficient with it (on the cycle with lag at 0.002 °/h/°C, a predicted
+//    se of 5e-4 became 4.4e-3 over 200 seeds). So se(ln θ_j) is reported,
+//    and the search asks it to be at most kLogParameterSe wherever the
+//    term's coefficient has a target (studies/plan/search.h).
 // 5. A design the fitter would refuse — the scaled correlation matrix's
 //    condition number above LinearProblem::kIllConditioned — identifies
 //    nothing: every standard error is +∞ and `refused` says why.
@@ -48,9 +54,14 @@ struct PlanModel {
   std::vector<double> prior;
 };
 
+// se(ln θ) at which a nonlinear term's prediction is trusted: θ within
+// about ±10 % (one standard error), where the regressor is close to linear in ln θ.
+inline constexpr double kLogParameterSe = 0.1;
+
 struct Precision {
   double duration_s = 0;
   std::vector<double> se;  // per term, in the coefficient's unit; +∞ where not identified
+  std::vector<double> log_parameter_se;  // per term: se of ln θ (NaN: no parameter or no prior)
   double condition = 0;    // of the scaled design's correlation matrix
   std::string refused;     // why nothing is identified ("" when the design is fitted)
   std::size_t windows = 0;

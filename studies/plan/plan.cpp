@@ -28,6 +28,11 @@ std::string shortfalls(const std::vector<TermPlan>& terms, const Precision& p) {
     if (std::isfinite(terms[j].target_se) && !(p.se[j] <= terms[j].target_se))
       out += fmt::format("{}se({}) = {:.3g} {}, {:.3g} × its target {:.3g}", out.empty() ? "" : "; ", terms[j].term,
                          p.se[j], terms[j].unit, p.se[j] / terms[j].target_se, terms[j].target_se);
+  for (std::size_t j = 0; j < terms.size(); ++j)
+    if (std::isfinite(terms[j].target_se) && j < p.log_parameter_se.size() &&
+        p.log_parameter_se[j] > kLogParameterSe)
+      out += fmt::format("{}{}'s parameter known to ±{:.0f} % only (a prediction needs ±{:.0f} %)",
+                         out.empty() ? "" : "; ", terms[j].term, 100.0 * p.log_parameter_se[j], 100.0 * kLogParameterSe);
   return out;
 }
 
@@ -98,7 +103,11 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   r.sensor_min_c = plan.best.precision.sensor_min_c;
   r.sensor_max_c = plan.best.precision.sensor_max_c;
   r.windows = plan.best.precision.windows;
-  for (std::size_t j = 0; j < r.terms.size(); ++j) r.terms[j].predicted_se = plan.best.precision.se[j];
+  for (std::size_t j = 0; j < r.terms.size(); ++j) {
+    r.terms[j].predicted_se = plan.best.precision.se[j];
+    r.terms[j].parameter = setup.model.parameters[j];
+    r.terms[j].parameter_log_se = plan.best.precision.log_parameter_se[j];
+  }
 
   if (request.verify > 0) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -142,6 +151,11 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
     from[t.term] = t.target_from;
   }
   j["predicted_se"] = predicted;
+  Json parameters = Json::object();
+  for (const TermPlan& t : r.terms)
+    if (!std::isnan(t.parameter_log_se))
+      parameters[t.term] = {{"value", t.parameter}, {"predicted_log_se", t.parameter_log_se}};
+  j["parameters"] = parameters;
   j["target_se"] = target;
   j["target_from"] = from;
   j["prior"] = prior;
@@ -228,6 +242,10 @@ std::string plan_text(const PlanResult& r) {
     else
       out += fmt::format("  {:<22} {:>9}  (the closest, {}: {})\n", b.recipe, "never", hours(b.closest_s), b.why);
   }
+  for (const TermPlan& t : r.terms)
+    if (!std::isnan(t.parameter_log_se))
+      out += fmt::format("{}'s parameter {:g}: predicted within ±{:.0f} % (one standard error of ln θ)\n", t.term,
+                         t.parameter, 100.0 * t.parameter_log_se);
   for (const std::string& n : r.notes) out += "note: " + n + "\n";
   out += fmt::format("\nwrote {}, {} (chamber programme), {}, {} and {}\n", r.scenario_file, r.setpoint_file, r.rig_file,
                      r.gyro_file, r.figure_file);

@@ -12,8 +12,9 @@
 //                  none of these, every model term with a prior the same
 //                  (detected at p < 0.01 with 90 % power);
 //   the priors     the gyro file's [truth] and [hidden] values, replaced by
-//                  a fit JSON's coefficients (--noise FIT.json) and by the
-//                  sizes given in --separate NAME=SIZE;
+//                  a fit JSON's coefficients (--noise FIT.json), by the
+//                  sizes given in --separate NAME=SIZE and by --prior
+//                  TERM=VALUE; --verify simulates a gyro with these values;
 //   the noise      the gyro file's [noise] (default: the scenario's gyro),
 //                  or --noise FILE.json (studies/plan/plan_noise.h);
 //   the rig        the scenario's (default scenarios/cycle.toml: room,
@@ -54,6 +55,7 @@ struct PlanRequest {
   std::vector<std::string> rel_se;    // FRACTION or TERM=FRACTION
   std::vector<std::string> separate;  // NAME[=SIZE], or one diagnose JSON
   std::vector<std::string> param;     // NAME=VALUE: a nonlinear term's parameter
+  std::vector<std::string> prior;     // TERM=VALUE: a coefficient's prior value
   std::string scenario;               // "": the built-in default (scenarios/cycle.toml)
   std::string rig, gyro, noise;       // override the scenario's / the gyro's noise
   std::optional<double> tau_s;        // a first-order thermal path instead of a rig
@@ -73,6 +75,8 @@ struct TermPlan {
   double target_se = 0;    // +∞: no target (reported only)
   std::string target_from; // "--se", "--rel-se 0.3", "--separate", "detect"
   double predicted_se = 0;
+  double parameter = 0;         // a nonlinear term's θ (NaN without one)
+  double parameter_log_se = 0;  // its predicted se of ln θ (NaN: none predicted)
 };
 
 struct Baseline {

@@ -240,6 +240,12 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   }
   for (std::size_t g = 0; g < group.size(); ++g)
     if (std::isfinite(group_size[g])) s.model.prior[index_of(s.model, group[g])] = group_size[g];
+  for (const std::string& item : rq.prior) {
+    const auto [name, value] = name_value(item, "--prior");
+    const std::size_t k = index_of(s.model, name);
+    if (k == s.model.terms.size()) throw InputError(fmt::format("--prior {}: {} is not in the model", item, name));
+    s.model.prior[k] = value;
+  }
   for (const std::string& item : rq.param) {
     const auto [name, value] = name_value(item, "--param");
     const std::size_t k = index_of(s.model, name);

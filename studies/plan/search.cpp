@@ -143,7 +143,11 @@ SearchOutcome plan_family(const DesignEvaluator& ev, const RigLimits& limits, co
 double shortfall(const Precision& p, const std::vector<double>& target) {
   double worst = 0.0;
   for (std::size_t j = 0; j < target.size() && j < p.se.size(); ++j)
-    if (std::isfinite(target[j])) worst = std::max(worst, p.se[j] / target[j]);
+    if (std::isfinite(target[j])) {
+      worst = std::max(worst, p.se[j] / target[j]);
+      if (j < p.log_parameter_se.size() && !std::isnan(p.log_parameter_se[j]))
+        worst = std::max(worst, p.log_parameter_se[j] / kLogParameterSe);
+    }
   return std::isnan(worst) ? std::numeric_limits<double>::infinity() : worst;
 }
 

@@ -3,7 +3,9 @@
 //
 // A profile meets the target when every term's predicted standard error is
 // at most its target (studies/plan/design_precision.h); its shortfall is the
-// largest ratio se_j / target_j (≤ 1: met).
+// largest ratio se_j / target_j (≤ 1: met), a nonlinear term with a target
+// also counting se(ln θ_j) / kLogParameterSe (its parameter pinned down, or
+// the prediction does not hold: studies/plan/design_precision.h).
 //
 // A recipe (studies/plan/profiles.h) has one length parameter: its range is
 // scanned on a geometric grid from the shortest test to the longest, and the
