@@ -59,7 +59,7 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
 
   const std::size_t m_terms = model_.terms.size();
   Precision p;
-  p.duration_s = trace.time_s.empty() ? 0.0 : trace.time_s.back() - trace.time_s.front();
+  p.duration_s = profile.duration_s();
   p.windows = data.series.size();
   p.se.assign(m_terms, kInfinity);
   p.log_parameter_se.assign(m_terms, std::nan(""));

@@ -24,7 +24,7 @@ std::vector<double> targets_of(const std::vector<TermPlan>& terms) {
 // "se(T^2) = 4.1e-07, 1.3 × its target 3.2e-07" for each term short of its target.
 std::string shortfalls(const std::vector<TermPlan>& terms, const Precision& p) {
   std::string out;
-  for (std::size_t j = 0; j < terms.size(); ++j)
+  for (std::size_t j = 0; j < terms.size() && j < p.se.size(); ++j)
     if (std::isfinite(terms[j].target_se) && !(p.se[j] <= terms[j].target_se))
       out += fmt::format("{}se({}) = {:.3g} {}, {:.3g} × its target {:.3g}", out.empty() ? "" : "; ", terms[j].term,
                          p.se[j], terms[j].unit, p.se[j] / terms[j].target_se, terms[j].target_se);

@@ -20,6 +20,7 @@ constexpr int kPatternSweeps = 4;  // pattern-search sweeps over a shape
 // A candidate is better than another: met before not met, then shorter when
 // met, closer to the target when not.
 bool better(const Candidate& a, const Candidate& b) {
+  if (b.precision.se.empty()) return true;  // b: none yet
   if (a.met() != b.met()) return a.met();
   if (a.met()) return a.precision.duration_s < b.precision.duration_s;
   return a.shortfall < b.shortfall;

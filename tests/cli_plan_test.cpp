@@ -1,0 +1,84 @@
+// `gyrotherm plan` end to end: the contract's JSON, the files it writes (the
+// scenario runs in `simulate` as is), the planned test against the standard
+// recipes on the paper's model, and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "sim/config_loader.h"
+
+namespace gyrotherm {
+namespace {
+
+using testing::CliResult;
+using testing::ScratchDir;
+using testing::expect_refused;
+using testing::run_cli;
+using testing::slurp;
+
+TEST(CliPlan, ThePapersModelPlanIsShorterThanEveryRecipeAndItsFilesRun) {
+  ScratchDir dir;
+  const CliResult r = run_cli(dir, "plan --json --out p --verify 24 --seed 5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"duration_s", "scenario_file", "setpoint_file", "predicted_se", "baselines",
+                          "achieved_se", "coverage_95"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  const double plan_s = j["duration_s"].get<double>();
+  // The aim on the default rig: at least 30 % shorter than the best recipe.
+  double best = INFINITY;
+  for (const auto& b : j["baselines"]) {
+    ASSERT_TRUE(b.contains("recipe") && b.contains("duration_s"));
+    if (!b["duration_s"].is_null()) best = std::min(best, b["duration_s"].get<double>());
+  }
+  EXPECT_LE(plan_s, 0.7 * best) << r.out;
+  EXPECT_TRUE(j["baselines"][0]["duration_s"].is_null()) << "a warm-up never separates T from dT";
+  for (const auto& [term, se] : j["predicted_se"].items())
+    EXPECT_LE(se.get<double>(), j["target_se"][term].get<double>() * (1 + 1e-12)) << term;
+  for (const auto& [term, c] : j["coverage_95"].items()) EXPECT_GE(c.get<double>(), 0.75) << term;  // 24 seeds
+
+  // The scenario runs as written, and is the planned profile.
+  EXPECT_EQ(j["scenario_file"], "p/plan.toml");
+  const sim::Scenario sc = sim::load_scenario(dir / "p/plan.toml");
+  EXPECT_EQ(sc.segments.size(), j["profile"]["segments"].size());
+  const CliResult s = run_cli(dir, "simulate p/plan.toml -o run.csv --json");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  EXPECT_NEAR(nlohmann::json::parse(s.out)["duration_s"].get<double>(), plan_s, 1.0);
+  const std::string csv = slurp(dir / "p/plan_setpoint.csv");
+  EXPECT_EQ(csv.rfind("time_s,setpoint_c\n", 0), 0u);
+  EXPECT_TRUE(std::filesystem::exists(dir / "p/plan.png"));
+  // The text report names the recipes and the files.
+  const CliResult t = run_cli(dir, "plan --out q --model 'T + dT' --se dT=0.05 --longest 6");
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  for (const char* s2 : {"planned test:", "soak staircase", "triangle, one cycle", "q/plan.toml"})
+    EXPECT_NE(t.out.find(s2), std::string::npos) << s2 << "\n" << t.out;
+}
+
+struct BadPlan {
+  std::string args, expected;
+};
+
+class CliPlanBadInput : public ::testing::TestWithParam<BadPlan> {};
+
+TEST_P(CliPlanBadInput, ClearMessageExitTwoNoFiles) {
+  ScratchDir dir;
+  expect_refused(dir, "plan --out p " + GetParam().args, GetParam().expected);
+  EXPECT_FALSE(std::filesystem::exists(dir / "p")) << GetParam().args;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, CliPlanBadInput,
+    ::testing::Values(
+        BadPlan{"--max-rate 0", "--max-rate 0: must be > 0 °C/min"},
+        BadPlan{"--range 60,-40", "the low end must be below the high end"},
+        BadPlan{"--verify 1", "--verify 1: give the number of simulated tests"},
+        BadPlan{"--se T=1e-9 --longest 3", "no test of at most 3.00 h at these limits"},
+        BadPlan{"--tau 1200 --model 'T + dT + grad' --se grad=0.01 --longest 3",
+                "cannot be identified at these limits at any length"},
+        BadPlan{"--model 'T + lag' --rel-se lag=0.2", "no prior value of lag"},
+        BadPlan{"--separate missing.json", "--separate missing.json: cannot open the file"}));
+
+}  // namespace
+}  // namespace gyrotherm
