@@ -100,6 +100,11 @@ large_read=$(bench_field $large BM_LargeLog_Read/iterations:1/real_time_median b
 large_parse=$(bench_field $large BM_LargeLog_Parse/iterations:1/real_time_median bytes_per_second)
 large_fit=$(bench_field $large BM_LargeLog_Fit/iterations:1/real_time_median bytes_per_second)
 large_fit_ms=$(bench_field $large BM_LargeLog_Fit/iterations:1/real_time_median real_time)
+plan=results/bench_plan.json
+plan3=$(bench_field $plan BM_Plan/3/iterations:1/real_time_median real_time)
+plan6=$(bench_field $plan BM_Plan/6/iterations:1/real_time_median real_time)
+plan6_evals=$(bench_field $plan BM_Plan/6/iterations:1/real_time_median evaluations)
+predict6=$(bench_field $plan BM_PredictPrecision/6/real_time_median real_time)
 declare -A per_trial
 for n in 100 1000 10000; do
   per_trial[$n]=$(bench_field $score "BM_CampaignScaling/$n/iterations:1/repeats:1/real_time" ms_per_trial)
@@ -124,6 +129,8 @@ done
   echo "| simulating 72 h at 1 Hz, noise included (≤ 40 ms): median, fastest of 5 | $(show "$sim_median" "%.1f"), $(show "$sim_min" "%.1f") ms | integrating alone (CVODE and the samples' states): $(show "$thermal_median" "%.1f"), $(show "$thermal_min" "%.1f") ms | $(ratio "$sim_median" "$thermal_median" "%.2f"), $(ratio "$sim_min" "$thermal_min" "%.2f") |"
   echo "| writing a 72 h record's CSV (≥ 250 MB/s) | $(megabytes "$write_bps") | formatting it in memory: $(megabytes "$format_bps") | $(ratio "$write_bps" "$format_bps" "%.2f") |"
   echo "| a 10-trial campaign on 2 threads (≥ 1.8× one thread) | $(show "$two_threads" "%.2f") s | one thread: $(show "$one_thread" "%.2f") s, over 2: $(show "$one_thread" "%.2f") / 2 s; the machine's own 2-thread speed-up now $(show "$ceiling" "%.2f×") | speed-up $(show "$speedup" "%.2f×") |"
+  echo "| \`plan\` for six terms (≤ 60 s on 2 cores) | $(show "$plan6" "%.1f") s ($(show "$plan6_evals" "%.0f") predictions; the paper's three terms: $(show "$plan3" "%.1f") s) | the aim, 60 s | $(ratio "$plan6" 60 "%.2f") |"
+  echo "| the same | | its predictions one after another: $(show "$plan6_evals" "%.0f") × $(show "$predict6" "%.1f") ms (one on the 8.8 h cycle) | $(awk -v a="$plan6" -v n="$plan6_evals" -v p="$predict6" 'BEGIN { if (a == "" || n == "" || p == "") print "–"; else printf "%.2f", a / (n * p / 1000) }') |"
   echo "| campaign time per trial, 10,000 trials (linear growth) | $(show "${per_trial[10000]}" "%.1f") ms | per trial at 100 trials: $(show "${per_trial[100]}" "%.1f") ms | $(ratio "${per_trial[10000]}" "${per_trial[100]}" "%.2f") |"
   echo
   echo "## The ratios that matter"
