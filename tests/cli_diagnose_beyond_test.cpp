@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -57,6 +59,44 @@ Json diagnose_json(const ScratchDir& dir, const std::string& args) {
   const auto r = run_cli(dir, "diagnose " + args + " --json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return r.exit_code == 0 ? Json::parse(r.out) : Json{};
+}
+
+// `fit DATA --model MODEL --json` (ols): a term's coefficient, parameters
+// and 95 % interval when added alone to the model.
+Json fit_json(const ScratchDir& dir, const std::string& csv, const std::string& model) {
+  const auto r = run_cli(dir, "fit " + csv + " --model '" + model + "' --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return r.exit_code == 0 ? Json::parse(r.out) : Json{};
+}
+
+// The true coefficient lies in a fit's 95 % interval for the term.
+void expect_within_interval(const Json& fit, const std::string& term, double truth) {
+  const auto iv = fit["intervals_95"][term].get<std::vector<double>>();
+  ASSERT_EQ(iv.size(), 2u) << fit["intervals_95"];
+  EXPECT_TRUE(iv[0] <= truth && truth <= iv[1])
+      << term << " " << fit["coefficients"][term] << ", 95 % [" << iv[0] << ", " << iv[1] << "], truth " << truth;
+}
+
+// What a plan command asks for: its model, --separate's sizes and --param's
+// values by term, and --range, as printed.
+struct PlanArgs {
+  std::string model, range;
+  std::map<std::string, double> sizes, params;
+};
+PlanArgs plan_args(const std::string& command) {
+  PlanArgs a;
+  std::smatch m;
+  if (std::regex_search(command, m, std::regex("--model '([^']*)'"))) a.model = m[1];
+  if (std::regex_search(command, m, std::regex("--range (\\S+)"))) a.range = m[1];
+  if (std::regex_search(command, m, std::regex("--separate '?([^' ]+)"))) {
+    std::stringstream list(m[1].str());
+    for (std::string item; std::getline(list, item, ',');)
+      a.sizes[item.substr(0, item.find('='))] = std::stod(item.substr(item.find('=') + 1));
+  }
+  const std::regex param("--param '?([^=' ]+)=([^' ]+)");
+  for (auto it = std::sregex_iterator(command.begin(), command.end(), param); it != std::sregex_iterator(); ++it)
+    a.params[(*it)[1]] = std::stod((*it)[2]);
+  return a;
 }
 
 struct StepCase {
@@ -216,6 +256,7 @@ TEST(DiagnoseBeyond, DriftOnAMonotoneWarmUpCannotBeToldFromTemperature) {
       EXPECT_FALSE(m["significant"].get<bool>()) << m;
     }
   EXPECT_TRUE(j["next_command"].get<std::string>().find("+ t") == std::string::npos) << j["next_command"];
+  EXPECT_EQ(j["plan_command"], "") << "the group did not pass the test: " << j["verdict"];
 
   // A stronger drift over 4 h: the group passes the test. Its first member
   // says so (group_significant), is not significant alone, the verdict names
@@ -231,11 +272,56 @@ TEST(DiagnoseBeyond, DriftOnAMonotoneWarmUpCannotBeToldFromTemperature) {
   EXPECT_EQ(w["remaining"], "") << w["verdict"];
   EXPECT_EQ(w["verdict"].get<std::string>().find("structure remains"), std::string::npos) << w["verdict"];
 
+  // The test that would separate the group: its members but the intercept
+  // and the model's terms, each sized (3 digits) by the model fitted with it
+  // alone, its parameter (6 digits) likewise, over the record's temperatures
+  // rounded outward to 5 °C; the report's next step. t's own coefficient is
+  // that fit's, whose 95 % interval holds the hidden drift.
+  const PlanArgs plan = plan_args(w["plan_command"].get<std::string>());
+  EXPECT_EQ(plan.model, "T + T^2 + dT") << w["plan_command"];
+  std::map<std::string, double> expected;
+  std::vector<double> range;  // the record's window-mean temperatures, °C
+  std::vector<std::string> members = {first["term"].get<std::string>()};
+  for (const Json& o : first["confounded_with"]) members.push_back(o.get<std::string>());
+  for (const std::string& m : members) {
+    if (m == "1" || m == "T" || m == "T^2" || m == "dT") continue;
+    const Json f = fit_json(dir, "warm4.csv", "T + T^2 + dT + " + m);
+    const double c = f["coefficients"][m].get<double>();
+    ASSERT_EQ(plan.sizes.count(m), 1u) << m << ": " << w["plan_command"];
+    EXPECT_NEAR(plan.sizes.at(m), c, 5e-3 * std::abs(c)) << m;
+    if (f["parameters"].contains(m)) {
+      ASSERT_EQ(plan.params.count(m), 1u) << m << ": " << w["plan_command"];
+      for (const auto& [name, value] : f["parameters"][m].items())
+        EXPECT_NEAR(plan.params.at(m), value.get<double>(), 5e-6 * value.get<double>()) << name;
+    }
+    expected[m] = c;
+    if (m == "t") {
+      EXPECT_NEAR(first["coefficient"].get<double>(), c, 1e-6 * std::abs(c));
+      expect_within_interval(f, "t", 0.05);
+    }
+    range = f["data"]["temp_range_c"].get<std::vector<double>>();
+  }
+  EXPECT_GE(expected.size(), 2u) << w["confounded"];
+  ASSERT_EQ(range.size(), 2u);
+  EXPECT_EQ(plan.range, fmt::format("{:g},{:g}", 5.0 * std::floor(range[0] / 5.0), 5.0 * std::ceil(range[1] / 5.0)));
+  EXPECT_EQ(plan.sizes.size(), expected.size()) << w["plan_command"];
+  const auto text = run_cli(dir, "diagnose warm4.csv");
+  EXPECT_NE(text.out.find("next: to design a test that separates them: " + w["plan_command"].get<std::string>() + "\n"),
+            std::string::npos)
+      << text.out;
+
+  // Identified on the cycle: no plan; t's coefficient is its fit's, whose
+  // 95 % interval holds the hidden drift.
   simulate_shipped(dir, "cycle", "--hidden t=0.002", "cycle.csv");
   const Json cycle = diagnose_json(dir, "cycle.csv");
   EXPECT_EQ(cycle["missing_effects"][0]["term"], "t") << cycle["verdict"];
   EXPECT_TRUE(cycle["missing_effects"][0]["significant"].get<bool>());
   EXPECT_TRUE(cycle["missing_effects"][0]["confounded_with"].empty());
+  EXPECT_EQ(cycle["plan_command"], "");
+  const Json f = fit_json(dir, "cycle.csv", "T + T^2 + dT + t");
+  EXPECT_NEAR(cycle["missing_effects"][0]["coefficient"].get<double>(), f["coefficients"]["t"].get<double>(),
+              1e-6 * std::abs(f["coefficients"]["t"].get<double>()));
+  expect_within_interval(f, "t", 0.002);
 }
 
 // When the candidates leave the model well above the floor, the verdict says

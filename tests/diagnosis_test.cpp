@@ -8,12 +8,14 @@
 // used here unchanged.
 
 #include "studies/diagnose/diagnosis.h"
+#include "studies/diagnose/report.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <boost/random/mersenne_twister.hpp>
 #include <boost/random/normal_distribution.hpp>
+#include <fmt/format.h>
 #include <set>
 
 #include "cli_runner.h"
@@ -96,6 +98,21 @@ TEST_P(HiddenEffectTest, RankedFirstSignificantAndAddingItReachesTheFloor) {
   with.push_back(fit::find_term(h.term));
   const Diagnosis after = diagnose(data, with, fit::find_engine("ols"), {});
   EXPECT_LE(after.excess_ratio(), 1.25) << h.term;
+
+  // Its coefficient is that fit's least-squares one, whose 95 % interval
+  // (ols, from the identified noise) holds the hidden coefficient. A plan
+  // command exactly when it is one of a group (T^3 is, with T^4 and T^5).
+  const CandidateReport& first = d.candidates.front();
+  const fit::Interval iv = after.fit.engine.intervals.back();
+  EXPECT_NEAR(first.coefficient, after.fit.coefficients.b.back(), 1e-6 * std::abs(after.fit.coefficients.b.back()))
+      << h.term;
+  EXPECT_TRUE(iv.lower <= h.coefficient && h.coefficient <= iv.upper)
+      << h.term << ": " << first.coefficient << ", 95 % [" << iv.lower << ", " << iv.upper << "]";
+  const std::string plan = plan_command(d, paper_model(), data);
+  if (first.confounded_with.empty())
+    EXPECT_EQ(plan, "") << d.verdict;
+  else
+    EXPECT_NE(plan.find(fmt::format("{}={:.3g}", h.term, first.coefficient)), std::string::npos) << plan;
 
   // The worst segment named is where the effect acts: the unabsorbable part of
   // the effect is larger there than over the whole record.
@@ -206,6 +223,55 @@ TEST(Diagnosis, AConfoundedCandidateIsExplainedByItsOwnGroup) {
                      d.confounded[g].end();
     EXPECT_EQ(d.verdict.find(d.confounding_notes[g]) != std::string::npos, own) << d.verdict;
   }
+  // Its coefficient is that of the model fitted with it (ols), whose 95 %
+  // interval holds the hidden one; the plan command
+  // separates its group, each member sized as the first round fitted it.
+  std::vector<const fit::Term*> with = fit::parse_formula("T + T^2 + dT");
+  with.push_back(first.term);
+  const fit::ModelFit f = fit::fit_model(data, with, fit::find_engine("ols"), {});
+  const fit::Interval iv = f.engine.intervals.back();
+  EXPECT_EQ(first.term->name, "T^4");
+  EXPECT_NEAR(first.coefficient, f.coefficients.b.back(), 1e-6 * std::abs(f.coefficients.b.back()));
+  EXPECT_TRUE(iv.lower <= 5e-9 && 5e-9 <= iv.upper)
+      << first.coefficient << ", 95 % [" << iv.lower << ", " << iv.upper << "]";
+  const std::string plan = plan_command(d, fit::parse_formula("T + T^2 + dT"), data);
+  EXPECT_EQ(plan.rfind("gyrotherm plan --model 'T + T^2 + dT' --separate '", 0), 0u) << plan;
+  for (const std::string& m : first.confounded_with) {
+    const auto alone = std::find_if(d.first_round.begin(), d.first_round.end(),
+                                    [&](const CandidateReport& c) { return c.term->name == m; });
+    ASSERT_NE(alone, d.first_round.end()) << m;
+    EXPECT_NE(plan.find(fmt::format("{}={:.3g}", m, alone->coefficient)), std::string::npos) << m << ": " << plan;
+  }
+}
+
+// The plan command from a made-up diagnosis: the intercept and the model's
+// own terms left out of --separate, a member's parameter as --param, the
+// sizes from the first round, the range rounded outward to 5 °C; none when
+// one member is left, or when the group did not pass the test.
+TEST(Diagnosis, ThePlanCommandSeparatesTheGroupsOtherMembers) {
+  const std::vector<const fit::Term*> model = fit::parse_formula("T + dT");
+  fit::PreparedData data;
+  data.series.temp_c = {-3.2, 10.0, 41.0};
+  Diagnosis d;
+  const auto report = [](const char* name, double coefficient, double parameter = NAN) {
+    CandidateReport c;
+    c.term = fit::find_term(name);
+    c.coefficient = coefficient;
+    c.parameter = parameter;
+    return c;
+  };
+  d.first_round = {report("t", 0.05), report("lag", 0.031, 1200.0), report("T^3", -2e-7)};
+  CandidateReport front = report("t", 0.05);
+  front.group_significant = true;
+  front.confounded_with = {"1", "T", "lag", "T^3"};
+  d.candidates = {front, report("lag", 0.001, 900.0)};  // lag's row: a later round
+  EXPECT_EQ(plan_command(d, model, data),
+            "gyrotherm plan --model 'T + dT' --separate 't=0.05,lag=0.031,T^3=-2e-07' --param lag=1200 --range -5,45");
+  d.candidates.front().confounded_with = {"1", "T"};
+  EXPECT_EQ(plan_command(d, model, data), "") << "t alone is left";
+  d.candidates.front().confounded_with = {"lag"};
+  d.candidates.front().group_significant = false;
+  EXPECT_EQ(plan_command(d, model, data), "") << "the group did not pass";
 }
 
 // A share above 100 % (the fit went below the estimated floor) is said in

@@ -68,13 +68,13 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
     bands += fmt::format("{}{:.{}f}..{:.{}f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c, decimals,
                          b.temp_max_c, decimals, b.ratio_to_floor);
   out += fmt::format("   by temperature: {}\n", bands);
-  out += "3. missing effects (share of the excess removed; block cross-validation p):\n";
+  out += "3. missing effects (share of the excess removed; block cross-validation p; meaning (coefficient as added)):\n";
   for (const CandidateReport& c : d.candidates)
-    out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} {:<12} {}\n", c.passed() ? "*" : " ", c.term->name,
+    out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} {:<12} {} ({:.3g} {})\n", c.passed() ? "*" : " ", c.term->name,
                        share_cell(c.reduction_pct),
                        c.p_value,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
-                       c.term->meaning);
+                       c.term->meaning, c.coefficient, c.term->coefficient_unit());
   if (!d.columns_tried.empty())
     out += fmt::format("   the log's columns tried as causes (each with its rate): {}\n", fmt::join(d.columns_tried, ", "));
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
@@ -95,6 +95,11 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   for (const std::string& n : d.confounding_notes) out += fmt::format("cannot tell: {}\n", n);
   out += fmt::format("verdict: {}\n", d.verdict);
   if (!channel.report.next_command.empty()) out += fmt::format("next: {}\n", channel.report.next_command);
+  if (!channel.report.plan_command.empty())
+    out += fmt::format("next: to design a test that separates them: {}\n"
+                       "      (add --noise FILE, this diagnose's --json saved to FILE, for the record's own noise; "
+                       "--range is the record's temperatures rounded outward to {:g} °C: give your chamber's)\n",
+                       channel.report.plan_command, kPlanRangeStepC);
   if (!channel.plots.empty()) out += fmt::format("plots in {}/\n", channel.plots);
   return out;
 }

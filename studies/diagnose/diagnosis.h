@@ -56,6 +56,7 @@
 #include <array>
 #include <functional>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,13 @@ struct SegmentReport {
 struct CandidateReport {
   const fit::Term* term = nullptr;
   double parameter = 0;                // NaN when the term has none
+  // Its least-squares coefficient (°/h per the regressor's unit,
+  // Term::coefficient_unit()) in the fit this row reports: the term added
+  // alone to the model as it stood in its round (the model given, and the
+  // candidates that joined before it), at `parameter`. No interval: the
+  // ranking fits by least squares only, and an interval would need the
+  // noise identified again on each candidate's residual (fit_model).
+  double coefficient = std::numeric_limits<double>::quiet_NaN();
   double instability_after_dph = 0;    // in-sample, with the term added
   double reduction_pct = 0;            // of the excess variance over the floor
   double cv_gain_pct = 0;              // of the cross-validated SSE
@@ -140,6 +148,12 @@ struct Diagnosis {
   std::vector<double> residual_dph;       // per window
   std::vector<double> model_dph;          // per window
   std::vector<CandidateReport> candidates;  // best first
+  // Every candidate as the first round scored it: added alone to the model
+  // given, in the order tried. The verdict's group (around the first
+  // candidate, the first round's) takes its members' sizes from here (the
+  // plan command, report.h): their rows in `candidates` may come from a
+  // later round, fitted after the group's leader joined.
+  std::vector<CandidateReport> first_round;
   std::vector<std::string> skipped;       // terms that could not be tried, and why
   std::vector<std::string> columns_tried;  // the log's columns tried as causes (each with its rate)
   bool limited = false;                   // the record supported fewer tests than there were candidates

@@ -1,8 +1,12 @@
 #include "studies/diagnose/report.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string_view>
 
 #include "fit/fit_file.h"
 #include "fit/model/formula.h"
@@ -10,6 +14,23 @@
 
 namespace gyrotherm::studies {
 namespace {
+
+// In single quotes for a POSIX shell (a ' inside written '\''): nothing
+// inside is special to it.
+std::string single_quoted(const std::string& s) {
+  std::string out = "'";
+  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// A word for a shell: as it is when no character in it is special to one
+// ("t=0.05,lag=0.3"), else single-quoted ("T^3", "T*dT").
+std::string shell_word(const std::string& s) {
+  const bool plain = !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_-+=.,/:@%").find(c) != std::string_view::npos;
+  });
+  return plain ? s : single_quoted(s);
+}
 
 nlohmann::ordered_json segment_json(const SegmentReport& s) {
   return {{"kind", s.kind},       {"start_s", s.start_s},         {"end_s", s.end_s},
@@ -29,6 +50,35 @@ void check_something_left_to_try(const std::vector<const fit::Term*>& terms, con
         fit::formula_text(terms), data.has_temp2() ? "" : " (grad needs a temp2_c column)"));
 }
 
+std::string plan_command(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
+                         const fit::PreparedData& data) {
+  if (d.candidates.empty() || data.series.temp_c.empty()) return "";
+  const CandidateReport& front = d.candidates.front();
+  if (!front.passed() || front.confounded_with.empty()) return "";
+  std::vector<std::string> members = {std::string(front.term->name)};
+  members.insert(members.end(), front.confounded_with.begin(), front.confounded_with.end());
+  std::vector<std::string> separate, sized, params;
+  for (const std::string& name : members) {
+    const fit::Term* t = fit::find_term(name);  // registry effects only; nullptr for "1"
+    if (t == nullptr || std::find(terms.begin(), terms.end(), t) != terms.end()) continue;
+    const auto first = std::find_if(d.first_round.begin(), d.first_round.end(),
+                                     [&](const CandidateReport& c) { return c.term == t; });
+    separate.push_back(name);
+    if (first != d.first_round.end() && std::isfinite(first->coefficient))
+      sized.push_back(fmt::format("{}={:.3g}", name, first->coefficient));
+    if (t->parameter && first != d.first_round.end() && std::isfinite(first->parameter))
+      params.push_back(fmt::format(" --param {}", shell_word(fmt::format("{}={:.6g}", name, first->parameter))));
+  }
+  if (separate.size() < 2) return "";
+  // Sizes for all or for none: plan takes either form.
+  const std::string list = fmt::format("{}", fmt::join(sized.size() == separate.size() ? sized : separate, ","));
+  const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
+  const double low = kPlanRangeStepC * std::floor(*lo / kPlanRangeStepC);
+  const double high = std::max(low + kPlanRangeStepC, kPlanRangeStepC * std::ceil(*hi / kPlanRangeStepC));
+  return fmt::format("gyrotherm plan --model {} --separate {}{} --range {:g},{:g}",
+                     single_quoted(fit::formula_text(terms)), shell_word(list), fmt::join(params, ""), low, high);
+}
+
 DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnMap& columns,
                                const std::vector<const fit::Term*>& base_terms,
                                const std::vector<const fit::Term*>& terms, const fit::EngineInfo& engine,
@@ -45,6 +95,7 @@ DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnM
   if (!r.diagnosis.suggested_model.empty())
     r.next_command =
         fmt::format("gyrotherm diagnose {} --model \"{}\"", data.file, r.diagnosis.suggested_model);
+  r.plan_command = plan_command(r.diagnosis, terms, data);
   return r;
 }
 
@@ -74,6 +125,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   for (const CandidateReport& c : d.candidates) {
     nlohmann::ordered_json e = {{"term", c.term->name},
                                 {"meaning", c.term->meaning},
+                                {"coefficient", c.coefficient},
                                 {"instability_after_dph", c.instability_after_dph},
                                 {"reduction_pct", c.reduction_pct},
                                 // Alone only: a member of a confounded group is not
@@ -107,6 +159,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   j["confounding"] = d.confounding_notes;
   j["verdict"] = d.verdict;
   j["next_command"] = report.next_command;
+  j["plan_command"] = report.plan_command;
   if (before) {
     j["before_after"] = {{"model_before", fit::formula_text(report.base_terms)},
                          {"instability_before_dph", before->fit.instability_after_dph},

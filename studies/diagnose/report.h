@@ -3,7 +3,8 @@
 // studies/diagnose/diagnosis.h: the model as given, and with --add the model
 // without the added terms as the "before" of step 5; the `diagnose --json`
 // object (docs/contracts.md's fields: model, instability_dph, noise_floor_dph,
-// segments, missing_effects, verdict; and more) and the next command to run.
+// segments, missing_effects, verdict; and more) and the next command to run
+// (or the test that would separate what the record cannot tell apart).
 
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -21,7 +22,26 @@ struct DiagnoseReport {
   Diagnosis diagnosis;
   std::optional<Diagnosis> before;      // with --add: the model without the added terms
   std::string next_command;             // the model with the best significant effect, or ""
+  std::string plan_command;             // the test that would separate the verdict's group, or ""
 };
+
+// When the first candidate passed the test as one of a group this record
+// cannot tell apart (the verdict says so): the `gyrotherm plan` command that
+// designs a test on which each member, fitted with the model and the others,
+// would be found,
+//   gyrotherm plan --model 'MODEL' --separate A=SIZE,B=SIZE [--param A=θ] --range LO,HI
+// SIZE: each member's coefficient added alone to the model (its unit);
+// --param: a member's fitted nonlinear parameter (lag's time constant, …).
+// Left out of --separate: "1" (the intercept) and the model's own terms (plan
+// fits every member with the model anyway), a logged column and a step (no
+// test not yet run can say what they will be). "" when fewer than two
+// members are left, or otherwise.
+// --range: the record's temperatures (window means, °C) rounded outward to
+// this step, a range a chamber is commonly set to; a starting point only, the
+// user sets the chamber's own (the report says so).
+inline constexpr double kPlanRangeStepC = 5.0;
+std::string plan_command(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
+                         const fit::PreparedData& data);
 
 // Throws InputError when the model already holds every term that could be
 // tried on this data (nothing would be left to rank).

@@ -248,7 +248,8 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
         const std::vector<double> params = fit::fit_parameters(data.derived, s.gyro_dph, with);
         const Eigen::MatrixXd xw = fit::design_matrix(data.derived, with, params);
         const fit::LinearProblem problem(xw, y, fit::term_names(with));
-        const double sigma = problem.sigma_two_pass(problem.physical(fit::least_squares_optimum(problem)));
+        const fit::Coefficients fitted = problem.physical(fit::least_squares_optimum(problem));
+        const double sigma = problem.sigma_two_pass(fitted);
         std::vector<double> sse;
         if (term->parameter) {
           // The grid of the parameter's values (log-spaced over its bounds),
@@ -273,6 +274,7 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
         CandidateReport c;
         c.term = term;
         c.parameter = params.back();
+        c.coefficient = fitted.b.back();  // the term is the last of `with`
         c.instability_after_dph = sigma;
         c.reduction_pct = 100.0 * (current_sigma2 - sigma * sigma) / excess;
         c.cv_gain_pct = 100.0 * (base_cv - cv) / base_cv;
@@ -285,6 +287,7 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
         failed.push_back(std::string(term->name) + " (" + e.what() + ")");
       }
     }
+    if (round_number == 1) d.first_round = round;  // before resolve_rivals marks groups
     if (round.empty()) break;
     std::size_t best = 0;
     for (std::size_t i = 1; i < round.size(); ++i) {
