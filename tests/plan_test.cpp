@@ -6,6 +6,9 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 
 #include "expect_input_error.h"
 #include "fit/data/prepare.h"
@@ -220,6 +223,33 @@ TEST(PlanSetup, OptionsAreCheckedAndTargetsFollowTheRules) {
   b = default_request();
   b.model = "T + supply_v";
   refused(b, "is a column of a log");
+}
+
+TEST(PlanSetup, ADiagnosisGivesTheGroupItsSizesAndTheRecordsNoise) {
+  // diagnose --json's `plan` (written when its verdict names a group) and
+  // `noise_model`: plan --separate FILE takes the model, the members with
+  // their sizes and parameters, and the noise.
+  const auto file = std::filesystem::temp_directory_path() / ("gyrotherm_plan_diag_" + std::to_string(::getpid()) + ".json");
+  {
+    std::ofstream out(file);
+    out << R"({"model": "T + T^2 + dT", "plan": {"model": "T + dT", "separate": {"t": 0.0491, "lag": 0.0333},
+      "param": {"lag": 3600}, "range_c": [20, 35]},
+      "noise_model": {"components": {"arw": {"value": 3e-4}, "bias_instability": {"value": 1e-3}}}})";
+  }
+  PlanRequest rq = default_request();
+  rq.separate = {file.string()};
+  const PlanSetup s = plan_setup(rq);
+  std::filesystem::remove(file);
+  ASSERT_EQ(s.model_text, "T + dT");
+  ASSERT_EQ(s.terms.size(), 4u);
+  EXPECT_EQ(s.terms[2].term, "t");
+  EXPECT_EQ(s.terms[3].term, "lag");
+  EXPECT_NEAR(s.terms[2].target_se, 0.0491 / kDetectableInSe, 1e-15);
+  EXPECT_NEAR(s.terms[3].target_se, 0.0333 / kDetectableInSe, 1e-15);
+  EXPECT_DOUBLE_EQ(s.model.parameters[3], 3600.0);
+  EXPECT_FALSE(s.noise_from_gyro_file);
+  EXPECT_NEAR(s.noise.model.amplitude[fit::kWhite], std::pow(60.0 * 3e-4, 2), 1e-15);
+  EXPECT_NEAR(s.gyro.noise.arw_deg_per_sqrt_h, 3e-4, 1e-15);  // what --verify simulates
 }
 
 }  // namespace

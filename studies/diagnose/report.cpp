@@ -50,33 +50,40 @@ void check_something_left_to_try(const std::vector<const fit::Term*>& terms, con
         fit::formula_text(terms), data.has_temp2() ? "" : " (grad needs a temp2_c column)"));
 }
 
-std::string plan_command(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
-                         const fit::PreparedData& data) {
-  if (d.candidates.empty() || data.series.temp_c.empty()) return "";
+std::optional<PlanSuggestion> plan_suggestion(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
+                                              const fit::PreparedData& data) {
+  if (d.candidates.empty() || data.series.temp_c.empty()) return std::nullopt;
   const CandidateReport& front = d.candidates.front();
-  if (!front.passed() || front.confounded_with.empty()) return "";
+  if (!front.passed() || front.confounded_with.empty()) return std::nullopt;
   std::vector<std::string> members = {std::string(front.term->name)};
   members.insert(members.end(), front.confounded_with.begin(), front.confounded_with.end());
-  std::vector<std::string> separate, sized, params;
+  PlanSuggestion p;
+  p.model = fit::formula_text(terms);
   for (const std::string& name : members) {
     const fit::Term* t = fit::find_term(name);  // registry effects only; nullptr for "1"
     if (t == nullptr || std::find(terms.begin(), terms.end(), t) != terms.end()) continue;
     const auto first = std::find_if(d.first_round.begin(), d.first_round.end(),
                                      [&](const CandidateReport& c) { return c.term == t; });
-    separate.push_back(name);
-    if (first != d.first_round.end() && std::isfinite(first->coefficient))
-      sized.push_back(fmt::format("{}={:.3g}", name, first->coefficient));
-    if (t->parameter && first != d.first_round.end() && std::isfinite(first->parameter))
-      params.push_back(fmt::format(" --param {}", shell_word(fmt::format("{}={:.6g}", name, first->parameter))));
+    const bool known = first != d.first_round.end();
+    p.separate.emplace_back(name, known ? first->coefficient : std::nan(""));
+    if (t->parameter && known && std::isfinite(first->parameter)) p.param.emplace_back(name, first->parameter);
   }
-  if (separate.size() < 2) return "";
-  // Sizes for all or for none: plan takes either form.
-  const std::string list = fmt::format("{}", fmt::join(sized.size() == separate.size() ? sized : separate, ","));
+  if (p.separate.size() < 2) return std::nullopt;
   const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
-  const double low = kPlanRangeStepC * std::floor(*lo / kPlanRangeStepC);
-  const double high = std::max(low + kPlanRangeStepC, kPlanRangeStepC * std::ceil(*hi / kPlanRangeStepC));
-  return fmt::format("gyrotherm plan --model {} --separate {}{} --range {:g},{:g}",
-                     single_quoted(fit::formula_text(terms)), shell_word(list), fmt::join(params, ""), low, high);
+  p.low_c = kPlanRangeStepC * std::floor(*lo / kPlanRangeStepC);
+  p.high_c = std::max(p.low_c + kPlanRangeStepC, kPlanRangeStepC * std::ceil(*hi / kPlanRangeStepC));
+  return p;
+}
+
+std::string PlanSuggestion::command() const {
+  // Sizes for all or for none: plan takes either form.
+  const bool sized = std::all_of(separate.begin(), separate.end(), [](const auto& m) { return std::isfinite(m.second); });
+  std::vector<std::string> list, params;
+  for (const auto& [name, size] : separate) list.push_back(sized ? fmt::format("{}={:.3g}", name, size) : name);
+  for (const auto& [name, value] : param)
+    params.push_back(fmt::format(" --param {}", shell_word(fmt::format("{}={:.6g}", name, value))));
+  return fmt::format("gyrotherm plan --model {} --separate {}{} --range {:g},{:g}", single_quoted(model),
+                     shell_word(fmt::format("{}", fmt::join(list, ","))), fmt::join(params, ""), low_c, high_c);
 }
 
 DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnMap& columns,
@@ -95,7 +102,8 @@ DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnM
   if (!r.diagnosis.suggested_model.empty())
     r.next_command =
         fmt::format("gyrotherm diagnose {} --model \"{}\"", data.file, r.diagnosis.suggested_model);
-  r.plan_command = plan_command(r.diagnosis, terms, data);
+  r.plan = plan_suggestion(r.diagnosis, terms, data);
+  if (r.plan) r.plan_command = r.plan->command();
   return r;
 }
 
@@ -160,6 +168,16 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   j["verdict"] = d.verdict;
   j["next_command"] = report.next_command;
   j["plan_command"] = report.plan_command;
+  if (report.plan) {
+    nlohmann::ordered_json separate = nlohmann::ordered_json::object(), param = nlohmann::ordered_json::object();
+    for (const auto& [name, size] : report.plan->separate)
+      separate[name] = std::isfinite(size) ? nlohmann::ordered_json(size) : nlohmann::ordered_json(nullptr);
+    for (const auto& [name, value] : report.plan->param) param[name] = value;
+    j["plan"] = {{"model", report.plan->model},
+                 {"separate", separate},
+                 {"param", param},
+                 {"range_c", {report.plan->low_c, report.plan->high_c}}};
+  }
   if (before) {
     j["before_after"] = {{"model_before", fit::formula_text(report.base_terms)},
                          {"instability_before_dph", before->fit.instability_after_dph},

@@ -15,6 +15,15 @@
 
 namespace gyrotherm::studies {
 
+// What `gyrotherm plan` needs to separate the verdict's group (below).
+struct PlanSuggestion {
+  std::string model;
+  std::vector<std::pair<std::string, double>> separate;  // member → size (NaN: unknown)
+  std::vector<std::pair<std::string, double>> param;     // member → its fitted parameter
+  double low_c = 0, high_c = 0;                          // --range
+  std::string command() const;  // gyrotherm plan --model … --separate … [--param …] --range …
+};
+
 struct DiagnoseReport {
   std::vector<const fit::Term*> base_terms;  // the model without --add
   std::vector<const fit::Term*> terms;       // the model diagnosed
@@ -23,6 +32,7 @@ struct DiagnoseReport {
   std::optional<Diagnosis> before;      // with --add: the model without the added terms
   std::string next_command;             // the model with the best significant effect, or ""
   std::string plan_command;             // the test that would separate the verdict's group, or ""
+  std::optional<PlanSuggestion> plan;   // the same as data (diagnose --json's `plan`)
 };
 
 // When the first candidate passed the test as one of a group this record
@@ -40,8 +50,13 @@ struct DiagnoseReport {
 // this step, a range a chamber is commonly set to; a starting point only, the
 // user sets the chamber's own (the report says so).
 inline constexpr double kPlanRangeStepC = 5.0;
-std::string plan_command(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
-                         const fit::PreparedData& data);
+std::optional<PlanSuggestion> plan_suggestion(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
+                                              const fit::PreparedData& data);
+inline std::string plan_command(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
+                                const fit::PreparedData& data) {
+  const auto p = plan_suggestion(d, terms, data);
+  return p ? p->command() : std::string();
+}
 
 // Throws InputError when the model already holds every term that could be
 // tried on this data (nothing would be left to rank).

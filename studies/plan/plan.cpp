@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "fit/model/formula.h"
 #include "sim/util/format.h"
 #include "sim/util/input_error.h"
 #include "studies/plan/plan_files.h"
@@ -52,6 +53,7 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   PlanResult r;
   r.request = request;
   r.terms = setup.terms;
+  r.model = fit::formula_text(setup.model.terms);
   r.limits = setup.limits;
   r.thermal_path = setup.thermal_path;
   r.noise = setup.noise.description() + " (" + setup.noise.source + ")";
@@ -136,7 +138,7 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
   using Json = nlohmann::ordered_json;
   auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
   Json j;
-  j["model"] = r.request.model;
+  j["model"] = r.model;
   j["duration_s"] = r.duration_s;
   j["scenario_file"] = r.scenario_file;
   j["setpoint_file"] = r.setpoint_file;
@@ -205,7 +207,7 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
 }
 
 std::string plan_text(const PlanResult& r) {
-  std::string out = fmt::format("plan for B = b0 + {}\n", r.request.model);
+  std::string out = fmt::format("plan for B = b0 + {}\n", r.model);
   out += fmt::format("  rig: {}; chamber {}..{} °C, at most {} °C/min, soaks ≥ {} s\n", r.thermal_path,
                      r.limits.low_c, r.limits.high_c, r.limits.max_rate_c_per_min, r.limits.min_soak_s);
   out += fmt::format("  noise: {}\n\n", r.noise);

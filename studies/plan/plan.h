@@ -49,8 +49,10 @@ namespace gyrotherm::studies::plan {
 // p < 0.01 (two-sided) in 90 % of tests.
 inline constexpr double kDetectableInSe = 2.5758293035489 + 1.2815515655446;
 
+inline constexpr const char* kDefaultModel = "T + T^2 + dT";
+
 struct PlanRequest {
-  std::string model = "T + T^2 + dT";
+  std::string model;                  // "": a --separate diagnosis's model, else kDefaultModel
   std::vector<std::string> se;        // TERM=VALUE
   std::vector<std::string> rel_se;    // FRACTION or TERM=FRACTION
   std::vector<std::string> separate;  // NAME[=SIZE], or one diagnose JSON
@@ -97,6 +99,7 @@ struct Verification {
 
 struct PlanResult {
   PlanRequest request;
+  std::string model;  // the model fitted: the one asked for and the group to separate
   std::vector<TermPlan> terms;
   RigLimits limits;
   std::string thermal_path;  // "rig_shield.toml (scenario cycle.toml)" / "first-order lag, τ = 1800 s"

@@ -18,7 +18,7 @@ namespace {
 std::string header_of(const PlanResult& r) {
   return fmt::format("Written by `gyrotherm plan` for B = b0 + {}: the shortest test found ({:.2f} h) at\n"
                      "{}..{} °C, at most {} °C/min; rig: {}.",
-                     r.request.model, r.duration_s / 3600.0, r.limits.low_c, r.limits.high_c,
+                     r.model, r.duration_s / 3600.0, r.limits.low_c, r.limits.high_c,
                      r.limits.max_rate_c_per_min, r.thermal_path);
 }
 
@@ -44,7 +44,7 @@ void plot(const std::filesystem::path& png, const PlanResult& r, const Precision
       "set ylabel 'share of the estimate (cumulative)'\nset yrange [0:1]\n"
       "set title \"Where each coefficient's information comes from: the running share of Σ w_i², "
       "w_i the weight of window i in the estimate\"\n",
-      r.duration_s / 3600.0, r.request.model);
+      r.duration_s / 3600.0, r.model);
   std::string plots;
   for (std::size_t j = 0; j < d.cumulative_share.size(); ++j)
     plots += fmt::format("{}$share using 1:{} with lines lw 2 title '{}'", plots.empty() ? "plot " : ", ", j + 2,
@@ -77,7 +77,7 @@ void write_plan_files(PlanResult& r, const PlanSetup& setup, const PrecisionDeta
   const std::string header = header_of(r);
   sim::Scenario sc = setup.base;
   sc.name = "plan";
-  sc.description = fmt::format("planned test for {} ({:.2f} h)", r.request.model, r.duration_s / 3600.0);
+  sc.description = fmt::format("planned test for {} ({:.2f} h)", r.model, r.duration_s / 3600.0);
   sc.start_c = r.profile.start_c;
   sc.segments = r.profile.segments;
   const std::string scenario = sim::scenario_toml(sc, "rig.toml", "gyro.toml", header);

@@ -43,11 +43,11 @@ std::pair<std::string, double> name_value(const std::string& item, const std::st
   return {item.substr(0, eq), number_of(item.substr(eq + 1), option + " " + item.substr(0, eq))};
 }
 
-nlohmann::json read_json(const std::filesystem::path& file, const std::string& option) {
+nlohmann::ordered_json read_json(const std::filesystem::path& file, const std::string& option) {
   std::ifstream in(file);
   if (!in) throw InputError(fmt::format("{} {}: cannot open the file", option, file.string()));
   try {
-    return nlohmann::json::parse(in);
+    return nlohmann::ordered_json::parse(in);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{} {}: not valid JSON ({})", option, file.string(), e.what()));
   }
@@ -169,7 +169,14 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   }
 
   // The model, the group to separate and their priors.
-  for (const fit::Term* t : fit::parse_formula(rq.model)) {
+  std::string model_text = rq.model.empty() ? std::string(kDefaultModel) : rq.model;
+  if (rq.model.empty() && rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
+    const nlohmann::ordered_json d = read_json(rq.separate[0], "--separate");
+    if (d.contains("plan") && d["plan"].contains("model") && d["plan"]["model"].is_string())
+      model_text = d["plan"]["model"].get<std::string>();
+  }
+  s.model_text = model_text;
+  for (const fit::Term* t : fit::parse_formula(model_text)) {
     if (fit::is_column_term(t))
       throw InputError(fmt::format("--model: '{}' is a column of a log; a planned test has the simulator's "
                                    "temperatures only (T, T2 and what is made from them)",
@@ -180,23 +187,23 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   std::vector<std::string> group;
   std::vector<double> group_size;
   std::string noise_file = rq.noise;
-  nlohmann::json fit_prior;
+  std::vector<std::pair<std::string, double>> json_params;
   if (rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
-    const nlohmann::json d = read_json(rq.separate[0], "--separate");
-    if (!d.contains("confounded") || !d["confounded"].is_array() || d["confounded"].empty())
-      throw InputError(fmt::format("--separate {}: the diagnosis names no confounded group ('confounded' is "
-                                   "empty or absent): there is nothing to separate",
+    // A diagnose --json: its `plan` (the group of the verdict, each member's
+    // size and parameter), and its noise unless --noise gives another.
+    const nlohmann::ordered_json d = read_json(rq.separate[0], "--separate");
+    if (!d.contains("plan") || !d["plan"].is_object() || !d["plan"].contains("separate"))
+      throw InputError(fmt::format("--separate {}: the diagnosis suggests no test ('plan' is absent: no group "
+                                   "of effects it could not tell apart passed its test); name the terms: "
+                                   "--separate A=SIZE,B=SIZE",
                                    rq.separate[0]));
-    for (const auto& name : d["confounded"][0])
-      if (name.is_string() && name.get<std::string>() != "1") group.push_back(name.get<std::string>());
-    for (const std::string& g : group) {
-      double size = std::nan("");
-      if (d.contains("missing_effects"))
-        for (const auto& e : d["missing_effects"])
-          if (e.value("term", "") == g && e.contains("coefficient") && e["coefficient"].is_number())
-            size = e["coefficient"].get<double>();
-      group_size.push_back(size);
+    for (const auto& [name, size] : d["plan"]["separate"].items()) {
+      group.push_back(name);
+      group_size.push_back(size.is_number() ? size.get<double>() : std::nan(""));
     }
+    if (d["plan"].contains("param"))
+      for (const auto& [name, value] : d["plan"]["param"].items())
+        if (value.is_number()) json_params.emplace_back(name, value.get<double>());
     if (noise_file.empty() && d.contains("noise_model")) noise_file = rq.separate[0];
   } else {
     for (const std::string& item : rq.separate) {
@@ -222,7 +229,7 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   s.noise_from_gyro_file = noise_file.empty();
   if (!noise_file.empty()) {
     s.noise = noise_of_json(noise_file);
-    const nlohmann::json j = read_json(noise_file, "--noise");
+    const nlohmann::ordered_json j = read_json(noise_file, "--noise");
     if (j.contains("coefficients") && j["coefficients"].is_object())
       for (std::size_t k = 0; k < s.model.terms.size(); ++k) {
         const std::string name(s.model.terms[k]->name);
@@ -246,8 +253,10 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     if (k == s.model.terms.size()) throw InputError(fmt::format("--prior {}: {} is not in the model", item, name));
     s.model.prior[k] = value;
   }
-  for (const std::string& item : rq.param) {
-    const auto [name, value] = name_value(item, "--param");
+  std::vector<std::pair<std::string, double>> params = json_params;
+  for (const std::string& item : rq.param) params.push_back(name_value(item, "--param"));
+  for (const auto& [name, value] : params) {
+    const std::string item = fmt::format("{}={:g}", name, value);
     const std::size_t k = index_of(s.model, name);
     if (k == s.model.terms.size() || !s.model.terms[k]->parameter)
       throw InputError(fmt::format("--param {}: not a term of the model with a parameter", item));

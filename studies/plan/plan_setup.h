@@ -22,6 +22,7 @@ struct PlanSetup {
   sim::GyroConfig gyro;  // the truth --verify simulates (priors as coefficients where it had none)
   PlanNoise noise;
   bool noise_from_gyro_file = true;
+  std::string model_text;  // the model as given (--model, a diagnosis's, or the default)
   PlanModel model;
   std::vector<TermPlan> terms;
   RigLimits limits;
