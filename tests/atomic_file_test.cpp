@@ -68,5 +68,19 @@ TEST_F(AtomicFileTest, MissingFolderIsAnInputErrorNamingTheFile) {
   }
 }
 
+TEST_F(AtomicFileTest, ADeviceOrAFolderIsNeverReplaced) {
+  // Renaming over /dev/null as root would turn the device into a file.
+  for (const fs::path& target : {fs::path("/dev/null"), dir_}) {
+    try {
+      AtomicFile file(target);
+      FAIL() << target;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_EQ(files_in_dir(), 0u);
+}
+
 }  // namespace
 }  // namespace gyrotherm::sim

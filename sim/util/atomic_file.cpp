@@ -84,8 +84,23 @@ std::filesystem::path temporary_for(const std::filesystem::path& target) {
 }
 }  // namespace
 
+namespace {
+
+// An output is a regular file: renaming over a device (`-o /dev/null`, as
+// root) would replace the device with the output, and a folder cannot be
+// replaced at all.
+std::filesystem::path regular_target(std::filesystem::path target) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(target, ec);
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(target.string() + ": not a regular file (a device or a folder); give the path of a file to write");
+  return target;
+}
+
+}  // namespace
+
 AtomicFile::AtomicFile(std::filesystem::path target)
-    : target_(std::move(target)), temporary_(temporary_for(target_)) {
+    : target_(regular_target(std::move(target))), temporary_(temporary_for(target_)) {
   out_.open(temporary_.path(), std::ios::binary | std::ios::trunc);
   if (!out_)
     throw InputError(target_.string() + ": cannot create the output file (is the folder there "
