@@ -1,8 +1,6 @@
 // gyrotherm plan [--model M] [--se T=V,…] [--rel-se [T=]F,…] [--separate A[=S],B… | DIAGNOSE.json]
-//                [--prior T=V,…]
-//                [--scenario F] [--rig F] [--gyro F] [--noise F.json] [--tau S] [--range LO,HI]
-//                [--max-rate R] [--min-soak S] [--longest H] [--param T=V] [--out DIR]
-//                [--verify N] [--seed N] [--json]
+//   [--prior T=V,…] [--param T=V,…] [--scenario F] [--rig F] [--gyro F] [--noise F.json] [--tau S]
+//   [--range LO,HI] [--max-rate R] [--min-soak S] [--longest H] [--out DIR] [--verify N] [--seed N] [--json]
 // (studies/plan/plan.h)
 
 #include <CLI/CLI.hpp>
@@ -18,27 +16,19 @@ namespace {
 struct PlanCli {
   studies::plan::PlanRequest request;
   std::vector<double> range;
-  double tau_s = 0, max_rate = 0;
-  std::uint64_t seed = 0;
   bool json = false;
-  CLI::Option *tau_given = nullptr, *max_rate_given = nullptr, *seed_given = nullptr;
 };
 
 int run_plan(PlanCli o) {
   auto& rq = o.request;
   if (rq.scenario.empty()) rq.scenario = default_scenarios_dir() + "/cycle.toml";
   if (!o.range.empty()) rq.range_c = {o.range[0], o.range[1]};
-  if (o.tau_given->count() > 0) rq.tau_s = o.tau_s;
-  if (o.max_rate_given->count() > 0) rq.max_rate_c_per_min = o.max_rate;
-  if (o.seed_given->count() > 0) rq.seed = o.seed;
   auto bar = step_progress();
-  std::string last;
-  int last_decile = -1;
+  std::string last;  // a line per stage and tenth, not per step
   studies::plan::PlanProgress progress{[&](const std::string& stage, int done, int total) {
-    const int decile = total > 0 ? 10 * done / total : 10;
-    if (stage == last && decile == last_decile) return;
-    last = stage;
-    last_decile = decile;
+    const std::string now = fmt::format("{} {}", stage, total > 0 ? 10 * done / total : 10);
+    if (now == last) return;
+    last = now;
     bar(fmt::format("{} {}/{}", stage, done, total), total > 0 ? static_cast<double>(done) / total : 1.0);
   }};
   const studies::plan::PlanResult r = studies::plan::run_plan(rq, progress);
@@ -67,16 +57,16 @@ void add_plan_command(CLI::App& app, Run* run) {
   cmd->add_option("--rig", rq.rig, "Rig file instead of the scenario's");
   cmd->add_option("--gyro", rq.gyro, "Gyro file (truth, priors and noise) instead of the scenario's");
   cmd->add_option("--noise", rq.noise, "The noise (and priors) of a fit, diagnose or allan --json");
-  o->tau_given = cmd->add_option("--tau", o->tau_s, "A first-order thermal path of TAU s from chamber to sensor instead of a rig");
+  cmd->add_option("--tau", rq.tau_s, "A first-order thermal path of TAU s from chamber to sensor instead of a rig");
   cmd->add_option("--range", o->range, "Chamber range LO,HI in °C (default: the scenario's set points)")
       ->delimiter(',')
       ->expected(2);
-  o->max_rate_given = cmd->add_option("--max-rate", o->max_rate, "Fastest ramp, °C/min (default: the scenario's fastest)");
+  cmd->add_option("--max-rate", rq.max_rate_c_per_min, "Fastest ramp, °C/min (default: the scenario's fastest)");
   cmd->add_option("--min-soak", rq.min_soak_s, "Shortest soak, s (default 0)");
   cmd->add_option("--longest", rq.longest_h, "Longest test considered, h (default 72)");
   cmd->add_option("--out", rq.out, "Folder for plan.toml, rig.toml, gyro.toml, plan_setpoint.csv, plan.png (default plan)");
   cmd->add_option("--verify", rq.verify, "Simulate and fit the planned test N times; report achieved errors");
-  o->seed_given = cmd->add_option("--seed", o->seed, "First seed of --verify (default: the scenario's)");
+  cmd->add_option("--seed", rq.seed, "First seed of --verify (default: the scenario's)");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   when_chosen(cmd, run, [o] { return run_plan(*o); });
 }

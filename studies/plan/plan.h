@@ -49,10 +49,8 @@ namespace gyrotherm::studies::plan {
 // p < 0.01 (two-sided) in 90 % of tests.
 inline constexpr double kDetectableInSe = 2.5758293035489 + 1.2815515655446;
 
-inline constexpr const char* kDefaultModel = "T + T^2 + dT";
-
 struct PlanRequest {
-  std::string model;                  // "": a --separate diagnosis's model, else kDefaultModel
+  std::string model;                  // "": a --separate diagnosis's model, else fit::kDefaultModel
   std::vector<std::string> se;        // TERM=VALUE
   std::vector<std::string> rel_se;    // FRACTION or TERM=FRACTION
   std::vector<std::string> separate;  // NAME[=SIZE], or one diagnose JSON

@@ -169,7 +169,7 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   }
 
   // The model, the group to separate and their priors.
-  std::string model_text = rq.model.empty() ? std::string(kDefaultModel) : rq.model;
+  std::string model_text = rq.model.empty() ? std::string(fit::kDefaultModel) : rq.model;
   if (rq.model.empty() && rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
     const nlohmann::ordered_json d = read_json(rq.separate[0], "--separate");
     if (d.contains("plan") && d["plan"].contains("model") && d["plan"]["model"].is_string())
