@@ -64,8 +64,11 @@ class CliPlanBadInput : public ::testing::TestWithParam<BadPlan> {};
 
 TEST_P(CliPlanBadInput, ClearMessageExitTwoNoFiles) {
   ScratchDir dir;
-  expect_refused(dir, "plan --out p " + GetParam().args, GetParam().expected);
+  testing::write_text(dir / "marker", "a file, not a folder\n");
+  const std::string& args = GetParam().args;
+  expect_refused(dir, (args.find("--out") == std::string::npos ? "plan --out p " : "plan ") + args, GetParam().expected);
   EXPECT_FALSE(std::filesystem::exists(dir / "p")) << GetParam().args;
+  EXPECT_EQ(dir.file_count(), 1u) << GetParam().args;  // the marker alone
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -76,9 +79,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"--verify 1", "--verify 1: give the number of simulated tests"},
         BadPlan{"--se T=1e-9 --longest 3", "no test of at most 3.00 h at these limits"},
         BadPlan{"--tau 1200 --model 'T + dT + grad' --se grad=0.01 --longest 3",
-                "cannot be identified at these limits at any length"},
+                "cannot be identified at these limits by any test of at most 3.00 h"},
         BadPlan{"--model 'T + lag' --rel-se lag=0.2", "no prior value of lag"},
-        BadPlan{"--separate missing.json", "--separate missing.json: cannot open the file"}));
+        BadPlan{"--separate missing.json", "--separate missing.json: cannot open the file"},
+        BadPlan{"--min-soak 7200 --longest 2", "--min-soak 7200 s is not shorter than --longest 2 h"},
+        BadPlan{"--out marker", "--out marker: is a file, not a folder"}));
 
 }  // namespace
 }  // namespace gyrotherm

@@ -250,6 +250,48 @@ TEST(PlanSetup, ADiagnosisGivesTheGroupItsSizesAndTheRecordsNoise) {
   EXPECT_FALSE(s.noise_from_gyro_file);
   EXPECT_NEAR(s.noise.model.amplitude[fit::kWhite], std::pow(60.0 * 3e-4, 2), 1e-15);
   EXPECT_NEAR(s.gyro.noise.arw_deg_per_sqrt_h, 3e-4, 1e-15);  // what --verify simulates
+  EXPECT_DOUBLE_EQ(s.limits.low_c, 20.0);  // the record's range, --range not given
+  EXPECT_DOUBLE_EQ(s.limits.high_c, 35.0);
+  EXPECT_FALSE(std::isfinite(s.terms[0].target_se)) << "separating asks nothing of the model's own terms";
+}
+
+TEST(PlanSearch, LimitsHoldAtTheirEdges) {
+  // The start at an end of the range (the scenario's 20 °C clamped to 30),
+  // a test limit shorter than most recipes, and soaks longer than useful:
+  // no crash, nothing longer than --longest met, and never a plan longer
+  // than a recipe that meets the same target.
+  PlanRequest rq = default_request();
+  rq.range_c = std::pair{30.0, 60.0};
+  rq.se = {"dT=0.5"};
+  rq.longest_h = 1.5;
+  rq.min_soak_s = 1200.0;
+  const PlanSetup s = plan_setup(rq);
+  EXPECT_DOUBLE_EQ(s.limits.start_c, 30.0);
+  const DesignEvaluator ev = evaluator_of(s);
+  const std::vector<double> target = {INFINITY, INFINITY, 0.5};
+  const SearchOutcome plan = shortest_plan(ev, s.limits, target);
+  if (plan.met) {
+    EXPECT_LE(plan.best.precision.duration_s, 1.5 * 3600.0 + 1e-6);
+  }
+  for (const Recipe& r : standard_recipes(s.limits)) {
+    const SearchOutcome o = shortest_recipe(ev, r, target);
+    if (o.met) {
+      EXPECT_LE(o.best.precision.duration_s, 1.5 * 3600.0 + 1e-6) << r.name;
+    }
+  }
+}
+
+TEST(PlanPrecision, AParameterThatIsNotSmoothIsNotLinearised) {
+  // hyst's dead band is a threshold: the fitter gives it no interval and
+  // does not augment its design; neither does the prediction.
+  PlanRequest rq = default_request();
+  rq.model = "T + T^2 + dT + hyst";
+  rq.prior = {"hyst=0.01"};
+  const PlanSetup s = plan_setup(rq);
+  const Precision p = evaluator_of(s).precision(standard_recipes(s.limits)[5].profile(7200.0));
+  ASSERT_TRUE(p.refused.empty()) << p.refused;
+  EXPECT_TRUE(std::isnan(p.log_parameter_se[3]));
+  for (double se : p.se) EXPECT_TRUE(std::isfinite(se));
 }
 
 }  // namespace

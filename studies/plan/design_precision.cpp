@@ -17,6 +17,7 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kLogStep = 1e-4;  // the fitter's step in ln θ (fit/pipeline.h)
+constexpr double kFewestWindows = 8;  // a shorter profile is not a test
 
 }  // namespace
 
@@ -44,6 +45,15 @@ PrecisionDetail DesignEvaluator::detail(const ChamberProfile& profile) const {
 
 Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDetail* detail) const {
   using N = sim::RigDynamics::Node;
+  const std::size_t m_terms = model_.terms.size();
+  Precision p;
+  p.duration_s = profile.duration_s();
+  p.se.assign(m_terms, kInfinity);
+  p.log_parameter_se.assign(m_terms, std::nan(""));
+  if (p.duration_s < kFewestWindows * fit::AveragingOptions{}.window_s) {
+    p.refused = fmt::format("a test of {:.0f} s has fewer than {} windows", p.duration_s, kFewestWindows);
+    return p;
+  }
   const sim::Simulator simulator(scenario(profile), rig_, gyro_);
   const sim::ThermalTrace trace = simulator.run_thermal();
 
@@ -56,20 +66,14 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   fit::PipelineOptions options;
   options.remove_outliers = false;
   const fit::PreparedData data = fit::prepare_data(m, options);
-
-  const std::size_t m_terms = model_.terms.size();
-  Precision p;
-  p.duration_s = profile.duration_s();
   p.windows = data.series.size();
-  p.se.assign(m_terms, kInfinity);
-  p.log_parameter_se.assign(m_terms, std::nan(""));
   if (!data.series.temp_c.empty()) {
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
     p.sensor_min_c = *lo;
     p.sensor_max_c = *hi;
   }
   if (detail) {
-    for (std::size_t k = 0; k < trace.time_s.size(); k += 10) {
+    for (std::size_t k = 0; k < trace.time_s.size(); ++k) {
       detail->time_s.push_back(trace.time_s[k]);
       detail->setpoint_c.push_back(trace.setpoint_c[k]);
       detail->chamber_c.push_back(trace.node(N::chamber)[k]);
@@ -83,7 +87,11 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   std::vector<std::size_t> augmented_for;  // the term of each column beyond the model's
   for (std::size_t j = 0; j < m_terms; ++j) {
     const double theta = model_.parameters[j];
-    if (!model_.terms[j]->parameter || !std::isfinite(theta) || model_.prior[j] == 0.0) continue;
+    const auto& spec = model_.terms[j]->parameter;
+    // As the fitter linearises (fit/pipeline.cpp): a smooth parameter off its bounds.
+    if (!spec || !spec->differentiable || !std::isfinite(theta) || model_.prior[j] == 0.0 ||
+        !(theta > spec->lower * 1.001 && theta < spec->upper / 1.001))
+      continue;
     augmented_for.push_back(j);
     std::vector<double> up(p.windows), down(p.windows);
     model_.terms[j]->compute(data.derived, theta * std::exp(kLogStep), up);
@@ -92,7 +100,8 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
     for (std::size_t i = 0; i < p.windows; ++i)
       X(static_cast<Eigen::Index>(i), X.cols() - 1) = model_.prior[j] * (up[i] - down[i]) / (2.0 * kLogStep);
   }
-  const Eigen::Index l = X.rows(), cols = X.cols();
+  const Eigen::Index l = X.rows();
+  Eigen::Index cols = X.cols();
   if (l < cols + 2) {
     p.refused = fmt::format("{} windows for {} unknowns", l, cols + 1);
     return p;
@@ -100,17 +109,24 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   // Centred and scaled to unit norm: Z = X̃ D⁻¹.
   Eigen::MatrixXd Z = X.rowwise() - X.colwise().mean();
   Eigen::VectorXd norm = Z.colwise().norm().transpose();
+  const auto model_cols = static_cast<Eigen::Index>(m_terms);
   for (Eigen::Index j = 0; j < cols; ++j) {
     if (!(norm[j] > 1e-12 * std::max(1.0, X.col(j).cwiseAbs().maxCoeff()))) {
-      p.refused = fmt::format("the regressor of '{}' does not vary on this profile",
-                              j < static_cast<Eigen::Index>(m_terms) ? std::string(model_.terms[j]->name)
-                                                                     : std::string("a parameter"));
+      if (j >= model_cols) {  // a parameter this profile does not move: unknown
+        norm[j] = 1.0;
+        Z.col(j).setZero();
+        continue;
+      }
+      p.refused = fmt::format("the regressor of '{}' does not vary on this profile", model_.terms[j]->name);
       return p;
     }
     Z.col(j) /= norm[j];
   }
-  const Eigen::MatrixXd gram = Z.transpose() * Z;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(gram);
+  Eigen::MatrixXd gram = Z.transpose() * Z;
+  // The fitter refuses on the model's own terms (fit::LinearProblem); a
+  // parameter's column that cannot be told from them (or is 0) leaves the
+  // parameter unknown (its se +∞) and the coefficients as without it.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(gram.topLeftCorner(model_cols, model_cols));
   const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
   p.condition = lo > 0.0 ? hi / lo : kInfinity;
   if (!(p.condition <= fit::LinearProblem::kIllConditioned)) {
@@ -123,6 +139,16 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
                             names.empty() ? std::string("the terms") : names, p.condition,
                             fit::LinearProblem::kIllConditioned);
     return p;
+  }
+  if (cols > model_cols) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> all(gram);
+    if (!(all.eigenvalues().minCoeff() > all.eigenvalues().maxCoeff() / fit::LinearProblem::kIllConditioned)) {
+      for (std::size_t a : augmented_for) p.log_parameter_se[a] = kInfinity;
+      Z.conservativeResize(Eigen::NoChange, model_cols);
+      gram = gram.topLeftCorner(model_cols, model_cols).eval();
+      cols = model_cols;
+      augmented_for.clear();
+    }
   }
   // C·Z: the coloured components in closed form, the white one by window.
   const fit::WindowGrid grid = fit::window_grid(data);

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "fit/model/formula.h"
@@ -117,6 +118,16 @@ sim::RigConfig first_order_rig(double tau_s, const sim::RigConfig& chamber_of) {
 
 PlanSetup plan_setup(const PlanRequest& rq) {
   PlanSetup s;
+  {
+    // --out: checked before the search (which takes seconds to minutes).
+    std::error_code ec;
+    const std::filesystem::path out = rq.out;
+    if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec))
+      throw InputError(fmt::format("--out {}: is a file, not a folder", rq.out));
+    for (const char* name : {"plan.toml", "rig.toml", "gyro.toml", "plan_setpoint.csv", "plan.png"})
+      if (std::filesystem::exists(out / name, ec) && !std::filesystem::is_regular_file(out / name, ec))
+        throw InputError(fmt::format("--out {}: {} is there and not a file", rq.out, name));
+  }
   if (rq.scenario.empty()) throw InputError("plan: no scenario given");
   s.base = sim::load_scenario(rq.scenario);
   const std::filesystem::path rig_file = rq.rig.empty() ? s.base.rig_file : std::filesystem::path(rq.rig);
@@ -130,11 +141,18 @@ PlanSetup plan_setup(const PlanRequest& rq) {
                                  "scenario with a chamber, e.g. scenarios/cycle.toml",
                                  rq.scenario));
 
-  // The rig's limits.
-  scenario_limits(s.base, s.limits, !rq.range_c, !rq.max_rate_c_per_min);
-  if (rq.range_c) {
-    s.limits.low_c = rq.range_c->first;
-    s.limits.high_c = rq.range_c->second;
+  // The rig's limits; a diagnosis's range (its record's) where --range is not given.
+  std::optional<std::pair<double, double>> range = rq.range_c;
+  if (!range && rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
+    const nlohmann::ordered_json d = read_json(rq.separate[0], "--separate");
+    if (d.contains("plan") && d["plan"].contains("range_c") && d["plan"]["range_c"].is_array() &&
+        d["plan"]["range_c"].size() == 2 && d["plan"]["range_c"][0].is_number() && d["plan"]["range_c"][1].is_number())
+      range = std::pair{d["plan"]["range_c"][0].get<double>(), d["plan"]["range_c"][1].get<double>()};
+  }
+  scenario_limits(s.base, s.limits, !range, !rq.max_rate_c_per_min);
+  if (range) {
+    s.limits.low_c = range->first;
+    s.limits.high_c = range->second;
     if (!(s.limits.high_c > s.limits.low_c))
       throw InputError(fmt::format("--range {},{}: the low end must be below the high end", s.limits.low_c,
                                    s.limits.high_c));
@@ -151,6 +169,9 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   if (!(rq.min_soak_s >= 0.0)) throw InputError(fmt::format("--min-soak {}: must be >= 0 s", rq.min_soak_s));
   if (!(rq.longest_h > 0.0) || rq.longest_h > 24.0 * 30)
     throw InputError(fmt::format("--longest {}: must be > 0 and at most 720 h", rq.longest_h));
+  if (rq.min_soak_s >= rq.longest_h * 3600.0)
+    throw InputError(fmt::format("--min-soak {} s is not shorter than --longest {} h: no test with a soak fits",
+                                 rq.min_soak_s, rq.longest_h));
   s.limits.min_soak_s = rq.min_soak_s;
   s.limits.longest_s = rq.longest_h * 3600.0;
   s.limits.start_c = std::clamp(s.base.start_c, s.limits.low_c, s.limits.high_c);
@@ -314,7 +335,7 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     s.terms[j].target_se = v;
     s.terms[j].target_from = "--se";
   }
-  if (rq.se.empty() && rq.rel_se.empty())
+  if (rq.se.empty() && rq.rel_se.empty() && rq.separate.empty())
     for (std::size_t j = 0; j < model_terms; ++j)
       if (s.model.prior[j] != 0.0 && !std::isfinite(s.terms[j].target_se)) {
         s.terms[j].target_se = std::abs(s.model.prior[j]) / kDetectableInSe;

@@ -118,33 +118,43 @@ ChamberProfile Recipe::profile(double x) const {
 std::vector<Recipe> standard_recipes(const RigLimits& limits) {
   const double longest = limits.longest_s;
   const double soak = std::max(limits.min_soak_s, 60.0);
+  const double span = limits.high_c - limits.low_c;
+  const double mid = 0.5 * (limits.low_c + limits.high_c);
+  // Seconds of ramping at the rate limit over `degrees`.
+  auto ramping = [&](double degrees) { return degrees / limits.max_rate_c_per_min * 60.0; };
+  // The longest soak x when `count` soaks share the test with `ramps_s` of ramps
+  // (at least the shortest soak: a test that cannot fit is then simply too long).
+  auto soak_range = [&](double ramps_s, int count) { return std::max(soak, (longest - ramps_s) / count); };
   std::vector<Recipe> out;
   Recipe warmup{"warm-up from cold",
                 "cold-soaked unpowered, switched on and warmed to the high end (PX4, ArduPilot)",
-                soak, longest, false, limits.low_c};
+                soak, soak_range(ramping(span), 1), false, limits.low_c};
   warmup.kind = Recipe::Kind::warmup;
   out.push_back(warmup);
-  Recipe stairs{"soak staircase", "five levels low to high, a soak at each", soak, longest / 5.0, false,
-                limits.start_c};
+  Recipe stairs{"soak staircase", "five levels low to high, a soak at each", soak,
+                soak_range(ramping(std::abs(limits.start_c - limits.low_c) + span), 5), false, limits.start_c};
   stairs.kind = Recipe::Kind::staircase;
   out.push_back(stairs);
   for (int cycles : {1, 2}) {
-    const double span = limits.high_c - limits.low_c;
     const double path_c = std::abs(limits.start_c - limits.low_c) + 2.0 * cycles * span;
     Recipe tri{cycles == 1 ? "triangle, one cycle" : "triangle, two cycles",
                "continuous ramps low-high-low (Niu et al., Sensors 13(9):12192, 2013)",
-               path_c / (longest / 60.0), limits.max_rate_c_per_min, true, limits.start_c};
+               std::min(limits.max_rate_c_per_min, path_c / (longest / 60.0)), limits.max_rate_c_per_min, true,
+               limits.start_c};
     tri.kind = Recipe::Kind::triangle;
     tri.cycles = cycles;
     out.push_back(tri);
   }
-  Recipe sine{"sine, two periods", "the set point a sine over the whole range", shortest_sine_period_s(limits),
-              longest / 2.0, false, limits.start_c};
+  const double shortest_period = shortest_sine_period_s(limits);
+  Recipe sine{"sine, two periods", "the set point a sine over the whole range", shortest_period,
+              std::max(shortest_period, (longest - ramping(std::abs(limits.start_c - mid))) / 2.0), false,
+              limits.start_c};
   sine.kind = Recipe::Kind::sine;
   sine.cycles = 2;
   out.push_back(sine);
   Recipe cycle{"soak-and-ramp cycle", "soaks at the start and at high, low, high (the paper's training test)",
-               soak, longest / 4.0, false, limits.start_c};
+               soak, soak_range(ramping(std::abs(limits.start_c - limits.high_c) + 2.0 * span), 4), false,
+               limits.start_c};
   cycle.kind = Recipe::Kind::soak_cycle;
   out.push_back(cycle);
   for (Recipe& r : out) r.limits = limits;

@@ -22,6 +22,7 @@ constexpr int kPatternSweeps = 4;  // pattern-search sweeps over a shape
 bool better(const Candidate& a, const Candidate& b) {
   if (b.precision.se.empty()) return true;  // b: none yet
   if (a.met() != b.met()) return a.met();
+  if (a.fits != b.fits) return a.fits;
   if (a.met()) return a.precision.duration_s < b.precision.duration_s;
   return a.shortfall < b.shortfall;
 }
@@ -29,15 +30,17 @@ bool better(const Candidate& a, const Candidate& b) {
 // Smallest x in [lo, hi] (geometric) whose profile meets the target, with
 // `longer(x)` true when a larger x is a longer test.
 template <class Make>
-SearchOutcome scan(const DesignEvaluator& ev, const std::vector<double>& target, double lo, double hi,
-                   bool larger_is_longer, const Make& make, int steps = kScanSteps) {
+SearchOutcome scan(const DesignEvaluator& ev, const std::vector<double>& target, double longest_s, double lo,
+                   double hi, bool larger_is_longer, const Make& make, int steps = kScanSteps) {
   SearchOutcome out;
   out.best.shortfall = std::numeric_limits<double>::infinity();
+  if (!(hi > lo)) steps = 0;  // one length only
   auto at = [&](double x) {
     Candidate c;
     c.profile = make(x);
     c.precision = ev.precision(c.profile);
     c.shortfall = shortfall(c.precision, target);
+    c.fits = c.precision.duration_s <= longest_s * (1.0 + 1e-9);
     ++out.evaluations;
     if (better(c, out.best)) out.best = c;
     return c.met();
@@ -49,7 +52,7 @@ SearchOutcome scan(const DesignEvaluator& ev, const std::vector<double>& target,
   };
   double previous = -1.0;
   for (int k = 0; k <= steps; ++k) {
-    const double f = static_cast<double>(k) / steps;
+    const double f = steps == 0 ? 0.0 : static_cast<double>(k) / steps;
     if (!at(point(f))) {
       previous = f;
       continue;
@@ -90,15 +93,16 @@ SearchOutcome plan_family(const DesignEvaluator& ev, const RigLimits& limits, co
     for (double u : shape) sum += u;
     SearchOutcome o;
     if (sum == 0.0) {
-      o = scan(ev, target, 1.0, 1.0, true, [&](double s) { return make(shape, s); });
+      o = scan(ev, target, limits.longest_s, 1.0, 1.0, true, [&](double s) { return make(shape, s); });
     } else {
       const double hi = std::max(min_scale, (limits.longest_s - ramps_s) / sum);
       const double lo = std::min(min_scale, hi);
       if (around > 0.0)
-        o = scan(ev, target, std::clamp(around / kLocalReach, lo, hi), std::clamp(around * kLocalReach, lo, hi), true,
-                 [&](double s) { return make(shape, s); }, kLocalSteps);
+        o = scan(ev, target, limits.longest_s, std::clamp(around / kLocalReach, lo, hi),
+                 std::clamp(around * kLocalReach, lo, hi), true, [&](double s) { return make(shape, s); },
+                 kLocalSteps);
       else
-        o = scan(ev, target, lo, hi, true, [&](double s) { return make(shape, s); });
+        o = scan(ev, target, limits.longest_s, lo, hi, true, [&](double s) { return make(shape, s); });
     }
     total.evaluations += o.evaluations;
     if (better(o.best, total.best)) total.best = o.best;
@@ -112,6 +116,7 @@ SearchOutcome plan_family(const DesignEvaluator& ev, const RigLimits& limits, co
     for (double u : shape) largest = std::max(largest, u);
     return largest > 0.0 && longest_soak > 0.0 ? longest_soak / largest : 0.0;
   };
+  shortest(std::vector<double>(static_cast<std::size_t>(legs), 0.0));  // turning at once (kept in total)
   std::vector<double> shape(static_cast<std::size_t>(legs), 1.0);
   SearchOutcome current = shortest(shape);
   for (int sweep = 0; sweep < kPatternSweeps; ++sweep) {
@@ -154,7 +159,7 @@ double shortfall(const Precision& p, const std::vector<double>& target) {
 
 SearchOutcome shortest_recipe(const DesignEvaluator& evaluator, const Recipe& recipe,
                               const std::vector<double>& target) {
-  return scan(evaluator, target, recipe.x_min, recipe.x_max, !recipe.x_is_rate,
+  return scan(evaluator, target, recipe.limits.longest_s, recipe.x_min, recipe.x_max, !recipe.x_is_rate,
               [&](double x) { return recipe.profile(x); });
 }
 

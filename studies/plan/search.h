@@ -20,7 +20,9 @@
 // minimum soak lengthened to it, u_i = 0 turning at once) the shortest scale
 // s is found as for a recipe; the shape is improved by a pattern search
 // (each soak doubled, halved or removed in turn, the best move kept, until
-// none shortens the test). Every family runs on its own thread.
+// none shortens the test); each family also tries turning at once at every
+// end (all soaks 0). A candidate longer than the longest test allowed never
+// meets the target. Every family runs on its own thread.
 
 #include <cstddef>
 #include <functional>
@@ -40,7 +42,8 @@ struct Candidate {
   ChamberProfile profile;
   Precision precision;
   double shortfall = 0;
-  bool met() const { return shortfall <= 1.0; }
+  bool fits = true;  // no longer than the longest test allowed
+  bool met() const { return fits && shortfall <= 1.0; }
 };
 
 struct SearchOutcome {
