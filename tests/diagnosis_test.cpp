@@ -246,8 +246,9 @@ TEST(Diagnosis, AConfoundedCandidateIsExplainedByItsOwnGroup) {
 
 // The plan command from a made-up diagnosis: the intercept and the model's
 // own terms left out of --separate, a member's parameter as --param, the
-// sizes from the first round, the range rounded outward to 5 °C; none when
-// one member is left, or when the group did not pass the test.
+// sizes from the first round, the range rounded outward to 5 °C; a member
+// alone with the model's terms still gets one (plan tells it from them);
+// none when no member is left, or when the group did not pass the test.
 TEST(Diagnosis, ThePlanCommandSeparatesTheGroupsOtherMembers) {
   const std::vector<const fit::Term*> model = fit::parse_formula("T + dT");
   fit::PreparedData data;
@@ -268,7 +269,14 @@ TEST(Diagnosis, ThePlanCommandSeparatesTheGroupsOtherMembers) {
   EXPECT_EQ(plan_command(d, model, data),
             "gyrotherm plan --model 'T + dT' --separate 't=0.05,lag=0.031,T^3=-2e-07' --param lag=1200 --range -5,45");
   d.candidates.front().confounded_with = {"1", "T"};
-  EXPECT_EQ(plan_command(d, model, data), "") << "t alone is left";
+  EXPECT_EQ(plan_command(d, model, data), "gyrotherm plan --model 'T + dT' --separate t=0.05 --range -5,45")
+      << "t alone is left: told apart from T";
+  const CandidateReport model_term = report("T^3", -2e-7);
+  d.candidates.front() = model_term;
+  d.candidates.front().group_significant = true;
+  d.candidates.front().confounded_with = {"1", "T"};
+  EXPECT_EQ(plan_command(d, fit::parse_formula("T + dT + T^3"), data), "") << "no member left";
+  d.candidates.front() = front;
   d.candidates.front().confounded_with = {"lag"};
   d.candidates.front().group_significant = false;
   EXPECT_EQ(plan_command(d, model, data), "") << "the group did not pass";

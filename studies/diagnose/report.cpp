@@ -68,7 +68,7 @@ std::optional<PlanSuggestion> plan_suggestion(const Diagnosis& d, const std::vec
     p.separate.emplace_back(name, known ? first->coefficient : std::nan(""));
     if (t->parameter && known && std::isfinite(first->parameter)) p.param.emplace_back(name, first->parameter);
   }
-  if (p.separate.size() < 2) return std::nullopt;
+  if (p.separate.empty()) return std::nullopt;  // one member left: told apart from the model's terms
   const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
   p.low_c = kPlanRangeStepC * std::floor(*lo / kPlanRangeStepC);
   p.high_c = std::max(p.low_c + kPlanRangeStepC, kPlanRangeStepC * std::ceil(*hi / kPlanRangeStepC));

@@ -44,8 +44,9 @@ struct DiagnoseReport {
 // --param: a member's fitted nonlinear parameter (lag's time constant, …).
 // Left out of --separate: "1" (the intercept) and the model's own terms (plan
 // fits every member with the model anyway), a logged column and a step (no
-// test not yet run can say what they will be). "" when fewer than two
-// members are left, or otherwise.
+// test not yet run can say what they will be). One member left (a group
+// with the model's own terms or the intercept): plan separates it from
+// them. "" when none is left, or otherwise.
 // --range: the record's temperatures (window means, °C) rounded outward to
 // this step, a range a chamber is commonly set to; a starting point only, the
 // user sets the chamber's own (the report says so).

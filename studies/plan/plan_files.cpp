@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <memory>
+#include <utility>
 
 #include "sim/config_writer.h"
 #include "sim/profile.h"
@@ -89,11 +91,17 @@ void write_plan_files(PlanResult& r, const PlanSetup& setup, const PrecisionDeta
   r.gyro_file = (dir / "gyro.toml").string();
   r.setpoint_file = (dir / "plan_setpoint.csv").string();
   r.figure_file = (dir / "plan.png").string();
-  plot(r.figure_file, r, detail);  // first: the step most likely to fail (gnuplot)
-  write_file_atomically(r.rig_file, rig);
-  write_file_atomically(r.gyro_file, gyro);
-  write_file_atomically(r.setpoint_file, csv);
-  write_file_atomically(r.scenario_file, scenario);
+  // Every text in a temporary file first; the figure (the step most likely
+  // to fail: gnuplot) next; then the renames, which do not fail on one file
+  // system. A failure before them leaves no file.
+  std::vector<std::unique_ptr<AtomicFile>> files;
+  for (const auto& [path, text] : {std::pair{r.rig_file, &rig}, std::pair{r.gyro_file, &gyro},
+                                   std::pair{r.setpoint_file, &csv}, std::pair{r.scenario_file, &scenario}}) {
+    files.push_back(std::make_unique<AtomicFile>(path));
+    files.back()->stream() << *text;
+  }
+  plot(r.figure_file, r, detail);
+  for (auto& f : files) f->commit();
 }
 
 }  // namespace gyrotherm::studies::plan

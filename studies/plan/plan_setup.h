@@ -17,7 +17,7 @@
 namespace gyrotherm::studies::plan {
 
 struct PlanSetup {
-  sim::Scenario base;  // room, start, initial condition, chamber, seed; 0.2 Hz for the prediction
+  sim::Scenario base;  // room, start, initial condition, chamber, seed (the prediction samples at kPredictionRateHz)
   sim::RigConfig rig;
   sim::GyroConfig gyro;  // the truth --verify simulates (priors as coefficients where it had none)
   PlanNoise noise;
