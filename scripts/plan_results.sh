@@ -17,7 +17,7 @@ run() {  # NAME ARGS...: the transcript and the JSON of one plan
   mv "results/plan/$name.json.tmp" "results/plan/$name.json"
 }
 run paper
-run grad --separate grad=0.0533
+run grad --separate grad=0.005
 run lag --model "T + T^2 + dT + lag" --prior lag=0.01 --param lag=1200 --rel-se lag=0.1
 {
   echo "# gyrotherm plan: the shortest test, and whether it keeps its promise"
@@ -35,7 +35,7 @@ run lag --model "T + T^2 + dT + lag" --prior lag=0.01 --param lag=1200 --rel-se 
     echo
     case $name in
       paper) echo "## The paper's model, each coefficient detected at p < 0.01 with 90 % power (the default)" ;;
-      grad) echo "## The paper's model with \`grad\` (0.0533 °/h per °C) to be told apart from it: \`--separate grad=0.0533\`" ;;
+      grad) echo "## A weak gradient term (\`grad\`, 0.005 °/h per °C) to be told apart from the paper's model: \`--separate grad=0.005\`" ;;
       lag) echo "## A lagged cavity temperature (\`lag\`, 0.01 °/h per °C, τ = 1200 s) to ±10 %" ;;
     esac
     echo
@@ -48,21 +48,29 @@ run lag --model "T + T^2 + dT + lag" --prior lag=0.01 --param lag=1200 --rel-se 
   echo
   echo "## Reading it"
   echo
-  echo "* The promise holds: predicted and achieved standard errors agree within a few per cent for"
-  echo "  every coefficient of the three plans (the aim was ±20 %), under the gyro's coloured noise and"
-  echo "  its temperature-dependent white level: the prediction is the fitter's own least-squares"
-  echo "  sandwich on its own windows, not a white-noise information matrix."
-  echo "* The fits' own intervals cover 91–98 % but are wider than they need be (*reported* up to 2–3×"
-  echo "  *achieved* on the long tests): when a record supports several noise structures alike, ols takes"
-  echo "  the widest (docs/noise.md). The plan's *predicted* is what the test delivers; what a fit will"
-  echo "  *say* about itself is more cautious."
+  echo "* The promise holds: predicted and achieved standard errors agree within 8 % for every"
+  echo "  coefficient of the three plans (the aim was ±20 %; 200 seeds estimate a standard deviation to"
+  echo "  ±5 %), under the gyro's coloured noise and its temperature-dependent white level: the"
+  echo "  prediction is the fitter's own least-squares sandwich on its own windows, not a white-noise"
+  echo "  information matrix. The fits' 95 % intervals cover 92–97.5 %."
+  echo "* The paper's model: 9.2 h against 15.1 h for the best recipe (the paper's own soak-and-ramp"
+  echo "  shape, its soaks searched), 39 % shorter; the warm-up never gets T^2 there. A weak gradient"
+  echo "  (0.005 °/h per °C) is separated from the model in 2.1 h, by no recipe within 72 h."
+  echo "* The fits' own standard errors (*reported*) are 1.1–2.9× *achieved*, most on the long test: when"
+  echo "  a record supports several noise structures alike, ols takes the widest (docs/noise.md). The"
+  echo "  plan's *predicted* is what the test delivers; what a fit says about itself is more cautious."
   echo "* Flicker makes length a poor lever: a longer record adds slow noise, so a recipe can miss a"
-  echo "  target at every length (the warm-up: its T^2 never reaches the target) while the planned profile"
-  echo "  spends its time where the information is — soaks long enough for the slow block to reach the"
-  echo "  ends of the range, ramps for dT."
-  echo "* A nonlinear term (lag) is planned with its time constant pinned to ±10 % (one standard error):"
-  echo "  with ±20 %, a weaker lag (0.002 °/h per °C) came out 25 % more uncertain than predicted, the"
-  echo "  fitted τ wandering; the search now asks for the parameter too."
+  echo "  target at every length while the planned profile spends its time where the information is —"
+  echo "  soaks long enough for the slow block to reach the ends of the range, ramps for dT."
+  echo "* A nonlinear term (lag) is planned with its time constant pinned to ±10 % (one standard error),"
+  echo "  and the strong lag above keeps the promise. A weak one does not quite: lag at 0.002 °/h per °C"
+  echo "  (\`--rel-se lag=0.25\`) gets a 6.2 h plan whose lag's achieved standard error is 1.27× the"
+  echo "  predicted over 200 seeds (2.9e-4 against 2.3e-4; 1.34× with τ pinned to ±20 %, 8.8× with τ"
+  echo "  free): near the noise, the fitted τ wanders beyond the linearisation. Tighter (±5 %) asks more"
+  echo "  than 72 h."
+  echo "* On the default rig a warm-up is not collinear (condition number ≈ 60 at 6 h; the chamber's"
+  echo "  ramp and the block's several time constants break T ∝ dT/dt), but it never reaches the"
+  echo "  paper's T^2."
 } > results/plan.md.tmp
 mv results/plan.md.tmp results/plan.md
 echo "plan: wrote results/plan.md"
