@@ -251,6 +251,21 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   if (!noise_file.empty()) {
     s.noise = noise_of_json(noise_file);
     const nlohmann::ordered_json j = read_json(noise_file, "--noise");
+    // Components the record could not pin down are used at their estimate;
+    // their bound says how much worse the noise could be.
+    if (j.contains("noise_model") && j["noise_model"].is_object() && j["noise_model"].contains("components")) {
+      std::string loose;
+      for (const auto& [name, c] : j["noise_model"]["components"].items())
+        if (c.is_object() && c.value("identified", true) == false && c.contains("interval_95") &&
+            c["interval_95"].is_array() && c["interval_95"].size() == 2 && c["interval_95"][1].is_number() &&
+            c["interval_95"][1].get<double>() > 0.0)
+          loose += fmt::format("{}{} (≤ {:.3g} {})", loose.empty() ? "" : ", ", name,
+                               c["interval_95"][1].get<double>(), c.value("unit", ""));
+      if (!loose.empty())
+        s.notes.push_back(fmt::format("{}'s record did not pin down {}: each is used at its estimate, so the "
+                                      "predicted errors are optimistic where the noise is nearer its bound",
+                                      std::filesystem::path(noise_file).filename().string(), loose));
+    }
     if (j.contains("coefficients") && j["coefficients"].is_object())
       for (std::size_t k = 0; k < s.model.terms.size(); ++k) {
         const std::string name(s.model.terms[k]->name);
