@@ -243,13 +243,7 @@ TEST(DiagnoseBeyond, DriftOnAMonotoneWarmUpCannotBeToldFromTemperature) {
                  "[[segment]]\nkind = \"free\"\nduration_h = 2\n");
   ASSERT_EQ(run_cli(dir, "simulate warm2.toml --hidden t=0.01 -o warm.csv").exit_code, 0);
   const Json j = diagnose_json(dir, "warm.csv");
-  bool grouped = false;
-  for (const Json& g : j["confounded"]) {
-    const auto names = g.get<std::vector<std::string>>();
-    grouped |= std::find(names.begin(), names.end(), "t") != names.end() &&
-               std::find(names.begin(), names.end(), "T") != names.end();
-  }
-  EXPECT_TRUE(grouped) << j["confounding"];
+  EXPECT_TRUE(testing::in_one_group(j["confounded"], "t", "T")) << j["confounding"];
   for (const Json& m : j["missing_effects"])
     if (!m["confounded_with"].empty()) {
       // A member of a group is never significant alone; the group may be.

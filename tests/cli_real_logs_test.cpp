@@ -106,13 +106,7 @@ TEST(RealLogs, PanDiagnosisSaysWhatTheRecordCannotTell) {
     EXPECT_GT(c["noise_floor_dph"].get<double>(), 0.0);
     EXPECT_FALSE(c["noise_floor"]["method"].get<std::string>().empty());
     // Temperature and time cannot be told apart on a cooling-only record.
-    bool time_with_temperature = false;
-    for (const Json& group : c["confounded"]) {
-      const auto names = group.get<std::vector<std::string>>();
-      time_with_temperature |= std::find(names.begin(), names.end(), "t") != names.end() &&
-                               std::find(names.begin(), names.end(), "T") != names.end();
-    }
-    EXPECT_TRUE(time_with_temperature) << c["confounding"];
+    EXPECT_TRUE(testing::in_one_group(c["confounded"], "t", "T")) << c["confounding"];
     std::string notes;
     for (const Json& n : c["confounding"]) notes += n.get<std::string>();
     EXPECT_NE(notes.find("only cools"), std::string::npos) << notes;

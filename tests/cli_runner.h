@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -104,6 +107,16 @@ inline void write_ramp_log(const std::filesystem::path& csv, const std::string& 
     for (const double slope : slopes) out << "," << slope * temp + noise(rng);
     out << "\n";
   }
+}
+
+// Whether diagnose's `confounded` groups put terms a and b in one group.
+inline bool in_one_group(const nlohmann::json& groups, const std::string& a, const std::string& b) {
+  for (const nlohmann::json& g : groups) {
+    const auto names = g.get<std::vector<std::string>>();
+    if (std::find(names.begin(), names.end(), a) != names.end() && std::find(names.begin(), names.end(), b) != names.end())
+      return true;
+  }
+  return false;
 }
 
 inline std::string source_path(const std::string& relative) {

@@ -151,14 +151,9 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
 nlohmann::ordered_json plan_json(const PlanResult& r) {
   using Json = nlohmann::ordered_json;
   auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-  Json j;
-  j["model"] = r.model;
-  j["duration_s"] = r.duration_s;
-  j["scenario_file"] = r.scenario_file;
-  j["setpoint_file"] = r.setpoint_file;
-  j["rig_file"] = r.rig_file;
-  j["gyro_file"] = r.gyro_file;
-  j["figure"] = r.figure_file;
+  Json j = {{"model", r.model},         {"duration_s", r.duration_s},       {"scenario_file", r.scenario_file},
+            {"setpoint_file", r.setpoint_file}, {"rig_file", r.rig_file}, {"gyro_file", r.gyro_file},
+            {"figure", r.figure_file}};
   Json predicted = Json::object(), target = Json::object(), prior = Json::object(), from = Json::object();
   for (const TermPlan& t : r.terms) {
     predicted[t.term] = number(t.predicted_se);

@@ -8,21 +8,8 @@ namespace gyrotherm::studies::plan {
 
 namespace {
 
-sim::Segment ramp(double to_c, double rate_c_per_min) {
-  sim::Segment s;
-  s.kind = sim::SegmentKind::ramp;
-  s.temp_c = to_c;
-  s.rate_c_per_min = rate_c_per_min;
-  return s;
-}
-
-sim::Segment hold(double at_c, double duration_s) {
-  sim::Segment s;
-  s.kind = sim::SegmentKind::hold;
-  s.temp_c = at_c;
-  s.duration_s = duration_s;
-  return s;
-}
+sim::Segment ramp(double to_c, double rate_c_per_min) { return {sim::SegmentKind::ramp, to_c, rate_c_per_min, 0.0, 0}; }
+sim::Segment hold(double at_c, double duration_s) { return {sim::SegmentKind::hold, at_c, 0.0, duration_s, 0}; }
 
 constexpr int kSineSteps = 24;  // ramps per period
 
