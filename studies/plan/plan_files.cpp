@@ -39,7 +39,8 @@ void plot(const std::filesystem::path& png, const PlanResult& r, const Precision
   fig.data("share", names, columns);
   std::string cmd = fmt::format(
       "set multiplot layout 2,1 title 'Planned test: {:.2f} h for B = b0 + {}'\n"
-      "set grid\nset xlabel 'time (h)'\nset ylabel 'temperature (°C)'\nset key outside right\n"
+      "set grid\nset lmargin 10\nset rmargin 20\nset xlabel 'time (h)'\nset ylabel 'temperature (°C)'\n"
+      "set key outside right\n"
       "plot $temps using 1:2 with lines lw 2 dt 2 title 'set point', "
       "$temps using 1:3 with lines lw 1 title 'chamber air', "
       "$temps using 1:4 with lines lw 3 title 'gyro sensor'\n"
