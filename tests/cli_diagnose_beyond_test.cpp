@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -265,6 +267,12 @@ TEST(DiagnoseBeyond, DriftOnAMonotoneWarmUpCannotBeToldFromTemperature) {
   EXPECT_NE(w["verdict"].get<std::string>().find("cannot be told apart"), std::string::npos) << w["verdict"];
   EXPECT_EQ(w["remaining"], "") << w["verdict"];
   EXPECT_EQ(w["verdict"].get<std::string>().find("structure remains"), std::string::npos) << w["verdict"];
+  // A term that could not be fitted in several rounds is named once.
+  std::set<std::string> named;
+  for (const Json& s : w["skipped"]) {
+    const std::string text = s.get<std::string>();
+    EXPECT_TRUE(named.insert(text.substr(0, text.find(' '))).second) << w["skipped"];
+  }
 
   // The test that would separate the group: its members but the intercept
   // and the model's terms, each sized (3 digits) by the model fitted with it

@@ -230,7 +230,7 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
   std::vector<const fit::Term*> current = terms;
   std::vector<double> current_params = d.fit.parameters;
   double current_sigma2 = after2;
-  std::vector<std::string> failed;
+  std::vector<std::pair<std::string, std::string>> failed;  // term, why; each term's first
   for (int round_number = 1; !untried.empty(); ++round_number) {
     if (options.stage)
       options.stage(fmt::format("scoring {} candidates by block cross-validation, round {}", untried.size(),
@@ -284,7 +284,8 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
         round.push_back(c);
         round_params.push_back(params);
       } catch (const InputError& e) {
-        failed.push_back(std::string(term->name) + " (" + e.what() + ")");
+        if (std::none_of(failed.begin(), failed.end(), [&](const auto& f) { return f.first == term->name; }))
+          failed.emplace_back(std::string(term->name), e.what());
       }
     }
     if (round_number == 1) d.first_round = round;  // before resolve_rivals marks groups
@@ -311,10 +312,9 @@ std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData
     untried.erase(std::find(untried.begin(), untried.end(), round[leader].term));
   }
   // Candidates that could not be fitted (collinear with the model, say),
-  // each named once.
-  std::sort(failed.begin(), failed.end());
-  failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
-  for (const std::string& f : failed) d.skipped.push_back(f);
+  // each named once, with the first round's reason (later rounds' differ only
+  // in their condition numbers).
+  for (const auto& [name, why] : failed) d.skipped.push_back(name + " (" + why + ")");
   return steps;
 }
 
