@@ -83,7 +83,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"--model 'T + lag' --rel-se lag=0.2", "no prior value of lag"},
         BadPlan{"--separate missing.json", "--separate missing.json: cannot open the file"},
         BadPlan{"--min-soak 7200 --longest 2", "--min-soak 7200 s is not shorter than --longest 2 h"},
-        BadPlan{"--out marker", "--out marker: is a file, not a folder"}));
+        BadPlan{"--out marker", "--out marker: is a file, not a folder"},
+        BadPlan{"--out marker/sub", "--out marker/sub: marker is not a folder this user can write in"},
+        BadPlan{"--longest 0.1", "--longest 0.1 h: a test needs at least 8 windows"}));
 
 }  // namespace
 }  // namespace gyrotherm

@@ -102,9 +102,15 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   }
   const Eigen::Index l = X.rows();
   Eigen::Index cols = X.cols();
-  if (l < cols + 2) {
-    p.refused = fmt::format("{} windows for {} unknowns", l, cols + 1);
+  if (l < static_cast<Eigen::Index>(m_terms) + 2) {
+    p.refused = fmt::format("{} windows for {} unknowns", l, m_terms + 1);
     return p;
+  }
+  if (l < cols + 2) {  // too few windows for the parameters too: they stay unknown
+    for (std::size_t a : augmented_for) p.log_parameter_se[a] = kInfinity;
+    X.conservativeResize(Eigen::NoChange, static_cast<Eigen::Index>(m_terms));
+    cols = X.cols();
+    augmented_for.clear();
   }
   // Centred and scaled to unit norm: Z = X̃ D⁻¹.
   Eigen::MatrixXd Z = X.rowwise() - X.colwise().mean();

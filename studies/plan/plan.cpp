@@ -67,6 +67,7 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   // The standard recipes at the same limits and target.
   const std::vector<Recipe> recipes = standard_recipes(setup.limits);
   std::optional<Candidate> best_recipe;  // the shortest recipe that meets the target
+  std::string best_recipe_name;
   for (std::size_t i = 0; i < recipes.size(); ++i) {
     report("standard recipes", static_cast<int>(i), static_cast<int>(recipes.size()));
     const SearchOutcome o = shortest_recipe(evaluator, recipes[i], target);
@@ -76,11 +77,17 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
     b.shortfall = o.best.shortfall;
     b.closest_s = o.best.precision.duration_s;
     if (!o.met)
-      b.why = o.best.precision.refused.empty() ? shortfalls(setup.terms, o.best.precision) : o.best.precision.refused;
+      b.why = !o.best.precision.refused.empty() ? o.best.precision.refused
+              : !o.best.fits ? fmt::format("longer than --longest ({})", hours(setup.limits.longest_s))
+                             : shortfalls(setup.terms, o.best.precision);
     r.baselines.push_back(b);
     r.evaluations += o.evaluations;
-    if (o.met && (!best_recipe || o.best.precision.duration_s < best_recipe->precision.duration_s))
+    // The warm-up's cold soak is not counted: it is no plan for a unit that starts warm.
+    if (o.met && recipes[i].kind != Recipe::Kind::warmup &&
+        (!best_recipe || o.best.precision.duration_s < best_recipe->precision.duration_s)) {
       best_recipe = o.best;
+      best_recipe_name = recipes[i].name;
+    }
   }
   report("standard recipes", static_cast<int>(recipes.size()), static_cast<int>(recipes.size()));
 
@@ -89,11 +96,9 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
                                      [&](int done, int total) { report("planning", done, total); });
   // The search's family is not every profile: where a recipe does better, it is the plan.
   if (best_recipe && (!plan.met || best_recipe->precision.duration_s < plan.best.precision.duration_s)) {
-    for (std::size_t i = 0; i < r.baselines.size(); ++i)
-      if (r.baselines[i].met && r.baselines[i].duration_s == best_recipe->precision.duration_s)
-        r.notes.push_back(fmt::format("the planned test is the recipe '{}': no profile of the searched family "
-                                      "(full-range legs at the rate limit) was shorter",
-                                      r.baselines[i].recipe));
+    r.notes.push_back(fmt::format("the planned test is the recipe '{}': no profile of the searched family "
+                                  "(full-range legs at the rate limit) was shorter",
+                                  best_recipe_name));
     plan.best = *best_recipe;
     plan.met = true;
   }
@@ -255,8 +260,10 @@ std::string plan_text(const PlanResult& r) {
   }
   for (const TermPlan& t : r.terms)
     if (!std::isnan(t.parameter_log_se))
-      out += fmt::format("{}'s parameter {:g}: predicted within ±{:.0f} % (one standard error of ln θ)\n", t.term,
-                         t.parameter, 100.0 * t.parameter_log_se);
+      out += std::isfinite(t.parameter_log_se)
+                 ? fmt::format("{}'s parameter {:g}: predicted within ±{:.0f} % (one standard error of ln θ)\n",
+                               t.term, t.parameter, 100.0 * t.parameter_log_se)
+                 : fmt::format("{}'s parameter {:g}: not identified by this test\n", t.term, t.parameter);
   for (const std::string& n : r.notes) out += "note: " + n + "\n";
   out += fmt::format("\nwrote {}, {} (chamber programme), {}, {} and {}\n", r.scenario_file, r.setpoint_file, r.rig_file,
                      r.gyro_file, r.figure_file);

@@ -59,6 +59,10 @@ void plot(const std::filesystem::path& png, const PlanResult& r, const Precision
 
 }  // namespace
 
+// The files, once the folder is there (below).
+void write_into(PlanResult& r, const PlanSetup& setup, const PrecisionDetail& detail,
+                const std::filesystem::path& dir);
+
 std::string setpoint_csv(const ChamberProfile& profile, double step_s) {
   const sim::Profile p(profile.start_c, profile.segments);
   std::vector<double> times;
@@ -75,8 +79,19 @@ std::string setpoint_csv(const ChamberProfile& profile, double step_s) {
 void write_plan_files(PlanResult& r, const PlanSetup& setup, const PrecisionDetail& detail) {
   const std::filesystem::path dir = r.request.out;
   std::error_code ec;
+  const bool made = !std::filesystem::exists(dir, ec);
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--out {}: cannot make the folder ({})", dir.string(), ec.message()));
+  try {
+    write_into(r, setup, detail, dir);
+  } catch (...) {
+    if (made) std::filesystem::remove_all(dir, ec);  // the folder this call made, with nothing in it
+    throw;
+  }
+}
+
+void write_into(PlanResult& r, const PlanSetup& setup, const PrecisionDetail& detail,
+                const std::filesystem::path& dir) {
   const std::string header = header_of(r);
   sim::Scenario sc = setup.base;
   sc.name = "plan";
@@ -99,10 +114,16 @@ void write_plan_files(PlanResult& r, const PlanSetup& setup, const PrecisionDeta
   for (const auto& [path, text] : {std::pair{r.rig_file, &rig}, std::pair{r.gyro_file, &gyro},
                                    std::pair{r.setpoint_file, &csv}, std::pair{r.scenario_file, &scenario}}) {
     files.push_back(std::make_unique<AtomicFile>(path));
-    files.back()->stream() << *text;
+    files.back()->stream() << *text << std::flush;
+    if (!files.back()->stream()) throw InputError(fmt::format("{}: writing failed (disk full?)", path));
   }
-  plot(r.figure_file, r, detail);
+  // The figure to a name of its own, renamed with the rest.
+  const std::filesystem::path figure_partial = r.figure_file + ".partial";
+  TemporaryPath figure_guard(figure_partial);
+  plot(figure_partial, r, detail);
   for (auto& f : files) f->commit();
+  std::filesystem::rename(figure_partial, r.figure_file);
+  figure_guard.release();
 }
 
 }  // namespace gyrotherm::studies::plan

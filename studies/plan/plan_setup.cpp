@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "fit/model/formula.h"
 #include "sim/config_loader.h"
@@ -124,6 +125,12 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     const std::filesystem::path out = rq.out;
     if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec))
       throw InputError(fmt::format("--out {}: is a file, not a folder", rq.out));
+    // The nearest folder that exists must be one, and writable.
+    std::filesystem::path up = out.empty() ? std::filesystem::path(".") : out;
+    while (!up.empty() && !std::filesystem::exists(up, ec)) up = up.parent_path();
+    if (up.empty()) up = ".";
+    if (!std::filesystem::is_directory(up, ec) || ::access(up.c_str(), W_OK) != 0)
+      throw InputError(fmt::format("--out {}: {} is not a folder this user can write in", rq.out, up.string()));
     for (const char* name : {"plan.toml", "rig.toml", "gyro.toml", "plan_setpoint.csv", "plan.png"})
       if (std::filesystem::exists(out / name, ec) && !std::filesystem::is_regular_file(out / name, ec))
         throw InputError(fmt::format("--out {}: {} is there and not a file", rq.out, name));
@@ -169,8 +176,11 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   if (!(rq.min_soak_s >= 0.0)) throw InputError(fmt::format("--min-soak {}: must be >= 0 s", rq.min_soak_s));
   if (!(rq.longest_h > 0.0) || rq.longest_h > 24.0 * 30)
     throw InputError(fmt::format("--longest {}: must be > 0 and at most 720 h", rq.longest_h));
+  if (rq.longest_h * 3600.0 < 800.0)
+    throw InputError(fmt::format("--longest {} h: a test needs at least 8 windows of 100 s (0.23 h)", rq.longest_h));
   if (rq.min_soak_s >= rq.longest_h * 3600.0)
-    throw InputError(fmt::format("--min-soak {} s is not shorter than --longest {} h: no test with a soak fits",
+    throw InputError(fmt::format("--min-soak {} s is not shorter than --longest {} h: a soak would fill the whole "
+                                 "test; give a shorter --min-soak (0 allows turning at once)",
                                  rq.min_soak_s, rq.longest_h));
   s.limits.min_soak_s = rq.min_soak_s;
   s.limits.longest_s = rq.longest_h * 3600.0;
