@@ -16,7 +16,6 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -85,19 +84,13 @@ struct PlanArgs {
   std::string model, range;
   std::map<std::string, double> sizes, params;
 };
-PlanArgs plan_args(const std::string& command) {
+// diagnose --json's `plan`: what its plan_command says, as data.
+PlanArgs plan_args(const Json& plan) {
   PlanArgs a;
-  std::smatch m;
-  if (std::regex_search(command, m, std::regex("--model '([^']*)'"))) a.model = m[1];
-  if (std::regex_search(command, m, std::regex("--range (\\S+)"))) a.range = m[1];
-  if (std::regex_search(command, m, std::regex("--separate '?([^' ]+)"))) {
-    std::stringstream list(m[1].str());
-    for (std::string item; std::getline(list, item, ',');)
-      a.sizes[item.substr(0, item.find('='))] = std::stod(item.substr(item.find('=') + 1));
-  }
-  const std::regex param("--param '?([^=' ]+)=([^' ]+)");
-  for (auto it = std::sregex_iterator(command.begin(), command.end(), param); it != std::sregex_iterator(); ++it)
-    a.params[(*it)[1]] = std::stod((*it)[2]);
+  a.model = plan["model"].get<std::string>();
+  a.range = fmt::format("{:g},{:g}", plan["range_c"][0].get<double>(), plan["range_c"][1].get<double>());
+  for (const auto& [name, size] : plan["separate"].items()) a.sizes[name] = size.get<double>();
+  for (const auto& [name, value] : plan["param"].items()) a.params[name] = value.get<double>();
   return a;
 }
 
@@ -279,7 +272,10 @@ TEST(DiagnoseBeyond, DriftOnAMonotoneWarmUpCannotBeToldFromTemperature) {
   // alone, its parameter (6 digits) likewise, over the record's temperatures
   // rounded outward to 5 °C; the report's next step. t's own coefficient is
   // that fit's, whose 95 % interval holds the hidden drift.
-  const PlanArgs plan = plan_args(w["plan_command"].get<std::string>());
+  ASSERT_TRUE(w.contains("plan")) << w["plan_command"];
+  EXPECT_EQ(w["plan_command"].get<std::string>().rfind("gyrotherm plan --model 'T + T^2 + dT' --separate ", 0), 0u)
+      << w["plan_command"];
+  const PlanArgs plan = plan_args(w["plan"]);
   EXPECT_EQ(plan.model, "T + T^2 + dT") << w["plan_command"];
   std::map<std::string, double> expected;
   std::vector<double> range;  // the record's window-mean temperatures, °C
