@@ -119,6 +119,18 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
         hours(setup.limits.longest_s), setup.limits.low_c, setup.limits.high_c, setup.limits.max_rate_c_per_min,
         setup.limits.min_soak_s, hours(p.duration_s), shortfalls(setup.terms, p), setup.noise.description()));
   }
+  // A chamber is programmed in minutes: soaks rounded up to whole minutes,
+  // kept if the rounded test still meets the target.
+  {
+    Candidate rounded = plan.best;
+    for (sim::Segment& seg : rounded.profile.segments)
+      if (seg.kind == sim::SegmentKind::hold) seg.duration_s = 60.0 * std::ceil(seg.duration_s / 60.0 - 1e-9);
+    rounded.precision = evaluator.precision(rounded.profile);
+    rounded.shortfall = shortfall(rounded.precision, target);
+    rounded.fits = rounded.precision.duration_s <= setup.limits.longest_s * (1.0 + 1e-9);
+    ++r.evaluations;
+    if (rounded.met()) plan.best = rounded;
+  }
   r.profile = plan.best.profile;
   r.duration_s = plan.best.precision.duration_s;
   r.sensor_min_c = plan.best.precision.sensor_min_c;
