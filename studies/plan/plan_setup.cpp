@@ -11,8 +11,6 @@
 
 #include "fit/model/formula.h"
 #include "sim/config_loader.h"
-#include "sim/util/comma_list.h"
-#include "sim/util/fast_number.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies::plan {
@@ -148,11 +146,25 @@ PlanSetup plan_setup(const PlanRequest& rq) {
                                  "scenario with a chamber, e.g. scenarios/cycle.toml",
                                  rq.scenario));
 
+  // A diagnose --json given to --separate: its `plan` (the verdict's group,
+  // each member's size and parameter, the model, the record's range) and its
+  // noise, each where the options do not say otherwise.
+  std::optional<nlohmann::ordered_json> diagnosis;
+  if (rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
+    diagnosis = read_json(rq.separate[0], "--separate");
+    const nlohmann::ordered_json& d = *diagnosis;
+    if (!d.contains("plan") || !d["plan"].is_object() || !d["plan"].contains("separate"))
+      throw InputError(fmt::format("--separate {}: the diagnosis suggests no test ('plan' is absent: no group "
+                                   "of effects it could not tell apart passed its test); name the terms: "
+                                   "--separate A=SIZE,B=SIZE",
+                                   rq.separate[0]));
+  }
+
   // The rig's limits; a diagnosis's range (its record's) where --range is not given.
   std::optional<std::pair<double, double>> range = rq.range_c;
-  if (!range && rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
-    const nlohmann::ordered_json d = read_json(rq.separate[0], "--separate");
-    if (d.contains("plan") && d["plan"].contains("range_c") && d["plan"]["range_c"].is_array() &&
+  if (!range && diagnosis) {
+    const nlohmann::ordered_json& d = *diagnosis;
+    if (d["plan"].contains("range_c") && d["plan"]["range_c"].is_array() &&
         d["plan"]["range_c"].size() == 2 && d["plan"]["range_c"][0].is_number() && d["plan"]["range_c"][1].is_number())
       range = std::pair{d["plan"]["range_c"][0].get<double>(), d["plan"]["range_c"][1].get<double>()};
   }
@@ -201,11 +213,9 @@ PlanSetup plan_setup(const PlanRequest& rq) {
 
   // The model, the group to separate and their priors.
   std::string model_text = rq.model.empty() ? std::string(fit::kDefaultModel) : rq.model;
-  if (rq.model.empty() && rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
-    const nlohmann::ordered_json d = read_json(rq.separate[0], "--separate");
-    if (d.contains("plan") && d["plan"].contains("model") && d["plan"]["model"].is_string())
-      model_text = d["plan"]["model"].get<std::string>();
-  }
+  if (rq.model.empty() && diagnosis && (*diagnosis)["plan"].contains("model") &&
+      (*diagnosis)["plan"]["model"].is_string())
+    model_text = (*diagnosis)["plan"]["model"].get<std::string>();
   s.model_text = model_text;
   for (const fit::Term* t : fit::parse_formula(model_text)) {
     if (fit::is_column_term(t))
@@ -219,15 +229,8 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   std::vector<double> group_size;
   std::string noise_file = rq.noise;
   std::vector<std::pair<std::string, double>> json_params;
-  if (rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
-    // A diagnose --json: its `plan` (the group of the verdict, each member's
-    // size and parameter), and its noise unless --noise gives another.
-    const nlohmann::ordered_json d = read_json(rq.separate[0], "--separate");
-    if (!d.contains("plan") || !d["plan"].is_object() || !d["plan"].contains("separate"))
-      throw InputError(fmt::format("--separate {}: the diagnosis suggests no test ('plan' is absent: no group "
-                                   "of effects it could not tell apart passed its test); name the terms: "
-                                   "--separate A=SIZE,B=SIZE",
-                                   rq.separate[0]));
+  if (diagnosis) {
+    const nlohmann::ordered_json& d = *diagnosis;
     for (const auto& [name, size] : d["plan"]["separate"].items()) {
       group.push_back(name);
       group_size.push_back(size.is_number() ? size.get<double>() : std::nan(""));
@@ -260,7 +263,8 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   s.noise_from_gyro_file = noise_file.empty();
   if (!noise_file.empty()) {
     s.noise = noise_of_json(noise_file);
-    const nlohmann::ordered_json j = read_json(noise_file, "--noise");
+    const nlohmann::ordered_json j = diagnosis && noise_file == rq.separate[0] ? *diagnosis
+                                                                                : read_json(noise_file, "--noise");
     // Components the record could not pin down are used at their estimate;
     // their bound says how much worse the noise could be.
     if (j.contains("noise_model") && j["noise_model"].is_object() && j["noise_model"].contains("components")) {
