@@ -122,12 +122,10 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   // A chamber is programmed in minutes: soaks rounded up to whole minutes,
   // kept if the rounded test still meets the target.
   {
-    Candidate rounded = plan.best;
-    for (sim::Segment& seg : rounded.profile.segments)
+    ChamberProfile minutes = plan.best.profile;
+    for (sim::Segment& seg : minutes.segments)
       if (seg.kind == sim::SegmentKind::hold) seg.duration_s = 60.0 * std::ceil(seg.duration_s / 60.0 - 1e-9);
-    rounded.precision = evaluator.precision(rounded.profile);
-    rounded.shortfall = shortfall(rounded.precision, target);
-    rounded.fits = rounded.precision.duration_s <= setup.limits.longest_s * (1.0 + 1e-9);
+    const Candidate rounded = candidate_of(evaluator, std::move(minutes), target, setup.limits.longest_s);
     ++r.evaluations;
     if (rounded.met()) plan.best = rounded;
   }

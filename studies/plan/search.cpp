@@ -6,6 +6,7 @@
 #include <limits>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 namespace gyrotherm::studies::plan {
 
@@ -36,11 +37,7 @@ SearchOutcome scan(const DesignEvaluator& ev, const std::vector<double>& target,
   out.best.shortfall = std::numeric_limits<double>::infinity();
   if (!(hi > lo)) steps = 0;  // one length only
   auto at = [&](double x) {
-    Candidate c;
-    c.profile = make(x);
-    c.precision = ev.precision(c.profile);
-    c.shortfall = shortfall(c.precision, target);
-    c.fits = c.precision.duration_s <= longest_s * (1.0 + 1e-9);
+    Candidate c = candidate_of(ev, make(x), target, longest_s);
     ++out.evaluations;
     if (better(c, out.best)) out.best = c;
     return c.met();
@@ -145,6 +142,16 @@ SearchOutcome plan_family(const DesignEvaluator& ev, const RigLimits& limits, co
 }
 
 }  // namespace
+
+Candidate candidate_of(const DesignEvaluator& evaluator, ChamberProfile profile, const std::vector<double>& target,
+                       double longest_s) {
+  Candidate c;
+  c.profile = std::move(profile);
+  c.precision = evaluator.precision(c.profile);
+  c.shortfall = shortfall(c.precision, target);
+  c.fits = c.precision.duration_s <= longest_s * (1.0 + 1e-9);
+  return c;
+}
 
 double shortfall(const Precision& p, const std::vector<double>& target) {
   double worst = 0.0;

@@ -46,6 +46,10 @@ struct Candidate {
   bool met() const { return fits && shortfall <= 1.0; }
 };
 
+// A profile's prediction, judged against the target and the longest test.
+Candidate candidate_of(const DesignEvaluator& evaluator, ChamberProfile profile, const std::vector<double>& target,
+                       double longest_s);
+
 struct SearchOutcome {
   bool met = false;
   Candidate best;  // the shortest that meets the target; else the one closest to it
