@@ -1,11 +1,10 @@
 #include "studies/plan/search.h"
 
+#include "sim/util/parallel_for.h"
+
 #include <algorithm>
 #include <cmath>
-#include <future>
 #include <limits>
-#include <mutex>
-#include <thread>
 #include <utility>
 
 namespace gyrotherm::studies::plan {
@@ -176,29 +175,14 @@ SearchOutcome shortest_plan(const DesignEvaluator& evaluator, const RigLimits& l
   for (int legs = 1; legs <= kMostLegs; ++legs)
     for (bool low_first : {true, false}) families.emplace_back(legs, low_first);
   std::vector<SearchOutcome> outcomes(families.size());
-  std::mutex mutex;
-  int done = 0;
-  std::size_t next = 0;
-  auto worker = [&] {
-    for (;;) {
-      std::size_t mine = 0;
-      {
-        const std::lock_guard lock(mutex);
-        if (next >= families.size()) return;
-        mine = next++;
-      }
-      SearchOutcome o = plan_family(evaluator, limits, target, families[mine].first, families[mine].second);
-      const std::lock_guard lock(mutex);
-      outcomes[mine] = std::move(o);
-      ++done;
-      if (progress) progress(done, static_cast<int>(families.size()));
-    }
-  };
-  const unsigned threads = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
-  std::vector<std::future<void>> running;
-  for (unsigned t = 1; t < threads; ++t) running.push_back(std::async(std::launch::async, worker));
-  worker();
-  for (auto& f : running) f.get();
+  parallel_for(
+      families.size(), threads_at_most(2),
+      [&](std::size_t i) {
+        outcomes[i] = plan_family(evaluator, limits, target, families[i].first, families[i].second);
+      },
+      [&](std::size_t done) {
+        if (progress) progress(static_cast<int>(done), static_cast<int>(families.size()));
+      });
   // In family order, whichever thread finished first: the same answer every run.
   SearchOutcome out;
   out.best.shortfall = std::numeric_limits<double>::infinity();

@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <future>
-#include <mutex>
-#include <thread>
 
 #include "fit/pipeline.h"
 #include "sim/simulator.h"
+#include "sim/util/parallel_for.h"
 #include "studies/simulated.h"
 
 namespace gyrotherm::studies::plan {
@@ -17,7 +15,7 @@ namespace {
 constexpr double kZ95 = 1.959963984540054;
 
 struct SeedFit {
-  std::vector<double> b, half_width, lower, upper;
+  std::vector<double> b, lower, upper;
 };
 
 }  // namespace
@@ -27,37 +25,23 @@ VerifyOutcome verify_plan(const sim::Scenario& scenario, const sim::RigConfig& r
                           const std::function<void(int, int)>& progress) {
   const sim::ThermalTrace trace = sim::Simulator(scenario, rig, gyro).run_thermal();
   std::vector<SeedFit> fits(static_cast<std::size_t>(seeds));
-  std::mutex mutex;
-  int next = 0, done = 0;
-  auto worker = [&] {
-    for (;;) {
-      int mine = 0;
-      {
-        const std::lock_guard lock(mutex);
-        if (next >= seeds) return;
-        mine = next++;
-      }
-      sim::Scenario sc = scenario;
-      sc.seed = first_seed + static_cast<std::uint64_t>(mine);
-      const fit::Measurement m = measurement_of(sim::Simulator(sc, rig, gyro).record(trace), scenario.name);
-      const fit::PreparedData data = fit::prepare_data(m, {});
-      const fit::ModelFit f = fit::fit_model(data, terms, fit::find_engine("ols"), {});
-      SeedFit s;
-      s.b = f.coefficients.b;
-      for (const fit::Interval& iv : f.engine.intervals) {
-        s.lower.push_back(iv.lower);
-        s.upper.push_back(iv.upper);
-      }
-      const std::lock_guard lock(mutex);
-      fits[static_cast<std::size_t>(mine)] = std::move(s);
-      ++done;
-      if (progress) progress(done, seeds);
-    }
-  };
-  std::vector<std::future<void>> running;
-  if (std::thread::hardware_concurrency() > 1) running.push_back(std::async(std::launch::async, worker));
-  worker();
-  for (auto& f : running) f.get();
+  parallel_for(
+      fits.size(), threads_at_most(2),
+      [&](std::size_t k) {
+        sim::Scenario sc = scenario;
+        sc.seed = first_seed + k;
+        const fit::Measurement m = measurement_of(sim::Simulator(sc, rig, gyro).record(trace), scenario.name);
+        const fit::ModelFit f = fit::fit_model(fit::prepare_data(m, {}), terms, fit::find_engine("ols"), {});
+        SeedFit& s = fits[k];
+        s.b = f.coefficients.b;
+        for (const fit::Interval& iv : f.engine.intervals) {
+          s.lower.push_back(iv.lower);
+          s.upper.push_back(iv.upper);
+        }
+      },
+      [&](std::size_t done) {
+        if (progress) progress(static_cast<int>(done), seeds);
+      });
 
   VerifyOutcome out;
   out.seeds = seeds;

@@ -3,18 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <set>
-#include <thread>
 
 #include "studies/simulated.h"
 #include "fit/engines/ols.h"
 #include "sim/config_loader.h"
 #include "sim/util/input_error.h"
+#include "sim/util/parallel_for.h"
 #include "sim/util/sha256.h"
 #include "studies/score/spread.h"
 
@@ -216,24 +214,11 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
 std::vector<TrialOutcome> Campaign::run(std::span<const std::size_t> indices, int threads,
                                         ScoreObserver* observer) const {
   std::vector<TrialOutcome> out(indices.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex progress;
-  std::size_t done = 0;
-  auto work = [&] {
-    for (std::size_t i = next++; i < indices.size(); i = next++) {
-      out[i] = run_trial(indices[i]);
-      if (observer != nullptr) {
-        const std::lock_guard lock(progress);
-        observer->on_trial_done(++done, indices.size());
-      }
-    }
-  };
-  const auto helpers = static_cast<std::size_t>(std::max(1, threads)) - 1;
-  {
-    std::vector<std::jthread> pool;
-    for (std::size_t t = 0; t < std::min(helpers, indices.size()); ++t) pool.emplace_back(work);
-    work();
-  }
+  parallel_for(
+      indices.size(), threads, [&](std::size_t i) { out[i] = run_trial(indices[i]); },
+      [&](std::size_t done) {
+        if (observer != nullptr) observer->on_trial_done(done, indices.size());
+      });
   return out;
 }
 
