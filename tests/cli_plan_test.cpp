@@ -85,7 +85,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"--min-soak 7200 --longest 2", "--min-soak 7200 s is not shorter than --longest 2 h"},
         BadPlan{"--out marker", "--out marker: is a file, not a folder"},
         BadPlan{"--out marker/sub", "--out marker/sub: marker is not a folder this user can write in"},
-        BadPlan{"--longest 0.1", "--longest 0.1 h: a test needs at least 8 windows"}));
+        BadPlan{"--longest 0.1", "--longest 0.1 h: a test needs at least 8 windows"},
+        BadPlan{"--tau 0", "--tau 0: must be > 0 s"},
+        BadPlan{"--min-soak -5", "--min-soak -5: must be >= 0 s"},
+        BadPlan{"--model 'T + lag' --se T=1 --param lag=10", "--param lag=10: time_constant_s must lie in [60, 14400]"},
+        BadPlan{"--prior grad=0.1", "--prior grad=0.1: grad is not in the model"},
+        BadPlan{"--separate grad,lag", "--separate grad: no prior value of grad's coefficient"},
+        BadPlan{"--se dT=abc", "--se dT: 'abc' is not a number"}));
 
 }  // namespace
 }  // namespace gyrotherm
