@@ -12,7 +12,7 @@ flags="-fsanitize=address,undefined,fuzzer-no-link -fno-sanitize-recover=undefin
 # -O1 with line tables, as libFuzzer's own documentation builds its targets.
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
-  -DGYROTHERM_FUZZ=ON -DGYROTHERM_BUILD_TESTS=OFF -DGYROTHERM_BUILD_BENCH=OFF \
+  -DGYROTHERM_FUZZ=ON -DGYROTHERM_BUILD_TESTS=OFF -DGYROTHERM_BUILD_BENCH=OFF -DGYROTHERM_PYTHON=OFF \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" > build-fuzz.log 2>&1 || { cat build-fuzz.log; exit 1; }
 cmake --build build-fuzz -j "$(nproc)" --target fuzz_csv fuzz_toml fuzz_formula fuzz_ulog fuzz_dataflash >> build-fuzz.log 2>&1 || { tail -50 build-fuzz.log; exit 1; }
 rm -f build-fuzz.log
