@@ -20,6 +20,10 @@ packages=(
   gnuplot-nox                        # plots
   clang libclang-rt-14-dev           # libFuzzer targets (scripts/fuzz.sh) and their sanitizer runtimes
   time                               # /usr/bin/time for peak memory (scripts/large_input.sh)
+  python3-dev pybind11-dev           # the Python package (python/), for Debian's /usr/bin/python3
+  python3-numpy python3-pandas       # its arrays and DataFrames
+  python3-pytest python3-matplotlib  # its tests and plotting helpers
+  jupyter-nbconvert python3-ipykernel  # the example notebook, executed by the tests
 )
 
 missing=()

@@ -10,9 +10,10 @@
 
 namespace gyrotherm::sim {
 
-SimulationRun simulate_to_files(const SimulateRequest& o) {
+Simulation simulate(const SimulateRequest& o) {
   const auto started = std::chrono::steady_clock::now();
-  SimulationRun run;
+  Simulation s;
+  SimulationRun& run = s.run;
   run.request = o;
   Scenario scenario = load_scenario(o.scenario);
   if (!o.rig.empty()) scenario.rig_file = o.rig;
@@ -23,27 +24,34 @@ SimulationRun simulate_to_files(const SimulateRequest& o) {
   check_scenario_against_rig(scenario, rig, scenario.rig_file);
   for (const std::string& h : o.hidden) apply_hidden_option(gyro, h);
 
-  const Simulator simulator(scenario, rig, gyro);
-  const SimulationResult result = simulator.run();
-  write_simulation(o.output, simulator, result);
-  if (!o.plot.empty()) plot_simulation(o.plot, simulator, result);
-
+  s.simulator = std::make_unique<Simulator>(scenario, rig, gyro);
+  s.result = s.simulator->run();
+  const SimulationResult& result = s.result;
   const auto& temp = result.truth.node(RigDynamics::anode);
   const auto [tmin, tmax] = std::minmax_element(temp.begin(), temp.end());
-  run.scenario = simulator.scenario();
-  run.truth_file = truth_path_for(o.output).string();
+  run.scenario = s.simulator->scenario();
   run.rows = result.rows();
   run.duration_s = result.time_s.back();
   run.gyro_temp_min_c = *tmin;
   run.gyro_temp_max_c = *tmax;
-  run.soak_control_error_c = soak_control_error_c(simulator.scenario(), result.truth);
+  run.soak_control_error_c = soak_control_error_c(s.simulator->scenario(), result.truth);
   run.solver = result.solver;
   run.energy_residual_j = result.energy.residual_j();
   for (const effects::Effect* e : effects::registry())
     if (const double c = gyro.coefficient_of(*e); e->hidden() && c != 0.0)
       run.hidden += fmt::format("{}{}={:g}", run.hidden.empty() ? "" : ", ", e->name, c);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  return run;
+  return s;
+}
+
+SimulationRun simulate_to_files(const SimulateRequest& o) {
+  const auto started = std::chrono::steady_clock::now();
+  Simulation s = simulate(o);
+  write_simulation(o.output, *s.simulator, s.result);
+  if (!o.plot.empty()) plot_simulation(o.plot, *s.simulator, s.result);
+  s.run.truth_file = truth_path_for(o.output).string();
+  s.run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return s.run;
 }
 
 nlohmann::ordered_json simulation_json(const SimulationRun& r) {

@@ -5,6 +5,7 @@
 // the terminal and for --json.
 
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -37,6 +38,17 @@ struct SimulationRun {
   double seconds = 0.0;
 };
 
+// A run in memory: the simulator (its scenario, rig and gyro as used), the
+// record and the summary; request.output and request.plot are not used.
+struct Simulation {
+  std::unique_ptr<Simulator> simulator;
+  SimulationResult result;
+  SimulationRun run;  // truth_file empty
+};
+// Throws InputError on a bad file or option.
+Simulation simulate(const SimulateRequest& request);
+
+// simulate(), then the CSV and its truth (and the figure) written.
 // Throws InputError (nothing written) on a bad file or option.
 SimulationRun simulate_to_files(const SimulateRequest& request);
 // simulate --json: csv, truth, scenario, seed, rows, duration_s, gyro_temp_min_c,

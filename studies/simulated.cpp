@@ -31,7 +31,11 @@ std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON: {}", file.string(), e.what()));
   }
-  if (!j.contains("coefficients") || !j["coefficients"].is_object())
+  return truth_from_json(j, file);
+}
+
+Truth truth_from_json(const nlohmann::json& j, const std::filesystem::path& file) {
+  if (!j.is_object() || !j.contains("coefficients") || !j["coefficients"].is_object())
     throw InputError(fmt::format("{}: expected an object 'coefficients' (term -> value)",
                                  file.string()));
   Truth t;

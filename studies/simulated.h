@@ -27,6 +27,8 @@ struct Truth {
 };
 // The truth beside a CSV written by `gyrotherm simulate`, if there is one.
 std::optional<Truth> load_truth_beside(const std::filesystem::path& csv);
+// The truth in a parsed truth JSON (sim/output.h's truth_json); `file` names it in messages.
+Truth truth_from_json(const nlohmann::json& truth, const std::filesystem::path& file);
 // Relative error (fit − true)/|true| per model term and "1"; terms whose true
 // value is 0 (absent from the truth) are left out.
 std::map<std::string, double> coefficient_errors(const fit::ModelFit& fit, const Truth& truth);

@@ -1,0 +1,85 @@
+"""diagnose, allan, compensate, export, plan, effects, engines against the CLI on the same input."""
+
+import json
+
+import numpy as np
+import pytest
+
+import gyrotherm
+from conftest import CYCLE, cli_json, run_cli, without_timing
+from test_fit import read_csv
+
+
+def test_effects_and_engines_are_the_clis():
+    assert gyrotherm.effects() == json.loads(run_cli("effects", "--json"))
+    assert gyrotherm.engines() == json.loads(run_cli("engines", "--json"))
+
+
+def test_diagnose_is_the_clis(cycle_csv):
+    d = gyrotherm.diagnose(cycle_csv, model="T + T^2 + dT")
+    assert without_timing(d.as_dict()) == cli_json("diagnose", cycle_csv, "--model", "T + T^2 + dT")
+    assert d.missing_effects[0]["term"] == "grad"  # the hidden effect is named first
+    with_it = gyrotherm.diagnose(cycle_csv, model="T + T^2 + dT", add=["grad"])
+    ba = with_it.as_dict()["before_after"]
+    assert with_it.as_dict()["instability_dph"] < ba["instability_before_dph"]
+
+
+def test_diagnose_on_arrays_is_the_files(cycle_csv):
+    a = gyrotherm.diagnose(read_csv(cycle_csv), model="T + T^2 + dT").as_dict()
+    b = gyrotherm.diagnose(cycle_csv, model="T + T^2 + dT").as_dict()
+    assert [m["term"] for m in a["missing_effects"]] == [m["term"] for m in b["missing_effects"]]
+    assert a["instability_dph"] == b["instability_dph"]
+
+
+def test_allan_is_the_clis(cycle_csv, cycle_fit_file):
+    a = gyrotherm.allan(cycle_csv, fit=cycle_fit_file)
+    assert without_timing(a.as_dict()) == cli_json("allan", cycle_csv, "--fit", cycle_fit_file)
+    b = gyrotherm.allan(cycle_csv, taus="decade", ci=0.95)
+    assert without_timing(b.as_dict()) == cli_json("allan", cycle_csv, "--taus", "decade", "--ci", 0.95)
+
+
+def test_allan_with_an_unsaved_fit_and_arrays(cycle_csv, cycle_fit_file):
+    r = gyrotherm.fit(cycle_csv)
+    a = gyrotherm.allan(read_csv(cycle_csv), fit=r).as_dict()
+    b = gyrotherm.allan(cycle_csv, fit=cycle_fit_file).as_dict()
+    assert [s["adev_dph"] for s in a["series"]] == [s["adev_dph"] for s in b["series"]]
+
+
+def test_compensate_is_the_clis(cycle_csv, cycle_fit_file, tmp_path):
+    c = gyrotherm.compensate(cycle_csv, cycle_fit_file, output=tmp_path / "py.csv")
+    cli = cli_json("compensate", cycle_csv, "--fit", cycle_fit_file, "-o", tmp_path / "cli.csv")
+    mine = without_timing(c.as_dict())
+    assert mine.pop("output") == str(tmp_path / "py.csv") and cli.pop("output") == str(tmp_path / "cli.csv")
+    assert mine == cli
+    assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    written = read_csv(tmp_path / "cli.csv")
+    for name in ("model_dph", "compensated_dph"):
+        np.testing.assert_allclose(c.columns[name], written[name], atol=0.51e-9)
+
+
+def test_export_is_the_clis(cycle_csv, cycle_fit_file, tmp_path):
+    e = gyrotherm.export(cycle_fit_file, format="px4", output=tmp_path / "py.params")
+    cli = cli_json("export", cycle_fit_file, "--format", "px4", "-o", tmp_path / "cli.params")
+    mine = without_timing(e.as_dict())
+    for d, name in ((mine, "py.params"), (cli, "cli.params")):
+        assert d.pop("output") == str(tmp_path / name)
+    assert mine == cli
+    strip = lambda p: [l for l in p.read_text().splitlines() if "UTC" not in l]  # the header's date
+    assert strip(tmp_path / "py.params") == strip(tmp_path / "cli.params")
+
+
+def test_export_saves_an_unsaved_fit_beside_its_output(cycle_csv, tmp_path):
+    r = gyrotherm.fit(cycle_csv, model="T + T^2")
+    e = gyrotherm.export(r, format="c", output=tmp_path / "comp.h")
+    assert (tmp_path / "comp.h.fit.json").exists()
+    assert "comp.h.fit.json" in (tmp_path / "comp.h").read_text()
+    assert e.as_dict()["format"] == "c"
+
+
+def test_plan_is_the_clis(tmp_path):
+    kw = ["--model", "T", "--longest", "4", "--range", "0,40"]
+    p = gyrotherm.plan(model="T", longest=4, range="0,40", out=tmp_path / "py")
+    cli = cli_json("plan", *kw, "--out", tmp_path / "cli")
+    mine = without_timing(p.as_dict())
+    assert mine.pop("out") == str(tmp_path / "py") and cli.pop("out") == str(tmp_path / "cli")
+    assert mine == cli
