@@ -287,8 +287,9 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
 }
 }  // namespace
 
-std::vector<SavedFit> load_fits(const std::filesystem::path& file) {
-  const nlohmann::json j = read_json(file);
+std::vector<SavedFit> load_fits(const std::filesystem::path& file) { return load_fits_json(read_json(file), file); }
+
+std::vector<SavedFit> load_fits_json(const nlohmann::json& j, const std::filesystem::path& file) {
   try {
     if (!j.is_object() || !j.contains("channels")) return {load_fit_unchecked(file, j)};
     if (!j["channels"].is_array() || j["channels"].empty())

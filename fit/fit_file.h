@@ -61,5 +61,8 @@ struct SavedFit {
 SavedFit load_fit(const std::filesystem::path& file);
 // Every channel of a fit file: one for a single-channel file.
 std::vector<SavedFit> load_fits(const std::filesystem::path& file);
+// The same, of a fit file's JSON already parsed (a Python FitResult's); `file`
+// names it in messages and as SavedFit::file.
+std::vector<SavedFit> load_fits_json(const nlohmann::json& fit, const std::filesystem::path& file);
 
 }  // namespace gyrotherm::fit

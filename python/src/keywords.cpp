@@ -1,25 +1,49 @@
 #include "python/src/keywords.h"
 
-#include <string>
+#include <fmt/format.h>
 
 #include "sim/util/input_error.h"
+#include "studies/options/allan_options.h"
+#include "studies/options/compensate_options.h"
+#include "studies/options/diagnose_options.h"
+#include "studies/options/export_options.h"
+#include "studies/options/fit_options.h"
+#include "studies/options/plan_options.h"
+#include "studies/options/simulate_options.h"
 
 namespace gyrotherm::python {
 
-// Interim: replaced by the option tables.
-sim::SimulateRequest simulate_request(const Keywords& keywords) {
-  sim::SimulateRequest r;
-  for (const auto& [k, v] : keywords) {
-    if (k == "scenario") r.scenario = v;
-    else if (k == "seed") r.seed = std::stoull(v);
-    else if (k == "hidden") r.hidden.push_back(v);
-    else if (k == "rig") r.rig = v;
-    else if (k == "gyro") r.gyro = v;
-    else if (k == "output") r.output = v;
-    else if (k == "plot") r.plot = v;
-    else throw InputError("unknown option " + k);
+namespace py = pybind11;
+
+Keywords with_data(Keywords keywords, const std::string& name) {
+  keywords.insert(keywords.begin(), {"data", name});
+  return keywords;
+}
+
+py::list option_rows(const std::string& command) {
+  std::vector<studies::OptionInfo> rows;
+  if (command == "fit") rows = studies::list_options(studies::fit_option_table());
+  else if (command == "diagnose") rows = studies::list_options(studies::diagnose_option_table());
+  else if (command == "allan") rows = studies::list_options(studies::allan_option_table());
+  else if (command == "compensate") rows = studies::list_options(studies::compensate_option_table());
+  else if (command == "export") rows = studies::list_options(studies::export_option_table());
+  else if (command == "simulate") rows = studies::list_options(studies::simulate_option_table());
+  else if (command == "plan") rows = studies::list_options(studies::plan_option_table());
+  else
+    throw InputError(fmt::format("options('{}'): expected one of fit, diagnose, allan, compensate, export, "
+                                 "simulate, plan", command));
+  py::list out;
+  for (const studies::OptionInfo& r : rows) {
+    if (r.keyword == "json") continue;  // every result has to_json()
+    py::dict d;
+    d["keyword"] = r.keyword;
+    d["flag"] = r.names;
+    d["help"] = r.help;
+    d["kind"] = std::string(studies::kind_name(r.kind));
+    d["required"] = r.required;
+    out.append(d);
   }
-  return r;
+  return out;
 }
 
 }  // namespace gyrotherm::python

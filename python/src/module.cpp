@@ -36,4 +36,6 @@ PYBIND11_MODULE(_gyrotherm, m) {
   m.def("engines_json", [] { return gyrotherm::fit::engines_json().dump(); },
         "The fitting engines as `gyrotherm engines --json` prints them (a JSON text).");
   gyrotherm::python::add_records(m);
+  gyrotherm::python::add_fitting(m);
+  gyrotherm::python::add_studies(m);
 }

@@ -11,13 +11,15 @@
 #include "python/src/keywords.h"
 #include "sim/output.h"
 #include "sim/simulation_run.h"
+#include "studies/options/simulate_options.h"
 
 namespace gyrotherm::python {
 
 namespace {
 
 py::dict simulate(const Keywords& keywords) {
-  const sim::SimulateRequest request = simulate_request(keywords);
+  const sim::SimulateRequest request =
+      studies::simulate_request(read_keywords(studies::simulate_option_table(), keywords, {"output"}));
   sim::Simulation s;
   {
     py::gil_scoped_release free;

@@ -1,0 +1,90 @@
+#!/usr/bin/python3
+"""gyrotherm.fit on a record already in numpy arrays, against the C++ library's own
+fit of the same arrays (bench_fit's BM_FitTable, reading them from a raw file),
+and the fit's peak memory beyond the arrays.
+
+    PYTHONPATH=build/python /usr/bin/python3 bench/python_fit_bench.py [ROWS] [--json OUT]
+
+The record: 10 Hz, a ±40 °C daily cycle with slow ramps, bias 0.02 °/h/°C ·T
+plus white noise (seeded). Both sides fit `T + T^2 + dT` with ols on the same
+float64 arrays; each is timed REPEATS times and the medians compared. Memory:
+the peak resident set (VmHWM, reset through /proc/self/clear_refs before the fit)
+minus the resident set with the arrays made, in this process.
+"""
+
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+import gyrotherm
+
+REPEATS = 5
+
+
+def record(n, seed=1):
+    t = np.arange(n, dtype=np.float64) * 0.1
+    temp = 10.0 + 40.0 * np.sin(2.0 * np.pi * t / 86400.0)
+    gyro = 1.0 + 0.02 * temp + np.random.default_rng(seed).normal(0.0, 0.05, n)
+    return {"time_s": t, "temp_c": temp, "gyro_dph": gyro}
+
+
+def status_kb(field):
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith(field + ":"):
+                return int(line.split()[1])
+    raise RuntimeError(field)
+
+
+def main():
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    n = int(float(args[0])) if args else 10_000_000
+    out = sys.argv[sys.argv.index("--json") + 1] if "--json" in sys.argv else None
+    data = record(n)
+    arrays_mb = sum(a.nbytes for a in data.values()) / 2**20
+
+    # Peak memory of one fit beyond the arrays.
+    rss_before = status_kb("VmRSS")
+    with open("/proc/self/clear_refs", "w") as f:
+        f.write("5")  # resets VmHWM to the current RSS
+    gyrotherm.fit(data, model="T + T^2 + dT")
+    peak_extra_mb = (status_kb("VmHWM") - rss_before) / 1024.0
+
+    seconds = []
+    for _ in range(REPEATS):
+        start = time.perf_counter()
+        gyrotherm.fit(data, model="T + T^2 + dT")
+        seconds.append(time.perf_counter() - start)
+    python_s = statistics.median(seconds)
+
+    # The C++ library on the same arrays (bench_fit BM_FitTable reads them raw).
+    bench = os.environ.get("GYROTHERM_BENCH_FIT", os.path.join(os.path.dirname(__file__), "..", "build", "bench", "bench_fit"))
+    with tempfile.TemporaryDirectory() as folder:
+        raw = os.path.join(folder, "record.f64")
+        np.stack([data["time_s"], data["temp_c"], data["gyro_dph"]], axis=1).tofile(raw)
+        del data
+        done = subprocess.run([bench, "--benchmark_filter=BM_FitTable$", f"--benchmark_repetitions={REPEATS}",
+                               "--benchmark_format=json"],
+                              env=dict(os.environ, GYROTHERM_BENCH_TABLE=raw), capture_output=True, text=True, check=True)
+    runs = [b for b in json.loads(done.stdout)["benchmarks"] if b.get("run_type") == "iteration"]
+    unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
+    cpp_s = statistics.median(b["real_time"] * unit[b["time_unit"]] for b in runs)
+
+    result = {"rows": n, "arrays_mb": round(arrays_mb, 1), "python_fit_s": round(python_s, 3),
+              "cpp_fit_s": round(cpp_s, 3), "ratio": round(python_s / cpp_s, 3),
+              "peak_beyond_arrays_mb": round(peak_extra_mb, 1), "repeats": REPEATS}
+    print(json.dumps(result, indent=2))
+    if out:
+        with open(out, "w") as f:
+            json.dump(result, f, indent=2)
+            f.write("\n")
+
+
+if __name__ == "__main__":
+    main()
