@@ -36,6 +36,7 @@ const std::map<std::string, std::vector<std::string>>& graph() {
       {"fit", {"fit/engines"}},
       {"studies", {"fit", "sim"}},
       {"app", {"studies"}},
+      {"python", {"studies"}},  // the Python package's extension: beside app, not above it
   };
   return g;
 }
@@ -67,7 +68,7 @@ std::string layer_of(const std::string& path) {
 std::vector<fs::path> sources() {
   std::vector<fs::path> out;
   const fs::path root(GYROTHERM_SOURCE_DIR);
-  for (const char* top : {"sim", "fit", "studies", "app"})
+  for (const char* top : {"sim", "fit", "studies", "app", "python"})
     for (const auto& entry : fs::recursive_directory_iterator(root / top)) {
       const std::string ext = entry.path().extension().string();
       if (entry.is_regular_file() && (ext == ".h" || ext == ".cpp" || ext == ".def"))
