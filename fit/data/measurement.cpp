@@ -1,8 +1,8 @@
 #include "fit/data/measurement.h"
 
 #include "fit/data/autopilot_log.h"
+#include "fit/data/column_reader.h"
 #include "fit/data/csv_dialect.h"
-#include "fit/data/header_units.h"
 
 #include <fmt/format.h>
 
@@ -97,127 +97,29 @@ struct FileCloser {
 
 bool is_blank(std::string_view line) { return trim(line).empty(); }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) {
-    if (!out.empty()) out += ", ";
-    out += n.empty() ? std::string("''") : n;
-  }
-  return out;
-}
+using namespace column_rules;
 
-// The roles a column can play, in the order of Parsed::value.
-enum Role : int { kTime = 0, kTemp = 1, kGyro = 2, kTemp2 = 3, kRoles = 4, kNoRole = -1 };
-
-constexpr std::array<const char*, kRoles> kOptionOf = {"--time-col", "--temp-col", "--gyro-col",
-                                                       "--temp2-col"};
-constexpr std::array<const char*, kRoles> kWhatOf = {"time", "temperature", "gyro",
-                                                     "second temperature"};
-
-// Values no instrument produces: a guard against a wrong column or unit, and
-// against numbers whose squares overflow in the fit.
-std::string out_of_range(Role role, double v) {
-  switch (role) {
-    case kTemp:
-    case kTemp2:
-      if (v < -273.15 || v > 1000.0)
-        return fmt::format("{:g} is not a temperature in °C (expected -273.15..1000)", v);
-      return {};
-    case kGyro:
-      if (std::abs(v) > 1e9)
-        return fmt::format("{:g} °/h is beyond any gyro's range (|value| <= 1e9 °/h expected; "
-                           "is the unit right?)",
-                           v);
-      return {};
-    case kTime:
-      if (std::abs(v) > 1e12)
-        return fmt::format("{:g} s is not a plausible time (|value| <= 1e12 s expected)", v);
-      return {};
-    default:
-      return {};
-  }
-}
-
-class CsvParser {
+// A CSV's lines (or an autopilot log's samples) read by the column rules.
+class CsvParser : public ColumnReader {
  public:
-  CsvParser(const fs::path& file, const ColumnMap& map) : name_(file.string()), map_(map) {
-    map_.units.validate();
-    map_.csv.validate();
-    csv_ = map_.csv;
-    use_units(map_.units);
-  }
+  CsvParser(const fs::path& file, const ColumnMap& map) : ColumnReader(file.string(), map, RowNaming::line) {}
 
   Measurement read(const fs::path& file);
-  // Streaming: every row goes to `sink` instead of being stored.
-  void set_sink(RowSink sink) { sink_ = std::move(sink); }
-  void set_header_sink(HeaderSink sink) { header_sink_ = std::move(sink); }
-  bool has_temp2() const { return has_temp2_; }
-  std::size_t rows() const { return rows_; }
 
  private:
-  [[noreturn]] void fail(std::size_t line, const std::string& message) const {
-    if (!log_gyro_.empty()) throw InputError(fmt::format("{}: sample {} of {}: {}", name_, line, log_gyro_, message));
-    throw InputError(located(name_, line, message));
-  }
-  void use_units(const Units& u) {
-    units_ = u;
-    time_factor_ = u.time_unit().factor;
-    gyro_factor_ = u.gyro_unit().factor;
-    temp_in_c_ = u.temp_unit().is_base() && u.temp_scale == 1.0 && u.temp_offset == 0.0;
-  }
-  // A value read from the file in the units of units_, in s, °C or °/h.
-  // (Units' arithmetic, with the unit names looked up once.)
-  double convert(Role role, double v) const {
-    switch (role) {
-      case kTime: return v * time_factor_;
-      case kGyro: return units_.gyro_scale * v * gyro_factor_;
-      case kTemp:
-      case kTemp2: return temp_in_c_ ? v : units_.temp_c(v);
-      default: return v;
-    }
-  }
   void parse_header(std::string_view line, std::size_t line_number, Measurement& m);
   void parse_row(std::string_view line, std::size_t line_number, Measurement& m);
-  // The row in values_ (one number per header column, as read): converted,
-  // checked, and stored or handed to the sink.
-  void take_values(std::size_t line_number, Measurement& m);
   // An autopilot log (fit/data/autopilot_log.h) read as the table
   // time_s, temp_c, gyro_x, gyro_y, gyro_z (s, °C, rad/s) of one gyro.
   void read_log(const fs::path& file, const std::string& format, Measurement& m);
   // The time field of a row, in the file's unit or as an ISO 8601 timestamp
   // (seconds since the first row's): "" on success, else what is wrong.
   std::string read_time(std::string_view field, Measurement& m, double& value);
-  void reserve(Measurement& m, std::size_t line_bytes) const;
+  void reserve_for_file(Measurement& m, std::size_t line_bytes) const;
 
-  std::string name_;
-  const ColumnMap& map_;
-  Units units_;  // as resolved against the header
-  double time_factor_ = 1.0, gyro_factor_ = 1.0;
-  bool temp_in_c_ = true;
-  std::vector<int> role_of_column_;              // Role of each header column
   char delimiter_ = ',';
-  CsvDialect csv_;                               // the text's form (none for an autopilot log)
-  std::vector<std::string_view> fields_;         // of the row being read
-  std::vector<double> values_;                   // its numbers, by column
-  std::string log_gyro_;                         // an autopilot log's gyro ("sensor_gyro instance 1")
-  bool iso_time_ = false;                        // the time column holds ISO 8601 timestamps
-  Timestamp time_origin_;                        // the first row's, when it does
-  // Extra columns: header column → its vector in the measurement, and
-  // whether a non-number there is an error (asked for by name) or drops it.
-  struct Extra {
-    std::size_t column;
-    std::string name;
-    bool strict;
-    bool numeric = true;
-  };
-  std::vector<Extra> extras_;
-  std::array<std::size_t, kRoles> column_of_{};  // header column of each role
-  bool has_temp2_ = false;
-  std::size_t rows_ = 0;
-  double last_time_ = 0.0;
-  RowSink sink_;
-  HeaderSink header_sink_;
-  std::size_t header_line_ = 0, first_row_line_ = 0, previous_line_ = 0;
+  std::vector<std::string_view> fields_;  // of the row being read
+  Timestamp time_origin_;                 // the first row's, when the time is ISO 8601
   std::uintmax_t file_bytes_ = 0, header_end_bytes_ = 0;
 };
 
@@ -229,101 +131,20 @@ void CsvParser::parse_header(std::string_view line, std::size_t line_number, Mea
   }
   if (const std::string bad = split_fields(line, delimiter_, fields_); !bad.empty())
     fail(line_number, "the header: " + bad);
-  for (const std::string_view field : fields_) m.columns.push_back(unquote_field(field));
-  const std::vector<std::string>& names = m.columns;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    for (std::size_t j = i + 1; j < names.size(); ++j)
-      if (!names[i].empty() && names[i] == names[j])
-        fail(line_number, fmt::format("column '{}' appears twice in the header (columns {} and {})",
-                                      names[i], i + 1, j + 1));
-
-  role_of_column_.assign(names.size(), kNoRole);
-  const std::array<const std::string*, kRoles> wanted = {&map_.time, &map_.temp, &map_.gyro,
-                                                         &map_.temp2};
-  const std::string& default_temp2 = ColumnMap{}.temp2;
-  for (int role = 0; role < kRoles; ++role) {
-    const std::string& name = *wanted[role];
-    const bool optional = role == kTemp2;
-    const bool explicit_temp2 = optional && name != default_temp2;
-    if (optional && name.empty()) continue;  // temp2 switched off
-    const auto it = std::find(names.begin(), names.end(), name);
-    if (role == kTime && csv_.rate_hz > 0.0) {  // no time column: rows at 1 / rate
-      if (it != names.end())
-        fail(line_number, fmt::format("--rate {:g} Hz is for a log without a time column, but column '{}' "
-                                      "holds the time (drop --rate, or name another column with --time-col)",
-                                      csv_.rate_hz, name));
-      continue;
-    }
-    if (it == names.end()) {
-      if (optional && !explicit_temp2) continue;
-      fail(line_number,
-           fmt::format("no column '{}' (the header has: {}); name the {} column with {}", name,
-                       joined(names), kWhatOf[role], kOptionOf[role]));
-    }
-    const auto column = static_cast<std::size_t>(it - names.begin());
-    if (const int other = role_of_column_[column]; other != kNoRole) {
-      if (optional && !explicit_temp2) continue;  // e.g. --temp-col temp2_c
-      fail(line_number,
-           fmt::format("{} and {} both name column '{}'", kOptionOf[other], kOptionOf[role], name));
-    }
-    role_of_column_[column] = role;
-    column_of_[role] = column;
-    if (optional) has_temp2_ = true;
-  }
-  try {
-    const auto name_of = [&](int role) {
-      const bool absent = (role == kTemp2 && !has_temp2_) || (role == kTime && csv_.rate_hz > 0.0);
-      return absent ? std::string() : names[column_of_[role]];
-    };
-    Units units = resolve_units(map_.units, name_of(kTime), name_of(kTemp), name_of(kGyro), name_of(kTemp2));
-    if (csv_.rate_hz > 0.0) {
-      if (!units.time_unit().is_base())
-        throw InputError(fmt::format("{} gives the time unit {}, but with --rate there is no time column",
-                                     units.time_from, units.time));
-      units.time_from = fmt::format("--rate {:g} Hz, no time column", csv_.rate_hz);
-    }
-    units.layout = csv_.describe(delimiter_);
-    use_units(units);
-  } catch (const InputError& e) {
-    fail(line_number, e.what());
-  }
-  m.units = units_;
-  for (const std::string& name : map_.extra) {
-    const auto it = std::find(names.begin(), names.end(), name);
-    if (it == names.end())
-      fail(line_number, fmt::format("unknown term '{}': neither a known term (see 'gyrotherm "
-                                    "effects') nor step@TIME, nor a column of the log (the header "
-                                    "has: {})",
-                                    name, joined(names)));
-    const auto column = static_cast<std::size_t>(it - names.begin());
-    if (role_of_column_[column] != kNoRole)
-      fail(line_number, fmt::format("column '{}' is the {} column; it cannot be a model term too", name,
-                                    kWhatOf[role_of_column_[column]]));
-    extras_.push_back({column, name, true});
-  }
-  if (map_.other_numeric)
-    for (std::size_t column = 0; column < names.size(); ++column) {
-      const bool taken = role_of_column_[column] != kNoRole ||
-                         std::any_of(extras_.begin(), extras_.end(),
-                                     [&](const Extra& e) { return e.column == column; });
-      if (!taken && !names[column].empty()) extras_.push_back({column, names[column], false});
-    }
-  header_line_ = line_number;
+  std::vector<std::string> names;
+  for (const std::string_view field : fields_) names.push_back(unquote_field(field));
+  resolve_columns(std::move(names), line_number, csv_.describe(delimiter_), m);
 }
 
 // Reserves for the rows the rest of the file probably holds, judged by the
 // length of the first row; bounded by the shortest possible row ("1,2,3\n").
-void CsvParser::reserve(Measurement& m, std::size_t line_bytes) const {
+void CsvParser::reserve_for_file(Measurement& m, std::size_t line_bytes) const {
   if (file_bytes_ <= header_end_bytes_) return;
   const auto remaining = static_cast<std::size_t>(file_bytes_ - header_end_bytes_);
   const std::size_t shortest_row = 2 * role_of_column_.size();
-  const std::size_t rows = std::min(remaining / std::max<std::size_t>(line_bytes + 1, 1),
-                                    remaining / std::max<std::size_t>(shortest_row, 1)) +
-                           1;
-  m.time_s.reserve(rows);
-  m.temp_c.reserve(rows);
-  m.gyro_dph.reserve(rows);
-  if (has_temp2_) m.temp2_c.reserve(rows);
+  reserve(m, std::min(remaining / std::max<std::size_t>(line_bytes + 1, 1),
+                      remaining / std::max<std::size_t>(shortest_row, 1)) +
+                 1);
 }
 
 std::string CsvParser::read_time(std::string_view field, Measurement& m, double& value) {
@@ -382,8 +203,8 @@ void CsvParser::read_log(const fs::path& file, const std::string& format, Measur
                                  name_, contents.format));
   csv_ = CsvDialect{};
   parse_header("time_s,temp_c,gyro_x,gyro_y,gyro_z", 0, m);
-  std::sort(extras_.begin(), extras_.end(), [](const Extra& a, const Extra& b) { return a.column < b.column; });
   log_gyro_ = fmt::format("{} instance {}", gyro->message, instance);
+  naming_ = RowNaming::sample;
   Units u = units_;
   u.gyro_scale = u.temp_scale = 1.0;
   u.temp_offset = 0.0;
@@ -424,70 +245,11 @@ void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measur
   const std::size_t fields = fields_.size();
   if (fields != role_of_column_.size())
     fail(line_number, fmt::format("the row has {} field{}, the header (line {}) has {}", fields,
-                                  fields == 1 ? "" : "s", header_line_, role_of_column_.size()));
-  values_.assign(fields, 0.0);
-  std::size_t next_extra = 0;  // extras_ in header order (see read())
-  for (std::size_t column = 0; column < fields; ++column) {
-    const std::string_view field = fields_[column];
-    for (; next_extra < extras_.size() && extras_[next_extra].column == column; ++next_extra) {
-      Extra& e = extras_[next_extra];
-      if (!e.numeric) continue;
-      const std::string problem = parse_csv_number(field, csv_.decimal_comma, values_[column]);
-      if (!problem.empty()) {
-        if (e.strict) fail(line_number, fmt::format("column {}: {}", e.name, problem));
-        e.numeric = false;  // a column of text, say: not a candidate
-        m.extra.erase(e.name);
-      }
-    }
-    if (const int role = role_of_column_[column]; role != kNoRole) {
-      const std::string problem = role == kTime ? read_time(field, m, values_[column])
-                                                : parse_csv_number(field, csv_.decimal_comma, values_[column]);
-      if (!problem.empty()) fail(line_number, fmt::format("column {}: {}", m.columns[column], problem));
-    }
-  }
-  take_values(line_number, m);
-}
-
-void CsvParser::take_values(std::size_t line_number, Measurement& m) {
-  std::array<double, kRoles> value{};
-  for (const Extra& e : extras_)
-    if (e.numeric && !sink_) m.extra[e.name].push_back(values_[e.column]);
-  for (std::size_t column = 0; column < values_.size(); ++column) {
-    const int role = role_of_column_[column];
-    if (role < 0 || role >= kRoles) continue;  // kNoRole
-    const double read = values_[column];
-    value[role] = convert(static_cast<Role>(role), read);
-    const std::string range = out_of_range(static_cast<Role>(role), value[role]);
-    if (!range.empty())
-      fail(line_number,
-           fmt::format("column {}: {}{}", m.columns[column], range,
-                       read == value[role] ? std::string()
-                                           : fmt::format(" (read {:g}, converted by {})", read, units_.description())));
-  }
-  if (csv_.rate_hz > 0.0) {
-    value[kTime] = static_cast<double>(rows_) / csv_.rate_hz;
-    if (const std::string range = out_of_range(kTime, value[kTime]); !range.empty())
-      fail(line_number, fmt::format("row {} at --rate {:g} Hz: {}", rows_, csv_.rate_hz, range));
-  }
-  if (rows_ == 0 && header_sink_) header_sink_(CsvHeader{m.file, m.units, m.columns, has_temp2_, 0});
-  if (rows_ > 0 && !(value[kTime] > last_time_))
-    fail(line_number,
-         fmt::format("column {}: time {} is not after {} on line {} (time must be strictly "
-                     "increasing{})",
-                     m.columns[column_of_[kTime]], value[kTime], last_time_, previous_line_,
-                     iso_time_ ? "; read as seconds since the first row's timestamp" : ""));
-  last_time_ = value[kTime];
-  if (sink_) {
-    sink_(value[kTime], value[kTemp], value[kGyro], has_temp2_ ? value[kTemp2] : 0.0);
-  } else {
-    m.time_s.push_back(value[kTime]);
-    m.temp_c.push_back(value[kTemp]);
-    m.gyro_dph.push_back(value[kGyro]);
-    if (has_temp2_) m.temp2_c.push_back(value[kTemp2]);
-  }
-  if (rows_ == 0) first_row_line_ = line_number;
-  previous_line_ = line_number;
-  ++rows_;
+                                  fields == 1 ? "" : "s", header_row_, role_of_column_.size()));
+  read_row(line_number, m, [&](std::size_t column, double& value) {
+    return role_of_column_[column] == kTime ? read_time(fields_[column], m, value)
+                                            : parse_csv_number(fields_[column], csv_.decimal_comma, value);
+  });
 }
 
 Measurement CsvParser::read(const fs::path& file) {
@@ -509,7 +271,6 @@ Measurement CsvParser::read(const fs::path& file) {
   if (ec) file_bytes_ = 0;
 
   LineReader reader(handle.get());
-  const auto by_column = [](const Extra& a, const Extra& b) { return a.column < b.column; };
   std::string_view line;
   std::size_t line_number = 0;
   bool seen_comment = false;
@@ -518,31 +279,30 @@ Measurement CsvParser::read(const fs::path& file) {
     if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (is_blank(line)) continue;
-    if (header_line_ == 0) {
+    if (header_row_ == 0) {
       if (line.front() == '#') {
         seen_comment = true;
         continue;
       }
       parse_header(line, line_number, m);
-      std::sort(extras_.begin(), extras_.end(), by_column);
       header_end_bytes_ = reader.consumed_bytes();
       continue;
     }
-    if (rows_ == 0 && !sink_) reserve(m, line.size());
+    if (rows_ == 0 && !sink_) reserve_for_file(m, line.size());
     parse_row(line, line_number, m);
   }
   if (reader.failed()) throw InputError(located(name_, line_number, "cannot read (read error)"));
 
-  if (header_line_ == 0)
+  if (header_row_ == 0)
     throw InputError(located(
         name_, 0,
         fmt::format("{}, expected a header line naming the columns {}, {}, {}",
                     seen_comment ? "no header (only comments and blank lines)" : "empty file",
                     map_.time, map_.temp, map_.gyro)));
   if (rows_ == 0)
-    throw InputError(located(name_, header_line_, "the header is not followed by any data row"));
+    throw InputError(located(name_, header_row_, "the header is not followed by any data row"));
   if (rows_ < 2)
-    throw InputError(located(name_, first_row_line_, "only 1 data row; at least 2 are needed"));
+    throw InputError(located(name_, first_row_, "only 1 data row; at least 2 are needed"));
   return m;
 }
 

@@ -1,6 +1,6 @@
 #include "fit/data/streaming.h"
 
-#include "fit/data/plausibility.h"
+#include "fit/data/one_pass.h"
 
 #include <fmt/format.h>
 
@@ -18,122 +18,12 @@
 #include <utility>
 #include <vector>
 
-#include "fit/data/median.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 namespace {
 
-struct Row {
-  double t, temp, gyro, temp2;
-};
-
-// What the prefix fixes for the rest of the record.
-struct RecordRules {
-  double interval_s = 0;  // Δ
-  double floor_dph = 0;   // s_floor
-  double zero_dph = 0;    // round-off level
-  bool judge = false;     // at least 3 samples (fit/data/outliers.cpp judges none otherwise)
-  bool bursts = false;
-};
-
-// The one-pass preparation: prefix, then filter and averager, one row at a time.
-class OnePassPreparer {
- public:
-  OnePassPreparer(const PipelineOptions& options, std::string file) : o_(options) { d_.file = std::move(file); }
-
-  void set_header(const CsvHeader& header) {
-    has_temp2_ = header.has_temp2;
-    d_.units = header.units;
-  }
-
-  void add(const Row& r) {
-    ++d_.raw_samples;
-    probe_.add(r.t, r.temp, r.gyro);
-    if (!averager_) {
-      prefix_.push_back(r);
-      if (prefix_.size() == kPrefixRows) begin_stream(false);
-      return;
-    }
-    stream(r);
-  }
-
-  PreparedData finish() {
-    if (!averager_) begin_stream(true);
-    if (filter_) filter_->finish([this](const Row& r, bool kept) { judged(r, kept); });
-    d_.series = averager_->finish();
-    d_.averaging = averager_->report();
-    d_.outliers.removed = d_.outliers.times_s.size();
-    d_.outliers.scale_dph =
-        !filter_ || filter_->scales().empty() ? d_.outliers.floor_dph : median_in_place(filter_->scales());
-    check_windows_survive(d_.file, d_.series, *averager_, o_.averaging);
-    d_.derived = derive(d_.series, o_.derivative, o_.derivative_span_s);
-    d_.derivative_span_s = o_.derivative_span_s;
-    d_.cautions = unit_cautions(d_.units, probe_.summary());
-    return std::move(d_);
-  }
-
- private:
-  ReadProbe probe_;  // what the units' plausibility is judged on
-  // The rules from the prefix (the whole record if `whole`), then the prefix
-  // replayed through the filter.
-  void begin_stream(bool whole) {
-    const std::size_t n = prefix_.size();
-    if (n < 2)
-      throw InputError(located(d_.file, 0, fmt::format("{} sample{}: averaging needs at least 2", n,
-                                                       n == 1 ? "" : "s")));
-    std::vector<double> times(n), jumps(n - 1);
-    double largest = std::abs(prefix_[0].gyro);
-    times[0] = prefix_[0].t;
-    for (std::size_t k = 1; k < n; ++k) {
-      times[k] = prefix_[k].t;
-      jumps[k - 1] = std::abs(prefix_[k].gyro - prefix_[k - 1].gyro);
-      largest = std::max(largest, std::abs(prefix_[k].gyro));
-    }
-    rules_.interval_s = median_sample_interval_s(times);
-    rules_.judge = o_.remove_outliers && n >= 3;
-    if (rules_.judge) {
-      rules_.zero_dph = kZeroRelative * largest;
-      rules_.floor_dph = noise_floor_from_jumps(std::move(jumps), rules_.zero_dph);
-    }
-    rules_.bursts = in_bursts(times, rules_.interval_s, o_.averaging);
-    if (rules_.judge)  // the report's scale: as in memory for a record within the prefix, every 1000th sample otherwise
-      filter_.emplace(HampelRule{o_.outliers.threshold, rules_.floor_dph, rules_.zero_dph}, o_.outliers.window_s,
-                      whole ? std::max<std::size_t>(1, n / 10000) : 1000);
-
-    d_.outliers.floor_dph = rules_.floor_dph;
-    try {
-      averager_.emplace(o_.averaging, rules_.interval_s, has_temp2_, rules_.bursts);
-    } catch (const InputError& e) {
-      throw InputError(located(d_.file, 0, e.what()));
-    }
-    std::vector<Row> prefix;
-    prefix.swap(prefix_);  // released when replayed
-    for (const Row& r : prefix) stream(r);
-  }
-
-  void stream(const Row& r) {
-    if (!rules_.judge) {
-      averager_->add(r.t, r.temp, r.gyro, r.temp2, true);
-      return;
-    }
-    filter_->add(r.t, r.gyro, r, [this](const Row& row, bool kept) { judged(row, kept); });
-  }
-
-  // A sample the glitch rule has judged goes to the averager.
-  void judged(const Row& r, bool kept) {
-    if (!kept) d_.outliers.times_s.push_back(r.t);
-    averager_->add(r.t, r.temp, r.gyro, r.temp2, kept);
-  }
-
-  const PipelineOptions& o_;
-  PreparedData d_;
-  bool has_temp2_ = false;
-  std::vector<Row> prefix_;
-  RecordRules rules_;
-  std::optional<WindowAverager> averager_;
-  std::optional<CentredHampel<Row>> filter_;  // the glitch rule (fit/data/hampel.h)
-};
+using one_pass::Row;
 
 // Batches of rows from the reading thread to the preparing one; emptied
 // batches go back to be refilled, so no memory is allocated in the steady state.
@@ -215,7 +105,7 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
   static_assert(sizeof(Row) == 4 * sizeof(double));
   o.outliers.validate();
   o.averaging.validate();
-  OnePassPreparer preparer(o, csv.string());
+  one_pass::Preparer preparer(o, csv.string());
   BatchQueue queue;
   std::thread reader([&] {
     try {

@@ -14,6 +14,7 @@
 #include "sim/util/gnuplot.h"
 #include "sim/util/input_error.h"
 #include "sim/util/format.h"
+#include "studies/record_source.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -255,25 +256,28 @@ void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study)
   fig.render();
 }
 
-std::vector<AllanStudy> run_allan(const AllanRequest& r) {
+namespace {
+
+std::vector<AllanStudy> allan_record(const AllanRequest& r, const RecordSource& source) {
   std::vector<AllanStudy> studies;
   if (!r.fit_file.empty()) {
     // Every channel the fit holds, read with the fit's own columns and units.
     for (const fit::SavedFit& fit : fit::load_fits(r.fit_file)) {
-      const fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
+      fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
+      pipeline.columns = source.fit_columns(pipeline.columns);
       try {
-        studies.push_back(allan_study(fit::read_measurement_csv(r.data, pipeline.columns), &fit, r.options));
+        studies.push_back(allan_study(source.read(pipeline.columns), &fit, r.options));
       } catch (const InputError& e) {
-        throw InputError(fmt::format("{}{} with the fit {}: {}", r.data,
+        throw InputError(fmt::format("{}{} with the fit {}: {}", source.name(),
                                      fit.channel.empty() ? "" : ", channel " + fit.channel, r.fit_file, e.what()));
       }
     }
   } else {
     fit::PipelineOptions pipeline = r.pipeline;
-    pipeline.columns = fit::columns_for(r.data, pipeline.columns);
+    pipeline.columns = source.user_columns(pipeline.columns);
     const std::vector<std::string> channels = fit::parse_channels(pipeline.columns.gyro);
     studies = fit::for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
-      AllanStudy s = allan_study(fit::read_measurement_csv(r.data, p.columns), nullptr, r.options);
+      AllanStudy s = allan_study(source.read(p.columns), nullptr, r.options);
       if (channels.size() > 1) s.channel = channel;
       return s;
     });
@@ -289,6 +293,14 @@ std::vector<AllanStudy> run_allan(const AllanRequest& r) {
     studies[i].plot = png.string();
   }
   return studies;
+}
+
+}  // namespace
+
+std::vector<AllanStudy> run_allan(const AllanRequest& request) { return allan_record(request, RecordSource(request.data)); }
+
+std::vector<AllanStudy> run_allan(const AllanRequest& request, const fit::Table& table) {
+  return allan_record(request, RecordSource(table));
 }
 
 nlohmann::ordered_json allan_json(const std::vector<AllanStudy>& studies) {

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fit/data/measurement.h"
+#include "fit/data/table.h"
 #include "fit/fit_file.h"
 #include "studies/allan/allan_curve.h"
 #include "studies/allan/noise_coefficients.h"
@@ -75,6 +76,11 @@ struct AllanRequest {
   std::string plot;               // a PNG, or ""
 };
 std::vector<AllanStudy> run_allan(const AllanRequest& request);
+// The same on a table of arrays held by the caller (fit/data/table.h), read
+// into memory (fit::read_table; with a fit, by its columns, units and --rate,
+// not its CSV's text form: fit::for_table); request.data is ignored (the
+// studies' data names the table).
+std::vector<AllanStudy> run_allan(const AllanRequest& request, const fit::Table& table);
 // allan --json: one object, or {"channels": [...]}.
 nlohmann::ordered_json allan_json(const std::vector<AllanStudy>& studies);
 // The text of every study, and the figures written.

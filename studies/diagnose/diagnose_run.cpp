@@ -14,6 +14,7 @@
 #include "fit/model/formula.h"
 #include "sim/util/format.h"
 #include "studies/diagnose/diagnose_plots.h"
+#include "studies/record_source.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -104,21 +105,18 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   return out;
 }
 
-}  // namespace
-
-DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
+DiagnoseRun diagnose_record(const DiagnoseRequest& request, const RecordSource& source) {
   DiagnoseRun run;
   run.request = request;
-  run.request.pipeline.columns = fit::columns_for(request.data, request.pipeline.columns);
+  run.request.data = source.name();
+  run.request.pipeline.columns = source.user_columns(request.pipeline.columns);
   const fit::EngineInfo& engine = fit::find_engine(request.engine);
   engine.make(request.settings);  // validates the settings before any work
   const std::vector<std::string> channels = fit::parse_channels(run.request.pipeline.columns.gyro);
   DiagnosisOptions options = request.options;
   options.excluded_columns = channels;  // no gyro channel explains another
   // Progress only where the work is long: a large log, or one streamed.
-  std::error_code size_error;
-  const std::uintmax_t bytes = std::filesystem::file_size(request.data, size_error);
-  const bool large = !size_error && bytes > request.progress_above_bytes;
+  const bool large = source.bytes() > request.progress_above_bytes;
   bool show = false;
   std::size_t channel_index = 0;
   const auto report = [&](const std::string& what, double within) {
@@ -131,14 +129,14 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
         ChannelDiagnosis c;
         c.channel = channel;
         c.pipeline = p;
-        c.streamed = fit::streams(request.data, c.pipeline);
+        c.streamed = source.streams(c.pipeline);
         show = request.progress && (large || c.streamed);
-        report(fmt::format("{}: reading {}", channel, request.data), 0.0);
+        report(fmt::format("{}: reading {}", channel, source.name()), 0.0);
         if (c.streamed) {
-          c.data = fit::prepare_data_streaming(request.data, c.pipeline);
+          c.data = fit::prepare_data_streaming(source.name(), c.pipeline);
         } else {
           c.pipeline.columns.other_numeric = true;
-          c.measurement = fit::read_measurement_csv(request.data, c.pipeline.columns);
+          c.measurement = source.read(c.pipeline.columns);
           c.data = fit::prepare_data(c.measurement, c.pipeline);
         }
         DiagnosisOptions with_stages = options;
@@ -166,6 +164,14 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request) {
                           c.report.before ? &*c.report.before : nullptr);
   }
   return run;
+}
+
+}  // namespace
+
+DiagnoseRun run_diagnose(const DiagnoseRequest& request) { return diagnose_record(request, RecordSource(request.data)); }
+
+DiagnoseRun run_diagnose(const DiagnoseRequest& request, const fit::Table& table) {
+  return diagnose_record(request, RecordSource(table));
 }
 
 nlohmann::ordered_json diagnose_json(const DiagnoseRun& run) {

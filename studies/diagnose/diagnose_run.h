@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fit/data/table.h"
 #include "studies/diagnose/report.h"
 
 namespace gyrotherm::studies {
@@ -55,6 +56,11 @@ struct DiagnoseRun {
 
 // Diagnoses every channel, then draws the figures. Throws InputError on bad input.
 DiagnoseRun run_diagnose(const DiagnoseRequest& request);
+// The same on a table of arrays held by the caller (fit/data/table.h), read
+// into memory (fit::read_table: its other numeric columns are candidates as
+// a log's are); request.data is ignored (the run's copy and the report name
+// the table).
+DiagnoseRun run_diagnose(const DiagnoseRequest& request, const fit::Table& table);
 // diagnose --json: one object (report.h's diagnosis_json), or {"channels": [...]}.
 nlohmann::ordered_json diagnose_json(const DiagnoseRun& run);
 // The five steps for people, a channel after another, and a summary table.

@@ -3,15 +3,18 @@
 #include <fmt/format.h>
 
 #include "fit/channels.h"
-#include "fit/data/streaming.h"
 #include "fit/model/formula.h"
 #include "sim/util/input_error.h"
+#include "studies/record_source.h"
 
 namespace gyrotherm::studies {
 
-CompensateRun run_compensate(const CompensateRequest& o) {
+namespace {
+
+CompensateRun compensate_record(const CompensateRequest& o, const RecordSource& source) {
   CompensateRun run;
   run.request = o;
+  run.request.data = source.name();
   run.fits = fit::load_fits(o.fit_file);
   const std::vector<std::string> gyros = o.columns.gyro.empty() ? std::vector<std::string>{} : fit::parse_channels(o.columns.gyro);
   if (!gyros.empty() && gyros.size() != run.fits.size())
@@ -25,15 +28,15 @@ CompensateRun run_compensate(const CompensateRequest& o) {
     fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
     fit::ColumnMap given = o.columns;
     given.gyro = gyros.empty() ? "" : gyros[channel++];
-    pipeline.columns = pipeline.columns.with(given);
+    pipeline.columns = source.fit_columns(pipeline.columns).with(given);
     pipeline.columns.units.validate();
     if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
     // A log too large to hold, one channel: never held, the output written as
     // it is computed (fit/compensation.h).
-    streamed = run.fits.size() == 1 && fit::streams(o.data, pipeline);
-    fit::Compensation c = streamed ? fit::compensate_streaming(o.data, fit, pipeline, o.output)
-                                   : fit::compensate(fit::read_measurement_csv(o.data, pipeline.columns), fit, pipeline);
-    run.channel_json.push_back(fit::compensation_json(c, fit, pipeline, o.data, o.fit_file, o.output));
+    streamed = run.fits.size() == 1 && source.streams(pipeline);
+    fit::Compensation c = streamed ? fit::compensate_streaming(source.name(), fit, pipeline, o.output)
+                                   : fit::compensate(source.read(pipeline.columns), fit, pipeline);
+    run.channel_json.push_back(fit::compensation_json(c, fit, pipeline, source.name(), o.fit_file, o.output));
     return c;
   });
   if (!o.output.empty() && !streamed) {
@@ -46,6 +49,16 @@ CompensateRun run_compensate(const CompensateRequest& o) {
     }
   }
   return run;
+}
+
+}  // namespace
+
+CompensateRun run_compensate(const CompensateRequest& request) {
+  return compensate_record(request, RecordSource(request.data));
+}
+
+CompensateRun run_compensate(const CompensateRequest& request, const fit::Table& table) {
+  return compensate_record(request, RecordSource(table));
 }
 
 nlohmann::ordered_json compensate_json(const CompensateRun& run) {

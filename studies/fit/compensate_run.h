@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fit/compensation.h"
+#include "fit/data/table.h"
 
 namespace gyrotherm::studies {
 
@@ -32,6 +33,11 @@ struct CompensateRun {
 };
 
 CompensateRun run_compensate(const CompensateRequest& request);
+// The same on a table of arrays held by the caller (fit/data/table.h), read
+// into memory (fit::read_table) with the fit's columns, units and --rate (not
+// its CSV's delimiter or decimal comma: fit::for_table) and request.columns;
+// request.data is ignored (the run's copy and the JSON's data name the table).
+CompensateRun run_compensate(const CompensateRequest& request, const fit::Table& table);
 // compensate --json: one object, or {"channels": [...]}.
 nlohmann::ordered_json compensate_json(const CompensateRun& run);
 std::string compensate_text(const CompensateRun& run);

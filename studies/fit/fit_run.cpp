@@ -4,12 +4,14 @@
 
 #include <fmt/format.h>
 
+#include <functional>
+
 #include "fit/channels.h"
-#include "fit/data/streaming.h"
 #include "fit/fit_file.h"
 #include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
 #include "sim/util/format.h"
+#include "studies/record_source.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -74,28 +76,30 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
   return out;
 }
 
-}  // namespace
-
-FitRun run_fit(const FitRequest& request) {
+// Every channel of `source` fitted; truth() (with one channel only) the
+// simulator's truth to set the fit against.
+FitRun fit_record(const FitRequest& request, const RecordSource& source,
+                  const std::function<std::optional<Truth>()>& truth) {
   FitRun run;
   run.request = request;
+  run.request.data = source.name();
   run.engine = &fit::find_engine(request.engine);
   run.engine->make(request.settings);  // validates the options before any work
   const std::vector<const fit::Term*>& terms = request.terms;
   fit::PipelineOptions pipeline = fit::reading_columns_of(request.pipeline, terms);
-  pipeline.columns = fit::columns_for(request.data, pipeline.columns);
+  pipeline.columns = source.user_columns(pipeline.columns);
   const std::vector<std::string> channels = fit::parse_channels(pipeline.columns.gyro);
   run.channels =
       fit::for_each_channel(channels, pipeline, [&](const std::string& channel, const fit::PipelineOptions& p) {
         ChannelFit c;
         c.channel = channel;
         c.pipeline = p;
-        // Large logs are read once, never held (fit/data/streaming.h).
-        c.data = fit::prepare_csv(request.data, c.pipeline, &c.streamed);
+        // Large logs are read once, never held (fit/data/streaming.h); a table is never copied.
+        c.data = source.prepare(c.pipeline, &c.streamed);
         fit::check_columns(terms, c.data, c.pipeline.columns);
         c.result = fit::fit_model(c.data, terms, *run.engine, request.settings);
         // The simulator's truth belongs to its one gyro column.
-        if (channels.size() == 1) c.truth = load_truth_beside(request.data);
+        if (channels.size() == 1) c.truth = truth();
         c.json = fit::fit_json(c.result, c.data, c.pipeline, request.settings);
         if (c.truth) add_truth(c.json, c.result, *c.truth);
         return c;
@@ -109,6 +113,16 @@ FitRun run_fit(const FitRequest& request) {
   }
   if (!request.output.empty()) write_file_atomically(request.output, run.json);
   return run;
+}
+
+}  // namespace
+
+FitRun run_fit(const FitRequest& request) {
+  return fit_record(request, RecordSource(request.data), [&] { return load_truth_beside(request.data); });
+}
+
+FitRun run_fit(const FitRequest& request, const fit::Table& table, std::optional<Truth> truth) {
+  return fit_record(request, RecordSource(table), [&] { return truth; });
 }
 
 std::string fit_text(const FitRun& run) {

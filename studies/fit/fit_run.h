@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fit/data/table.h"
 #include "fit/pipeline.h"
 #include "studies/simulated.h"
 
@@ -31,7 +32,7 @@ struct ChannelFit {
   fit::PreparedData data;
   fit::ModelFit result;
   std::optional<Truth> truth;
-  bool streamed = false;
+  bool streamed = false;  // prepared by its first kPrefixRows rows' rules: a large log, a long table
   nlohmann::ordered_json json;
 };
 
@@ -45,6 +46,12 @@ struct FitRun {
 // Fits every channel, then writes request.output (atomically) if named.
 // Throws InputError (nothing written) on bad input.
 FitRun run_fit(const FitRequest& request);
+// The same on a table of arrays held by the caller (fit/data/table.h),
+// prepared in one pass straight from its columns (fit::prepare_table);
+// request.data is ignored (the run's copy, the JSON's data.file and the
+// report name the table), and `truth`, when given, is set against a fit of
+// one channel.
+FitRun run_fit(const FitRequest& request, const fit::Table& table, std::optional<Truth> truth = {});
 
 // The report for people: per channel the data, the coefficients with their
 // intervals (and the truth), the instability and the engine's summary; with
