@@ -21,10 +21,11 @@ std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studi
     slot.kind = row.kind;
     if (row.kind == studies::OptionKind::flag) {
       slot.option = command->add_flag(row.names, slot.flag, row.help);
+    } else if (row.kind == studies::OptionKind::list) {
+      slot.option = command->add_option(row.names, slot.list, row.help);
+      slot.option->option_text(row.value_name + (row.required ? " REQUIRED" : ""));
     } else {
-      slot.option = row.kind == studies::OptionKind::list ? command->add_option(row.names, slot.list, row.help)
-                                                          : command->add_option(row.names, slot.text, row.help);
-      slot.option->type_name(row.value_name);
+      slot.option = command->add_option(row.names, slot.text, row.help)->type_name(row.value_name);
     }
     if (row.required) slot.option->required();
   }

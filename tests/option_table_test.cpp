@@ -61,10 +61,13 @@ struct RowCase {
 };
 #define FIELD(expr) [](const auto& o) { return text(o.expr); }
 
+// The cases of a part's rows (e.g. the data options) as cases of the whole.
 template <class O, class Part, class Get>
-void lift(std::vector<RowCase<O>>& into, const std::vector<RowCase<Part>>& cases, Get part) {
+std::vector<RowCase<O>> lift(std::vector<RowCase<O>> into, const std::vector<RowCase<Part>>& cases, Get part) {
   for (const RowCase<Part>& c : cases)
-    into.push_back({c.keyword, c.value, [read = c.read, part](const O& o) { return read(part(o)); }, c.expected});
+    into.push_back({c.keyword, c.value, [read = c.read, part](const O& o) { return read(std::invoke(part, o)); },
+                    c.expected});
+  return into;
 }
 
 template <class O>
@@ -106,19 +109,12 @@ void expect_rows(const OptionTable<O>& table, const std::vector<RowCase<O>>& cas
 }
 
 std::vector<RowCase<fit::ColumnMap>> column_cases() {
-  return {{"time_col", "t", FIELD(time)},
-          {"temp_col", "temp", FIELD(temp)},
-          {"gyro_col", "gx,gy", FIELD(gyro)},
-          {"temp2_col", "far", FIELD(temp2)},
-          {"time_unit", "ms", FIELD(units.time)},
-          {"gyro_unit", "dps", FIELD(units.gyro)},
-          {"temp_unit", "K", FIELD(units.temp)},
-          {"gyro_scale", "0.5", FIELD(units.gyro_scale)},
-          {"temp_scale", "2", FIELD(units.temp_scale)},
-          {"temp_offset", "-3.5", FIELD(units.temp_offset)},
-          {"delimiter", "semicolon", FIELD(csv.delimiter)},
-          {"decimal_comma", "true", FIELD(csv.decimal_comma)},
-          {"imu", "2", FIELD(imu)},
+  return {{"time_col", "t", FIELD(time)}, {"temp_col", "temp", FIELD(temp)}, {"gyro_col", "gx,gy", FIELD(gyro)},
+          {"temp2_col", "far", FIELD(temp2)}, {"time_unit", "ms", FIELD(units.time)},
+          {"gyro_unit", "dps", FIELD(units.gyro)}, {"temp_unit", "K", FIELD(units.temp)},
+          {"gyro_scale", "0.5", FIELD(units.gyro_scale)}, {"temp_scale", "2", FIELD(units.temp_scale)},
+          {"temp_offset", "-3.5", FIELD(units.temp_offset)}, {"delimiter", "semicolon", FIELD(csv.delimiter)},
+          {"decimal_comma", "true", FIELD(csv.decimal_comma)}, {"imu", "2", FIELD(imu)},
           {"rate", "+10", FIELD(csv.rate_hz), "10"}};
 }
 
@@ -128,8 +124,7 @@ std::vector<RowCase<DataOptions>> data_cases(bool with_avg) {
                                              {"keep_outliers", "true", FIELD(keep_outliers)},
                                              {"outlier_threshold", "5", FIELD(outlier_threshold)}};
   if (with_avg) cases.push_back({"avg", "50", FIELD(pipeline.averaging.window_s)});
-  lift(cases, column_cases(), [](const DataOptions& o) -> const auto& { return o.pipeline.columns; });
-  return cases;
+  return lift(cases, column_cases(), [](const DataOptions& o) -> const auto& { return o.pipeline.columns; });
 }
 
 std::vector<RowCase<ModelOptions>> model_cases() {
@@ -144,9 +139,7 @@ TEST(OptionTable, FitRows) {
   std::vector<RowCase<O>> cases = {{"data", "d.csv", FIELD(data)},          {"budget", "-5", FIELD(budget)},
                                    {"target", "1e-3", FIELD(target), "0.001"}, {"option", "a=1|b=2", FIELD(engine_options)},
                                    {"output", "f.json", FIELD(output)},      {"json", "true", FIELD(json)}};
-  lift(cases, model_cases(), [](const O& o) -> const auto& { return o.model; });
-  lift(cases, data_cases(true), [](const O& o) -> const auto& { return o.data_options; });
-  expect_rows(fit_option_table(), cases);
+  expect_rows(fit_option_table(), lift(lift(cases, model_cases(), &O::model), data_cases(true), &O::data_options));
 }
 
 TEST(OptionTable, DiagnoseRows) {
@@ -155,9 +148,7 @@ TEST(OptionTable, DiagnoseRows) {
                                    {"candidates", "+supply_v,-grad", FIELD(candidates)},
                                    {"plots", "figs", FIELD(plots)},
                                    {"json", "true", FIELD(json)}};
-  lift(cases, model_cases(), [](const O& o) -> const auto& { return o.model; });
-  lift(cases, data_cases(true), [](const O& o) -> const auto& { return o.data_options; });
-  expect_rows(diagnose_option_table(), cases);
+  expect_rows(diagnose_option_table(), lift(lift(cases, model_cases(), &O::model), data_cases(true), &O::data_options));
 }
 
 TEST(OptionTable, AllanRows) {
@@ -169,8 +160,7 @@ TEST(OptionTable, AllanRows) {
                                    {"ci", "0.95", FIELD(request.options.confidence)},
                                    {"plot", "a.png", FIELD(request.plot)},
                                    {"json", "true", FIELD(json)}};
-  lift(cases, data_cases(false), [](const O& o) -> const auto& { return o.data_options; });
-  expect_rows(allan_option_table(), cases);
+  expect_rows(allan_option_table(), lift(cases, data_cases(false), &O::data_options));
 }
 
 TEST(OptionTable, CompensateRows) {
@@ -180,62 +170,49 @@ TEST(OptionTable, CompensateRows) {
                                    {"output", "c.csv", FIELD(request.output)},
                                    {"causal", "true", FIELD(request.causal)},
                                    {"json", "true", FIELD(json)}};
-  lift(cases, column_cases(), [](const O& o) -> const auto& { return o.request.columns; });
-  expect_rows(compensate_option_table(), cases);
+  expect_rows(compensate_option_table(),
+              lift(cases, column_cases(), [](const O& o) -> const auto& { return o.request.columns; }));
   // Unset, the columns keep the fit's (ColumnMap::unset()).
   EXPECT_EQ(CompensateCommandOptions{}.request.columns.time, "");
 }
 
 TEST(OptionTable, ExportRows) {
   using O = ExportCommandOptions;
-  expect_rows(export_option_table(), std::vector<RowCase<O>>{{"fit", "f.json", FIELD(request.fit_file)},
-                                                             {"format", "px4", FIELD(request.format)},
-                                                             {"axes", "gz,-,gx", FIELD(request.axes)},
-                                                             {"channel", "gx", FIELD(request.channel)},
-                                                             {"prefix", "my", FIELD(request.prefix)},
-                                                             {"instance", "3", FIELD(request.instance)},
-                                                             {"device_id", "4294967296", FIELD(request.device_id)},
-                                                             {"boot_temp", "-5", FIELD(request.boot_temp_c)},
-                                                             {"drop_unsupported", "true", FIELD(request.drop_unsupported)},
-                                                             {"data", "d.csv", FIELD(request.data)},
-                                                             {"json", "true", FIELD(request.json)},
-                                                             {"output", "p.params", FIELD(request.output)}});
+  expect_rows(export_option_table(),
+              std::vector<RowCase<O>>{
+                  {"fit", "f.json", FIELD(request.fit_file)}, {"format", "px4", FIELD(request.format)},
+                  {"axes", "gz,-,gx", FIELD(request.axes)}, {"channel", "gx", FIELD(request.channel)},
+                  {"prefix", "my", FIELD(request.prefix)}, {"instance", "3", FIELD(request.instance)},
+                  {"device_id", "4294967296", FIELD(request.device_id)}, {"boot_temp", "-5", FIELD(request.boot_temp_c)},
+                  {"drop_unsupported", "true", FIELD(request.drop_unsupported)}, {"data", "d.csv", FIELD(request.data)},
+                  {"json", "true", FIELD(request.json)}, {"output", "p.params", FIELD(request.output)}});
 }
 
 TEST(OptionTable, SimulateRows) {
   using O = SimulateCommandOptions;
-  expect_rows(simulate_option_table(), std::vector<RowCase<O>>{{"scenario", "s.toml", FIELD(request.scenario)},
-                                                               {"rig", "r.toml", FIELD(request.rig)},
-                                                               {"gyro", "g.toml", FIELD(request.gyro)},
-                                                               {"seed", "42", FIELD(request.seed)},
-                                                               {"hidden", "grad=0.02|T^3=1e-7", FIELD(request.hidden)},
-                                                               {"output", "o.csv", FIELD(request.output)},
-                                                               {"plot", "p.png", FIELD(request.plot)},
-                                                               {"json", "true", FIELD(json)}});
+  expect_rows(simulate_option_table(),
+              std::vector<RowCase<O>>{{"scenario", "s.toml", FIELD(request.scenario)}, {"rig", "r.toml", FIELD(request.rig)},
+                                      {"gyro", "g.toml", FIELD(request.gyro)}, {"seed", "42", FIELD(request.seed)},
+                                      {"hidden", "grad=0.02|T^3=1e-7", FIELD(request.hidden)},
+                                      {"output", "o.csv", FIELD(request.output)}, {"plot", "p.png", FIELD(request.plot)},
+                                      {"json", "true", FIELD(json)}});
 }
 
 TEST(OptionTable, PlanRows) {
   using O = PlanCommandOptions;
   expect_rows(plan_option_table(),
-              std::vector<RowCase<O>>{{"model", "T + lag", FIELD(request.model)},
-                                      {"se", "T=1e-3,dT=0.1|lag=2", FIELD(request.se), "T=1e-3|dT=0.1|lag=2"},
-                                      {"rel_se", "0.3", FIELD(request.rel_se)},
-                                      {"separate", "grad,lag=0.1", FIELD(request.separate), "grad|lag=0.1"},
-                                      {"prior", "T=1", FIELD(request.prior)},
-                                      {"param", "lag=1200", FIELD(request.param)},
-                                      {"scenario", "s.toml", FIELD(request.scenario)},
-                                      {"rig", "r.toml", FIELD(request.rig)},
-                                      {"gyro", "g.toml", FIELD(request.gyro)},
-                                      {"noise", "n.json", FIELD(request.noise)},
-                                      {"tau", "1800", FIELD(request.tau_s)},
-                                      {"range", "-20,50", FIELD(range), "-20|50"},
-                                      {"max_rate", "2.5", FIELD(request.max_rate_c_per_min)},
-                                      {"min_soak", "600", FIELD(request.min_soak_s)},
-                                      {"longest", "24", FIELD(request.longest_h)},
-                                      {"out", "p", FIELD(request.out)},
-                                      {"verify", "20", FIELD(request.verify)},
-                                      {"seed", "9", FIELD(request.seed)},
-                                      {"json", "true", FIELD(json)}});
+              std::vector<RowCase<O>>{
+                  {"model", "T + lag", FIELD(request.model)},
+                  {"se", "T=1e-3,dT=0.1|lag=2", FIELD(request.se), "T=1e-3|dT=0.1|lag=2"},
+                  {"rel_se", "0.3", FIELD(request.rel_se)}, {"prior", "T=1", FIELD(request.prior)},
+                  {"separate", "grad,lag=0.1", FIELD(request.separate), "grad|lag=0.1"},
+                  {"param", "lag=1200", FIELD(request.param)}, {"scenario", "s.toml", FIELD(request.scenario)},
+                  {"rig", "r.toml", FIELD(request.rig)}, {"gyro", "g.toml", FIELD(request.gyro)},
+                  {"noise", "n.json", FIELD(request.noise)}, {"tau", "1800", FIELD(request.tau_s)},
+                  {"range", "-20,50", FIELD(range), "-20|50"}, {"max_rate", "2.5", FIELD(request.max_rate_c_per_min)},
+                  {"min_soak", "600", FIELD(request.min_soak_s)}, {"longest", "24", FIELD(request.longest_h)},
+                  {"out", "p", FIELD(request.out)}, {"verify", "20", FIELD(request.verify)},
+                  {"seed", "9", FIELD(request.seed)}, {"json", "true", FIELD(json)}});
   PlanCommandOptions o;  // --range takes its two numbers as one comma list or two values
   row_of(plan_option_table(), "range").set(o, "60");
   row_of(plan_option_table(), "range").set(o, "-40");

@@ -7,28 +7,32 @@
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
+namespace {
+
+using O = AllanCommandOptions;
+
+std::vector<OptionRow<O>> allan_rows() {
+  std::vector<OptionRow<O>> rows = {
+      nested_row("data", "Measurement CSV, or a PX4 ULog / ArduPilot DataFlash log", &O::request, &AllanRequest::data,
+                 true),
+      nested_row("--fit", "Also the output compensated by this saved fit (as compensate --causal), side by side",
+                 &O::request, &AllanRequest::fit_file),
+      field_row<O>("--taus", "τ set: octave (default: 1, 2, 4, … samples), decade, or all", &O::taus),
+      field_row<O>("--tau-max", "Longest τ in seconds (default a quarter of the record; it needs a gap-free stretch of 2τ)",
+                   [](O& o) -> auto& { return o.request.options.tau_max_s; }),
+      field_row<O>("--ci", "Confidence of the intervals, between 0 and 1 (default 0.683, ±1σ)",
+                   [](O& o) -> auto& { return o.request.options.confidence; }),
+      nested_row("--plot", "Write the log-log figure (PNG) with bands and the coefficients read", &O::request,
+                 &AllanRequest::plot),
+      field_row<O>("--json", "Print one JSON object", &O::json)};
+  append_rows(rows, data_option_rows(false), &O::data_options);
+  return rows;
+}
+
+}  // namespace
 
 const OptionTable<AllanCommandOptions>& allan_option_table() {
-  using O = AllanCommandOptions;
-  static const OptionTable<O> table = [] {
-    OptionTable<O> t{"allan", {}};
-    auto& rows = t.rows;
-    rows.push_back(nested_row("data", "Measurement CSV, or a PX4 ULog / ArduPilot DataFlash log", &O::request,
-                              &AllanRequest::data, true));
-    rows.push_back(nested_row("--fit", "Also the output compensated by this saved fit (as compensate --causal), side by side",
-                              &O::request, &AllanRequest::fit_file));
-    rows.push_back(field_row<O>("--taus", "τ set: octave (default: 1, 2, 4, … samples), decade, or all", &O::taus));
-    rows.push_back(field_row<O>("--tau-max",
-                                "Longest τ in seconds (default a quarter of the record; it needs a gap-free stretch of 2τ)",
-                                [](O& o) -> auto& { return o.request.options.tau_max_s; }));
-    rows.push_back(field_row<O>("--ci", "Confidence of the intervals, between 0 and 1 (default 0.683, ±1σ)",
-                                [](O& o) -> auto& { return o.request.options.confidence; }));
-    rows.push_back(nested_row("--plot", "Write the log-log figure (PNG) with bands and the coefficients read",
-                              &O::request, &AllanRequest::plot));
-    rows.push_back(field_row<O>("--json", "Print one JSON object", &O::json));
-    append_rows(rows, data_option_rows(false), &O::data_options);
-    return t;
-  }();
+  static const OptionTable<O> table{"allan", allan_rows()};
   return table;
 }
 

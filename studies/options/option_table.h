@@ -49,7 +49,8 @@ struct OptionRow {
   // Parses one value ("true"/"false" for a flag) into the options; throws
   // InputError naming the option and what was expected.
   std::function<void(Options&, const std::string& value)> set;
-  // The kind of value --help shows ("FLOAT", "INT", "UINT", "TEXT"; "" for a flag).
+  // What --help shows after the names: "FLOAT", "INT", "UINT", "TEXT", for a
+  // list "TEXT ..." (plan's --range: "FLOAT x 2"); "" for a flag.
   std::string value_name;
 };
 
@@ -132,7 +133,7 @@ OptionRow<Options> field_row(std::string names, std::string help, Field field, b
   const std::string name = display_name(names);
   if constexpr (std::is_same_v<T, std::vector<std::string>>) {
     row.kind = OptionKind::list;
-    row.value_name = "TEXT";
+    row.value_name = "TEXT ...";
     row.set = [field](Options& o, const std::string& v) { std::invoke(field, o).push_back(v); };
   } else if constexpr (std::is_same_v<Value, std::string>) {
     row.kind = OptionKind::text;

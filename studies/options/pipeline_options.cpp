@@ -42,24 +42,24 @@ std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
       field_row<C>("--gyro-col", "Name of the gyro output column, or several A,B,C" + is(" (default gyro_dph)"), &C::gyro),
       field_row<C>("--temp2-col", "Name of the far-side temperature column, for the grad term" + is(" (default temp2_c)"),
                    &C::temp2),
-      field_row<C>("--time-unit", unit_help("time column", Quantity::time, "s"), [](C& c) -> auto& { return c.units.time; }),
-      field_row<C>("--gyro-unit", unit_help("gyro column", Quantity::gyro, "dph"), [](C& c) -> auto& { return c.units.gyro; }),
-      field_row<C>("--temp-unit", unit_help("temperature columns", Quantity::temperature, "C"),
-                   [](C& c) -> auto& { return c.units.temp; }),
-      field_row<C>("--gyro-scale", "Multiply the gyro column by K before its unit (raw counts, a logger's scale)" + is(""),
-                   [](C& c) -> auto& { return c.units.gyro_scale; }),
-      field_row<C>("--temp-scale", "Temperature = A x column + B (raw counts): A, before --temp-unit" + is(" (default 1)"),
-                   [](C& c) -> auto& { return c.units.temp_scale; }),
-      field_row<C>("--temp-offset", "Temperature = A x column + B: B" + is(" (default 0)"),
-                   [](C& c) -> auto& { return c.units.temp_offset; }),
-      field_row<C>("--delimiter", "Column delimiter: comma, semicolon, tab or auto" + is(" (default auto: the one the header uses)"),
-                   [](C& c) -> auto& { return c.csv.delimiter; }),
-      field_row<C>("--decimal-comma", "Numbers are written with a decimal comma (20,5)" + is(""),
-                   [](C& c) -> auto& { return c.csv.decimal_comma; }),
+      nested_row("--time-unit", unit_help("time column", Quantity::time, "s"), &C::units, &fit::Units::time),
+      nested_row("--gyro-unit", unit_help("gyro column", Quantity::gyro, "dph"), &C::units, &fit::Units::gyro),
+      nested_row("--temp-unit", unit_help("temperature columns", Quantity::temperature, "C"),
+                 &C::units, &fit::Units::temp),
+      nested_row("--gyro-scale", "Multiply the gyro column by K before its unit (raw counts, a logger's scale)" + is(""),
+                 &C::units, &fit::Units::gyro_scale),
+      nested_row("--temp-scale", "Temperature = A x column + B (raw counts): A, before --temp-unit" + is(" (default 1)"),
+                 &C::units, &fit::Units::temp_scale),
+      nested_row("--temp-offset", "Temperature = A x column + B: B" + is(" (default 0)"),
+                 &C::units, &fit::Units::temp_offset),
+      nested_row("--delimiter", "Column delimiter: comma, semicolon, tab or auto" + is(" (default auto: the one the header uses)"),
+                 &C::csv, &fit::CsvDialect::delimiter),
+      nested_row("--decimal-comma", "Numbers are written with a decimal comma (20,5)" + is(""),
+                 &C::csv, &fit::CsvDialect::decimal_comma),
       field_row<C>("--imu", "The gyro instance of a PX4 ULog or ArduPilot DataFlash log" + is(" (default: the first with a temperature)"),
                    &C::imu),
-      field_row<C>("--rate", "Sample rate in Hz of a log without a time column (row k at k / rate s)" + is(""),
-                   [](C& c) -> auto& { return c.csv.rate_hz; }),
+      nested_row("--rate", "Sample rate in Hz of a log without a time column (row k at k / rate s)" + is(""),
+                 &C::csv, &fit::CsvDialect::rate_hz),
   };
 }
 
@@ -89,6 +89,17 @@ std::vector<const fit::Term*> ModelOptions::terms() const {
   std::string formula = model;
   for (const std::string& a : add) formula += " + " + a;
   return fit::parse_formula(formula);  // refuses a term given twice
+}
+
+ModelRequest model_request(const ModelOptions& model, const DataOptions& data,
+                           const std::function<fit::EngineSettings()>& settings) {
+  ModelRequest r;
+  r.terms = model.terms();
+  const fit::EngineInfo& engine = fit::find_engine(model.engine);  // its errors first, then the settings'
+  r.settings = settings();
+  engine.make(r.settings);
+  r.pipeline = data.resolved();
+  return r;
 }
 
 std::vector<OptionRow<ModelOptions>> model_option_rows(const std::string& add_help) {

@@ -6,6 +6,7 @@
 // command's table.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,5 +47,31 @@ struct ModelOptions {
 
 // --model, --add (`add_help` says what it does for the command), --engine, --seed.
 std::vector<OptionRow<ModelOptions>> model_option_rows(const std::string& add_help);
+
+// What fit and diagnose check, in the command line's order: the terms (the
+// model and --add), the engine's name, its settings (`settings` makes them:
+// fit's --budget, --target and --option are checked there), the engine's
+// options, then the data options.
+struct ModelRequest {
+  std::vector<const fit::Term*> terms;
+  fit::EngineSettings settings;
+  fit::PipelineOptions pipeline;
+};
+ModelRequest model_request(const ModelOptions& model, const DataOptions& data,
+                           const std::function<fit::EngineSettings()>& settings);
+
+// The rows of a command that fits a model to a log (fit, diagnose), in the
+// order its --help lists them: the log (`data`), the model options, the
+// command's own rows, the data options. Options has the members data, model
+// and data_options.
+template <class Options>
+std::vector<OptionRow<Options>> model_command_rows(const std::string& data_help, const std::string& add_help,
+                                                   std::vector<OptionRow<Options>> own) {
+  std::vector<OptionRow<Options>> rows = {field_row<Options>("data", data_help, &Options::data, true)};
+  append_rows(rows, model_option_rows(add_help), &Options::model);
+  rows.insert(rows.end(), own.begin(), own.end());
+  append_rows(rows, data_option_rows(), &Options::data_options);
+  return rows;
+}
 
 }  // namespace gyrotherm::studies

@@ -6,22 +6,19 @@ namespace gyrotherm::studies {
 
 const OptionTable<SimulateCommandOptions>& simulate_option_table() {
   using O = SimulateCommandOptions;
-  static const OptionTable<O> table = [] {
-    OptionTable<O> t{"simulate", {}};
-    const auto row = [&](const char* names, std::string help, auto field, bool required = false) {
-      t.rows.push_back(nested_row(names, std::move(help), &O::request, field, required));
-    };
-    using R = sim::SimulateRequest;
-    row("scenario", "Scenario file (scenarios/*.toml)", &R::scenario, true);
-    row("--rig", "Rig file (overrides the scenario's)", &R::rig);
-    row("--gyro", "Gyro file (overrides the scenario's)", &R::gyro);
-    row("--seed", "Noise seed (overrides the scenario's)", &R::seed);
-    row("--hidden", "Hidden effect TERM=COEF, repeatable; TERM one of " + effects::hidden_names(), &R::hidden);
-    row("-o,--output", "Output CSV (a .truth.json goes beside it)", &R::output, true);
-    row("--plot", "Also draw temperatures and 100 s averages of the output into this PNG", &R::plot);
-    t.rows.push_back(field_row<O>("--json", "Print one JSON object instead of text", &O::json));
-    return t;
-  }();
+  using R = sim::SimulateRequest;
+  static const OptionTable<O> table{
+      "simulate",
+      {nested_row("scenario", "Scenario file (scenarios/*.toml)", &O::request, &R::scenario, true),
+       nested_row("--rig", "Rig file (overrides the scenario's)", &O::request, &R::rig),
+       nested_row("--gyro", "Gyro file (overrides the scenario's)", &O::request, &R::gyro),
+       nested_row("--seed", "Noise seed (overrides the scenario's)", &O::request, &R::seed),
+       nested_row("--hidden", "Hidden effect TERM=COEF, repeatable; TERM one of " + effects::hidden_names(), &O::request,
+                  &R::hidden),
+       nested_row("-o,--output", "Output CSV (a .truth.json goes beside it)", &O::request, &R::output, true),
+       nested_row("--plot", "Also draw temperatures and 100 s averages of the output into this PNG", &O::request,
+                  &R::plot),
+       field_row<O>("--json", "Print one JSON object instead of text", &O::json)}};
   return table;
 }
 
