@@ -1,0 +1,180 @@
+#pragma once
+// The options of a command, declared once (docs/architecture.md, "Where the
+// options live"). A command's table lists per option the names the command
+// line takes ("--avg", "-o,--output", or a positional "data"), the keyword a
+// Python caller writes ("avg", "output", "data"), the help the command line
+// shows (it states the default and the unit), the option's kind, whether it
+// is required, and the function that parses one value into the command's
+// options struct. The command line (app/option_binding.h, with CLI11) and the
+// Python package read the same tables; neither declares an option itself,
+// and the struct's own initialisers are the defaults.
+//
+// A value is always text, as a command line gives it: "100" for a number,
+// "true" or "false" for a flag, one element for a list (a list row's set
+// appends). A value that does not parse is refused with an InputError
+// naming the option, the value and what was expected ("--avg 'abc':
+// expected a number"); the checks that need several options are in each
+// command's request function (e.g. studies/options/fit_options.h).
+//
+// (fit::OptionTable, in fit/engines/engine_options.h, is the other kind of
+// table: an engine's KEY=VALUE options, given to --option.)
+
+#include <charconv>
+#include <concepts>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace gyrotherm::studies {
+
+// list: repeatable, one value each time (the command line also takes
+// several values after one name, as it always has).
+enum class OptionKind { text, number, integer, flag, list };
+// "text", "number", "integer", "flag", "list".
+std::string_view kind_name(OptionKind kind);
+
+template <class Options>
+struct OptionRow {
+  std::string names;    // as CLI11 takes them: "--avg", "-o,--output", or a positional "data"
+  std::string keyword;  // the Python keyword: "avg", "output", "data", "time_col"
+  std::string help;     // the command line's help, unchanged
+  OptionKind kind = OptionKind::text;
+  bool required = false;
+  // Parses one value ("true"/"false" for a flag) into the options; throws
+  // InputError naming the option and what was expected.
+  std::function<void(Options&, const std::string& value)> set;
+  // What --help shows after the names: "FLOAT", "INT", "UINT", "TEXT", for a
+  // list "TEXT ..." (plan's --range: "FLOAT x 2"); "" for a flag.
+  std::string value_name;
+};
+
+template <class Options>
+struct OptionTable {
+  std::string command;  // "fit", for messages
+  std::vector<OptionRow<Options>> rows;
+};
+
+// A row without its setter: the command-line binding and docstrings.
+struct OptionInfo {
+  std::string names, keyword, help;
+  OptionKind kind = OptionKind::text;
+  bool required = false;
+  std::string value_name;
+};
+template <class Options>
+std::vector<OptionInfo> list_options(const OptionTable<Options>& table) {
+  std::vector<OptionInfo> out;
+  for (const OptionRow<Options>& r : table.rows)
+    out.push_back({r.names, r.keyword, r.help, r.kind, r.required, r.value_name});
+  return out;
+}
+
+// "avg" from "--avg", "output" from "-o,--output", "time_col" from "--time-col".
+std::string keyword_of(std::string_view names);
+// The name a message uses: the longest of the names ("--output").
+std::string display_name(std::string_view names);
+
+using KeywordValues = std::vector<std::pair<std::string, std::string>>;
+
+// For each (keyword, value), the row it sets, in order; throws InputError for
+// an unknown keyword ("unknown option 'avgg' for fit; the options are: data,
+// model, …"), a keyword that is not a list given twice, or a required row
+// that is not given.
+std::vector<std::size_t> rows_for_keywords(const std::string& command, const std::vector<OptionInfo>& rows,
+                                           const KeywordValues& given);
+
+// Sets `options` from keyword-value pairs (a Python call's keywords, a list
+// given once per element), with every check of the command line.
+template <class Options>
+void apply_options(const OptionTable<Options>& table, Options& options, const KeywordValues& given) {
+  const std::vector<std::size_t> rows = rows_for_keywords(table.command, list_options(table), given);
+  for (std::size_t k = 0; k < given.size(); ++k) table.rows[rows[k]].set(options, given[k].second);
+}
+
+// The parsers of one value; `option` is the name for the message.
+double parse_number(std::string_view option, const std::string& text);
+bool parse_flag(std::string_view option, const std::string& text);
+// "--seed '-1': expected a whole number >= 0", "--verify '1e99': out of range (a whole number from … to …)".
+[[noreturn]] void reject_whole_number(std::string_view option, const std::string& text, bool is_unsigned,
+                                      bool out_of_range, const std::string& lowest, const std::string& highest);
+template <std::integral Int>
+Int parse_whole(std::string_view option, const std::string& text) {
+  const std::string_view digits = text.starts_with('+') ? std::string_view(text).substr(1) : std::string_view(text);
+  Int value{};
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (error != std::errc() || end != digits.data() + digits.size() || digits.empty())
+    reject_whole_number(option, text, std::is_unsigned_v<Int>, error == std::errc::result_out_of_range,
+                        std::to_string(std::numeric_limits<Int>::lowest()), std::to_string(std::numeric_limits<Int>::max()));
+  return value;
+}
+
+namespace detail {
+template <class T> struct unwrap_optional { using type = T; };
+template <class T> struct unwrap_optional<std::optional<T>> { using type = T; };
+}  // namespace detail
+
+// A row that parses its value into one field, the kind following the field's
+// type: std::string (text), a floating point (number), an integer (integer;
+// an unsigned one refuses a sign), bool (flag), std::optional of one of these
+// (set when given), std::vector<std::string> (list: each value appended).
+// `field` is a member pointer or a callable returning the field.
+template <class Options, class Field>
+OptionRow<Options> field_row(std::string names, std::string help, Field field, bool required = false) {
+  using Ref = std::invoke_result_t<Field, Options&>;
+  using T = std::remove_cvref_t<Ref>;
+  using Value = typename detail::unwrap_optional<T>::type;
+  OptionRow<Options> row{.names = names, .keyword = keyword_of(names), .help = std::move(help), .required = required};
+  const std::string name = display_name(names);
+  if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+    row.kind = OptionKind::list;
+    row.value_name = "TEXT ...";
+    row.set = [field](Options& o, const std::string& v) { std::invoke(field, o).push_back(v); };
+  } else if constexpr (std::is_same_v<Value, std::string>) {
+    row.kind = OptionKind::text;
+    row.value_name = "TEXT";
+    row.set = [field](Options& o, const std::string& v) { std::invoke(field, o) = v; };
+  } else if constexpr (std::is_same_v<Value, bool>) {
+    row.kind = OptionKind::flag;
+    row.set = [field, name](Options& o, const std::string& v) { std::invoke(field, o) = parse_flag(name, v); };
+  } else if constexpr (std::is_floating_point_v<Value>) {
+    row.kind = OptionKind::number;
+    row.value_name = "FLOAT";
+    row.set = [field, name](Options& o, const std::string& v) {
+      std::invoke(field, o) = static_cast<Value>(parse_number(name, v));
+    };
+  } else {
+    static_assert(std::is_integral_v<Value>, "an option is text, a number, a flag or a list of text");
+    row.kind = OptionKind::integer;
+    row.value_name = std::is_unsigned_v<Value> ? "UINT" : "INT";
+    row.set = [field, name](Options& o, const std::string& v) { std::invoke(field, o) = parse_whole<Value>(name, v); };
+  }
+  return row;
+}
+
+// A row for a field of a member: (options.*outer).*inner, e.g. &O::request,
+// &ExportRequest::format.
+template <class Options, class Outer, class Inner, class T>
+OptionRow<Options> nested_row(std::string names, std::string help, Outer Options::*outer, T Inner::*inner,
+                              bool required = false) {
+  return field_row<Options>(std::move(names), std::move(help),
+                            [outer, inner](Options& o) -> T& { return (o.*outer).*inner; }, required);
+}
+
+// The rows of a part (e.g. the data options) as rows of a whole that holds it,
+// `part` returning it: appended to `rows`.
+template <class Whole, class Part, class Get>
+void append_rows(std::vector<OptionRow<Whole>>& rows, const std::vector<OptionRow<Part>>& part_rows, Get part) {
+  for (const OptionRow<Part>& r : part_rows) {
+    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name};
+    w.set = [set = r.set, part](Whole& o, const std::string& v) { set(std::invoke(part, o), v); };
+    rows.push_back(std::move(w));
+  }
+}
+
+}  // namespace gyrotherm::studies
