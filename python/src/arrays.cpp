@@ -27,7 +27,7 @@ py::object numeric_column(const std::string& name, const py::handle& value, std:
   // The same array when it is native float64 and C-contiguous; else a float64 copy.
   auto converted = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
   if (!converted) throw py::error_already_set();
-  return std::move(converted);
+  return converted;
 }
 
 }  // namespace

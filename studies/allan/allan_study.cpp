@@ -262,7 +262,7 @@ std::vector<AllanStudy> allan_record(const AllanRequest& r, const RecordSource& 
   std::vector<AllanStudy> studies;
   if (!r.fit_file.empty()) {
     // Every channel the fit holds, read with the fit's own columns and units.
-    for (const fit::SavedFit& fit : fit::load_fits(r.fit_file)) {
+    for (const fit::SavedFit& fit : r.fits.empty() ? fit::load_fits(r.fit_file) : r.fits) {
       fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
       pipeline.columns = source.fit_columns(pipeline.columns);
       try {

@@ -71,6 +71,7 @@ std::string allan_text(const AllanStudy& study);
 struct AllanRequest {
   std::string data;
   std::string fit_file;           // "" for none
+  std::vector<fit::SavedFit> fits;  // a fit given in memory (the Python package's) in place of fit_file's
   AllanOptions options;
   fit::PipelineOptions pipeline;  // without a fit: the columns and units to read
   std::string plot;               // a PNG, or ""

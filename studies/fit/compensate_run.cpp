@@ -15,7 +15,7 @@ CompensateRun compensate_record(const CompensateRequest& o, const RecordSource& 
   CompensateRun run;
   run.request = o;
   run.request.data = source.name();
-  run.fits = fit::load_fits(o.fit_file);
+  run.fits = o.fits.empty() ? fit::load_fits(o.fit_file) : o.fits;
   const std::vector<std::string> gyros = o.columns.gyro.empty() ? std::vector<std::string>{} : fit::parse_channels(o.columns.gyro);
   if (!gyros.empty() && gyros.size() != run.fits.size())
     throw InputError(fmt::format("--gyro-col {}: {} column{} for the {} channel{} of {}; name one column per channel, in "

@@ -18,6 +18,9 @@ namespace gyrotherm::studies {
 struct CompensateRequest {
   std::string data;
   std::string fit_file;
+  // A fit given in memory (the Python package's), used in place of reading
+  // fit_file, which then only names it.
+  std::vector<fit::SavedFit> fits;
   std::string output;  // the compensated CSV, or ""
   bool causal = false;
   // Columns and units of the log where they differ from the fit's (set
