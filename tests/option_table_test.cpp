@@ -283,8 +283,10 @@ void expect_help_lists_the_table(const OptionTable<O>& table) {
   std::vector<std::string> positional, named;
   for (const OptionRow<O>& row : table.rows) {
     (row.names.starts_with('-') ? named : positional).push_back(row.names);
-    const std::size_t at = r.out.find(row.help);
-    EXPECT_NE(at, std::string::npos) << row.help;
+    EXPECT_NE(r.out.find(row.help), std::string::npos) << row.help;
+    // The names, then what a value is ("--avg FLOAT", "--add TEXT ...", "data TEXT REQUIRED", "--json").
+    const std::string shown = "\n  " + row.names + (row.value_name.empty() ? "" : " " + row.value_name) + " ";
+    EXPECT_NE(r.out.find(shown), std::string::npos) << shown;
   }
   positional.insert(positional.end(), named.begin(), named.end());  // CLI11 lists the positionals first
   EXPECT_EQ(help_names(r.out), positional);
