@@ -82,11 +82,12 @@ def test_too_short():
 
 def test_units_of_the_cli():
     d = good()
-    ms = dict(d, time_s=d["time_s"] * 1000.0)
+    ms = {"t": d["time_s"] * 1000.0, "temp_c": d["temp_c"], "gyro_dph": d["gyro_dph"]}
     a = gyrotherm.fit(d, model="T").coefficients
-    b = gyrotherm.fit(ms, model="T", time_unit="ms").coefficients
-    assert a == b
-    named = {"time (ms)": ms["time_s"], "temp_c": d["temp_c"], "gyro_dph": d["gyro_dph"]}
+    assert gyrotherm.fit(ms, model="T", time_col="t", time_unit="ms").coefficients == a
+    with pytest.raises(ValueError, match="time_s.*--time-unit"):  # the name states s: the CLI's rule
+        gyrotherm.fit(d, model="T", time_unit="ms")
+    named = {"time (ms)": ms["t"], "temp_c": d["temp_c"], "gyro_dph": d["gyro_dph"]}
     assert gyrotherm.fit(named, model="T", time_col="time (ms)").coefficients == a
     with pytest.raises(ValueError, match="--gyro-unit"):
         gyrotherm.fit(d, model="T", gyro_unit="furlongs")
