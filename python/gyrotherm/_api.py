@@ -134,14 +134,15 @@ class FitResult(_Report):
     ``predict(data)``: the model's bias at every sample of a record. With several gyro channels,
     ``channels`` holds one FitResult per channel and the single-channel fields raise."""
 
-    def __init__(self, json_text, text, windows, file=None, channel=None):
+    def __init__(self, json_text, text, windows, file=None, channel=None, data=None):
         super().__init__(json_text, text)
         self.file = file  # where it was saved (output=...), else None
+        self.data = data  # the record it was fitted on when given as arrays (export's default data)
         d = self._dict
         if "channels" in d and channel is None:
             self.channels = {
-                c["channel"]: FitResult(json.dumps(c, indent=2) + "\n", text, windows.get(c["channel"]), file,
-                                        c["channel"])
+                c["channel"]: FitResult(json.dumps(c, indent=2, ensure_ascii=False) + "\n", text, windows.get(c["channel"]), file,
+                                        c["channel"], data)
                 for c in d["channels"]}
             self._single = None
         else:
@@ -277,7 +278,8 @@ def fit(data, model=None, engine=None, **options):
     path, columns, truth = _data(data)
     pairs = _keywords(dict(data=path, model=model, engine=engine, **options))
     out = _g.fit(pairs, columns, truth)
-    return FitResult(out["json"], out["text"], out["windows"], file=options.get("output"))
+    return FitResult(out["json"], out["text"], out["windows"], file=options.get("output"),
+                     data=None if path is not None else data)
 
 
 def diagnose(data, model=None, add=None, **options):
@@ -312,16 +314,30 @@ def compensate(data, fit, **options):
     return Compensation(out["json"], out["text"], out["columns"])
 
 
-def export(fit, format, output, **options):
+def export(fit, format, output, data=None, **options):
     """Writes a fit as firmware parameters or C: format px4, ardupilot or c; output the file.
-    Options as ``gyrotherm export``: axes, channel, prefix, instance, device_id, boot_temp (°C),
-    drop_unsupported, data. A FitResult that was not saved is saved first beside the output
-    (OUTPUT.fit.json), since the exported file names the fit it came from."""
+
+    data: the record the fit was made on (a path, arrays or a Record), for what the firmware achieves
+    on it and the cost of drop_unsupported; default: the fit's own (a FitResult made on arrays keeps
+    them). Options as ``gyrotherm export``: axes, channel, prefix, instance, device_id, boot_temp
+    (°C), drop_unsupported. A FitResult that was not saved is saved first beside the output
+    (OUTPUT.fit.json), since the exported file names the fit it came from; a refused export leaves
+    no file."""
     fit_json, fit_file = _fit_json_of(fit)
-    if fit_file is None:
+    if data is None and isinstance(fit, FitResult):
+        data = fit.data
+    path, columns, _ = _data(data) if data is not None else (None, None, None)
+    saved_here = fit_file is None
+    if saved_here:
         fit_file = fit.save(os.fspath(output) + ".fit.json")
-    pairs = _keywords(dict(fit=fit_file, format=format, output=output, **options))
-    out = _g.export(pairs)
+    pairs = _keywords(dict(fit=fit_file, format=format, output=output, data=path, **options))
+    try:
+        out = _g.export(pairs, columns)
+    except BaseException:
+        if saved_here:  # nothing is left behind by a refused export
+            os.remove(fit_file)
+            fit.file = None
+        raise
     return ExportResult(out["json"], out["text"], out["warnings"])
 
 

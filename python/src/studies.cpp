@@ -118,13 +118,15 @@ py::dict compensate(const Keywords& keywords, const py::object& columns, const p
   return out;
 }
 
-py::dict export_fit(const Keywords& keywords) {
-  const studies::ExportRequest request =
-      studies::export_request(read_keywords(studies::export_option_table(), keywords));
+py::dict export_fit(const Keywords& keywords, const py::object& columns) {
+  studies::ExportRequest request = studies::export_request(read_keywords(studies::export_option_table(), keywords));
+  const std::unique_ptr<TableHold> table = table_or_none(columns);
+  if (table) request.data_table = &table->table;
   studies::ExportOutput output;
   {
     py::gil_scoped_release free;
-    output = studies::run_export(request);
+    output = table ? with_table_context(*table, [&] { return studies::run_export(request); })
+                   : studies::run_export(request);
   }
   py::dict out = report(studies::export_json(request, output).dump() + "\n", studies::export_text(output));
   out["warnings"] = output.warnings;
@@ -148,7 +150,7 @@ void add_studies(py::module_& m) {
   m.def("diagnose", &diagnose, py::arg("options"), py::arg("columns"));
   m.def("allan", &allan, py::arg("options"), py::arg("columns"), py::arg("fit"));
   m.def("compensate", &compensate, py::arg("options"), py::arg("columns"), py::arg("fit"));
-  m.def("export", &export_fit, py::arg("options"));
+  m.def("export", &export_fit, py::arg("options"), py::arg("columns"));
   m.def("plan", &plan, py::arg("options"));
   m.def("option_table", &option_rows, py::arg("command"));
 }

@@ -42,7 +42,7 @@ ExporterInfo ardupilot_exporter() {
             FirmwareFile f = firmware_file(r, fits, "ArduPilot");
             f.out.text = ardupilot_parameters(f.axes, prefix, f.header);
             f.out.lines.push_back(firmware_wrote(r, f, "ArduPilot"));
-            add_outcome(firmware_outcome(Firmware::ardupilot, f, r.data, r.boot_temp_c), &f.out);
+            add_outcome(firmware_outcome(Firmware::ardupilot, f, r.data, r.boot_temp_c, r.data_table), &f.out);
             return f.out;
           }};
 }

@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fit/data/table.h"
 #include "fit/fit_file.h"
 
 namespace gyrotherm::studies {
@@ -40,6 +41,7 @@ struct ExportRequest {
   std::optional<double> boot_temp_c;  // ArduPilot: the gyro offsets' boot temperature (default: the record's first)
   bool drop_unsupported = false;
   std::string data;     // the fitted data, for the cost of dropping terms
+  const fit::Table* data_table = nullptr;  // or that data as arrays (the Python package's), in place of `data`
   std::string output;
   bool json = false;    // --json: export_json on stdout instead of export_text
 };

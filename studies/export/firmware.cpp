@@ -35,15 +35,15 @@ std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data
 // With terms dropped: the instability of the fitted data with the whole
 // model, with the cubic alone (the same coefficients, not refitted), and
 // with the best polynomial the firmware can express refitted on that data.
-std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, const std::string& data_option,
+std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, const ExportRequest& o,
                            DroppedCost* cost_out) {
-  const std::filesystem::path data = fitted_data(f, data_option);
-  if (data.empty())
+  const FittedData data = fitted_data(f, o.data, o.data_table);
+  if (!data.here())
     throw InputError(fmt::format("--drop-unsupported: the data {} was fitted on ('{}') is not here; give it with "
                                  "--data so that export can say how much dropping {} costs",
                                  f.file.string(), f.data_file, cubic.dropped.front()));
   const fit::PipelineOptions pipeline = fit::reading_columns_of(f.pipeline, f.terms);
-  const fit::Measurement m = fit::read_measurement_csv(data, pipeline.columns);
+  const fit::Measurement m = data.read(pipeline.columns);
   const DroppedCost cost = dropped_cost(f, cubic, m);
   *cost_out = cost;
   std::string names;
@@ -55,21 +55,26 @@ std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, cons
                                   "{:.6g} °/h{} (gyrotherm fit {} --model '{}', then export that fit)",
                                   model, refitted,
                                   refitted < cost.without_dph ? "" : " (no better than these coefficients)",
-                                  data.string(), model);
+                                  data.name, model);
   return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); {}",
-                     channel_name(f), names, data.string(), cost.with_dph, cost.without_dph,
+                     channel_name(f), names, data.name, cost.with_dph, cost.without_dph,
                      cost.without_dph / cost.with_dph, refit);
 }
 
 }  // namespace
 
-std::filesystem::path fitted_data(const fit::SavedFit& f, const std::string& option) {
-  if (!option.empty()) return option;
+FittedData fitted_data(const fit::SavedFit& f, const std::string& option, const fit::Table* table) {
+  if (table != nullptr) return {table->name, table};
+  if (!option.empty()) return {option};
   const std::filesystem::path named = f.data_file;
   if (named.empty()) return {};
-  if (std::filesystem::exists(named)) return named;
-  if (std::filesystem::exists(f.file.parent_path() / named)) return f.file.parent_path() / named;
+  if (std::filesystem::exists(named)) return {named.string()};
+  if (std::filesystem::exists(f.file.parent_path() / named)) return {(f.file.parent_path() / named).string()};
   return {};
+}
+
+fit::Measurement FittedData::read(const fit::ColumnMap& columns) const {
+  return table != nullptr ? fit::read_table(*table, fit::for_table(columns)) : fit::read_measurement_csv(name, columns);
 }
 
 std::array<float, 4> px4_coefficients(const AxisModel& axis, float tref) {
@@ -225,7 +230,7 @@ std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector
     axes[i].temp_min_c = f.temp_range_c->first;
     axes[i].temp_max_c = f.temp_range_c->second;
     DroppedCost cost{f.instability_after_dph, f.instability_after_dph};
-    if (!axes[i].model.dropped.empty()) out->lines.push_back(dropped_report(f, axes[i].model, o.data, &cost));
+    if (!axes[i].model.dropped.empty()) out->lines.push_back(dropped_report(f, axes[i].model, o, &cost));
     warn_if_little_compensation(f, cost.without_dph, out);
   }
   if (std::none_of(axes.begin(), axes.end(), [](const AxisModel& a) { return a.present; }))

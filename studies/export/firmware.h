@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "fit/data/table.h"
 #include "fit/fit_file.h"
 #include "studies/export/exporter.h"
 
@@ -135,9 +136,19 @@ std::string ardupilot_prefix(int instance);
 int px4_instance(const std::optional<int>& instance);
 long long px4_device_id(long long device_id);
 
-// The data `fit` was made on: `option` (--data) if given, else the fit's own
-// data file (as given to fit, or beside the fit file); empty when not here.
-std::filesystem::path fitted_data(const fit::SavedFit& fit, const std::string& option);
+// The data a fit was made on, to apply an exported model to: a file, or a
+// table of arrays (ExportRequest::data_table, the Python package's data=).
+struct FittedData {
+  std::string name;                   // the file, or the table's name; empty when not here
+  const fit::Table* table = nullptr;
+  bool here() const { return !name.empty(); }
+  // Read with a fit's columns (a table without their CSV text form).
+  fit::Measurement read(const fit::ColumnMap& columns) const;
+};
+// The data `fit` was made on: `table` if given, else `option` (--data) if
+// given, else the fit's own data file (as given to fit, or beside the fit
+// file); not here() when none of these is.
+FittedData fitted_data(const fit::SavedFit& fit, const std::string& option, const fit::Table* table = nullptr);
 
 // A value as the firmware stores it (a 32-bit float), written so that it
 // reads back to the same float.

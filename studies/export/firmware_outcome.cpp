@@ -76,7 +76,7 @@ std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, con
 }
 
 FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, const std::string& data_option,
-                                 std::optional<double> boot_c) {
+                                 std::optional<double> boot_c, const fit::Table* data_table) {
   FirmwareOutcome o;
   const ExportRange& r = file.range;
   const auto tmin = static_cast<float>(r.tmin_c), tmax = static_cast<float>(r.tmax_c);
@@ -88,8 +88,8 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
   for (std::size_t i = 0; i < 3; ++i) {
     const AxisModel& a = file.axes[i];
     if (!a.present) continue;
-    const std::filesystem::path data = fitted_data(*a.fit, data_option);
-    if (data.empty()) {
+    const FittedData data = fitted_data(*a.fit, data_option, data_table);
+    if (!data.here()) {
       o.notes.push_back(fmt::format("what {} will achieve is not predicted: the data {} was fitted on ('{}') is not "
                                     "here; give it with --data",
                                     firmware == Firmware::px4 ? "PX4" : "ArduPilot", a.fit->file.string(),
@@ -97,9 +97,9 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
       o.axes.clear();
       return o;
     }
-    o.data = data.string();
+    o.data = data.name;
     const fit::PipelineOptions pipeline = fit::reading_columns_of(a.fit->pipeline, a.fit->terms);
-    const fit::Measurement m = fit::read_measurement_csv(data, pipeline.columns);
+    const fit::Measurement m = data.read(pipeline.columns);
     AxisOutcome out;
     out.axis = "XYZ"[i];
     out.channel = a.channel;

@@ -70,11 +70,11 @@ struct FirmwareOutcome {
 enum class Firmware { px4, ardupilot };
 
 // The outcome of `file` applied by `firmware` on the data each axis's fit was
-// made on (`data_option`, else the fit's own file); without that data, an
+// made on (`data_table`, else `data_option`, else the fit's own file); without that data, an
 // outcome with an empty `data` and a note saying what to give.
 // `boot_c`: ArduPilot's boot temperature (default: the record's first).
 FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, const std::string& data_option,
-                                 std::optional<double> boot_c);
+                                 std::optional<double> boot_c, const fit::Table* data_table = nullptr);
 
 // Export's lines, warnings and JSON ("firmware_outcome") with the outcome's.
 void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out);

@@ -57,7 +57,7 @@ ExporterInfo px4_exporter() {
             if (r.device_id == 0)
               f.out.lines.push_back(fmt::format(
                   "set TC_G{0}_ID to your gyro's device id (CAL_GYRO{0}_ID), or pass --device-id", instance));
-            add_outcome(firmware_outcome(Firmware::px4, f, r.data, std::nullopt), &f.out);
+            add_outcome(firmware_outcome(Firmware::px4, f, r.data, std::nullopt, r.data_table), &f.out);
             return f.out;
           }};
 }

@@ -82,3 +82,11 @@ def test_plan_is_the_clis(tmp_path):
     mine = without_timing(json.loads(p.to_json().replace(str(tmp_path / "py"), "OUT")))
     assert mine == without_timing(json.loads(cli.replace(str(tmp_path / "cli"), "OUT")))
     assert mine["scenario_file"] == "OUT/plan.toml" and (tmp_path / "py" / "plan.toml").exists()
+
+
+def test_a_refused_export_leaves_no_file(cycle_csv, tmp_path):
+    r = gyrotherm.fit(cycle_csv)  # dT: PX4's cubic cannot express it
+    with pytest.raises(ValueError, match="PX4 cannot express"):
+        gyrotherm.export(r, format="px4", output=tmp_path / "x.params")
+    assert list(tmp_path.iterdir()) == []
+    assert r.file is None
