@@ -8,7 +8,8 @@
 //    Counters: rows; rss_growth_mb, the peak resident memory while preparing
 //    and fitting over the resident memory with the arrays made (the peak
 //    reset through /proc/self/clear_refs, peak_reset = 1; the target is
-//    ≤ 64 MB); and the fitted coefficients (b0, T, T^2, dT), to check the
+//    ≤ 64 MB), rss_growth_prepare_mb the same after prepare_table alone;
+//    and the fitted coefficients (b0, T, T^2, dT), to check the
 //    other side's fit against.
 
 #include <benchmark/benchmark.h>
@@ -93,13 +94,16 @@ void BM_FitTable(benchmark::State& state) {
   const bool reset = reset_peak_rss();
   const double before_mb = reset ? status_mb("VmRSS") : peak_rss_mb();
   fit::ModelFit result;
+  double prepared_mb = 0.0;
   for (auto _ : state) {
     const fit::PreparedData data = fit::prepare_table(table, options);
+    prepared_mb = peak_rss_mb() - before_mb;
     result = fit::fit_model(data, terms, ols, {});
     benchmark::DoNotOptimize(result.coefficients.b.data());
   }
   state.counters["rows"] = static_cast<double>(rows);
   state.counters["rss_growth_mb"] = peak_rss_mb() - before_mb;
+  state.counters["rss_growth_prepare_mb"] = prepared_mb;
   state.counters["peak_reset"] = reset ? 1.0 : 0.0;
   state.counters["b0"] = result.coefficients.intercept;
   for (std::size_t k = 0; k < terms.size(); ++k) state.counters[std::string(terms[k]->name)] = result.coefficients.b[k];

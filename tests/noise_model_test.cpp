@@ -193,6 +193,43 @@ TEST(NoiseModel, RandomWalkPowerIsRecovered) {
   EXPECT_GE(named, 7);
 }
 
+TEST(NoiseModel, EachColumnsCovarianceIsTheSameWhateverColumnsItIsTakenWith) {
+  // What identify_noise's passes over a long record's block-mean weights (a
+  // few columns at a time, in bounded memory) rest on: C·x column by column
+  // is C·x, to the bit, and applied into a matrix it is the same.
+  const WindowGrid g = irregular_grid();
+  NoiseModel m;
+  m.amplitude = {3.0, 0.5, 0.2, 1e-4};
+  m.flicker_tau_s = {100.0, 1000.0, 10000.0};
+  m.gm_tau_s = 300.0;
+  Eigen::MatrixXd x(static_cast<Eigen::Index>(g.size()), 5);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (Eigen::Index c = 0; c < x.cols(); ++c) x(i, c) = std::sin(1.3 * static_cast<double>(i) + 0.7 * static_cast<double>(c));
+  const Eigen::MatrixXd all = m.apply(g, x);
+  Eigen::MatrixXd into = Eigen::MatrixXd::Constant(2, 9, 7.0);
+  m.apply(g, x, into);
+  EXPECT_TRUE((into.array() == all.array()).all());
+  for (int kind = -1; kind < kNoiseKinds; ++kind) {
+    const Eigen::MatrixXd whole = m.apply(g, x, kind);
+    for (Eigen::Index c = 0; c < x.cols(); ++c) {
+      const Eigen::MatrixXd one = m.apply(g, Eigen::MatrixXd(x.middleCols(c, std::min<Eigen::Index>(2, x.cols() - c))), kind);
+      EXPECT_TRUE((one.col(0).array() == whole.col(c).array()).all()) << "kind " << kind << ", column " << c;
+    }
+  }
+}
+
+TEST(NoiseModel, ALongRecordIsIdentifiedInPasses) {
+  // 20 000 windows: C is applied to the block-mean weights in passes of
+  // fewer than the 64 columns; the white noise is recovered as on a short record.
+  const Synthetic s = synthetic(3e-4, 0.0, 3, 20000);
+  const NoiseModel m = identify_noise(s.grid, s.design, s.y);
+  const NoiseParameter arw = m.parameters().front();
+  EXPECT_TRUE(arw.identified);
+  EXPECT_LE(arw.lower, 3e-4);
+  EXPECT_GE(arw.upper, 3e-4);
+  EXPECT_EQ(m.blocks, 64u);
+}
+
 TEST(NoiseModel, TooFewWindowsAreRefused) {
   const Synthetic s = synthetic(3e-4, 0.0, 1, 5);
   EXPECT_THROW(identify_noise(s.grid, s.design, s.y), InputError);

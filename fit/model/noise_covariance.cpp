@@ -81,14 +81,19 @@ void add_white(const WindowGrid& g, double weight, const Eigen::MatrixXd& x, Eig
 }  // namespace
 
 Eigen::MatrixXd NoiseModel::apply(const WindowGrid& grid, const Eigen::MatrixXd& x, int kind) const {
-  Eigen::MatrixXd y = Eigen::MatrixXd::Zero(x.rows(), x.cols());
+  Eigen::MatrixXd y;
+  apply(grid, x, y, kind);
+  return y;
+}
+
+void NoiseModel::apply(const WindowGrid& grid, const Eigen::MatrixXd& x, Eigen::MatrixXd& y, int kind) const {
+  y.setZero(x.rows(), x.cols());
   auto weight = [&](int k) { return kind < 0 ? amplitude[static_cast<std::size_t>(k)] : (kind == k ? 1.0 : 0.0); };
   if (weight(kWhite) > 0.0) add_white(grid, weight(kWhite), x, y);
   if (weight(kFlicker) > 0.0)
     for (double tau : flicker_tau_s) add_exp_kernel(grid, tau, weight(kFlicker), x, y);
   if (weight(kGaussMarkov) > 0.0 && gm_tau_s > 0.0) add_exp_kernel(grid, gm_tau_s, weight(kGaussMarkov), x, y);
   if (weight(kRandomWalk) > 0.0) add_random_walk(grid, weight(kRandomWalk), x, y);
-  return y;
 }
 
 std::vector<NoiseParameter> NoiseModel::parameters() const {

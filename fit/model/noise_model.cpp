@@ -206,11 +206,30 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   const auto nb = static_cast<Eigen::Index>(blocks.size());
   model.blocks = blocks.size();
   model.block_s = grid.window_s * static_cast<double>(blocks.front().second - blocks.front().first);
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, nb);  // Aᵀ: the block-mean weights
-  for (Eigen::Index b = 0; b < nb; ++b) {
-    const auto [i, j] = blocks[static_cast<std::size_t>(b)];
-    A.block(i, b, j - i, 1).setConstant(1.0 / static_cast<double>(j - i));
-  }
+  // A·C·Aᵀ by block means, A the block-mean weights: C applied to the
+  // columns of Aᵀ (O(l·blocks) time), as many at a time as keep Aᵀ's and
+  // C·Aᵀ's columns within kBlockCovBytes (all of them unless the record has
+  // some 10⁴ windows: 10⁵ windows' 64 columns would be 100 MB), in two
+  // matrices reused pass after pass. Each column is computed alike however
+  // many are taken at once.
+  constexpr std::size_t kBlockCovBytes = std::size_t{16} << 20;
+  const Eigen::Index per_pass = std::clamp<Eigen::Index>(
+      static_cast<Eigen::Index>(kBlockCovBytes / (2 * sizeof(double) * static_cast<std::size_t>(n))), 1, nb);
+  Eigen::MatrixXd a_t, c_a_t;  // columns first … of Aᵀ, and C times them
+  auto block_cov = [&](const NoiseModel& unit, int kind) {
+    Eigen::MatrixXd out(nb, nb);
+    for (Eigen::Index first = 0; first < nb; first += per_pass) {
+      const Eigen::Index count = std::min(per_pass, nb - first);
+      a_t.setZero(n, count);
+      for (Eigen::Index b = first; b < first + count; ++b) {
+        const auto [i, j] = blocks[static_cast<std::size_t>(b)];
+        a_t.block(i, b - first, j - i, 1).setConstant(1.0 / static_cast<double>(j - i));
+      }
+      unit.apply(grid, a_t, c_a_t, kind);
+      out.middleCols(first, count) = aggregate(blocks, c_a_t);
+    }
+    return out;
+  };
   Reml reml;
   Eigen::MatrixXd X(n, design.cols() + 1);
   X.col(0).setOnes();
@@ -220,9 +239,6 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   if (Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(reml.X).rank() < reml.X.cols())
     throw InputError(fmt::format("the model's terms cannot be told apart at the {} block means the "
                                  "noise is identified on", nb));
-  auto block_cov = [&](const NoiseModel& unit, int kind) {
-    return aggregate(blocks, unit.apply(grid, A, kind));  // A·C·Aᵀ by block means: O(l·blocks)
-  };
   for (int k : {kWhite, kFlicker, kRandomWalk}) reml.M[static_cast<std::size_t>(k)] = block_cov(model, k);
   const double lo_tau = std::log(grid.window_s), hi_tau = std::log(record_span(grid));
   for (int k = 0; k < 13; ++k) {

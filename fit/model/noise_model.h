@@ -105,6 +105,8 @@ struct NoiseModel {
   Eigen::VectorXd draw(const WindowGrid& grid, const std::function<double()>& normal) const;
   // C·x for the windows of `grid`: every component, or only `kind` at unit amplitude.
   Eigen::MatrixXd apply(const WindowGrid& grid, const Eigen::MatrixXd& x, int kind = -1) const;
+  // The same into `y` (made x's shape, its storage reused when it has it).
+  void apply(const WindowGrid& grid, const Eigen::MatrixXd& x, Eigen::MatrixXd& y, int kind = -1) const;
 };
 
 // The Allan variance of a unit-variance Gauss–Markov process at τ = x·τ_c:
