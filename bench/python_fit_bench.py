@@ -1,13 +1,16 @@
 #!/usr/bin/python3
 """gyrotherm.fit on a record already in numpy arrays, against the C++ library's own
-fit of the same arrays (bench_fit's BM_FitTable, reading them from a raw file),
+fit of the same arrays (bench_table's BM_FitTable, reading them from a raw file),
 and the fit's peak memory beyond the arrays.
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_fit_bench.py [ROWS] [--json OUT]
 
-The record: 10 Hz, a ±40 °C daily cycle with slow ramps, bias 0.02 °/h/°C ·T
-plus white noise (seeded). Both sides fit `T + T^2 + dT` with ols on the same
-float64 arrays; each is timed REPEATS times and the medians compared. Memory:
+The record: bench_table's formula (1 Hz; a chamber cycling ±30 °C about 20 °C
+every 6 h; g = −7 − 0.03 T + 0.001 T² + 20 dT/dt + white noise of 0.5 °/h, a
++25 °/h glitch every 100 003rd sample), the noise drawn by numpy from a seed.
+Both sides fit `T + T^2 + dT` with ols on the same float64 arrays (the C++
+benchmark reads them from a raw file); each is timed REPEATS times and the
+medians compared. Memory:
 the peak resident set (VmHWM, reset through /proc/self/clear_refs before the fit)
 minus the resident set with the arrays made, in this process.
 """
@@ -28,9 +31,12 @@ REPEATS = 5
 
 
 def record(n, seed=1):
-    t = np.arange(n, dtype=np.float64) * 0.1
-    temp = 10.0 + 40.0 * np.sin(2.0 * np.pi * t / 86400.0)
-    gyro = 1.0 + 0.02 * temp + np.random.default_rng(seed).normal(0.0, 0.05, n)
+    t = np.arange(n, dtype=np.float64)
+    w = 2.0 * np.pi / 21600.0
+    temp = 20.0 + 30.0 * np.sin(w * t)
+    gyro = -7.0 - 0.03 * temp + 0.001 * temp * temp + 20.0 * 30.0 * w * np.cos(w * t)
+    gyro += np.random.default_rng(seed).normal(0.0, 0.5, n)
+    gyro[::100003] += 25.0
     return {"time_s": t, "temp_c": temp, "gyro_dph": gyro}
 
 
@@ -63,8 +69,9 @@ def main():
         seconds.append(time.perf_counter() - start)
     python_s = statistics.median(seconds)
 
-    # The C++ library on the same arrays (bench_fit BM_FitTable reads them raw).
-    bench = os.environ.get("GYROTHERM_BENCH_FIT", os.path.join(os.path.dirname(__file__), "..", "build", "bench", "bench_fit"))
+    # The C++ library on the same arrays (bench_table's BM_FitTable reads them raw).
+    bench = os.environ.get("GYROTHERM_BENCH_TABLE_PROGRAM",
+                           os.path.join(os.path.dirname(__file__), "..", "build", "bench", "bench_table"))
     with tempfile.TemporaryDirectory() as folder:
         raw = os.path.join(folder, "record.f64")
         np.stack([data["time_s"], data["temp_c"], data["gyro_dph"]], axis=1).tofile(raw)

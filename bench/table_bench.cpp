@@ -11,11 +11,15 @@
 //    ≤ 64 MB), rss_growth_prepare_mb the same after prepare_table alone;
 //    and the fitted coefficients (b0, T, T^2, dT), to check the
 //    other side's fit against.
+//    With GYROTHERM_BENCH_TABLE=FILE set, the arrays are read instead from
+//    FILE: rows of three float64 (time s, temperature °C, gyro °/h), as
+//    bench/python_fit_bench.py writes the arrays it times gyrotherm.fit on.
 
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <random>
 #include <string>
@@ -47,6 +51,17 @@ struct TableRecord {
       temp_c[k] = 20.0 + 30.0 * std::sin(w * t);
       gyro_dph[k] = -7.0 - 0.03 * temp_c[k] + 0.001 * temp_c[k] * temp_c[k] + 20.0 * 30.0 * w * std::cos(w * t) +
                     noise(rng) + (k % 100003 == 0 ? 25.0 : 0.0);
+    }
+  }
+  // The rows of a raw file of float64 triples (time, temperature, gyro).
+  explicit TableRecord(const std::string& raw) {
+    std::ifstream in(raw, std::ios::binary);
+    std::vector<double> all;
+    for (double v[3]; in.read(reinterpret_cast<char*>(v), sizeof v);) all.insert(all.end(), v, v + 3);
+    for (std::size_t k = 0; k + 2 < all.size(); k += 3) {
+      time_s.push_back(all[k]);
+      temp_c.push_back(all[k + 1]);
+      gyro_dph.push_back(all[k + 2]);
     }
   }
   fit::Table table() const {
@@ -82,8 +97,10 @@ double peak_rss_mb() {
 }
 
 void BM_FitTable(benchmark::State& state) {
-  const auto rows = static_cast<std::size_t>(state.range(0));
-  const TableRecord record(rows);
+  const char* raw = std::getenv("GYROTHERM_BENCH_TABLE");
+  const TableRecord record = raw != nullptr ? TableRecord(std::string(raw))
+                                            : TableRecord(static_cast<std::size_t>(state.range(0)));
+  const std::size_t rows = record.time_s.size();
   const fit::Table table = record.table();
   const std::vector<const fit::Term*> terms = fit::parse_formula("T + T^2 + dT");
   const fit::EngineInfo& ols = fit::find_engine("ols");

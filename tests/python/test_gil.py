@@ -29,7 +29,7 @@ def test_a_thread_runs_while_fitting():
     done.set()
     ticker.join()
     during = [x for x in ticks if start < x < end]
-    # Holding the GIL for the whole fit would leave one tick at most (Python's switch interval
-    # is 5 ms; the fit takes far longer): here the ticker keeps running throughout.
+    # A call that held the GIL would leave the ticker no turn between its start and its end (a
+    # thread switch needs the GIL); released, the ticker runs throughout, ~1 tick per ms.
     assert end - start > 0.05
-    assert len(during) >= 0.2 * (end - start) / 0.001 * 0.1, (len(during), end - start)
+    assert len(during) >= 10, (len(during), end - start)
