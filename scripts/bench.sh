@@ -122,8 +122,8 @@ json_number() {
   awk -v key="\"$2\":" 'index($0, key) { sub(/^[^:]*: */, ""); sub(/,$/, ""); print; exit }' "$1"
 }
 pyfit=results/bench_python_fit.json
-py_s=$(json_number $pyfit python_fit_s)
-cpp_s=$(json_number $pyfit cpp_fit_s)
+py_s=$(json_number $pyfit python_fit_cpu_s)
+cpp_s=$(json_number $pyfit cpp_fit_cpu_s)
 py_extra=$(json_number $pyfit peak_beyond_arrays_mb)
 py_arrays=$(json_number $pyfit arrays_mb)
 declare -A per_trial
@@ -152,7 +152,7 @@ done
   echo "| a 10-trial campaign on 2 threads (≥ 1.8× one thread) | $(show "$two_threads" "%.2f") s | one thread: $(show "$one_thread" "%.2f") s, over 2: $(show "$one_thread" "%.2f") / 2 s; the machine's own 2-thread speed-up now $(show "$ceiling" "%.2f×") | speed-up $(show "$speedup" "%.2f×") |"
   echo "| \`plan\` for six terms (≤ 60 s on 2 cores) | $(show "$plan6" "%.1f") s ($(show "$plan6_evals" "%.0f") predictions; the paper's three terms: $(show "$plan3" "%.1f") s) | the aim, 60 s | $(ratio "$plan6" 60 "%.2f") |"
   echo "| the same | | its predictions one after another: $(show "$plan6_evals" "%.0f") × $(show "$predict6" "%.1f") ms (one on the 8.8 h cycle) | $(awk -v a="$plan6" -v n="$plan6_evals" -v p="$predict6" 'BEGIN { if (a == "" || n == "" || p == "") print "–"; else printf "%.2f", a / (n * p / 1000) }') |"
-  echo "| \`gyrotherm.fit\` (Python) on 10⁷ samples in numpy arrays (≤ 1.2× the C++ library's fit of the same arrays) | $(show "$py_s" "%.2f") s | \`bench_table\` BM_FitTable on the same arrays: $(show "$cpp_s" "%.2f") s | $(ratio "$py_s" "$cpp_s" "%.2f") |"
+  echo "| \`gyrotherm.fit\` (Python) on 10⁷ samples in numpy arrays (≤ 1.2× the C++ library's fit of the same arrays), CPU time | $(show "$py_s" "%.2f") s | \`bench_table\` BM_FitTable on the same arrays: $(show "$cpp_s" "%.2f") s | $(ratio "$py_s" "$cpp_s" "%.2f") |"
   echo "| its peak memory beyond the arrays (≤ 64 MB) | $(show "$py_extra" "%.0f") MB (the arrays: $(show "$py_arrays" "%.0f") MB) | the aim, 64 MB | $(ratio "$py_extra" 64 "%.2f") |"
   echo "| campaign time per trial, 10,000 trials (linear growth) | $(show "${per_trial[10000]}" "%.1f") ms | per trial at 100 trials: $(show "${per_trial[100]}" "%.1f") ms | $(ratio "${per_trial[10000]}" "${per_trial[100]}" "%.2f") |"
   echo
