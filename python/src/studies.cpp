@@ -51,49 +51,55 @@ Keywords for_record(const Keywords& keywords, const py::object& columns) {
   return columns.is_none() ? keywords : with_data(keywords, "arrays");
 }
 
+// The request of a command that reads a record and a fit (allan,
+// compensate): a fit given in memory is named kFitInMemory and handed over
+// read, in place of a file.
+template <class Options, class Request>
+Request with_fit(const studies::OptionTable<Options>& table, Request (*request_of)(const Options&),
+                 const Keywords& keywords, const py::object& columns, const py::object& fit_json) {
+  Keywords given = for_record(keywords, columns);
+  std::vector<fit::SavedFit> fits = fits_of(fit_json);
+  if (!fits.empty()) given.emplace_back("fit", kFitInMemory);
+  Request request = request_of(read_keywords(table, given));
+  request.fits = std::move(fits);
+  return request;
+}
+
+// work(the table, or nullptr for a path) with the GIL released; a table's
+// errors completed by the columns it left out (with_table_context).
+template <class Work>
+auto released(const TableHold* hold, Work&& work) {
+  py::gil_scoped_release free;
+  return hold != nullptr ? with_table_context(*hold, [&] { return work(&hold->table); }) : work(nullptr);
+}
+
 py::dict diagnose(const Keywords& keywords, const py::object& columns) {
   studies::DiagnoseRequest request =
       studies::diagnose_request(read_keywords(studies::diagnose_option_table(), for_record(keywords, columns)));
   const std::unique_ptr<TableHold> table = table_or_none(columns);
-  studies::DiagnoseRun run;
-  {
-    py::gil_scoped_release free;
-    run = table ? with_table_context(*table, [&] { return studies::run_diagnose(request, table->table); })
-                : studies::run_diagnose(request);
-  }
+  const studies::DiagnoseRun run = released(table.get(), [&](const fit::Table* t) {
+    return t != nullptr ? studies::run_diagnose(request, *t) : studies::run_diagnose(request);
+  });
   return report(studies::diagnose_json(run).dump() + "\n", studies::diagnose_text(run));
 }
 
 py::dict allan(const Keywords& keywords, const py::object& columns, const py::object& fit_json) {
-  Keywords given = for_record(keywords, columns);
-  std::vector<fit::SavedFit> fits = fits_of(fit_json);
-  if (!fits.empty()) given.emplace_back("fit", kFitInMemory);
-  studies::AllanRequest request = studies::allan_request(read_keywords(studies::allan_option_table(), given));
-  request.fits = std::move(fits);
+  const studies::AllanRequest request =
+      with_fit(studies::allan_option_table(), &studies::allan_request, keywords, columns, fit_json);
   const std::unique_ptr<TableHold> table = table_or_none(columns);
-  std::vector<studies::AllanStudy> studies;
-  {
-    py::gil_scoped_release free;
-    studies = table ? with_table_context(*table, [&] { return studies::run_allan(request, table->table); })
-                    : studies::run_allan(request);
-  }
-  return report(studies::allan_json(studies).dump() + "\n", studies::allan_text(studies));
+  const std::vector<studies::AllanStudy> curves = released(table.get(), [&](const fit::Table* t) {
+    return t != nullptr ? studies::run_allan(request, *t) : studies::run_allan(request);
+  });
+  return report(studies::allan_json(curves).dump() + "\n", studies::allan_text(curves));
 }
 
 py::dict compensate(const Keywords& keywords, const py::object& columns, const py::object& fit_json) {
-  Keywords given = for_record(keywords, columns);
-  std::vector<fit::SavedFit> fits = fits_of(fit_json);
-  if (!fits.empty()) given.emplace_back("fit", kFitInMemory);
-  studies::CompensateRequest request =
-      studies::compensate_request(read_keywords(studies::compensate_option_table(), given));
-  request.fits = std::move(fits);
+  const studies::CompensateRequest request =
+      with_fit(studies::compensate_option_table(), &studies::compensate_request, keywords, columns, fit_json);
   const std::unique_ptr<TableHold> table = table_or_none(columns);
-  studies::CompensateRun run;
-  {
-    py::gil_scoped_release free;
-    run = table ? with_table_context(*table, [&] { return studies::run_compensate(request, table->table); })
-                : studies::run_compensate(request);
-  }
+  studies::CompensateRun run = released(table.get(), [&](const fit::Table* t) {
+    return t != nullptr ? studies::run_compensate(request, *t) : studies::run_compensate(request);
+  });
   py::dict out = report(studies::compensate_json(run).dump() + "\n", studies::compensate_text(run));
   // As the CSV of -o: time_s, temp_c, then per channel its output, model,
   // compensated output and outlier flag (prefixed by the channel's name when several).
