@@ -29,6 +29,8 @@
 #include "fit/engines/engine.h"
 #include "fit/model/formula.h"
 #include "fit/pipeline.h"
+#include "studies/fit/fit_run.h"
+#include "studies/options/fit_options.h"
 
 namespace {
 
@@ -127,6 +129,36 @@ void BM_FitTable(benchmark::State& state) {
 }
 
 BENCHMARK(BM_FitTable)->Arg(10'000'000)->Iterations(1)->Unit(benchmark::kSecond);
+
+// The library's whole `fit` on the table (studies::run_fit, the call
+// gyrotherm.fit makes): the command's defaults, model T + T^2 + dT, the JSON
+// and the windows' report included. Same record and counters as BM_FitTable.
+void BM_RunFitTable(benchmark::State& state) {
+  const char* raw = std::getenv("GYROTHERM_BENCH_TABLE");
+  const TableRecord record = raw != nullptr ? TableRecord(std::string(raw))
+                                            : TableRecord(static_cast<std::size_t>(state.range(0)));
+  const fit::Table table = record.table();
+  studies::FitCommandOptions options;
+  options.data = "arrays";
+  options.model.model = "T + T^2 + dT";
+  const studies::FitRequest request = studies::fit_request(options);
+  const bool reset = reset_peak_rss();
+  const double before_mb = reset ? status_mb("VmRSS") : peak_rss_mb();
+  studies::FitRun run;
+  for (auto _ : state) {
+    run = studies::run_fit(request, table);
+    benchmark::DoNotOptimize(run.json.data());
+  }
+  const fit::ModelFit& result = run.channels.front().result;
+  state.counters["rows"] = static_cast<double>(record.time_s.size());
+  state.counters["rss_growth_mb"] = peak_rss_mb() - before_mb;
+  state.counters["peak_reset"] = reset ? 1.0 : 0.0;
+  state.counters["b0"] = result.coefficients.intercept;
+  for (std::size_t k = 0; k < request.terms.size(); ++k)
+    state.counters[std::string(request.terms[k]->name)] = result.coefficients.b[k];
+}
+
+BENCHMARK(BM_RunFitTable)->Arg(10'000'000)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

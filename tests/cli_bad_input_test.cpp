@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
+#include <type_traits>
 
 #include "cli_runner.h"
 #include "sim/effects/effect.h"
@@ -31,9 +33,20 @@ std::string record(double lo = -10.0, double hi = 50.0, int rows = 20000, const 
   return s;
 }
 
+// A row's file, made when its test runs: the suite's rows are built when the
+// program registers its tests, which every test process does (ctest runs
+// each test in a process of its own), so a row holds how to make its file.
+struct Csv {
+  std::function<std::string()> make;
+  Csv(const char* text) : make([t = std::string(text)] { return t; }) {}
+  template <class F>
+    requires std::is_invocable_r_v<std::string, F>
+  Csv(F f) : make(std::move(f)) {}
+};
+
 struct Row {
   std::string name;
-  std::string csv;        // written to d.csv; "<dir>" makes d.csv a folder; "" writes nothing
+  Csv csv;                // written to d.csv; "<dir>" makes d.csv a folder; "" writes nothing
   std::string args;       // the command line after the program name
   int exit_code;
   std::vector<std::string> fragments;  // in stderr for errors, stdout otherwise
@@ -44,11 +57,12 @@ class Catalogue : public ::testing::TestWithParam<Row> {};
 
 TEST_P(Catalogue, MessageAndExitCode) {
   const Row& row = GetParam();
+  const std::string csv = row.csv.make();
   ScratchDir dir;
-  if (row.csv == "<dir>")
+  if (csv == "<dir>")
     std::filesystem::create_directories(dir / "d.csv");
-  else if (!row.csv.empty())
-    write_text(dir / "d.csv", row.csv);
+  else if (!csv.empty())
+    write_text(dir / "d.csv", csv);
   write_text(dir / "fast.toml",
              "rig = \"" + source_path("scenarios/rig_shield.toml") + "\"\ngyro = \"" +
                  source_path("scenarios/gyro.toml") +
@@ -76,8 +90,8 @@ INSTANTIATE_TEST_SUITE_P(
             {"d.csv:1: the header is not followed by any data row"}},
         Row{"row_with_another_delimiter", "time_s;temp_c;gyro_dph\n0,1,2\n1,1,2\n", "fit d.csv", 2,
             {"d.csv:2: the row has 1 field, the header (line 1) has 3"}},
-        Row{"bom_accepted", bom(), "fit d.csv", 0, {"instability (std of 100 s averages)"}},
-        Row{"crlf_accepted", record(-10, 50, 20000, "\r\n"), "fit d.csv", 0,
+        Row{"bom_accepted", bom, "fit d.csv", 0, {"instability (std of 100 s averages)"}},
+        Row{"crlf_accepted", [] { return record(-10, 50, 20000, "\r\n"); }, "fit d.csv", 0,
             {"instability (std of 100 s averages)"}},
         Row{"non_numeric_cell", "time_s,temp_c,gyro_dph\n0,20,-7\n1,20.x,-7\n", "fit d.csv", 2,
             {"d.csv:3: column temp_c: '20.x' is not a number"}},
@@ -89,35 +103,35 @@ INSTANTIATE_TEST_SUITE_P(
             {"d.csv:4: column time_s: time 1 is not after 1 on line 3"}},
         Row{"decreasing_time", "time_s,temp_c,gyro_dph\n0,20,-7\n5,20,-7\n4,20,-7\n", "fit d.csv", 2,
             {"d.csv:4: column time_s: time 4 is not after 5 on line 3"}},
-        Row{"gaps_reported", record(-10, 50, 20000, "\n", 8000, 9000), "fit d.csv", 0, {"1 gap,"}},
+        Row{"gaps_reported", [] { return record(-10, 50, 20000, "\n", 8000, 9000); }, "fit d.csv", 0, {"1 gap,"}},
         Row{"single_row", "time_s,temp_c,gyro_dph\n0,20,-7\n", "fit d.csv", 2,
             {"d.csv:2: only 1 data row; at least 2 are needed"}},
         Row{"huge_gyro", "time_s,temp_c,gyro_dph\n0,20,-7\n1,20,1e300\n", "fit d.csv", 2,
             {"d.csv:3: column gyro_dph: 1e+300 °/h is beyond any gyro's range"}},
         Row{"huge_temperature", "time_s,temp_c,gyro_dph\n0,20,-7\n1,5000,-7\n", "fit d.csv", 2,
             {"d.csv:3: column temp_c: 5000 is not a temperature in °C"}},
-        Row{"constant_temperature", record(25, 25), "fit d.csv", 2,
+        Row{"constant_temperature", [] { return record(25, 25); }, "fit d.csv", 2,
             {"the regressor of 'T' is constant"}},
         Row{"constant_gyro",
             [] {
               std::string s = "time_s,temp_c,gyro_dph\n";
               for (int k = 0; k < 3000; ++k) s += std::to_string(k) + "," + std::to_string(20 + 0.01 * k) + ",-7\n";
               return s;
-            }(),
+            },
             "fit d.csv", 2, {"the gyro output is constant"}},
-        Row{"unknown_term", record(), "fit d.csv --model 'T + T^7'", 2,
+        Row{"unknown_term", [] { return record(); }, "fit d.csv --model 'T + T^7'", 2,
             {"unknown term 'T^7' (known terms: " + effects::names() + ")"}},
-        Row{"contradictory_options", record(), "fit d.csv --keep-outliers --outlier-threshold 5", 2,
+        Row{"contradictory_options", [] { return record(); }, "fit d.csv --keep-outliers --outlier-threshold 5", 2,
             {"--keep-outliers and --outlier-threshold contradict each other"}},
-        Row{"option_not_a_number", record(), "fit d.csv --avg 10s", 2, {"--avg '10s': expected a number"}},
-        Row{"option_not_a_whole_number", record(), "fit d.csv --seed -1", 2,
+        Row{"option_not_a_number", [] { return record(); }, "fit d.csv --avg 10s", 2, {"--avg '10s': expected a number"}},
+        Row{"option_not_a_whole_number", [] { return record(); }, "fit d.csv --seed -1", 2,
             {"--seed '-1': expected a whole number >= 0"}},
         Row{"chamber_cannot_follow", "", "simulate fast.toml -o x.csv", 2,
             {"fast.toml:8: segment 2: a 20 °C/min ramp up to 90 °C needs at least",
              "the chamber cannot follow the profile; slow it to at most"}},
-        Row{"ill_conditioned", record(20, 20.5), "fit d.csv --model 'T + T^2 + T^3 + dT'", 2,
+        Row{"ill_conditioned", [] { return record(20, 20.5); }, "fit d.csv --model 'T + T^2 + T^3 + dT'", 2,
             {"collinear on this data (T, T^2, T^3", "condition number", "wider temperature range"}},
-        Row{"poorly_conditioned_warns", record(20, 25), "fit d.csv", 0,
+        Row{"poorly_conditioned_warns", [] { return record(20, 25); }, "fit d.csv", 0,
             {"warning: T, T^2 are nearly collinear on this data (condition number"}}),
     [](const auto& param_info) { return param_info.param.name; });
 

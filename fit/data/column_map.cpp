@@ -74,6 +74,16 @@ std::string Units::used() const {
          one("temperature", temp_unit(), temp_from) + (layout.empty() ? "" : "; " + layout);
 }
 
+namespace {
+constexpr std::string_view kFitFile = "the fit file ", kFitInMemory = "the fit given in memory";
+}
+
+void Units::set_from_fit(const std::string& file) {
+  time_from = gyro_from = temp_from = file.empty() ? std::string(kFitInMemory) : std::string(kFitFile) + file;
+}
+
+bool Units::from_fit() const { return gyro_from.starts_with(kFitFile) || gyro_from == kFitInMemory; }
+
 void Units::validate() const {
   time_unit();
   gyro_unit();

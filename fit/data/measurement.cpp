@@ -187,7 +187,7 @@ void CsvParser::read_log(const fs::path& file, const std::string& format, Measur
   // The format states every unit: an option may only repeat it. Units and
   // scales a fit file brings (of the CSV it was fitted on) do not apply; the
   // CSV's form (delimiter, decimal comma, --rate) neither.
-  const bool from_fit_file = map_.units.gyro_from.starts_with("the fit file");
+  const bool from_fit_file = map_.units.from_fit();
   const std::array<std::tuple<const std::string*, const char*, const char*>, 3> stated = {
       std::tuple{&map_.units.time, "s", "--time-unit"}, {&map_.units.gyro, "rad/s", "--gyro-unit"},
       {&map_.units.temp, "C", "--temp-unit"}};

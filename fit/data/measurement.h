@@ -71,6 +71,11 @@ struct Units {
 
   // Throws InputError naming the option, the value and what is allowed.
   void validate() const;
+  // Every unit taken from a saved fit: *_from = "the fit file FILE", or
+  // "the fit given in memory" for FILE "" (a Python FitResult never saved);
+  // from_fit() tells such units from those a record's header or options gave.
+  void set_from_fit(const std::string& file);
+  bool from_fit() const;
   bool identity() const;
   double time_s(double t) const;
   double gyro_dph(double g) const;

@@ -2,6 +2,7 @@
 
 import json
 import os
+import re
 from collections.abc import Mapping
 
 from . import _gyrotherm as _g
@@ -222,6 +223,20 @@ class Diagnosis(_Report):
     def verdict(self):
         return self._dict.get("verdict")
 
+    @property
+    def next_call(self):
+        """The next step as a Python call, ``gyrotherm.diagnose(data, model="...")`` with the
+        model the diagnosis suggests (``next_command`` is the same for the command line), or None."""
+        return _next_call(self._dict.get("next_command") or "")
+
+
+def _next_call(command):
+    found = re.search(r'--model "([^"]*)"( --gyro-col (\S+))?', command)
+    if not found:
+        return None
+    channel = f", gyro_col={found.group(3)!r}" if found.group(3) else ""
+    return f'gyrotherm.diagnose(data, model="{found.group(1)}"{channel})'
+
 
 class AllanResult(_Report):
     """Allan deviation with intervals (``allan``): per channel the curve(s) and the noise
@@ -289,7 +304,12 @@ def diagnose(data, model=None, add=None, **options):
     path, columns, _ = _data(data)
     pairs = _keywords(dict(data=path, model=model, add=add, **options))
     out = _g.diagnose(pairs, columns)
-    return Diagnosis(out["json"], out["text"])
+    text = out["text"]
+    if columns is not None:
+        # Arrays have no file to name on a command line: the next step as a Python call.
+        text = re.sub(r"^next: (gyrotherm diagnose .*)$", lambda m: f"next: {_next_call(m.group(1)) or m.group(1)}",
+                      text, flags=re.M)
+    return Diagnosis(out["json"], text)
 
 
 def allan(data, fit=None, **options):
@@ -338,7 +358,13 @@ def export(fit, format, output, data=None, **options):
             os.remove(fit_file)
             fit.file = None
         raise
-    return ExportResult(out["json"], out["text"], out["warnings"])
+    text, warnings = out["text"], list(out["warnings"])
+    if columns is not None:
+        # Arrays have no file to name on a command line: the refit as a Python call.
+        def refit(t):
+            return re.sub(r"\(gyrotherm fit \S+ --model '([^']*)', then", r'(gyrotherm.fit(data, model="\1"), then', t)
+        text, warnings = refit(text), [refit(w) for w in warnings]
+    return ExportResult(out["json"], text, warnings)
 
 
 def plan(**options):

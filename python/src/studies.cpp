@@ -27,8 +27,8 @@ namespace gyrotherm::python {
 
 namespace {
 
-// How a fit given in memory is named in reports (a fit file's path otherwise).
-constexpr const char* kFitInMemory = "fit (in memory)";
+// A fit given in memory is named fit::kFitInMemory in reports (a fit file's path otherwise).
+using fit::kFitInMemory;
 
 py::dict report(const std::string& json, const std::string& text) {
   py::dict out;

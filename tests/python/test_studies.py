@@ -31,6 +31,16 @@ def test_diagnose_on_arrays_is_the_files(cycle_csv):
     assert a["instability_dph"] == b["instability_dph"]
 
 
+def test_diagnose_on_arrays_suggests_a_python_call(cycle_csv):
+    d = gyrotherm.diagnose(read_csv(cycle_csv), model="T + T^2 + dT")
+    model = d.as_dict()["next_command"].split("--model ")[1].strip('"')
+    assert "grad" in model
+    assert d.next_call == f'gyrotherm.diagnose(data, model="{model}")'
+    assert f"next: {d.next_call}\n" in d.summary() and "gyrotherm diagnose arrays" not in d.summary()
+    # On a file the report keeps the command line.
+    assert "next: gyrotherm diagnose " in gyrotherm.diagnose(cycle_csv, model="T + T^2 + dT").summary()
+
+
 def test_allan_is_the_clis(cycle_csv, cycle_fit_file):
     a = gyrotherm.allan(cycle_csv, fit=cycle_fit_file)
     assert without_timing(a.as_dict()) == cli_json("allan", cycle_csv, "--fit", cycle_fit_file)
@@ -43,6 +53,11 @@ def test_allan_with_an_unsaved_fit_and_arrays(cycle_csv, cycle_fit_file):
     a = gyrotherm.allan(read_csv(cycle_csv), fit=r).as_dict()
     b = gyrotherm.allan(cycle_csv, fit=cycle_fit_file).as_dict()
     assert [s["adev_dph"] for s in a["series"]] == [s["adev_dph"] for s in b["series"]]
+
+
+def test_a_fit_in_memory_is_named_so(cycle_csv):
+    a = gyrotherm.allan(read_csv(cycle_csv), fit=gyrotherm.fit(cycle_csv))  # its units are the fit's
+    assert "time s (the fit given in memory)" in a.summary() and "the fit file" not in a.summary()
 
 
 def test_compensate_is_the_clis(cycle_csv, cycle_fit_file, tmp_path):
@@ -73,6 +88,13 @@ def test_export_saves_an_unsaved_fit_beside_its_output(cycle_csv, tmp_path):
     assert (tmp_path / "comp.h.fit.json").exists()
     assert "comp.h.fit.json" in (tmp_path / "comp.h").read_text()
     assert e.as_dict()["format"] == "c"
+
+
+def test_export_on_arrays_suggests_the_refit_as_a_python_call(cycle_csv, tmp_path):
+    r = gyrotherm.fit(read_csv(cycle_csv))  # dT: dropped for PX4, with the cost and the refit to try
+    e = gyrotherm.export(r, format="px4", output=tmp_path / "x.params", drop_unsupported=True)
+    said = e.summary() + "\n".join(e.warnings)
+    assert 'gyrotherm.fit(data, model="' in said and "gyrotherm fit arrays" not in said
 
 
 def test_plan_is_the_clis(tmp_path):
