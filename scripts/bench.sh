@@ -12,9 +12,16 @@
 # arrays, results/bench_python_fit.json).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+areas=("$@")
+known=$(ls bench/*_bench.cpp | sed 's|bench/||; s|_bench.cpp||' | tr '\n' ' ')
+for area in "${areas[@]}"; do
+  case " $known" in
+    *" $area "*) ;;
+    *) echo "usage: scripts/bench.sh [AREA ...]; areas: $known(none: all)" >&2; exit 2 ;;
+  esac
+done
 scripts/build.sh
 mkdir -p results
-areas=("$@")
 if [ ${#areas[@]} -eq 0 ]; then
   areas=()
   for exe in build/bench/bench_*; do areas+=("${exe##*/bench_}"); done
@@ -126,6 +133,9 @@ py_s=$(json_number $pyfit python_fit_cpu_s)
 cpp_s=$(json_number $pyfit cpp_fit_cpu_s)
 py_extra=$(json_number $pyfit peak_beyond_arrays_mb)
 py_arrays=$(json_number $pyfit arrays_mb)
+table=results/bench_table.json
+table_fit=$(bench_field $table BM_FitTable/10000000/iterations:1_median cpu_time)
+table_run=$(bench_field $table BM_RunFitTable/10000000/iterations:1_median cpu_time)
 declare -A per_trial
 for n in 100 1000 10000; do
   per_trial[$n]=$(bench_field $score "BM_CampaignScaling/$n/iterations:1/repeats:1/real_time" ms_per_trial)
@@ -153,6 +163,7 @@ done
   echo "| \`plan\` for six terms (≤ 60 s on 2 cores) | $(show "$plan6" "%.1f") s ($(show "$plan6_evals" "%.0f") predictions; the paper's three terms: $(show "$plan3" "%.1f") s) | the aim, 60 s | $(ratio "$plan6" 60 "%.2f") |"
   echo "| the same | | its predictions one after another: $(show "$plan6_evals" "%.0f") × $(show "$predict6" "%.1f") ms (one on the 8.8 h cycle) | $(awk -v a="$plan6" -v n="$plan6_evals" -v p="$predict6" 'BEGIN { if (a == "" || n == "" || p == "") print "–"; else printf "%.2f", a / (n * p / 1000) }') |"
   echo "| \`gyrotherm.fit\` (Python) on 10⁷ samples in numpy arrays (≤ 1.2× the C++ library's fit of the same arrays), CPU time | $(show "$py_s" "%.2f") s | \`bench_table\` BM_FitTable on the same arrays: $(show "$cpp_s" "%.2f") s | $(ratio "$py_s" "$cpp_s" "%.2f") |"
+  echo "| the same in C++: the library's whole \`fit\` (studies::run_fit: the command's defaults, JSON and report) on the arrays, CPU time | $(show "$table_run" "%.2f") s | \`bench_table\` BM_FitTable (prepare_table + fit_model alone): $(show "$table_fit" "%.2f") s | $(ratio "$table_run" "$table_fit" "%.2f") |"
   echo "| its peak memory beyond the arrays (≤ 64 MB) | $(show "$py_extra" "%.0f") MB (the arrays: $(show "$py_arrays" "%.0f") MB) | the aim, 64 MB | $(ratio "$py_extra" 64 "%.2f") |"
   echo "| campaign time per trial, 10,000 trials (linear growth) | $(show "${per_trial[10000]}" "%.1f") ms | per trial at 100 trials: $(show "${per_trial[100]}" "%.1f") ms | $(ratio "${per_trial[10000]}" "${per_trial[100]}" "%.2f") |"
   echo
