@@ -10,7 +10,7 @@ Usage, from the source folder with the build's Python package (Debian's interpre
 Rows and summaries go to build/sensor_lag_coverage/ (GYROTHERM_COVERAGE_OUT to change it).
 results/sensor_lag_coverage.md used `run E 1 1000` for every experiment below (about 0.1 s a seed).
 
-Experiments (each appends one JSON line per seed to results/EXPERIMENT.jsonl):
+Experiments (each appends one JSON line per seed to OUT/EXPERIMENT.jsonl):
   grad       hidden grad=0.02, model T + T^2 + dT + grad, default intervals (auto)
   control    no hidden effect, model T + T^2 + dT (the paper's), default intervals
   grad_boot  as grad, option intervals=bootstrap (draws=1000)

@@ -36,20 +36,25 @@ studies='IntervalsCover|NineOfTen|UnbiasedAndCovered|UniformPValues|RarelyShowAS
 # are not in this build).
 exclude=$(echo "$studies" | tr '|' '\n' | sed 's/.*/*&*/' | paste -sd:)
 shards=$(nproc)
+rm -f shard*.log premature*
 pids=()
+# A shard stuck for 20 minutes (a whole shard takes about 5) is stopped; a
+# test that ends its process early, even with status 0, leaves GoogleTest's
+# premature-exit file behind and fails the run.
 for ((i = 0; i < shards; i++)); do
-  GTEST_TOTAL_SHARDS=$shards GTEST_SHARD_INDEX=$i ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    timeout 3000 tests/gyrotherm_tests --gtest_filter="-$exclude" > "shard$i.log" 2>&1 &
+  GTEST_TOTAL_SHARDS=$shards GTEST_SHARD_INDEX=$i TEST_PREMATURE_EXIT_FILE="$PWD/premature$i" \
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    timeout -k 30 1200 tests/gyrotherm_tests --gtest_filter="-$exclude" > "shard$i.log" 2>&1 &
   pids+=($!)
 done
 failed=0
 for i in "${!pids[@]}"; do
   status=0
   wait "${pids[$i]}" || status=$?
+  if [ "$status" -eq 0 ] && [ -e "premature$i" ]; then status=99; fi
   if [ "$status" -ne 0 ]; then
     failed=1
-    echo "sanitize: shard $i of $shards failed (exit $status; 124: over 50 minutes); its log, build-asan/shard$i.log, ends:"
+    echo "sanitize: shard $i of $shards failed (exit $status; 124: over 20 minutes; 99: a test ended the process early); its log, build-asan/shard$i.log, ends:"
     grep -E "^\[  FAILED  \]|ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error" "shard$i.log" | head -40 || true
     tail -n 80 "shard$i.log"
   fi

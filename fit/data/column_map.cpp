@@ -75,14 +75,14 @@ std::string Units::used() const {
 }
 
 namespace {
-constexpr std::string_view kFitFile = "the fit file ", kFitInMemory = "the fit given in memory";
+constexpr std::string_view kFromFitFile = "the fit file ", kFromFitInMemory = "the fit given in memory";
 }
 
 void Units::set_from_fit(const std::string& file) {
-  time_from = gyro_from = temp_from = file.empty() ? std::string(kFitInMemory) : std::string(kFitFile) + file;
+  time_from = gyro_from = temp_from = file.empty() ? std::string(kFromFitInMemory) : std::string(kFromFitFile) + file;
 }
 
-bool Units::from_fit() const { return gyro_from.starts_with(kFitFile) || gyro_from == kFitInMemory; }
+bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyro_from == kFromFitInMemory; }
 
 void Units::validate() const {
   time_unit();

@@ -64,6 +64,13 @@ def _fit_json_of(fit):
     raise InputError(f"fit: expected a gyrotherm.FitResult or the path of a fit file; got {type(fit).__name__}")
 
 
+def _fit_to_read(fit):
+    """A fit for allan and compensate as (its JSON, None) when it was never saved, else (None,
+    its file): a saved fit is read from its file and named by it, as on the command line."""
+    fit_json, fit_file = _fit_json_of(fit)
+    return (None, fit_file) if fit_file is not None else (fit_json, None)
+
+
 class Record(Mapping):
     """A simulated record: its columns as numpy arrays (time_s in s; chamber_c, case_c, temp_c,
     temp2_c in °C; gyro_dph and bias_true_dph in °/h), the truth (``truth``: the true coefficients
@@ -226,12 +233,15 @@ class Diagnosis(_Report):
     @property
     def next_call(self):
         """The next step as a Python call, ``gyrotherm.diagnose(data, model="...")`` with the
-        model the diagnosis suggests (``next_command`` is the same for the command line), or None."""
+        model the diagnosis suggests (``next_command`` is the same for the command line), or None;
+        with several gyro channels, a dict of channel -> call (or None)."""
+        if isinstance(self._dict.get("channels"), list):
+            return {c.get("channel"): _next_call(c.get("next_command") or "") for c in self._dict["channels"]}
         return _next_call(self._dict.get("next_command") or "")
 
 
 def _next_call(command):
-    found = re.search(r'--model "([^"]*)"( --gyro-col (\S+))?', command)
+    found = re.search(r'--model "([^"]*)"( --gyro-col (.+))?$', command)
     if not found:
         return None
     channel = f", gyro_col={found.group(3)!r}" if found.group(3) else ""
@@ -317,7 +327,7 @@ def allan(data, fit=None, **options):
     also of the output compensated by it. Options as ``gyrotherm allan``: taus (octave, decade,
     all), tau_max (s), ci (confidence), plot (PNG), and the column and unit options."""
     path, columns, _ = _data(data)
-    fit_json, fit_file = _fit_json_of(fit) if fit is not None else (None, None)
+    fit_json, fit_file = _fit_to_read(fit) if fit is not None else (None, None)
     pairs = _keywords(dict(data=path, fit=fit_file, **options))
     out = _g.allan(pairs, columns, fit_json)
     return AllanResult(out["json"], out["text"])
@@ -328,7 +338,7 @@ def compensate(data, fit, **options):
     at every sample. Options as ``gyrotherm compensate``: causal, output (also write the CSV), and
     the column and unit options (default: the fit's)."""
     path, columns, _ = _data(data)
-    fit_json, fit_file = _fit_json_of(fit)
+    fit_json, fit_file = _fit_to_read(fit)
     pairs = _keywords(dict(data=path, fit=fit_file, **options))
     out = _g.compensate(pairs, columns, fit_json)
     return Compensation(out["json"], out["text"], out["columns"])

@@ -41,6 +41,27 @@ def test_diagnose_on_arrays_suggests_a_python_call(cycle_csv):
     assert "next: gyrotherm diagnose " in gyrotherm.diagnose(cycle_csv, model="T + T^2 + dT").summary()
 
 
+def test_diagnose_on_arrays_of_several_channels_suggests_each_channels_call(cycle_csv):
+    data = dict(read_csv(cycle_csv))
+    data["gyro a"] = data["gyro_dph"]  # a channel name with a space
+    data["gyro_b"] = data["gyro_dph"] + 1e-4 * np.sin(np.arange(len(data["gyro_dph"])))
+    d = gyrotherm.diagnose(data, model="T + T^2 + dT", gyro_col="gyro a,gyro_b")
+    calls = d.next_call
+    assert set(calls) == {"gyro a", "gyro_b"}
+    assert calls["gyro a"].endswith(", gyro_col='gyro a')") and calls["gyro_b"].endswith(", gyro_col='gyro_b')")
+    for call in calls.values():
+        assert f"next: {call}\n" in d.summary()
+
+
+def test_a_saved_fit_result_is_read_from_its_file(cycle_csv, tmp_path):
+    r = gyrotherm.fit(cycle_csv)
+    saved = r.save(tmp_path / "f.json")
+    a = gyrotherm.allan(read_csv(cycle_csv), fit=r).as_dict()
+    c = gyrotherm.compensate(read_csv(cycle_csv), r).as_dict()
+    assert a["fit"] == saved and c["fit"] == saved
+    assert a == gyrotherm.allan(read_csv(cycle_csv), fit=saved).as_dict()
+
+
 def test_allan_is_the_clis(cycle_csv, cycle_fit_file):
     a = gyrotherm.allan(cycle_csv, fit=cycle_fit_file)
     assert without_timing(a.as_dict()) == cli_json("allan", cycle_csv, "--fit", cycle_fit_file)
