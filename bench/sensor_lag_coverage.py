@@ -40,10 +40,10 @@ import gyrotherm
 SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENARIO = os.path.join(SOURCE, "scenarios", "cycle.toml")
 OUT = os.environ.get("GYROTHERM_COVERAGE_OUT", os.path.join(SOURCE, "build", "sensor_lag_coverage"))
-HERE = OUT  # the rig variants are written beside the rows
-IDEAL_RIG = os.path.join(HERE, "rig_shield_ideal_sensor.toml")
-LAG_ONLY_RIG = os.path.join(HERE, "rig_shield_lag_only.toml")        # 20 s lag, no reading noise
-READ_ONLY_RIG = os.path.join(HERE, "rig_shield_reading_only.toml")   # 0.5 s lag, reading noise + resolution
+# The rig variants are written beside the rows.
+IDEAL_RIG = os.path.join(OUT, "rig_shield_ideal_sensor.toml")
+LAG_ONLY_RIG = os.path.join(OUT, "rig_shield_lag_only.toml")        # 20 s lag, no reading noise
+READ_ONLY_RIG = os.path.join(OUT, "rig_shield_reading_only.toml")   # 0.5 s lag, reading noise + resolution
 SENSOR_VARIANTS = {IDEAL_RIG: (0.5, 0.0, 0.0), LAG_ONLY_RIG: (20.0, 0.0, 0.0), READ_ONLY_RIG: (0.5, 0.003, 0.01)}
 
 EXPERIMENTS = {
@@ -139,16 +139,6 @@ def run(name, seed):
         seconds=dict(simulate=t1 - t0, fit=t2 - t1, noise_free_fit=t3 - t2),
     )
     return row
-
-
-def wilson(k, n, z=1.96):
-    if n == 0:
-        return (float("nan"), float("nan"))
-    p = k / n
-    den = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / den
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / den
-    return (max(0.0, c - h), min(1.0, c + h))
 
 
 def binomial_cdf(k, n, p):

@@ -98,10 +98,22 @@ double peak_rss_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // KiB on Linux
 }
 
-void BM_FitTable(benchmark::State& state) {
+// The record a benchmark fits: read from GYROTHERM_BENCH_TABLE when set, else
+// made with state.range(0) rows.
+TableRecord bench_record(const benchmark::State& state) {
   const char* raw = std::getenv("GYROTHERM_BENCH_TABLE");
-  const TableRecord record = raw != nullptr ? TableRecord(std::string(raw))
-                                            : TableRecord(static_cast<std::size_t>(state.range(0)));
+  return raw != nullptr ? TableRecord(std::string(raw)) : TableRecord(static_cast<std::size_t>(state.range(0)));
+}
+
+// The fitted coefficients as counters: b0 and one per term.
+void coefficient_counters(benchmark::State& state, const fit::ModelFit& result,
+                          const std::vector<const fit::Term*>& terms) {
+  state.counters["b0"] = result.coefficients.intercept;
+  for (std::size_t k = 0; k < terms.size(); ++k) state.counters[std::string(terms[k]->name)] = result.coefficients.b[k];
+}
+
+void BM_FitTable(benchmark::State& state) {
+  const TableRecord record = bench_record(state);
   const std::size_t rows = record.time_s.size();
   const fit::Table table = record.table();
   const std::vector<const fit::Term*> terms = fit::parse_formula("T + T^2 + dT");
@@ -124,19 +136,17 @@ void BM_FitTable(benchmark::State& state) {
   state.counters["rss_growth_mb"] = peak_rss_mb() - before_mb;
   state.counters["rss_growth_prepare_mb"] = prepared_mb;
   state.counters["peak_reset"] = reset ? 1.0 : 0.0;
-  state.counters["b0"] = result.coefficients.intercept;
-  for (std::size_t k = 0; k < terms.size(); ++k) state.counters[std::string(terms[k]->name)] = result.coefficients.b[k];
+  coefficient_counters(state, result, terms);
 }
 
 BENCHMARK(BM_FitTable)->Arg(10'000'000)->Iterations(1)->Unit(benchmark::kSecond);
 
 // The library's whole `fit` on the table (studies::run_fit, the call
 // gyrotherm.fit makes): the command's defaults, model T + T^2 + dT, the JSON
-// and the windows' report included. Same record and counters as BM_FitTable.
+// and the windows' report included. Same record and counters as BM_FitTable
+// but rss_growth_prepare_mb.
 void BM_RunFitTable(benchmark::State& state) {
-  const char* raw = std::getenv("GYROTHERM_BENCH_TABLE");
-  const TableRecord record = raw != nullptr ? TableRecord(std::string(raw))
-                                            : TableRecord(static_cast<std::size_t>(state.range(0)));
+  const TableRecord record = bench_record(state);
   const fit::Table table = record.table();
   studies::FitCommandOptions options;
   options.data = "arrays";
@@ -149,13 +159,10 @@ void BM_RunFitTable(benchmark::State& state) {
     run = studies::run_fit(request, table);
     benchmark::DoNotOptimize(run.json.data());
   }
-  const fit::ModelFit& result = run.channels.front().result;
   state.counters["rows"] = static_cast<double>(record.time_s.size());
   state.counters["rss_growth_mb"] = peak_rss_mb() - before_mb;
   state.counters["peak_reset"] = reset ? 1.0 : 0.0;
-  state.counters["b0"] = result.coefficients.intercept;
-  for (std::size_t k = 0; k < request.terms.size(); ++k)
-    state.counters[std::string(request.terms[k]->name)] = result.coefficients.b[k];
+  coefficient_counters(state, run.channels.front().result, request.terms);
 }
 
 BENCHMARK(BM_RunFitTable)->Arg(10'000'000)->Iterations(1)->Unit(benchmark::kSecond);

@@ -259,7 +259,7 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     units.gyro_scale = number(need(u, "gyro_scale", "a number"), "pipeline.columns.units.gyro_scale");
     units.temp_scale = number(need(u, "temp_scale", "a number"), "pipeline.columns.units.temp_scale");
     units.temp_offset = number(need(u, "temp_offset", "a number"), "pipeline.columns.units.temp_offset");
-    units.set_from_fit(file == kFitInMemory ? "" : file.string());
+    units.set_from_fit(file.string());
     try {
       units.validate();
     } catch (const InputError& e) {

@@ -62,9 +62,9 @@ SavedFit load_fit(const std::filesystem::path& file);
 // Every channel of a fit file: one for a single-channel file.
 std::vector<SavedFit> load_fits(const std::filesystem::path& file);
 // The same, of a fit file's JSON already parsed (a Python FitResult's); `file`
-// names it in messages and as SavedFit::file: kFitInMemory for a fit that
-// was never a file (the units then come "from the fit given in memory").
+// names it in messages and as SavedFit::file: kFitInMemory (fit/data/
+// measurement.h) for a fit that was never a file (the units then come "from
+// the fit given in memory").
 std::vector<SavedFit> load_fits_json(const nlohmann::json& fit, const std::filesystem::path& file);
-inline constexpr const char* kFitInMemory = "fit (in memory)";
 
 }  // namespace gyrotherm::fit

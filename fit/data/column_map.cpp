@@ -79,7 +79,8 @@ constexpr std::string_view kFromFitFile = "the fit file ", kFromFitInMemory = "t
 }
 
 void Units::set_from_fit(const std::string& file) {
-  time_from = gyro_from = temp_from = file.empty() ? std::string(kFromFitInMemory) : std::string(kFromFitFile) + file;
+  time_from = gyro_from = temp_from =
+      file == kFitInMemory ? std::string(kFromFitInMemory) : std::string(kFromFitFile) + file;
 }
 
 bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyro_from == kFromFitInMemory; }

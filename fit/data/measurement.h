@@ -54,6 +54,10 @@ namespace gyrotherm::fit {
 // column's name states, else the base unit (fit/data/header_units.h), and
 // records where each came from in *_from ("--time-unit", "header 'time (ms)'",
 // "default").
+// The name a fit given in memory (a Python FitResult never saved) goes by
+// where a fit file's path would be (fit::load_fits_json, reports).
+inline constexpr const char* kFitInMemory = "fit (in memory)";
+
 struct Units {
   std::string time, gyro, temp;
   std::string time_from, gyro_from, temp_from;
@@ -72,8 +76,9 @@ struct Units {
   // Throws InputError naming the option, the value and what is allowed.
   void validate() const;
   // Every unit taken from a saved fit: *_from = "the fit file FILE", or
-  // "the fit given in memory" for FILE "" (a Python FitResult never saved);
-  // from_fit() tells such units from those a record's header or options gave.
+  // "the fit given in memory" for FILE kFitInMemory (a Python FitResult never
+  // saved); from_fit() tells such units from those a record's header or
+  // options gave.
   void set_from_fit(const std::string& file);
   bool from_fit() const;
   bool identity() const;
