@@ -54,7 +54,7 @@ double least_squares_sigma(const DerivedSeries& derived, const Eigen::VectorXd& 
   try {
     const LinearProblem problem(design_matrix(derived, terms, parameters), y, term_names(terms));
     return problem.optimum_objective();
-  } catch (const InputError&) {
+  } catch (const FitError&) {
     return std::numeric_limits<double>::infinity();
   }
 }
@@ -108,13 +108,17 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
       out.parameters[nonlinear[i]] = Interval{parameters[nonlinear[i]] * std::exp(d.lower),
                                               parameters[nonlinear[i]] * std::exp(d.upper)};
     }
-  } catch (const InputError&) {
+  } catch (const FitError&) {
     // A column that vanishes or is collinear: no interval can be had.
   }
   return out;
 }
 
 }  // namespace
+
+ModelFit reference_fit(const PreparedData& data, const std::vector<const Term*>& terms) {
+  return fit_model(data, terms, find_engine("ols"), {});
+}
 
 WindowGrid window_grid(const PreparedData& data) {
   WindowGrid grid;
@@ -134,7 +138,7 @@ std::shared_ptr<const NoiseContext> identify_record_noise(const PreparedData& da
   if (grid.size() < problem.dimension() + 5 || !(grid.window_s > 0.0)) return nullptr;
   try {
     return std::make_shared<const NoiseContext>(NoiseContext{identify_noise(grid, problem.design(), problem.y()), grid});
-  } catch (const InputError&) {
+  } catch (const FitError&) {
     return nullptr;  // nothing to trust: ols falls back to Newey–West
   }
 }
@@ -209,6 +213,9 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.instability_after_dph = problem.sigma_two_pass(fit.coefficients);
   fit.optimum_dph = problem.sigma_two_pass(problem.physical(least_squares_optimum(problem)));
   fit.points = problem.points();
+  fit.fitted_dph = model_values(problem.design(), fit.coefficients);
+  fit.residual_dph.resize(fit.fitted_dph.size());
+  for (std::size_t p = 0; p < fit.fitted_dph.size(); ++p) fit.residual_dph[p] = data.series.gyro_dph[p] - fit.fitted_dph[p];
   fit.warnings = problem.warnings();
   fit.parameter_intervals.assign(terms.size(), std::nullopt);
   if (!fit.engine.intervals.empty()) {

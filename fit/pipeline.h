@@ -64,6 +64,8 @@ struct ModelFit {
   double instability_after_dph = 0.0;  // two-pass σ of the residual
   double optimum_dph = 0.0;            // the exact least-squares σ for the same terms and parameters
   std::size_t points = 0;
+  // Per window: the model's value B = b0 + Σ b_j x_j and the residual y − B.
+  std::vector<double> fitted_dph, residual_dph;
   std::vector<std::string> warnings;   // e.g. poorly conditioned terms
   // The record's noise, identified by REML on this model's residual (absent
   // when the record has too few windows); ols's intervals come from it.
@@ -72,10 +74,14 @@ struct ModelFit {
   double ratio() const { return instability_before_dph / instability_after_dph; }
 };
 
-// Steps 4–6. Throws InputError for a design that cannot be fitted.
+// Steps 4–6. Throws FitError for a design that cannot be fitted.
 ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& terms,
                    const EngineInfo& engine, const EngineSettings& settings,
                    FitObserver* observer = nullptr);
+
+// The fit every study takes as its reference: ols with its default intervals
+// (under the record's identified noise), the default engine's settings.
+ModelFit reference_fit(const PreparedData& data, const std::vector<const Term*>& terms);
 
 // The windows of a prepared record as the noise model sees them.
 WindowGrid window_grid(const PreparedData& data);

@@ -17,7 +17,7 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   if (static_cast<Eigen::Index>(names_.size()) != m || y_.size() != l)
     throw std::invalid_argument("LinearProblem: sizes do not match");
   if (l < m + 2)
-    throw InputError(fmt::format("only {} for a model with {} and an intercept: need at least {} (a longer "
+    throw FitError(fmt::format("only {} for a model with {} and an intercept: need at least {} (a longer "
                                  "record or a shorter --avg)",
                                  counted(static_cast<std::size_t>(l), "averaged point"),
                                  counted(static_cast<std::size_t>(m), "term"), m + 2));
@@ -28,7 +28,7 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   y_centred_ = y_.array() - y_mean_;
   s_yy_ = y_centred_.squaredNorm() / dof;
   if (!(s_yy_ > 0.0))
-    throw InputError("the gyro output is constant over the averaged data: there is nothing to "
+    throw FitError("the gyro output is constant over the averaged data: there is nothing to "
                      "compensate (is the right column mapped with --gyro-col?)");
   mean_ = design_.colwise().mean().transpose();
   scaled_ = design_.rowwise() - mean_.transpose();
@@ -36,7 +36,7 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   for (Eigen::Index j = 0; j < m; ++j) {
     const double relative = scale_[j] / std::max(1.0, std::abs(mean_[j]));
     if (!(scale_[j] > 0.0) || relative < 1e-12)
-      throw InputError(fmt::format("the regressor of '{}' is constant over the data (it cannot be "
+      throw FitError(fmt::format("the regressor of '{}' is constant over the data (it cannot be "
                                    "told apart from the intercept); drop it from the model or use "
                                    "data where it varies",
                                    names_[static_cast<std::size_t>(j)]));
@@ -60,7 +60,7 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
       if (std::abs(v[j]) > 0.1)
         terms += (terms.empty() ? "" : ", ") + names_[static_cast<std::size_t>(j)];
     if (condition_ > kIllConditioned && (collinear == Collinear::refuse || !std::isfinite(condition_)))
-      throw InputError(fmt::format(
+      throw FitError(fmt::format(
           "the model's terms are collinear on this data ({}; condition number {:.3g} of the "
           "scaled design, above {:.0e}): their coefficients would be set by the noise, not by "
           "the data. Use data with a wider temperature range or more varied rates, or drop one "

@@ -10,13 +10,6 @@
 
 namespace gyrotherm::fit {
 
-namespace {
-
-// Unit-variance exponential kernel e^{−|s|/τ} over windows of length Δ:
-// the window means' variance and the factor A of Cov_ij = A e^{−|t_i − t_j|/τ}.
-struct ExpWindow {
-  double diagonal, off;
-};
 ExpWindow exp_window(double tau, double delta) {
   const double x = delta / tau;
   const double r = tau / delta;
@@ -24,6 +17,8 @@ ExpWindow exp_window(double tau, double delta) {
   const double two_sinh = std::exp(x / 2.0) - std::exp(-x / 2.0);
   return {2.0 * r * r * (x + std::expm1(-x)), r * r * two_sinh * two_sinh};
 }
+
+namespace {
 
 // y = C x for the unit exponential kernel (semi-separable: two recursions).
 void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen::MatrixXd& x,
@@ -94,6 +89,29 @@ void NoiseModel::apply(const WindowGrid& grid, const Eigen::MatrixXd& x, Eigen::
     for (double tau : flicker_tau_s) add_exp_kernel(grid, tau, weight(kFlicker), x, y);
   if (weight(kGaussMarkov) > 0.0 && gm_tau_s > 0.0) add_exp_kernel(grid, gm_tau_s, weight(kGaussMarkov), x, y);
   if (weight(kRandomWalk) > 0.0) add_random_walk(grid, weight(kRandomWalk), x, y);
+}
+
+std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGrid& grid) {
+  std::vector<NoiseModel> out = {model};
+  for (const NoiseModel& a : model.alternatives) out.push_back(a);
+  const double span = grid.time_s.empty() ? grid.window_s : grid.time_s.back() - grid.time_s.front() + grid.window_s;
+  constexpr double z = 1.959963984540054;
+  for (const int k : {kFlicker, kGaussMarkov, kRandomWalk}) {
+    const auto kk = static_cast<std::size_t>(k);
+    const int p = k == kRandomWalk ? 4 : k;
+    const double value = model.amplitude[kk];
+    const double upper = model.identified[kk] ? value * std::exp(z * std::sqrt(std::max(0.0, model.covariance(p, p))) / value)
+                                              : std::max(model.upper_bound[kk], value);
+    if (!(upper > value)) continue;
+    NoiseModel raised = model;
+    raised.alternatives.clear();
+    raised.amplitude[kk] = upper;
+    raised.present[kk] = true;
+    if (k == kGaussMarkov && !(raised.gm_tau_s > 0.0)) raised.gm_tau_s = std::sqrt(grid.window_s * span);
+    if (k == kFlicker && raised.flicker_tau_s.empty()) continue;
+    out.push_back(raised);
+  }
+  return out;
 }
 
 std::vector<NoiseParameter> NoiseModel::parameters() const {

@@ -195,7 +195,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
                           const Eigen::VectorXd& y, std::size_t most_blocks) {
   const Eigen::Index n = static_cast<Eigen::Index>(grid.size());
   if (n < design.cols() + 5)
-    throw InputError(fmt::format("only {}: too few to identify the noise of a model with {} (need {})",
+    throw FitError(fmt::format("only {}: too few to identify the noise of a model with {} (need {})",
                                  counted(static_cast<std::size_t>(n), "window"),
                                  counted(static_cast<std::size_t>(design.cols()), "term"), design.cols() + 5));
   NoiseModel model;
@@ -237,7 +237,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   reml.X = aggregate(blocks, X);
   reml.y = aggregate(blocks, y);
   if (Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(reml.X).rank() < reml.X.cols())
-    throw InputError(fmt::format("the model's terms cannot be told apart at the {} block means the "
+    throw FitError(fmt::format("the model's terms cannot be told apart at the {} block means the "
                                  "noise is identified on", nb));
   for (int k : {kWhite, kFlicker, kRandomWalk}) reml.M[static_cast<std::size_t>(k)] = block_cov(model, k);
   const double lo_tau = std::log(grid.window_s), hi_tau = std::log(record_span(grid));
@@ -423,7 +423,7 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
     if (fa + 2.0 * parameter_count(a) <= best_aic + 2.0) model.alternatives.push_back(finish(a));
   }
   for (const double v : model.amplitude)
-    if (!std::isfinite(v)) throw InputError("the noise amplitudes came out non-finite: nothing to trust");
+    if (!std::isfinite(v)) throw FitError("the noise amplitudes came out non-finite: nothing to trust");
   return model;
 }
 

@@ -109,6 +109,14 @@ struct NoiseModel {
   void apply(const WindowGrid& grid, const Eigen::MatrixXd& x, Eigen::MatrixXd& y, int kind = -1) const;
 };
 
+// A unit-variance exponential kernel e^{−|s|/τ} over windows of length Δ: the
+// window means' variance and the factor A of Cov_ij = A·e^{−|t_i − t_j|/τ}
+// (i ≠ j); both 2(τ/Δ)²(x − 1 + e^{−x}) and (τ/Δ)²(2 sinh(x/2))², x = Δ/τ.
+struct ExpWindow {
+  double diagonal, off;
+};
+ExpWindow exp_window(double tau, double delta);
+
 // The Allan variance of a unit-variance Gauss–Markov process at τ = x·τ_c:
 // g(x) = (2x − 3 + 4e^{−x} − e^{−2x})/x² (2x/3 as x → 0).
 double gauss_markov_allan_variance(double x);
@@ -125,6 +133,16 @@ double gauss_markov_allan_variance(double x);
 inline constexpr std::size_t kIdentifyBlocks = 64;
 NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
                           const Eigen::VectorXd& y, std::size_t most_blocks = kIdentifyBlocks);
+
+// The noise models a test must hold under, since the record cannot tell
+// which of them it is: the model identified, the other structures it
+// supports about as well (alternatives), and the model with each slow
+// component (flicker, Gauss–Markov, random walk) raised to its 95 % upper
+// value, the others held (an absent Gauss–Markov process at the correlation
+// time its bound was found at, √(Δ·span)). A test whose p-value is the
+// largest under all of them does not mistake noise the record could not pin
+// down for an effect (diagnose, studies/diagnose/selection.cpp).
+std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGrid& grid);
 
 // The least-squares coefficients' covariance under the model, for the
 // centred design `centred` (l × m), and each diagonal's Satterthwaite degrees

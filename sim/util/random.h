@@ -50,10 +50,8 @@ enum : std::uint64_t {
   arw = 1, flicker = 2, rrw = 3, quantizer = 4, glitch = 5, reading_base = 16,
   // The fish-swarm engines' own generators (fit/engines/afsa.h, iafsa.h).
   afsa = 0xAF5A, iafsa = 0x1AF5A,
-  // The sign-flip randomisation test of diagnose (studies/diagnose/diagnosis.h).
-  diagnosis_sign_flips = 0x5167,
-  // The bootstrap series of diagnose's step test (studies/diagnose/steps.h).
-  diagnosis_step_bootstrap = 0x57E9,
+  // The bootstrap of diagnose's likelihood test (studies/diagnose/likelihood_test.h).
+  diagnosis_likelihood_bootstrap = 0x11B0,
   // The per-trial [spread] draws of score (studies/score/spread.h).
   score_spread = 0x5C0E,
   // ols's parametric bootstrap of the coefficients (fit/model/noise_bootstrap.h).

@@ -38,7 +38,7 @@ std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> tim
   const auto count = static_cast<Eigen::Index>(means.size());
   try {
     return fit::identify_noise(grid, Eigen::MatrixXd(count, 0), Eigen::Map<const Eigen::VectorXd>(means.data(), count));
-  } catch (const InputError&) {
+  } catch (const FitError&) {
     return std::nullopt;
   }
 }

@@ -1,13 +1,9 @@
 #include "studies/diagnose/confounding.h"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "sim/util/format.h"
-#include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -39,63 +35,34 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
 
 }  // namespace
 
-Separation separate(const fit::PreparedData& data, const std::vector<const fit::Term*>& model,
-                    const fit::Term* a, const fit::Term* b) {
-  std::vector<const fit::Term*> with = model;
-  with.push_back(a);
-  with.push_back(b);
-  const fit::ModelFit f = fit::fit_model(data, with, fit::find_engine("ols"), {});
-  const auto& iv = f.engine.intervals;
-  if (iv.size() < 2) throw InputError("the joint model gave no intervals");
-  const fit::Interval ia = iv[iv.size() - 2], ib = iv.back();
-  Separation s;
-  s.a_adds = ia.lower > 0.0 || ia.upper < 0.0;
-  s.b_adds = ib.lower > 0.0 || ib.upper < 0.0;
-  if (!s.a_adds && !s.b_adds)
-    s.note = fmt::format(
-        "{} and {} explain the same part of the bias on this record: fitted together, neither adds "
-        "significantly to what the other explains (95 % intervals under the record's identified noise: {} "
-        "[{:.3g}, {:.3g}], {} [{:.3g}, {:.3g}]); a record on which they differ (other temperature rates or "
-        "gradients) would separate them",
-        a->name, b->name, a->name, ia.lower, ia.upper, b->name, ib.lower, ib.upper);
-  return s;
-}
-
-void add_group(Confounding& c, const std::string& a, const std::string& b, const std::string& note) {
-  // Every group holding a or b becomes one, with their notes joined.
-  std::vector<std::string> merged = {a, b};
-  std::string notes;
-  for (std::size_t g = 0; g < c.groups.size();) {
-    const auto& group = c.groups[g];
-    const bool holds = std::find(group.begin(), group.end(), a) != group.end() ||
-                       std::find(group.begin(), group.end(), b) != group.end();
-    if (!holds) {
+void add_group(std::vector<ConfoundingGroup>& groups, const ConfoundingEvidence& e) {
+  // Every group holding a or b becomes one, with their evidence joined.
+  ConfoundingGroup merged;
+  merged.members = {e.a, e.b};
+  for (std::size_t g = 0; g < groups.size();) {
+    if (!groups[g].holds(e.a) && !groups[g].holds(e.b)) {
       ++g;
       continue;
     }
-    std::vector<std::string> front = group;
-    for (const std::string& t : merged)
+    std::vector<std::string> front = groups[g].members;
+    for (const std::string& t : merged.members)
       if (std::find(front.begin(), front.end(), t) == front.end()) front.push_back(t);
-    merged = std::move(front);
-    if (g < c.notes.size()) {
-      notes += (notes.empty() ? "" : "; ") + c.notes[g];
-      c.notes.erase(c.notes.begin() + static_cast<std::ptrdiff_t>(g));
-    }
-    c.groups.erase(c.groups.begin() + static_cast<std::ptrdiff_t>(g));
+    merged.members = std::move(front);
+    merged.evidence.insert(merged.evidence.end(), groups[g].evidence.begin(), groups[g].evidence.end());
+    groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(g));
   }
-  c.groups.push_back(std::move(merged));
-  c.notes.push_back(notes.empty() ? note : notes + "; " + note);
+  merged.evidence.push_back(e);
+  groups.push_back(std::move(merged));
 }
 
-const std::vector<std::string>* Confounding::group_of(const std::string& term) const {
-  for (const auto& g : groups)
-    if (std::find(g.begin(), g.end(), term) != g.end()) return &g;
-  return nullptr;
+bool ConfoundingGroup::holds(const std::string& term) const {
+  return std::find(members.begin(), members.end(), term) != members.end();
 }
 
-Confounding find_confounding(const fit::DerivedSeries& derived, const std::vector<const fit::Term*>& terms,
-                             const std::vector<double>& parameters) {
-  Confounding out;
+std::vector<ConfoundingGroup> find_confounding(const fit::DerivedSeries& derived,
+                                               const std::vector<const fit::Term*>& terms,
+                                               const std::vector<double>& parameters) {
+  std::vector<ConfoundingGroup> out;
   const std::size_t n = terms.size();
   if (derived.size() < 3 || n == 0) return out;
   const Eigen::MatrixXd x = fit::design_matrix(derived, terms, parameters);
@@ -127,16 +94,16 @@ Confounding find_confounding(const fit::DerivedSeries& derived, const std::vecto
   const std::size_t cooling = static_cast<std::size_t>(
       std::count_if(derived.rate_c_per_s.begin(), derived.rate_c_per_s.end(), [](double r) { return r < 0.0; }));
   const double cooling_share = static_cast<double>(cooling) / static_cast<double>(derived.size());
-  const char* direction = cooling_share > 0.9   ? "it only cools"
-                          : cooling_share < 0.1 ? "it only heats"
-                                                : "temperature follows time";
+  const Direction direction = cooling_share > 0.9   ? Direction::cools
+                              : cooling_share < 0.1 ? Direction::heats
+                                                    : Direction::both;
 
   for (const auto& group : members) {
     if (group.size() < 2) continue;
-    std::vector<std::string> names;
+    ConfoundingGroup g;
     bool has_time = false, has_temp = false, has_rate = false, has_offset = false;
     for (std::size_t i : group) {
-      names.push_back(i == n ? std::string("1") : std::string(terms[i]->name));
+      g.members.push_back(i == n ? std::string("1") : std::string(terms[i]->name));
       if (i == n) {
         has_offset = true;
         continue;
@@ -145,38 +112,28 @@ Confounding find_confounding(const fit::DerivedSeries& derived, const std::vecto
       has_temp |= is_temperature(*terms[i]);
       has_rate |= is_rate(*terms[i]);
     }
-    std::string list;
-    for (std::size_t k = 0; k < names.size(); ++k)
-      list += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") +
-              (names[k] == "1" ? std::string("a constant offset") : names[k]);
-    std::string why, test;
+    ConfoundingEvidence e;
     if (has_time && has_temp) {
-      why = fmt::format("temperature and time move together on this record (r = {:.3f}: {})", r_time,
-                        direction);
-      test = "a test with both a heating and a cooling leg, or a soak, would separate them";
+      e.reason = ConfoundingReason::temperature_follows_time;
+      e.correlation = r_time;
+      e.direction = direction;
     } else if (has_offset && has_rate) {
       double rate_mean = 0.0;
       for (double r : derived.rate_c_per_s) rate_mean += r;
-      rate_mean /= static_cast<double>(derived.size());
-      why = fmt::format("the temperature changes at an almost constant rate ({} °C/h), so a rate "
-                        "effect acts as a constant offset",
-                        human(rate_mean * 3600.0));
-      test = "a test with varied rates (ramps and soaks) would separate them";
+      e.reason = ConfoundingReason::constant_rate;
+      e.rate_c_per_h = rate_mean / static_cast<double>(derived.size()) * 3600.0;
     } else if (has_temp && has_rate) {
-      why = "the temperature settles along one curve, its rate moving with its distance from the "
-            "end value, so temperature and rate effects look alike";
-      test = "a test with ramps at several rates and soaks would separate them";
+      e.reason = ConfoundingReason::settling_curve;
     } else if (has_temp) {
       const auto [lo, hi] = std::minmax_element(derived.temp_c.begin(), derived.temp_c.end());
-      why = fmt::format("over the record's {}..{} °C their regressors are nearly proportional",
-                        human(*lo), human(*hi));
-      test = "a wider temperature range would separate them";
+      e.reason = ConfoundingReason::narrow_range;
+      e.temp_min_c = *lo;
+      e.temp_max_c = *hi;
     } else {
-      why = "their regressors are nearly proportional over this record";
-      test = "a test with another profile would separate them";
+      e.reason = ConfoundingReason::proportional;
     }
-    out.notes.push_back(fmt::format("{} cannot be told apart on this record: {}; {}.", list, why, test));
-    out.groups.push_back(std::move(names));
+    g.evidence.push_back(e);
+    out.push_back(std::move(g));
   }
   return out;
 }

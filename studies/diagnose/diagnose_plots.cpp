@@ -13,16 +13,19 @@
 namespace gyrotherm::studies {
 namespace {
 
-const char* colour_of(const std::string& kind) {
-  if (kind == "heating") return "#f4c7c3";
-  if (kind == "cooling") return "#c6dbef";
-  if (kind == "turn-on") return "#fde9a8";
-  return "#eeeeee";  // soak
+const char* colour_of(SegmentKind kind) {
+  switch (kind) {
+    case SegmentKind::heating: return "#f4c7c3";
+    case SegmentKind::cooling: return "#c6dbef";
+    case SegmentKind::turn_on: return "#fde9a8";
+    default: return "#eeeeee";  // soak
+  }
 }
 
-std::vector<double> in_hours(const std::vector<double>& s) {
+// Hours since the record's start (the segments' times are too).
+std::vector<double> in_hours(const std::vector<double>& s, double start_s) {
   std::vector<double> h(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i) h[i] = s[i] / 3600.0;
+  for (std::size_t i = 0; i < s.size(); ++i) h[i] = (s[i] - start_s) / 3600.0;
   return h;
 }
 
@@ -44,16 +47,16 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(fmt::format("--plots {}: cannot create the folder ({})", dir, ec.message()));
   const fit::AveragedSeries& s = data.series;
-  const std::vector<double> t_h = in_hours(s.time_s);
+  const std::vector<double> t_h = in_hours(s.time_s, s.start_time_s);
   const std::vector<std::size_t> gaps = windows_after_gaps(data);  // the time plots' lines break there
   const std::string floor_text = fmt::format("{:.4g}", d.noise_floor_dph);
 
   {  // 1. Measured and modelled bias with the temperature.
     GnuplotFigure fig(dir + "/bias_time.png", 1400, 700);
-    fig.data("d", {"t_h", "measured", "model", "temp"}, {t_h, s.gyro_dph, d.model_dph, s.temp_c}, gaps);
+    fig.data("d", {"t_h", "measured", "model", "temp"}, {t_h, s.gyro_dph, d.model_dph(), s.temp_c}, gaps);
     fig.commands(
         "set title 'Measured and modelled bias (window means) with the gyro temperature'\n"
-        "set xlabel 'time (h)'\nset ylabel 'bias (°/h)'\nset y2label 'temperature (°C)'\n"
+        "set xlabel 'time since the start of the record (h)'\nset ylabel 'bias (°/h)'\nset y2label 'temperature (°C)'\n"
         "set y2tics\nset ytics nomirror\nset key outside right\n"
         "plot $d using 1:2 with points pt 7 ps 0.5 lc rgb '#444444' title 'measured', "
         "$d using 1:3 with lines lw 2 lc rgb '#d62728' title 'model', "
@@ -63,11 +66,11 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   {  // 2. Residual with the segments shaded and the worst marked.
     GnuplotFigure fig(dir + "/residual_segments.png", 1400, 700);
     std::vector<double> floor_hi(s.size(), d.noise_floor_dph), floor_lo(s.size(), -d.noise_floor_dph);
-    fig.data("r", {"t_h", "residual", "floor", "minus_floor"}, {t_h, d.residual_dph, floor_hi, floor_lo}, gaps);
+    fig.data("r", {"t_h", "residual", "floor", "minus_floor"}, {t_h, d.residual_dph(), floor_hi, floor_lo}, gaps);
     std::string cmds =
         "set title 'Residual of the model; shading: turn-on (yellow), heating (red), cooling "
         "(blue), soak (grey); the three worst segments are labelled'\n"
-        "set xlabel 'time (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n";
+        "set xlabel 'time since the start of the record (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n";
     for (std::size_t i = 0; i < d.segments.size(); ++i) {
       const SegmentReport& seg = d.segments[i];
       cmds += fmt::format(
@@ -79,7 +82,7 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     for (std::size_t k = 0; k < worst.size() && k < 3; ++k) {
       const SegmentReport& seg = d.segments[worst[k]];
       cmds += fmt::format("set label {} '#{} {} {:.1f}x' at {:.6f}, graph 0.95 center front\n", k + 1,
-                          k + 1, seg.kind, seg.ratio_to_floor, 0.5 * (seg.start_s + seg.end_s) / 3600.0);
+                          k + 1, to_string(seg.kind), seg.ratio_to_floor, 0.5 * (seg.start_s + seg.end_s) / 3600.0);
     }
     cmds += "plot $r using 1:2 with linespoints pt 7 ps 0.4 lw 1 lc rgb '#222222' title 'residual', "
             "$r using 1:3 with lines dt 2 lc rgb '#2ca02c' title '± noise floor " + floor_text +
@@ -91,7 +94,7 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     GnuplotFigure fig(dir + "/residual_vs.png", 1400, 600);
     std::vector<double> rate_mk(s.size());
     for (std::size_t p = 0; p < s.size(); ++p) rate_mk[p] = data.derived.rate_c_per_s[p] * 60.0;
-    fig.data("v", {"temp", "rate_c_per_min", "residual"}, {s.temp_c, rate_mk, d.residual_dph});
+    fig.data("v", {"temp", "rate_c_per_min", "residual"}, {s.temp_c, rate_mk, d.residual_dph()});
     fig.commands(
         "set multiplot layout 1,2 title 'Residual against temperature and temperature rate (a "
         "pattern here is a missing effect)'\n"
@@ -103,10 +106,10 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   }
   if (before != nullptr) {  // 4. Before and after the added effect.
     GnuplotFigure fig(dir + "/before_after.png", 1400, 700);
-    fig.data("b", {"t_h", "before", "after"}, {t_h, before->residual_dph, d.residual_dph}, gaps);
+    fig.data("b", {"t_h", "before", "after"}, {t_h, before->residual_dph(), d.residual_dph()}, gaps);
     fig.commands(fmt::format(
         "set title 'Residual before ({:.4g} °/h) and after ({:.4g} °/h) adding the effect; noise "
-        "floor {}'\nset xlabel 'time (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n"
+        "floor {}'\nset xlabel 'time since the start of the record (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n"
         "plot $b using 1:2 with lines lw 1.5 lc rgb '#aaaaaa' title 'before', "
         "$b using 1:3 with lines lw 2 lc rgb '#d62728' title 'after'\n",
         before->fit.instability_after_dph, d.fit.instability_after_dph, floor_text));
@@ -117,10 +120,10 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     std::size_t p = 0;
     for (std::size_t k = 0; k < m.size(); ++k) {
       while (p + 1 < s.size() && s.time_s[p + 1] <= m.time_s[k]) ++p;
-      double model = d.model_dph[p];
+      double model = d.model_dph()[p];
       if (p + 1 < s.size() && m.time_s[k] >= s.time_s[p]) {
         const double f = (m.time_s[k] - s.time_s[p]) / (s.time_s[p + 1] - s.time_s[p]);
-        model += f * (d.model_dph[p + 1] - d.model_dph[p]);
+        model += f * (d.model_dph()[p + 1] - d.model_dph()[p]);
       }
       compensated[k] = m.gyro_dph[k] - model;
     }

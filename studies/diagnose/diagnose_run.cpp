@@ -19,13 +19,6 @@
 namespace gyrotherm::studies {
 namespace {
 
-std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
-
-// A candidate's share of the excess in a table: "45 %", or in words past the floor.
-std::string share_cell(double pct) {
-  return pct < kBelowFloorPct ? fmt::format("{:.0f} %", pct) : excess_share_text(pct);
-}
-
 std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel) {
   const fit::PipelineOptions& pipeline = channel.pipeline;
   const fit::PreparedData& data = channel.data;
@@ -43,12 +36,12 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   out += fmt::format("1. compare: instability {} -> {} °/h; noise floor {} °/h ({}):\n"
                      "   the model is {:.2f} times the floor\n",
                      human(d.fit.instability_before_dph), human(d.fit.instability_after_dph), human(d.noise_floor_dph),
-                     d.floor.description(), d.excess_ratio());
-  if (d.floor.method == "hadamard" && d.floor.within_dph > 0.0 && d.floor.within_dph < 0.7 * d.floor.dph)
+                     floor_description(d.floor), d.excess_ratio());
+  if (d.floor.method == FloorMethod::hadamard && d.floor.within_dph > 0.0 && d.floor.within_dph < 0.7 * d.floor.dph)
     out += fmt::format("   (the scatter inside the windows alone gives {} °/h: the rest of the floor is noise "
                        "slower than a window, bias instability)\n",
                        human(d.floor.within_dph));
-  out += "2. where it fails (residual RMS over the floor, worst first):\n";
+  out += "2. where it fails (residual RMS over the floor, worst first; hours since the record's start):\n";
   // Temperatures with the decimals that tell every segment's (every band's)
   // ends apart: a record spanning a few degrees has bands narrower than 1 °C.
   const auto worst = d.worst_segments();
@@ -59,8 +52,9 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
                                                          d.segments[worst[k]].temp_max_c, 1));
   for (std::size_t k = 0; k < shown; ++k) {
     const SegmentReport& s = d.segments[worst[k]];
-    out += fmt::format("   {:<8} {:>8} – {:<8} {:6.{}f} .. {:5.{}f} °C  {:5.2f}x\n", s.kind, hours(s.start_s),
-                       hours(s.end_s), s.temp_min_c, decimals, s.temp_max_c, decimals, s.ratio_to_floor);
+    out += fmt::format("   {:<8} {:>8} – {:<8} {:6.{}f} .. {:5.{}f} °C  {:5.2f}x\n", to_string(s.kind),
+                       hours_text(s.start_s), hours_text(s.end_s), s.temp_min_c, decimals, s.temp_max_c, decimals,
+                       s.ratio_to_floor);
   }
   decimals = 0;
   for (const auto& b : d.bands) decimals = std::max(decimals, decimals_to_tell_apart(b.temp_min_c, b.temp_max_c, 0));
@@ -69,38 +63,42 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
     bands += fmt::format("{}{:.{}f}..{:.{}f} °C {:.2f}x", bands.empty() ? "" : ", ", b.temp_min_c, decimals,
                          b.temp_max_c, decimals, b.ratio_to_floor);
   out += fmt::format("   by temperature: {}\n", bands);
-  out += "3. missing effects (share of the excess removed; block cross-validation p; meaning (coefficient as added)):\n";
+  out += "3. missing effects (share of the excess removed; p under the record's noise, and the level it must reach; "
+         "meaning (coefficient as added)):\n";
   for (const CandidateReport& c : d.candidates)
-    out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} {:<12} {} ({:.3g} {})\n", c.passed() ? "*" : " ", c.term->name,
-                       share_cell(c.reduction_pct),
-                       c.p_value,
+    out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} (< {:<7.2g}) {:<12} {} ({:.3g} {})\n", c.passed() ? "*" : " ",
+                       c.term->name, share_cell(c.reduction_pct), c.p_value, c.level,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
                        c.term->meaning, c.coefficient, c.term->coefficient_unit());
   if (!d.columns_tried.empty())
     out += fmt::format("   the log's columns tried as causes (each with its rate): {}\n", fmt::join(d.columns_tried, ", "));
-  if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(d.skipped, "; "));
+  if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(skipped_texts(d.skipped), "; "));
+  if (d.noise && d.fit.noise && d.noise->model.description() != d.fit.noise->model.description())
+    out += fmt::format("   the record's noise with the effects found as fixed effects: {}\n",
+                       d.noise->model.description());
   if (before) {
     out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",
                        fmt::join(run.request.added, ", "),
                        before->fit.instability_after_dph, d.fit.instability_after_dph, d.noise_floor_dph);
-    const auto rows = segment_rms(*before, before->residual_dph);
+    const auto rows = segment_rms(*before, before->residual_dph());
     for (std::size_t i = 0; i < rows.size() && i < d.segments.size(); ++i)
-      out += fmt::format("   {:<8} {:>8} – {:<8} {:5.2f}x -> {:5.2f}x\n", rows[i].kind, hours(rows[i].start_s),
-                         hours(rows[i].end_s), rows[i].ratio_to_floor, d.segments[i].ratio_to_floor);
+      out += fmt::format("   {:<8} {:>8} – {:<8} {:5.2f}x -> {:5.2f}x\n", to_string(rows[i].kind),
+                         hours_text(rows[i].start_s), hours_text(rows[i].end_s), rows[i].ratio_to_floor,
+                         d.segments[i].ratio_to_floor);
   }
   for (const std::string& w : d.fit.warnings) out += fmt::format("warning: {}\n", w);
   for (const StepEvent& e : d.events)
-    out += fmt::format("event: a bias step at {} of {:+.3g} °/h (95 % [{:.3g}, {:.3g}]){}\n", hours(e.time_s),
+    out += fmt::format("event: a bias step at {} of {:+.3g} °/h (95 % [{:.3g}, {:.3g}]){}\n", hours_text(e.time_s),
                        e.size_dph, e.size_interval_dph.lower, e.size_interval_dph.upper,
                        e.significant ? ", significant" : ", not significant against the other candidates");
-  for (const std::string& n : d.confounding_notes) out += fmt::format("cannot tell: {}\n", n);
-  out += fmt::format("verdict: {}\n", d.verdict);
-  if (!channel.report.next_command.empty()) out += fmt::format("next: {}\n", channel.report.next_command);
-  if (!channel.report.plan_command.empty())
+  for (const ConfoundingGroup& g : d.confounded) out += fmt::format("cannot tell: {}\n", confounding_text(g));
+  out += fmt::format("verdict: {}\n", verdict_text(d));
+  if (const std::string next = next_command(channel.report); !next.empty()) out += fmt::format("next: {}\n", next);
+  if (channel.report.plan)
     out += fmt::format("next: to design a test that separates them: {}\n"
                        "      (add --noise FILE, this diagnose's --json saved to FILE, for the record's own noise; "
                        "--range is the record's temperatures rounded outward to {:g} °C: give your chamber's)\n",
-                       channel.report.plan_command, kPlanRangeStepC);
+                       plan_command_text(*channel.report.plan), kPlanRangeStepC);
   if (!channel.plots.empty()) out += fmt::format("plots in {}/\n", channel.plots);
   return out;
 }
@@ -150,7 +148,8 @@ DiagnoseRun diagnose_record(const DiagnoseRequest& request, const RecordSource& 
                                    request.settings, with_stages);
         ++channel_index;
         report(fmt::format("{}: done", channel), 0.0);
-        if (channels.size() > 1 && !c.report.next_command.empty()) c.report.next_command += " --gyro-col " + channel;
+        if (channels.size() > 1) c.report.channel = channel;
+        if (source.table() != nullptr) c.report.style = CallStyle::python;
         return c;
       });
   // With several channels, each one's figures in a folder of its own, named

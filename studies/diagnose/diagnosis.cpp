@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit/engines/ols.h"
 #include "fit/model/formula.h"
+#include "fit/model/noise_whitening.h"
 #include "sim/util/format.h"
 #include "sim/util/input_error.h"
 #include "studies/diagnose/confounding.h"
@@ -18,34 +20,32 @@ namespace {
 // 1. Compare: the model as given, its residual, and the noise floor.
 void compare(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
              const fit::EngineInfo& engine, const fit::EngineSettings& settings) {
-  const fit::AveragedSeries& s = data.series;
   d.fit = fit::fit_model(data, terms, engine, settings);
-  d.floor = estimate_noise_floor(s, data.derivative_span_s);
+  d.floor = estimate_noise_floor(data.series, data.derivative_span_s);
   d.noise_floor_dph = d.floor.dph;
-  const Eigen::MatrixXd x = fit::design_matrix(data.derived, terms, d.fit.parameters);
-  d.model_dph = fit::model_values(x, d.fit.coefficients);
-  d.residual_dph.resize(s.size());
-  for (std::size_t p = 0; p < s.size(); ++p) d.residual_dph[p] = s.gyro_dph[p] - d.model_dph[p];
 }
 
 // 4. What the record cannot tell apart: the model's terms and every candidate
-// tried, at their fitted parameters.
-void name_confounded(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms) {
+// tried, at their fitted parameters, and the pairs the ranking fitted together.
+void name_confounded(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
+                     const std::vector<ConfoundingEvidence>& inseparable) {
   std::vector<const fit::Term*> all = terms;
   std::vector<double> params = d.fit.parameters;
   for (const CandidateReport& c : d.candidates) {
+    // A step that did not pass is the step family's best position of the
+    // last round, often beside one that joined: no rival explanation.
+    if (fit::is_step_term(c.term) && !c.significant) continue;
     all.push_back(c.term);
     params.push_back(c.parameter);
   }
-  Confounding confounding = find_confounding(data.derived, all, params);
-  for (const auto& [a, b, note] : d.inseparable) add_group(confounding, a, b, note);
-  d.confounded = confounding.groups;
-  d.confounding_notes = confounding.notes;
+  d.confounded = find_confounding(data.derived, all, params);
+  for (const ConfoundingEvidence& e : inseparable) add_group(d.confounded, e);
   for (CandidateReport& c : d.candidates)
-    if (const auto* group = confounding.group_of(std::string(c.term->name)); group != nullptr) {
-      c.confounded_with = *group;
-      std::erase(c.confounded_with, std::string(c.term->name));
-    }
+    for (const ConfoundingGroup& g : d.confounded)
+      if (g.holds(std::string(c.term->name))) {
+        c.confounded_with = g.members;
+        std::erase(c.confounded_with, std::string(c.term->name));
+      }
   // A group passed the test when any member did (alone, or standing for it).
   for (CandidateReport& c : d.candidates) {
     if (c.confounded_with.empty()) continue;
@@ -57,40 +57,52 @@ void name_confounded(Diagnosis& d, const fit::PreparedData& data, const std::vec
   }
 }
 
-// The bias steps found, each sized with the model (ols) and judged by the
-// candidates' test.
+// The bias steps: those that joined the model, and the step family's best of
+// the last round where its own p-value is below α (located, but not
+// significant against the family), each sized by GLS with the final model
+// under the final noise.
 void size_steps(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
-                const std::vector<StepCandidate>& steps) {
-  const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(),
-                                                             static_cast<Eigen::Index>(data.series.size()));
-  for (const StepCandidate& found : steps) {
-    const fit::Term* step = fit::step_term(found.time_s);
-    StepEvent e;
-    e.time_s = found.time_s;
-    e.p_value = found.p_value;
-    try {
-      std::vector<const fit::Term*> with = terms;
-      if (std::find(with.begin(), with.end(), step) == with.end()) with.push_back(step);
-      const fit::ModelFit f = fit::fit_model(data, with, fit::find_engine("ols"), {});
-      e.size_dph = f.coefficients.b.back();
-      // The wider of ols's interval and ±1.96 placebo spreads (steps.h).
-      const double placebo = placebo_step_sd(fit::design_matrix(data.derived, with, f.parameters), y, found.index);
-      const fit::Interval ols = f.engine.intervals.back();
-      const double half = std::max(0.5 * (ols.upper - ols.lower), 1.96 * placebo);
-      e.size_interval_dph = {e.size_dph - half, e.size_dph + half};
-    } catch (const InputError&) {
-      continue;
-    }
-    for (const CandidateReport& c : d.candidates)
-      if (c.term == step) e.significant = c.significant && c.confounded_with.empty();
-    d.events.push_back(e);
+                const DiagnosisOptions& options) {
+  std::vector<const fit::Term*> final_terms = terms;
+  for (const CandidateReport& c : d.candidates)
+    if (c.significant) final_terms.push_back(c.term);
+  const std::vector<double> params = fit::fit_parameters(data.derived, data.series.gyro_dph, final_terms);
+  const Eigen::VectorXd y =
+      Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size()));
+  std::optional<fit::NoiseWhitener> whitener;
+  try {
+    whitener.emplace(d.noise->model, d.noise->grid);
+  } catch (const FitError&) {
+    return;
   }
+  for (const CandidateReport& c : d.candidates) {
+    if (!fit::is_step_term(c.term) || !(c.significant || c.p_value < options.alpha)) continue;
+    std::vector<const fit::Term*> with = final_terms;
+    std::vector<double> p = params;
+    if (std::find(with.begin(), with.end(), c.term) == with.end()) {
+      with.push_back(c.term);
+      p.push_back(std::nan(""));
+    }
+    const auto k = static_cast<Eigen::Index>(std::find(with.begin(), with.end(), c.term) - with.begin()) + 1;
+    try {
+      const fit::GlsFit f = fit::gls(*whitener, fit::design_matrix(data.derived, with, p), y);
+      StepEvent e;
+      e.time_s = c.term->step_time_s;
+      e.log_time_s = e.time_s + data.series.start_time_s;
+      e.size_dph = f.beta[k];
+      const double half = 1.959963984540054 * std::sqrt(std::max(0.0, f.covariance(k, k)));
+      e.size_interval_dph = {e.size_dph - half, e.size_dph + half};
+      e.p_value = c.p_value;
+      e.significant = c.significant && c.confounded_with.empty();
+      d.events.push_back(e);
+    } catch (const FitError&) {
+    }
+  }
+  std::sort(d.events.begin(), d.events.end(), [](const StepEvent& a, const StepEvent& b) { return a.time_s < b.time_s; });
 }
 
 // What is left: the model with every significant candidate, against the floor.
 void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms) {
-  const fit::AveragedSeries& s = data.series;
-  const std::size_t l = s.size();
   std::vector<const fit::Term*> final_terms = terms;
   // A significant group (terms this record cannot tell apart) explains what
   // it explains whichever member stands for it: its first member joins,
@@ -101,85 +113,58 @@ void find_what_remains(Diagnosis& d, const fit::PreparedData& data, const std::v
     if (!c.confounded_with.empty()) break;
   }
   try {
-    const fit::ModelFit f = fit::fit_model(data, final_terms, fit::find_engine("ols"), {});
-    if (f.instability_after_dph > kStructureRemains * d.noise_floor_dph) {
-      Diagnosis at_end = d;
-      at_end.fit = f;
-      const Eigen::MatrixXd xf = fit::design_matrix(data.derived, final_terms, f.parameters);
-      const std::vector<double> mf = fit::model_values(xf, f.coefficients);
-      std::vector<double> rf(l);
-      for (std::size_t p = 0; p < l; ++p) rf[p] = s.gyro_dph[p] - mf[p];
-      const std::vector<SegmentReport> rows = segment_rms(at_end, rf);
-      const auto worst = std::max_element(rows.begin(), rows.end(), [](const SegmentReport& a, const SegmentReport& b) {
-        return a.ratio_to_floor < b.ratio_to_floor;
-      });
-      d.remaining = fmt::format(
-          "structure remains that no candidate explains: {} is still {:.2f} times the floor, "
-          "worst in the {} segment at {:.2f}–{:.2f} h ({} °C), {:.2f} times the floor",
-          final_terms.size() > terms.size() ? "the model with the significant candidates (or their group)" : "the model",
-          f.instability_after_dph / d.noise_floor_dph, worst->kind,
-          (worst->start_s - s.start_time_s) / 3600.0, (worst->end_s - s.start_time_s) / 3600.0,
-          range_text(worst->temp_min_c, worst->temp_max_c, 1, " to "), worst->ratio_to_floor);
-    }
-  } catch (const InputError&) {
+    const std::vector<double> params = fit::fit_parameters(data.derived, data.series.gyro_dph, final_terms);
+    const fit::LinearProblem problem(
+        fit::design_matrix(data.derived, final_terms, params),
+        Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size())),
+        fit::term_names(final_terms), fit::Collinear::keep);
+    const fit::Coefficients c = problem.physical(fit::least_squares_optimum(problem));
+    const double after = problem.sigma_two_pass(c);
+    if (after <= kStructureRemains * d.noise_floor_dph) return;
+    const Eigen::VectorXd r = problem.residuals(c);
+    const std::vector<SegmentReport> rows = segment_rms(d, std::vector<double>(r.data(), r.data() + r.size()));
+    Remaining left;
+    left.with_candidates = final_terms.size() > terms.size();
+    left.ratio_to_floor = after / d.noise_floor_dph;
+    left.worst = *std::max_element(rows.begin(), rows.end(), [](const SegmentReport& a, const SegmentReport& b) {
+      return a.ratio_to_floor < b.ratio_to_floor;
+    });
+    d.remaining = left;
+  } catch (const FitError&) {
   }
 }
 
-// 5. The verdict, in words; *suggested is the model with the significant
-// candidates that stand alone, or "".
-std::string verdict_of(const Diagnosis& d, const std::vector<const fit::Term*>& terms, std::string* suggested) {
-  const double ratio = d.excess_ratio();
-  std::string verdict;
+// 5. The verdict, and the model it suggests (the significant candidates that stand alone).
+void decide(Diagnosis& d, const std::vector<const fit::Term*>& terms) {
+  Verdict& v = d.verdict;
   if (d.candidates.empty()) {
-    verdict = fmt::format(
-        "The model is {:.2f} times the noise floor and there is nothing left to try: every "
-        "available term is already in it.",
-        ratio);
-  } else if (d.candidates.front().passed() && !d.candidates.front().confounded_with.empty()) {
-    // Significant, but not alone: say which effects it cannot be told from,
-    // and why (the note of its own group).
-    const CandidateReport& c = d.candidates.front();
-    std::string others, why;
-    for (const std::string& o : c.confounded_with)
-      others += (others.empty() ? "" : ", ") + (o == "1" ? std::string("a constant offset") : o);
-    for (std::size_t g = 0; g < d.confounded.size() && g < d.confounding_notes.size(); ++g)
-      if (std::find(d.confounded[g].begin(), d.confounded[g].end(), std::string(c.term->name)) != d.confounded[g].end())
-        why = d.confounding_notes[g];
-    verdict = fmt::format(
-        "The model is {:.2f} times the noise floor; adding {} ({}) would remove {}, but on this "
-        "record it cannot be told apart from {}, so the data do not say which effect it is: {}",
-        ratio, c.term->name, c.term->meaning, excess_share_text(c.reduction_pct), others, why);
-  } else if (d.candidates.front().significant) {
-    std::vector<const fit::Term*> with = terms;
-    std::string found;
-    double removed = 0.0;
-    for (const CandidateReport& c : d.candidates) {
-      if (!c.significant || !c.confounded_with.empty()) break;
-      with.push_back(c.term);
-      found += fmt::format("{}{} ({})", found.empty() ? "" : " and then ", c.term->name, c.term->meaning);
-      removed += c.reduction_pct;
-    }
-    *suggested = fit::formula_text(with);
-    verdict = fmt::format(
-        "The model is {:.2f} times the noise floor; adding {} removes {}, "
-        "significant under block cross-validation.",
-        ratio, found, excess_share_text(removed));
-  } else {
-    verdict = fmt::format(
-        "The model is {:.2f} times the noise floor; no missing effect is significant under "
-        "block cross-validation{}, so no term should be added.",
-        ratio, d.limited ? " (this record supported fewer tests than there are candidates; see 'not tried')" : "");
+    v.kind = VerdictKind::nothing_to_try;
+    return;
   }
-  if (!d.remaining.empty()) verdict += " Still, " + d.remaining + ".";
-  return verdict;
+  const CandidateReport& first = d.candidates.front();
+  if (first.passed() && !first.confounded_with.empty()) {
+    v.kind = VerdictKind::group;
+    v.removed_pct = first.reduction_pct;
+    for (std::size_t g = 0; g < d.confounded.size(); ++g)
+      if (d.confounded[g].holds(std::string(first.term->name))) v.group = g;
+    return;
+  }
+  if (!first.significant) {
+    v.kind = VerdictKind::none;
+    return;
+  }
+  v.kind = VerdictKind::found;
+  d.suggested = terms;
+  for (std::size_t i = 0; i < d.candidates.size(); ++i) {
+    const CandidateReport& c = d.candidates[i];
+    if (!c.significant || !c.confounded_with.empty()) break;
+    v.found.push_back(i);
+    v.removed_pct += c.reduction_pct;
+    d.suggested.push_back(c.term);
+  }
 }
 
 }  // namespace
-
-std::string excess_share_text(double pct) {
-  if (pct < kBelowFloorPct) return fmt::format("{:.0f} % of the excess", pct);
-  return fmt::format("all of the excess ({:.0f} %, below the estimated floor)", pct);
-}
 
 Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
                    const fit::EngineInfo& engine, const fit::EngineSettings& settings,
@@ -196,13 +181,14 @@ Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::T
   stage("fitting the model and its noise");
   compare(d, data, terms, engine, settings);
   diagnosis_steps::locate_failures(d, data);
-  stage("searching for steps and scoring the candidates");
-  const std::vector<StepCandidate> steps = diagnosis_steps::rank_candidates(d, data, terms, options);
+  stage("testing the candidates and the steps");
+  std::vector<ConfoundingEvidence> inseparable;
+  diagnosis_steps::rank_candidates(d, data, terms, options, inseparable);
   stage("what the record cannot tell apart, and what remains");
-  name_confounded(d, data, terms);
-  size_steps(d, data, terms, steps);
+  name_confounded(d, data, terms, inseparable);
+  size_steps(d, data, terms, options);
   find_what_remains(d, data, terms);
-  d.verdict = verdict_of(d, terms, &d.suggested_model);
+  decide(d, terms);
   return d;
 }
 

@@ -13,11 +13,11 @@ namespace gyrotherm::studies::diagnosis_steps {
 // temperature bands, each with its residual RMS over the floor.
 void locate_failures(Diagnosis& d, const fit::PreparedData& data);
 
-// 3. Which effect is missing: every candidate scored by block cross-validation
-// and ranked greedily (d.candidates, d.skipped, d.limited). Returns the bias
-// steps the candidate set found, for sizing.
-std::vector<StepCandidate> rank_candidates(Diagnosis& d, const fit::PreparedData& data,
-                                           const std::vector<const fit::Term*>& terms,
-                                           const DiagnosisOptions& options);
+// 3. Which effect is missing: every candidate tested under the record's
+// identified noise and ranked greedily (d.candidates, d.first_round,
+// d.skipped, d.noise); the pairs of candidates fitted together that the
+// record cannot tell apart go to `inseparable`.
+void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vector<const fit::Term*>& terms,
+                     const DiagnosisOptions& options, std::vector<ConfoundingEvidence>& inseparable);
 
 }  // namespace gyrotherm::studies::diagnosis_steps

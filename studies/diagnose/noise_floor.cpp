@@ -62,10 +62,10 @@ NoiseFloor estimate_noise_floor(const fit::AveragedSeries& s, double span_s) {
   if (!h2.empty()) f.hadamard_dph = std::sqrt(fit::median_of(h2) / (6.0 * kMedianChi2One));
   f.within_dph = within_window_floor(s);
   if (f.triples >= kMinHadamardTriples) {
-    f.method = "hadamard";
+    f.method = FloorMethod::hadamard;
     f.dph = f.hadamard_dph;
   } else if (f.within_dph > 0.0) {
-    f.method = "within-window scatter";
+    f.method = FloorMethod::within_window;
     f.dph = f.within_dph;
   } else {
     throw InputError(fmt::format(
@@ -74,17 +74,6 @@ NoiseFloor estimate_noise_floor(const fit::AveragedSeries& s, double span_s) {
         counted(s.size(), "window"), counted(f.triples, "triple")));
   }
   return f;
-}
-
-std::string NoiseFloor::description() const {
-  if (method == "hadamard")
-    return fmt::format("robust Hadamard deviation of the window means, {}", counted(triples, "triple"));
-  return fmt::format(
-      "from the scatter inside the windows (the standard error of a window mean, corrected for "
-      "the autocorrelation of its samples): only {} equally spaced triples of windows, fewer than "
-      "the {} a Hadamard estimate needs; noise slower than a window is not in it and shows as "
-      "excess",
-      triples, kMinHadamardTriples);
 }
 
 }  // namespace gyrotherm::studies

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "studies/diagnose/diagnose_words.h"
 #include "studies/diagnose/diagnosis.h"
 
 namespace gyrotherm::studies {
@@ -21,8 +22,9 @@ struct PlanSuggestion {
   std::vector<std::pair<std::string, double>> separate;  // member → size (NaN: unknown)
   std::vector<std::pair<std::string, double>> param;     // member → its fitted parameter
   double low_c = 0, high_c = 0;                          // --range
-  std::string command() const;  // gyrotherm plan --model … --separate … [--param …] --range …
 };
+// gyrotherm plan --model … --separate … [--param …] --range …
+std::string plan_command_text(const PlanSuggestion& p);
 
 struct DiagnoseReport {
   std::vector<const fit::Term*> base_terms;  // the model without --add
@@ -30,10 +32,15 @@ struct DiagnoseReport {
   std::string engine;
   Diagnosis diagnosis;
   std::optional<Diagnosis> before;      // with --add: the model without the added terms
-  std::string next_command;             // the model with the best significant effect, or ""
-  std::string plan_command;             // the test that would separate the verdict's group, or ""
-  std::optional<PlanSuggestion> plan;   // the same as data (diagnose --json's `plan`)
+  DiagnosisOptions options;             // as the diagnosis ran (its stage callback dropped)
+  double start_time_s = 0;              // the record's first sample on the log's own clock
+  std::string record;                   // the record's name, as a next step names it
+  std::string channel;                  // with several gyro channels, this one's (else "")
+  CallStyle style = CallStyle::command_line;  // how a next step is written (arrays: Python)
+  std::optional<PlanSuggestion> plan;   // the test that would separate the verdict's group
 };
+// The next step (diagnosis.suggested), rendered in the report's style; "" when none.
+std::string next_command(const DiagnoseReport& report);
 
 // When the first candidate passed the test as one of a group this record
 // cannot tell apart (the verdict says so): the `gyrotherm plan` command that
@@ -56,7 +63,7 @@ std::optional<PlanSuggestion> plan_suggestion(const Diagnosis& d, const std::vec
 inline std::string plan_command(const Diagnosis& d, const std::vector<const fit::Term*>& terms,
                                 const fit::PreparedData& data) {
   const auto p = plan_suggestion(d, terms, data);
-  return p ? p->command() : std::string();
+  return p ? plan_command_text(*p) : std::string();
 }
 
 // Throws InputError when the model already holds every term that could be

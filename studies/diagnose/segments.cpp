@@ -8,6 +8,17 @@
 
 namespace gyrotherm::studies {
 
+const char* to_string(SegmentKind kind) {
+  switch (kind) {
+    case SegmentKind::turn_on: return "turn-on";
+    case SegmentKind::heating: return "heating";
+    case SegmentKind::cooling: return "cooling";
+    case SegmentKind::soak: return "soak";
+    case SegmentKind::band: return "band";
+  }
+  return "";
+}
+
 std::vector<std::size_t> Diagnosis::worst_segments() const {
   std::vector<std::size_t> idx(segments.size());
   for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
@@ -38,22 +49,22 @@ void locate_failures(Diagnosis& d, const fit::PreparedData& data) {
   double max_rate = 0.0;
   for (double r : rate) max_rate = std::max(max_rate, std::abs(r));
   const double threshold = std::max(2e-4, 0.05 * max_rate);
-  std::vector<std::string> kind(l);
+  std::vector<SegmentKind> kind(l);
   for (std::size_t p = 0; p < l; ++p) {
     if (s.time_s[p] - s.start_time_s < 1800.0)
-      kind[p] = "turn-on";
+      kind[p] = SegmentKind::turn_on;
     else if (rate[p] > threshold)
-      kind[p] = "heating";
+      kind[p] = SegmentKind::heating;
     else if (rate[p] < -threshold)
-      kind[p] = "cooling";
+      kind[p] = SegmentKind::cooling;
     else
-      kind[p] = "soak";
+      kind[p] = SegmentKind::soak;
   }
   // Runs shorter than 3 windows take the kind of the run before them.
   for (std::size_t p = 0; p < l;) {
     std::size_t q = p;
     while (q < l && kind[q] == kind[p]) ++q;
-    if (q - p < 3 && p > 0 && kind[p] != "turn-on")
+    if (q - p < 3 && p > 0 && kind[p] != SegmentKind::turn_on)
       for (std::size_t i = p; i < q; ++i) kind[i] = kind[p - 1];
     p = q;
   }
@@ -67,18 +78,18 @@ void locate_failures(Diagnosis& d, const fit::PreparedData& data) {
     if (new_segment) {
       SegmentReport seg;
       seg.kind = kind[p];
-      seg.start_s = s.time_s[p];
+      seg.start_s = s.time_s[p] - s.start_time_s;
       seg.temp_min_c = seg.temp_max_c = s.temp_c[p];
       d.segments.push_back(seg);
     }
     SegmentReport& seg = d.segments.back();
-    seg.end_s = s.time_s[p];
+    seg.end_s = s.time_s[p] - s.start_time_s;
     seg.temp_min_c = std::min(seg.temp_min_c, s.temp_c[p]);
     seg.temp_max_c = std::max(seg.temp_max_c, s.temp_c[p]);
     seg.windows += 1;
     d.window_segment[p] = d.segments.size() - 1;
   }
-  d.segments = segment_rms(d, d.residual_dph);
+  d.segments = segment_rms(d, d.residual_dph());
 
   // Temperature bands: four of equal width.
   const auto [tlo, thi] = std::minmax_element(s.temp_c.begin(), s.temp_c.end());
@@ -86,7 +97,7 @@ void locate_failures(Diagnosis& d, const fit::PreparedData& data) {
   d.bands.resize(4);
   std::vector<double> band_ss(4, 0.0);
   for (int b = 0; b < 4; ++b) {
-    d.bands[static_cast<std::size_t>(b)].kind = "band";
+    d.bands[static_cast<std::size_t>(b)].kind = SegmentKind::band;
     d.bands[static_cast<std::size_t>(b)].temp_min_c = *tlo + b * width;
     d.bands[static_cast<std::size_t>(b)].temp_max_c = *tlo + (b + 1) * width;
     d.bands[static_cast<std::size_t>(b)].start_s = std::numeric_limits<double>::infinity();
@@ -95,9 +106,9 @@ void locate_failures(Diagnosis& d, const fit::PreparedData& data) {
   for (std::size_t p = 0; p < l; ++p) {
     const auto b = static_cast<std::size_t>(std::min(3.0, std::floor((s.temp_c[p] - *tlo) / width)));
     d.bands[b].windows += 1;
-    band_ss[b] += d.residual_dph[p] * d.residual_dph[p];
-    d.bands[b].start_s = std::min(d.bands[b].start_s, s.time_s[p]);
-    d.bands[b].end_s = std::max(d.bands[b].end_s, s.time_s[p]);
+    band_ss[b] += d.residual_dph()[p] * d.residual_dph()[p];
+    d.bands[b].start_s = std::min(d.bands[b].start_s, s.time_s[p] - s.start_time_s);
+    d.bands[b].end_s = std::max(d.bands[b].end_s, s.time_s[p] - s.start_time_s);
   }
   for (std::size_t b = 0; b < 4; ++b) {
     if (d.bands[b].windows == 0) continue;

@@ -25,7 +25,7 @@ std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data
       settings.options["intervals"] = "model";  // only the σ is wanted
       return {model, fit::fit_model(data, fit::parse_formula(model), fit::find_engine("ols"), settings)
                          .instability_after_dph};
-    } catch (const InputError&) {
+    } catch (const FitError&) {
       continue;
     }
   }

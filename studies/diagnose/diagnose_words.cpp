@@ -1,0 +1,197 @@
+#include "studies/diagnose/diagnose_words.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <map>
+
+#include "fit/model/formula.h"
+#include "sim/util/format.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+std::string direction_text(Direction d) {
+  switch (d) {
+    case Direction::cools: return "it only cools";
+    case Direction::heats: return "it only heats";
+    case Direction::both: return "temperature follows time";
+  }
+  return "";
+}
+
+// Why, in the record's own terms, and the test that would separate them.
+std::pair<std::string, std::string> why_and_test(const ConfoundingEvidence& e) {
+  switch (e.reason) {
+    case ConfoundingReason::temperature_follows_time:
+      return {fmt::format("temperature and time move together on this record (r = {:.3f}: {})", e.correlation,
+                          direction_text(e.direction)),
+              "a test with both a heating and a cooling leg, or a soak, would separate them"};
+    case ConfoundingReason::constant_rate:
+      return {fmt::format("the temperature changes at an almost constant rate ({} °C/h), so a rate effect acts as "
+                          "a constant offset",
+                          human(e.rate_c_per_h)),
+              "a test with varied rates (ramps and soaks) would separate them"};
+    case ConfoundingReason::settling_curve:
+      return {"the temperature settles along one curve, its rate moving with its distance from the end value, so "
+              "temperature and rate effects look alike",
+              "a test with ramps at several rates and soaks would separate them"};
+    case ConfoundingReason::narrow_range:
+      return {fmt::format("over the record's {}..{} °C their regressors are nearly proportional", human(e.temp_min_c),
+                          human(e.temp_max_c)),
+              "a wider temperature range would separate them"};
+    case ConfoundingReason::proportional:
+      return {"their regressors are nearly proportional over this record",
+              "a test with another profile would separate them"};
+    case ConfoundingReason::same_part:
+      return {fmt::format("fitted together, neither {} nor {} adds significantly to what the other explains (95 % "
+                          "intervals under the record's identified noise: {} [{:.3g}, {:.3g}], {} [{:.3g}, {:.3g}])",
+                          e.a, e.b, e.a, e.interval_a.lower, e.interval_a.upper, e.b, e.interval_b.lower,
+                          e.interval_b.upper),
+              "a record on which they differ (other temperature rates or gradients) would separate them"};
+    case ConfoundingReason::encompasses:
+      return {fmt::format("{} encompasses {} on this record, but did not pass the test alone", e.a, e.b),
+              "a record on which they differ (other temperature rates or gradients) would separate them"};
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string hours_text(double seconds) { return fmt::format("{:.2f} h", seconds / 3600.0); }
+
+std::string floor_description(const NoiseFloor& f) {
+  if (f.method == FloorMethod::hadamard)
+    return fmt::format("robust Hadamard deviation of the window means, {}", counted(f.triples, "triple"));
+  return fmt::format(
+      "from the scatter inside the windows (the standard error of a window mean, corrected for "
+      "the autocorrelation of its samples): only {} equally spaced triples of windows, fewer than "
+      "the {} a Hadamard estimate needs; noise slower than a window is not in it and shows as "
+      "excess",
+      f.triples, kMinHadamardTriples);
+}
+
+std::string excess_share_text(double pct) {
+  if (pct < kBelowFloorPct) return fmt::format("{:.0f} % of the excess", pct);
+  return fmt::format("all of the excess ({:.0f} %, below the estimated floor)", pct);
+}
+
+std::string share_cell(double pct) { return pct < kBelowFloorPct ? fmt::format("{:.0f} %", pct) : excess_share_text(pct); }
+
+std::string member_list(const std::vector<std::string>& members, const char* last) {
+  std::string list;
+  for (std::size_t k = 0; k < members.size(); ++k)
+    list += (k == 0 ? "" : k + 1 == members.size() ? last : ", ") +
+            (members[k] == "1" ? std::string("a constant offset") : members[k]);
+  return list;
+}
+
+std::string confounding_text(const ConfoundingGroup& g) {
+  std::vector<std::string> whys, tests;
+  for (const ConfoundingEvidence& e : g.evidence) {
+    auto [why, test] = why_and_test(e);
+    if (std::find(whys.begin(), whys.end(), why) == whys.end()) whys.push_back(why);
+    if (std::find(tests.begin(), tests.end(), test) == tests.end()) tests.push_back(test);
+  }
+  return fmt::format("{} cannot be told apart on this record: {}; {}.", member_list(g.members),
+                     fmt::join(whys, "; "), fmt::join(tests, "; "));
+}
+
+std::string remaining_text(const Remaining& r) {
+  return fmt::format(
+      "structure remains that no candidate explains: {} is still {:.2f} times the floor, worst in the {} segment at "
+      "{}–{} ({} °C), {:.2f} times the floor",
+      r.with_candidates ? "the model with the significant candidates (or their group)" : "the model", r.ratio_to_floor,
+      to_string(r.worst.kind), hours_text(r.worst.start_s), hours_text(r.worst.end_s),
+      range_text(r.worst.temp_min_c, r.worst.temp_max_c, 1, " to "), r.worst.ratio_to_floor);
+}
+
+std::vector<std::string> skipped_texts(const std::vector<Skipped>& skipped) {
+  std::vector<std::string> out;
+  std::map<fit::ColumnRole, std::vector<std::string>> by_role;
+  for (const Skipped& s : skipped) {
+    switch (s.reason) {
+      case SkipReason::needs_temp2: out.push_back(s.name + " (needs temp2_c)"); break;
+      case SkipReason::unwritable_name:
+        out.push_back(fmt::format("column '{}' (its name cannot be written in a model: use letters, digits, '_' and '.')",
+                                  s.name));
+        break;
+      case SkipReason::column_role: by_role[s.role].push_back(s.name); break;
+      case SkipReason::too_few_windows:
+        out.push_back(fmt::format("{} (not tried: {} leave too few degrees of freedom for it)", s.name,
+                                  counted(s.windows, "window")));
+        break;
+      case SkipReason::not_fitted: out.push_back(fmt::format("{} ({})", s.name, s.error)); break;
+    }
+  }
+  for (const auto& [role, names] : by_role) {
+    const bool many = names.size() > 1;
+    const std::string what = role == fit::ColumnRole::motion_sensor ? "another motion sensor's channel"
+                             : role == fit::ColumnRole::status      ? "a status word"
+                             : role == fit::ColumnRole::counter     ? "a counter"
+                                                                    : "constant";
+    out.push_back(fmt::format("column{} {} ({}{}, not a cause of the bias; name one in --candidates +NAME to try it)",
+                              many ? "s" : "", fmt::join(names, ", "), what,
+                              many && role != fit::ColumnRole::constant ? "s" : ""));
+  }
+  return out;
+}
+
+std::string verdict_text(const Diagnosis& d) {
+  const Verdict& v = d.verdict;
+  std::string verdict;
+  switch (v.kind) {
+    case VerdictKind::nothing_to_try: verdict = "nothing left to try: every available term is already in the model"; break;
+    case VerdictKind::none:
+      verdict = fmt::format("no missing effect is significant under the record's identified noise{}, so no term "
+                            "should be added",
+                            v.limited ? " (this record supported fewer tests than there are candidates; see 'not tried')"
+                                      : "");
+      break;
+    case VerdictKind::group: {
+      const CandidateReport& c = d.candidates.front();
+      std::vector<std::string> members = {std::string(c.term->name)};
+      for (const std::string& m : c.confounded_with) members.push_back(m);
+      verdict = fmt::format("one of {} is missing, and this record cannot tell which: {} ({}) removes {} (p = {:.2g})",
+                            member_list(members, " or "), c.term->name, c.term->meaning,
+                            excess_share_text(c.reduction_pct), c.p_value);
+      break;
+    }
+    case VerdictKind::found: {
+      std::vector<std::string> parts;
+      for (std::size_t i : v.found) {
+        const CandidateReport& c = d.candidates[i];
+        parts.push_back(fmt::format("{} ({}): {:.3g} {} (95 % [{:.3g}, {:.3g}]), removes {} (p = {:.2g})",
+                                    c.term->name, c.term->meaning, c.coefficient, c.term->coefficient_unit(),
+                                    c.coefficient_interval.lower, c.coefficient_interval.upper,
+                                    excess_share_text(c.reduction_pct), c.p_value));
+      }
+      verdict = fmt::format("add {}", fmt::join(parts, "; then "));
+      break;
+    }
+  }
+  if (d.remaining) verdict += "; " + remaining_text(*d.remaining);
+  return verdict;
+}
+
+std::string next_step_text(const std::string& record, const std::vector<const fit::Term*>& model,
+                           const std::string& channel, CallStyle style) {
+  if (style == CallStyle::python)
+    return fmt::format("gyrotherm.diagnose(data, model=\"{}\"{})", fit::formula_text(model),
+                       channel.empty() ? "" : fmt::format(", gyro_col='{}'", channel));
+  return fmt::format("gyrotherm diagnose {} --model \"{}\"{}", record, fit::formula_text(model),
+                     channel.empty() ? "" : " --gyro-col " + channel);
+}
+
+std::string significance_text(const DiagnosisOptions& o) {
+  return fmt::format(
+      "likelihood under the record's identified noise (REML, identified again with each round's leading candidate "
+      "as a fixed effect): the share of the whitened residual each candidate removes at its best parameter or step "
+      "position, p from a parametric bootstrap of {} draws (Sidak over the grid's effective number of tests); "
+      "weighted Holm over the candidates at {:g} (each registry term and the step family weigh 1, the log's "
+      "columns together 1), and at least {:g} % of the excess removed",
+      o.draws, o.alpha, o.min_reduction_pct);
+}
+
+}  // namespace gyrotherm::studies

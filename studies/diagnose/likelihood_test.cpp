@@ -1,0 +1,107 @@
+#include "studies/diagnose/likelihood_test.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <boost/math/special_functions/beta.hpp>
+#include <boost/random/normal_distribution.hpp>
+#include <cmath>
+
+#include "sim/util/random.h"
+
+namespace gyrotherm::studies {
+
+double LikelihoodTest::single_p(double share, double dof) {
+  if (!(share > 0.0)) return 1.0;
+  if (share >= 1.0) return 0.0;
+  if (dof < 2.0) return 1.0;  // nothing left to test against
+  return boost::math::ibetac(0.5, 0.5 * (dof - 1.0), share);
+}
+
+LikelihoodTest::LikelihoodTest(const fit::NoiseWhitener& whitener, const Eigen::MatrixXd& model,
+                               const Eigen::VectorXd& y)
+    : whitener_(whitener) {
+  const Eigen::Index l = y.size();
+  Eigen::MatrixXd design(l, model.cols() + 1);
+  design.col(0).setOnes();
+  design.rightCols(model.cols()) = model;
+  const Eigen::MatrixXd xw = whitener_.whiten(design);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(xw);
+  const Eigen::Index rank = qr.rank();
+  q_ = (qr.householderQ() * Eigen::MatrixXd::Identity(l, xw.cols())).leftCols(rank);
+  const Eigen::VectorXd yw = whitener_.whiten(y);
+  e_ = yw - q_ * (q_.transpose() * yw);
+  rss_ = e_.squaredNorm();
+  dof_ = static_cast<double>(l - rank);
+  columns_.resize(l, 0);
+}
+
+std::size_t LikelihoodTest::add(const Eigen::MatrixXd& columns) {
+  const std::size_t index = scores_.size();
+  CandidateScore s;
+  Eigen::MatrixXd w = whitener_.whiten(columns);
+  const Eigen::VectorXd before = w.colwise().squaredNorm();
+  w -= q_ * (q_.transpose() * w);
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index c = 0; c < w.cols(); ++c) {
+    const double norm2 = w.col(c).squaredNorm();
+    // A column (nearly) in the model's span carries nothing new.
+    if (!(norm2 > 1e-10 * before[c]) || !std::isfinite(norm2)) continue;
+    w.col(c) /= std::sqrt(norm2);
+    const double share = rss_ > 0.0 ? std::pow(w.col(c).dot(e_), 2) / rss_ : 0.0;
+    if (!s.fitted || share > s.share) {
+      s.share = share;
+      s.best = static_cast<std::size_t>(c);
+    }
+    s.fitted = true;
+    kept.push_back(c);
+  }
+  if (!kept.empty()) {
+    const Eigen::Index old = columns_.cols();
+    columns_.conservativeResize(Eigen::NoChange, old + static_cast<Eigen::Index>(kept.size()));
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      columns_.col(old + static_cast<Eigen::Index>(k)) = w.col(kept[k]);
+      owner_.push_back(index);
+      grid_index_.push_back(static_cast<std::size_t>(kept[k]));
+    }
+  }
+  s.p_value = s.fitted ? single_p(s.share, dof_) : 1.0;
+  scores_.push_back(s);
+  return index;
+}
+
+void LikelihoodTest::calibrate(int draws, std::uint64_t seed) {
+  if (scores_.empty() || columns_.cols() == 0 || draws < 1) return;
+  const Eigen::Index l = columns_.rows();
+  Rng rng = make_rng(seed, streams::diagnosis_likelihood_bootstrap);
+  boost::random::normal_distribution<double> normal;
+  Eigen::MatrixXd e(l, draws);
+  for (Eigen::Index b = 0; b < draws; ++b)
+    for (Eigen::Index i = 0; i < l; ++i) e(i, b) = normal(rng);
+  e -= q_ * (q_.transpose() * e);
+  const Eigen::RowVectorXd norms = e.colwise().squaredNorm();
+  const Eigen::MatrixXd dots = columns_.transpose() * e;  // columns × draws
+  // Per candidate, each draw's largest share over its grid.
+  Eigen::MatrixXd largest = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(scores_.size()), draws);
+  for (Eigen::Index c = 0; c < dots.rows(); ++c) {
+    const auto j = static_cast<Eigen::Index>(owner_[static_cast<std::size_t>(c)]);
+    largest.row(j) = largest.row(j).cwiseMax(dots.row(c).array().square().matrix().cwiseQuotient(norms));
+  }
+  std::vector<std::size_t> grid_size(scores_.size(), 0);
+  for (std::size_t o : owner_) ++grid_size[o];
+  for (std::size_t j = 0; j < scores_.size(); ++j) {
+    CandidateScore& s = scores_[j];
+    if (!s.fitted) continue;
+    const auto jj = static_cast<Eigen::Index>(j);
+    int above = 0;
+    double sum = 0.0;
+    for (Eigen::Index b = 0; b < draws; ++b) {
+      above += largest(jj, b) >= s.share;
+      sum += -std::log1p(-std::min(single_p(largest(jj, b), dof_), 1.0 - 1e-16));
+    }
+    s.p_bootstrap = (above + 1.0) / (draws + 1.0);
+    s.tests = grid_size[j] == 1 || !(sum > 0.0) ? 1.0 : std::max(1.0, draws / sum);
+    s.p_value = -std::expm1(s.tests * std::log1p(-single_p(s.share, dof_)));
+  }
+}
+
+}  // namespace gyrotherm::studies

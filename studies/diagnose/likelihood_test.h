@@ -1,0 +1,88 @@
+#pragma once
+// Candidates tested by likelihood under the record's identified noise
+// (diagnose, step 3; studies/diagnose/diagnosis.h).
+//
+// With the windows whitened by the identified covariance C
+// (fit/model/noise_whitening.h) and the current model [1, X] projected out,
+// adding a candidate column x (a term at a value of its parameter, or a bias
+// step at one position) removes the share
+//
+//     g(x) = (x̃ᵀẽ)² / (x̃ᵀx̃ · ẽᵀẽ)
+//
+// of the whitened residual ẽ (x̃: the whitened column less its projection on
+// the model): the likelihood-ratio statistic with the scale profiled out is
+// −ν·ln(1 − g), a monotone function of it (ν = l − m − 1, the residual's
+// dimension). Under the null (the noise is C, x is not in the bias) ẽ is
+// isotropic in that ν-dimensional space, so for one column g follows
+// Beta(½, (ν − 1)/2) exactly:  p₁(g) = I_{1−g}((ν − 1)/2, ½).
+//
+// A candidate with a grid (a parameter's values, a step's positions) takes
+// the largest g over it, G. Its p-value comes from B draws of isotropic noise
+// (a parametric bootstrap from the identified noise: whitened, its draws are
+// independent N(0, 1)), shared by every candidate, so the calibration does not
+// multiply with their number: p₁ of each draw's maximum over the grid is
+// Beta(1, n) when the grid amounts to n independent tests, so
+// n̂ = B / Σ_b −ln(1 − p₁(max_b)) (maximum likelihood, at least 1), and
+//
+//     p = 1 − (1 − p₁(G))^n̂     (Šidák over n̂ tests),
+//
+// which, unlike the share of draws at least G, is not capped at 1/(B + 1):
+// a loud effect gets the small p it deserves. The share of draws is kept as a
+// check (p_bootstrap). Both hold exactly when the identified noise is the
+// record's; how far they hold under noise identified from the record itself
+// is measured in results/diagnosis_power.md.
+//
+// References: R. H. Westfall, S. S. Young, "Resampling-based multiple
+// testing" (Wiley 1993), ch. 2 (max-statistics over correlated tests);
+// Z. Šidák, JASA 62 (1967) 626–633; T. Nyholt, Am. J. Hum. Genet. 74 (2004)
+// 765–769 (an effective number of tests).
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "fit/model/noise_whitening.h"
+
+namespace gyrotherm::studies {
+
+struct CandidateScore {
+  double share = 0;          // G: the largest share of the whitened residual removed
+  std::size_t best = 0;      // the grid column that removes it
+  double p_value = 1;        // Šidák over the grid's effective number of tests
+  double p_bootstrap = 1;    // (1 + #{draws ≥ G}) / (1 + B)
+  double tests = 1;          // n̂, the grid's effective number of independent tests
+  bool fitted = false;       // false: every column is collinear with the model
+};
+
+class LikelihoodTest {
+ public:
+  // model: the current model's regressors (no intercept column); y: the window means.
+  LikelihoodTest(const fit::NoiseWhitener& whitener, const Eigen::MatrixXd& model, const Eigen::VectorXd& y);
+
+  // A candidate's grid, one column per value (l × g); returns its index.
+  std::size_t add(const Eigen::MatrixXd& columns);
+  // Draws the bootstrap (draws × windows independent normals from `seed`'s
+  // stream) and scores every candidate added.
+  void calibrate(int draws, std::uint64_t seed);
+  const CandidateScore& score(std::size_t candidate) const { return scores_[candidate]; }
+  std::size_t candidates() const { return scores_.size(); }
+  // ν = l − m − 1.
+  double residual_dof() const { return dof_; }
+  // The whitened, projected residual's squared norm (the model's −2 ln L part).
+  double residual_rss() const { return rss_; }
+
+  // p₁: the single-column null tail of a share g at ν residual dof.
+  static double single_p(double share, double dof);
+
+ private:
+  const fit::NoiseWhitener& whitener_;
+  Eigen::MatrixXd q_;        // orthonormal basis of the whitened [1, X]
+  Eigen::VectorXd e_;        // the whitened residual
+  double rss_ = 0, dof_ = 0;
+  Eigen::MatrixXd columns_;  // every candidate's whitened, projected, unit-norm columns (valid ones)
+  std::vector<std::size_t> owner_;  // candidate of each stored column
+  std::vector<std::size_t> grid_index_;  // its index in the candidate's grid
+  std::vector<CandidateScore> scores_;
+};
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,99 @@
+// diagnose's likelihood test (studies/diagnose/likelihood_test.h): its
+// p-values are uniform when the noise is the model's (one column and a grid
+// of step positions), a loud step gets a p far below the bootstrap's 1/(B+1),
+// and the single-column tail is the Beta law it claims.
+
+#include "studies/diagnose/likelihood_test.h"
+
+#include <gtest/gtest.h>
+
+#include <boost/random/normal_distribution.hpp>
+#include <cmath>
+
+#include "sim/util/random.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+fit::WindowGrid grid_of(int windows) {
+  fit::WindowGrid g;
+  g.window_s = 100.0;
+  for (int i = 0; i < windows; ++i) {
+    g.time_s.push_back(50.0 + 100.0 * i);
+    g.averaging_s.push_back(100.0);
+  }
+  return g;
+}
+
+// White noise with a random walk and a Gauss–Markov process.
+fit::NoiseModel coloured() {
+  fit::NoiseModel m;
+  m.amplitude = {1e-3 * 100.0, 0.0, 4e-7, 1e-11};
+  m.gm_tau_s = 3000.0;
+  return m;
+}
+
+Eigen::MatrixXd steps(int windows, int from, int to) {
+  Eigen::MatrixXd x = Eigen::MatrixXd::Zero(windows, to - from);
+  for (int k = from; k < to; ++k) x.col(k - from).tail(windows - k).setOnes();
+  return x;
+}
+
+TEST(LikelihoodTest, PValuesAreUniformUnderTheModelsNoise) {
+  const int l = 200;
+  const fit::WindowGrid g = grid_of(l);
+  const fit::NoiseModel m = coloured();
+  const fit::NoiseWhitener w(m, g);
+  Eigen::MatrixXd model(l, 1);
+  for (int i = 0; i < l; ++i) model(i, 0) = std::sin(i / 30.0);
+  Eigen::MatrixXd column(l, 1);
+  for (int i = 0; i < l; ++i) column(i, 0) = std::cos(i / 17.0) + 0.01 * i;
+  const Eigen::MatrixXd positions = steps(l, 5, l - 5);
+  Rng rng = make_rng(3, 99);
+  boost::random::normal_distribution<double> normal;
+  const int replicates = 300;
+  int below_single = 0, below_steps = 0, below_boot = 0;
+  for (int r = 0; r < replicates; ++r) {
+    const Eigen::VectorXd y = m.draw(g, [&] { return normal(rng); });
+    LikelihoodTest t(w, model, y);
+    const std::size_t a = t.add(column);
+    const std::size_t b = t.add(positions);
+    t.calibrate(200, static_cast<std::uint64_t>(r));
+    below_single += t.score(a).p_value < 0.1;
+    below_steps += t.score(b).p_value < 0.1;
+    below_boot += t.score(b).p_bootstrap < 0.1;
+    EXPECT_GT(t.score(b).tests, 2.0);
+  }
+  // 10 % of 300 = 30, binomial sd 5.2: within 3 sd.
+  EXPECT_NEAR(below_single, 30, 16);
+  EXPECT_NEAR(below_steps, 30, 16);
+  EXPECT_NEAR(below_boot, 30, 16);
+}
+
+TEST(LikelihoodTest, ALoudStepHasAPFarBelowTheDrawsResolution) {
+  const int l = 300;
+  const fit::WindowGrid g = grid_of(l);
+  const fit::NoiseModel m = coloured();
+  const fit::NoiseWhitener w(m, g);
+  Rng rng = make_rng(5, 99);
+  boost::random::normal_distribution<double> normal;
+  Eigen::VectorXd y = m.draw(g, [&] { return normal(rng); });
+  const double sd = std::sqrt(m.amplitude[fit::kWhite] / 100.0);
+  y.tail(130).array() += 8.0 * sd;
+  LikelihoodTest t(w, Eigen::MatrixXd(l, 0), y);
+  const std::size_t s = t.add(steps(l, 4, l - 4));
+  t.calibrate(199, 1);
+  EXPECT_EQ(t.score(s).best + 4, static_cast<std::size_t>(l - 130));
+  EXPECT_LT(t.score(s).p_value, 1e-6);
+  EXPECT_DOUBLE_EQ(t.score(s).p_bootstrap, 1.0 / 200.0);
+}
+
+TEST(LikelihoodTest, SingleColumnTailIsBeta) {
+  // ν = 3: g ~ Beta(1/2, 1), P(g ≥ x) = 1 − √x.
+  EXPECT_NEAR(LikelihoodTest::single_p(0.25, 3.0), 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(LikelihoodTest::single_p(0.0, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(LikelihoodTest::single_p(1.0, 10.0), 0.0);
+}
+
+}  // namespace
+}  // namespace gyrotherm::studies
