@@ -157,6 +157,7 @@ int main(int argc, char** argv) {
   const double span = base.front().data.series.time_s.back() - base.front().data.series.start_time_s;
   std::string md;
   for (const Cell& cell : cells(grid)) {
+    if (std::getenv("GT_CELLS") && cell.name.find(std::getenv("GT_CELLS")) == std::string::npos) continue;
     // A trial: base k's record with a fresh draw of the cell's noise.
     const auto record = [&](int seed, std::uint64_t stream) {
       const Base& b = base[static_cast<std::size_t>(seed) % kBases];
@@ -237,11 +238,13 @@ int main(int argc, char** argv) {
         const double threshold = 1.96 * std::sqrt(f.covariance(xc.cols(), xc.cols()));
         std::string row = fmt::format("| {} | {:.3g} {} |", term->name, threshold, term->coefficient_unit());
         for (const double k : {3.0, 6.0}) {
+          if (std::getenv("GT_ONLY3") && k > 3.0) continue;
           int first = 0;
           for (int s = 1; s <= seeds; ++s) {
             fit::PreparedData d = record(s, 4);
             const Eigen::MatrixXd col = fit::design_matrix(d.derived, {term}, param);
             for (std::size_t p = 0; p < d.series.size(); ++p) d.series.gyro_dph[p] += k * threshold * col(static_cast<Eigen::Index>(p), 0);
+            if (std::getenv("GT_DEBUG_SEL")) fmt::print(stderr, "seed {} k {}\n", s, k);
             first += run(d, model, -1e9, 0.0, std::string(term->name)).effect_first;
           }
           row += fmt::format(" {} |", share(first, seeds));

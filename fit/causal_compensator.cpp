@@ -18,7 +18,7 @@ CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& 
       glitches_(HampelRule{fit.pipeline.outliers.threshold, settings.outlier_floor_dph}, fit.pipeline.outliers.window_s) {}
 
 double CausalCompensator::bias_of(const AveragedSeries& windows) const {
-  const DerivedSeries derived = derive(windows, DerivativeMode::causal, fit_.pipeline.derivative_span_s);
+  const DerivedSeries derived = derive(windows, DerivativeMode::causal, fit_.pipeline.derivative_span_s, fit_.pipeline.sensor_tau_s);
   return model_values(design_matrix(derived, fit_.terms, fit_.parameters), fit_.coefficients).back();
 }
 
@@ -43,6 +43,10 @@ double CausalCompensator::update(double t, double temp, double temp2, double gyr
     prefix.samples.resize(keep);
     prefix.run.resize(keep);
     for (auto& [name, values] : prefix.extra) values.resize(keep);
+    // Edge rates are not read in causal mode (fit/data/derivatives.h); kept the windows' length.
+    if (!prefix.temp_rate_c_per_s.empty()) prefix.temp_rate_c_per_s.resize(keep);
+    if (!prefix.temp2_rate_c_per_s.empty()) prefix.temp2_rate_c_per_s.resize(keep);
+    for (auto& [name, values] : prefix.extra_rate) values.resize(keep);
     window_bias_.push_back(bias_of(prefix));
   }
   if (!window_bias_.empty()) return window_bias_.back();

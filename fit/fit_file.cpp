@@ -150,6 +150,8 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                        {"from", {{"time", data.units.time_from},
                                  {"gyro", data.units.gyro_from},
                                  {"temp", data.units.temp_from}}}}}}}};
+  // A sensor lag given when fitting (--sensor-tau): compensate reads the temperatures the same way.
+  if (pipeline.sensor_tau_s > 0.0) j["pipeline"]["sensor_tau_s"] = pipeline.sensor_tau_s;
   return j;
 }
 
@@ -222,6 +224,12 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
   // Fit files from before derivatives bridged gaps have no span: the default.
   if (pipeline.contains("deriv_span_s"))
     s.pipeline.derivative_span_s = number(pipeline["deriv_span_s"], "pipeline.deriv_span_s");
+  if (pipeline.contains("sensor_tau_s")) {
+    s.pipeline.sensor_tau_s = number(pipeline["sensor_tau_s"], "pipeline.sensor_tau_s");
+    if (!(s.pipeline.sensor_tau_s >= 0.0))
+      throw InputError(fmt::format("{}: pipeline.sensor_tau_s: {} must be >= 0 (seconds)", file.string(),
+                                   s.pipeline.sensor_tau_s));
+  }
   s.pipeline.remove_outliers = need(pipeline, "remove_outliers", "bool").get<bool>();
   s.pipeline.outliers.window_s = number(need(pipeline, "outlier_window_s", "s"), "pipeline.outlier_window_s");
   s.pipeline.outliers.threshold = number(need(pipeline, "outlier_threshold", "MADs"), "pipeline.outlier_threshold");

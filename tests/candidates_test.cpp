@@ -1,5 +1,5 @@
 // diagnose's candidates (studies/diagnose/candidates.h): another motion
-// sensor's channels of the same log are no cause of the bias unless named,
+// sensor's channels of the same log (fit/data/column_role.h) are no cause of the bias unless named,
 // and the report says which of the log's columns were tried.
 
 #include "studies/diagnose/candidates.h"
@@ -19,15 +19,6 @@ using testing::run_cli;
 using testing::run_shell;
 using testing::ScratchDir;
 using testing::simulate_shipped;
-
-TEST(Candidates, SensorChannelsAreKnownByTheirNames) {
-  for (const char* name : {"gy_dph", "gyroy rad/s", "GyrX", "accel_y", "mag1x [T]", "ax", "m1z", "wz", "g2x",
-                           "xgyro", "zacc", "AccX", "omega_z", "rate_dps"})
-    EXPECT_TRUE(sensor_channel(name)) << name;
-  for (const char* name : {"supply_v", "case_c", "chamber_c", "temp2_c", "gate_v", "volt", "humidity",
-                           "pressure_pa", "heater_w", "board_temp"})
-    EXPECT_FALSE(sensor_channel(name)) << name;
-}
 
 bool has_term(const nlohmann::json& j, const std::string& term) {
   const auto& m = j["missing_effects"];

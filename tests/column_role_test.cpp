@@ -16,7 +16,7 @@ TEST(ColumnRole, WordsAreCutAtSeparatorsCaseChangesAndDigits) {
   EXPECT_EQ(column_words("IMU.AccX"), (std::vector<std::string>{"imu", "acc", "x"}));
   EXPECT_EQ(column_words("accel_x_mps2"), (std::vector<std::string>{"accel", "x", "mps", "2"}));
   EXPECT_EQ(column_words("gyro[1]"), (std::vector<std::string>{"gyro", "1"}));
-  EXPECT_EQ(column_words("m1z"), (std::vector<std::string>{"m1z"}));
+  EXPECT_EQ(column_words("m1z"), (std::vector<std::string>{"m", "1", "z"}));
 }
 
 TEST(ColumnRole, OtherMotionSensorsWhateverTheirSpelling) {
@@ -24,6 +24,15 @@ TEST(ColumnRole, OtherMotionSensorsWhateverTheirSpelling) {
                            "gx", "ay", "m1z", "wz", "gy_dph", "gyroy rad/s", "ax [m/s^2]", "field_uT", "mag1x [T]",
                            "omega_z"})
     EXPECT_EQ(role_by_name(name), ColumnRole::motion_sensor) << name;
+}
+
+TEST(ColumnRole, TheNamesDiagnoseKnewBeforeStillHoldTheirRoles) {
+  for (const char* name : {"gy_dph", "gyroy rad/s", "GyrX", "accel_y", "mag1x [T]", "ax", "m1z", "wz", "g2x",
+                           "xgyro", "zacc", "AccX", "omega_z", "rate_dps"})
+    EXPECT_EQ(role_by_name(name), ColumnRole::motion_sensor) << name;
+  for (const char* name : {"supply_v", "case_c", "chamber_c", "temp2_c", "gate_v", "volt", "humidity",
+                           "pressure_pa", "heater_w", "board_temp"})
+    EXPECT_EQ(role_by_name(name), ColumnRole::cause) << name;
 }
 
 TEST(ColumnRole, StatusesAndCountersByName) {

@@ -51,7 +51,7 @@ TEST(NoiseWhitening, WhitenedIdentityIsTheInverseCholeskyFactor) {
     const Eigen::MatrixXd c = dense(m, g);
     const NoiseWhitener w(m, g);
     const auto n = static_cast<Eigen::Index>(g.size());
-    const Eigen::MatrixXd z = w.whiten(Eigen::MatrixXd::Identity(n, n));
+    const Eigen::MatrixXd z = w.whiten(Eigen::MatrixXd(Eigen::MatrixXd::Identity(n, n)));
     // zᵀz = C⁻¹, i.e. z C zᵀ = I.
     const Eigen::MatrixXd should_be_identity = z * c * z.transpose();
     EXPECT_LT((should_be_identity - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff(), 1e-8) << "drop " << drop;

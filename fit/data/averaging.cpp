@@ -43,7 +43,10 @@ WindowAverager::WindowAverager(const AveragingOptions& options, double sample_in
       has_temp2_(has_temp2),
       whole_runs_(whole_runs),
       extra_names_(std::move(extra_names)),
-      sum_extra_(extra_names_.size(), 0.0) {
+      sum_extra_(extra_names_.size(), 0.0),
+      temp_edge_(EdgeRate::samples_for(options.window_s, sample_interval_s), sample_interval_s),
+      temp2_edge_(temp_edge_),
+      extra_edges_(extra_names_.size(), temp_edge_) {
   options_.validate();
   assert(sample_interval_s > 0.0);
   if (options_.window_s < sample_interval_s && !whole_runs_)
@@ -97,6 +100,11 @@ void WindowAverager::close_window() {
     series_.gyro_lag1.push_back(lag1);
     for (std::size_t i = 0; i < extra_names_.size(); ++i)
       series_.extra[extra_names_[i]].push_back(sum_extra_[i] / n);
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    series_.temp_rate_c_per_s.push_back(whole_runs_ ? none : temp_edge_.rate());
+    if (has_temp2_) series_.temp2_rate_c_per_s.push_back(whole_runs_ ? none : temp2_edge_.rate());
+    for (std::size_t i = 0; i < extra_names_.size(); ++i)
+      series_.extra_rate[extra_names_[i]].push_back(whole_runs_ ? none : extra_edges_[i].rate());
   } else {
     ++report_.dropped_windows;
   }
@@ -104,6 +112,9 @@ void WindowAverager::close_window() {
   sum_time_s_ = sum_temp_c_ = sum_gyro_dph_ = sum_temp2_c_ = 0.0;
   sum_u_ = sum_u2_ = sum_lag_ = sum_lag_now_ = sum_lag_prev_ = 0.0;
   std::fill(sum_extra_.begin(), sum_extra_.end(), 0.0);
+  temp_edge_.reset();
+  temp2_edge_.reset();
+  for (EdgeRate& e : extra_edges_) e.reset();
   previous_valid_ = false;
   lag_pairs_ = 0;
 }
@@ -153,6 +164,12 @@ void WindowAverager::add(double time_s, double temp_c, double gyro_dph, double t
   sum_gyro_dph_ += gyro_dph;
   if (has_temp2_) sum_temp2_c_ += temp2_c;
   for (std::size_t i = 0; i < sum_extra_.size() && i < extra.size(); ++i) sum_extra_[i] += extra[i];
+  if (!whole_runs_) {
+    const double t = time_s - run_start_s_;
+    temp_edge_.add(t, temp_c);
+    if (has_temp2_) temp2_edge_.add(t, temp2_c);
+    for (std::size_t i = 0; i < extra_edges_.size() && i < extra.size(); ++i) extra_edges_[i].add(t, extra[i]);
+  }
 }
 
 AveragedSeries WindowAverager::finish() {

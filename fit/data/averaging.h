@@ -37,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include "fit/data/edge_rate.h"
 #include "fit/data/measurement.h"
 
 namespace gyrotherm::fit {
@@ -61,6 +62,13 @@ struct AveragedSeries {
   std::vector<double> gyro_sd_dph, gyro_lag1;
   // The window means of a log's extra columns (Measurement::extra).
   std::map<std::string, std::vector<double>, std::less<>> extra;
+  // The window mean of each one's time derivative from the samples at the
+  // window's edges (fit/data/edge_rate.h): NaN where a window holds too few
+  // samples, and with bursts (each burst's own rate is noise: the rates
+  // come from neighbouring bursts, fit/data/derivatives.h). Empty when the
+  // series was not made by a WindowAverager.
+  std::vector<double> temp_rate_c_per_s, temp2_rate_c_per_s;
+  std::map<std::string, std::vector<double>, std::less<>> extra_rate;
   std::vector<std::size_t> run;                   // index of the gap-free run the window belongs to
   double start_time_s = 0;                        // time of the first sample of the record
   std::size_t size() const { return time_s.size(); }
@@ -114,6 +122,8 @@ class WindowAverager {
   bool whole_runs_;
   std::vector<std::string> extra_names_;
   std::vector<double> sum_extra_;
+  EdgeRate temp_edge_, temp2_edge_;
+  std::vector<EdgeRate> extra_edges_;
   AveragedSeries series_;
   AveragingReport report_;
 

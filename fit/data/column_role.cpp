@@ -69,10 +69,8 @@ std::vector<std::string> column_words(std::string_view name) {
     }
     if (!word.empty()) {
       const char p = name[i - 1];
-      // A case change lower → upper ("AccX"), or letters ↔ digits ("mps2"), except an axis
-      // word's digit ("m1z", "gyro1x" stays split at the letters only).
-      if ((lower(p) && upper(c)) || (digit(p) != digit(c) && !axis_word(word + static_cast<char>(std::tolower(c)))))
-        flush();
+      // A case change lower → upper ("AccX"), or letters ↔ digits ("mps2", "m1z").
+      if ((lower(p) && upper(c)) || digit(p) != digit(c)) flush();
     }
     word += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
@@ -89,11 +87,13 @@ ColumnRole role_by_name(std::string_view name) {
         axis_word(w) || motion_unit_word(w))
       return ColumnRole::motion_sensor;
   }
-  // "mps2" cut in two, "m/s^2" and "m/s²" in a bracket: the words are mps 2, m s 2.
-  for (std::size_t i = 0; i + 1 < words.size(); ++i)
-    if (motion_unit_word(words[i] + words[i + 1]) ||
-        (i + 2 < words.size() && motion_unit_word(words[i] + words[i + 1] + words[i + 2])))
+  // Words cut at digits, joined again: "mps2" (mps 2), "m/s^2" (m s 2), "m1z" (m 1 z).
+  for (std::size_t i = 0; i + 1 < words.size(); ++i) {
+    const std::string two = words[i] + words[i + 1];
+    const std::string three = i + 2 < words.size() ? two + words[i + 2] : "";
+    if (motion_unit_word(two) || axis_word(two) || (!three.empty() && (motion_unit_word(three) || axis_word(three))))
       return ColumnRole::motion_sensor;
+  }
   for (const std::string& w : words) {
     if (one_of(w, {"status", "flags", "flag", "state", "mode", "valid", "error", "errors", "err", "health", "crc",
                    "checksum", "fault", "faults"}))

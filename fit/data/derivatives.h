@@ -38,7 +38,12 @@ struct DerivedSeries : effects::EffectSeries {
 
 inline constexpr double kDefaultDerivativeSpanS = 600.0;
 
+// sensor_tau_s: the temperature sensors' time constant τ (--sensor-tau). A
+// sensor of first order reads T_s with T = T_s + τ·dT_s/dt, so the windows'
+// temperatures are taken as T̄_s + τ·ẋ_w and their rates as ẋ_w + τ·ẍ_w
+// (temp2 likewise): the terms see the gyro's temperature, not the lagged
+// reading (errors in the regressors bias the rate terms most: dT and grad).
 DerivedSeries derive(const AveragedSeries& data, DerivativeMode mode,
-                     double span_s = kDefaultDerivativeSpanS);
+                     double span_s = kDefaultDerivativeSpanS, double sensor_tau_s = 0.0);
 
 }  // namespace gyrotherm::fit

@@ -26,6 +26,7 @@ struct PipelineOptions {
   AveragingOptions averaging;
   DerivativeMode derivative = DerivativeMode::central;
   double derivative_span_s = kDefaultDerivativeSpanS;  // --deriv-span (fit/data/derivatives.h)
+  double sensor_tau_s = 0.0;  // --sensor-tau: the temperature sensors' lag (fit/data/derivatives.h)
 };
 
 struct PreparedData {

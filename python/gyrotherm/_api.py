@@ -2,7 +2,6 @@
 
 import json
 import os
-import re
 from collections.abc import Mapping
 
 from . import _gyrotherm as _g
@@ -231,21 +230,26 @@ class Diagnosis(_Report):
         return self._dict.get("verdict")
 
     @property
+    def verdict_data(self):
+        """The verdict as data: kind (found, group, none, nothing_to_try), the terms found or the
+        group the record cannot tell apart, the share of the excess they remove."""
+        return self._dict.get("verdict_data")
+
+    @property
     def next_call(self):
         """The next step as a Python call, ``gyrotherm.diagnose(data, model="...")`` with the
-        model the diagnosis suggests (``next_command`` is the same for the command line), or None;
-        with several gyro channels, a dict of channel -> call (or None)."""
+        model the diagnosis suggests (``next`` in ``as_dict()`` holds it as data), or None; with
+        several gyro channels, a dict of channel -> call (or None)."""
         if isinstance(self._dict.get("channels"), list):
-            return {c.get("channel"): _next_call(c.get("next_command") or "") for c in self._dict["channels"]}
-        return _next_call(self._dict.get("next_command") or "")
+            return {c.get("channel"): _next_call(c.get("next")) for c in self._dict["channels"]}
+        return _next_call(self._dict.get("next"))
 
 
-def _next_call(command):
-    found = re.search(r'--model "([^"]*)"( --gyro-col (.+))?$', command)
-    if not found:
+def _next_call(step):
+    if not step:
         return None
-    channel = f", gyro_col={found.group(3)!r}" if found.group(3) else ""
-    return f'gyrotherm.diagnose(data, model="{found.group(1)}"{channel})'
+    channel = f", gyro_col={step['channel']!r}" if step.get("channel") else ""
+    return f'gyrotherm.diagnose(data, model="{step["model"]}"{channel})'
 
 
 class AllanResult(_Report):
@@ -314,12 +318,7 @@ def diagnose(data, model=None, add=None, **options):
     path, columns, _ = _data(data)
     pairs = _keywords(dict(data=path, model=model, add=add, **options))
     out = _g.diagnose(pairs, columns)
-    text = out["text"]
-    if columns is not None:
-        # Arrays have no file to name on a command line: the next step as a Python call.
-        text = re.sub(r"^next: (gyrotherm diagnose .*)$", lambda m: f"next: {_next_call(m.group(1)) or m.group(1)}",
-                      text, flags=re.M)
-    return Diagnosis(out["json"], text)
+    return Diagnosis(out["json"], out["text"])
 
 
 def allan(data, fit=None, **options):
@@ -368,13 +367,7 @@ def export(fit, format, output, data=None, **options):
             os.remove(fit_file)
             fit.file = None
         raise
-    text, warnings = out["text"], list(out["warnings"])
-    if columns is not None:
-        # Arrays have no file to name on a command line: the refit as a Python call.
-        def refit(t):
-            return re.sub(r"\(gyrotherm fit \S+ --model '([^']*)', then", r'(gyrotherm.fit(data, model="\1"), then', t)
-        text, warnings = refit(text), [refit(w) for w in warnings]
-    return ExportResult(out["json"], text, warnings)
+    return ExportResult(out["json"], out["text"], list(out["warnings"]))
 
 
 def plan(**options):

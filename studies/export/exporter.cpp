@@ -100,7 +100,16 @@ nlohmann::ordered_json export_json(const ExportRequest& request, const ExportOut
 
 ExportOutput run_export(const ExportRequest& request) {
   const ExporterInfo& exporter = find_exporter(request.format);
-  ExportOutput out = exporter.write(request, fit::load_fits(request.fit_file));
+  const std::vector<fit::SavedFit> fits = fit::load_fits(request.fit_file);
+  // A fit made on de-lagged temperatures (--sensor-tau) holds for them: a
+  // firmware, and the C compensator, read the sensor as it is.
+  for (const fit::SavedFit& f : fits)
+    if (f.pipeline.sensor_tau_s > 0.0)
+      throw InputError(fmt::format(
+          "{}: the fit reads its temperatures de-lagged by --sensor-tau {:g} s, which no exported form applies "
+          "(firmwares and the C compensator read the sensor as it is): fit again without --sensor-tau to export",
+          request.fit_file, f.pipeline.sensor_tau_s));
+  ExportOutput out = exporter.write(request, fits);
   write_file_atomically(request.output, out.text);
   return out;
 }

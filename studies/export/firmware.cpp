@@ -52,10 +52,12 @@ std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, cons
   const std::string refit =
       model.empty() ? "no polynomial in T can be fitted on this record"
                     : fmt::format("the best the firmware can express, B = b0 + {} refitted on the same data, leaves "
-                                  "{:.6g} °/h{} (gyrotherm fit {} --model '{}', then export that fit)",
+                                  "{:.6g} °/h{} ({}, then export that fit)",
                                   model, refitted,
                                   refitted < cost.without_dph ? "" : " (no better than these coefficients)",
-                                  data.name, model);
+                                  // Arrays have no file to name on a command line: a Python call.
+                                  data.table != nullptr ? fmt::format("gyrotherm.fit(data, model=\"{}\")", model)
+                                                        : fmt::format("gyrotherm fit {} --model '{}'", data.name, model));
   return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); {}",
                      channel_name(f), names, data.name, cost.with_dph, cost.without_dph,
                      cost.without_dph / cost.with_dph, refit);

@@ -21,6 +21,9 @@ fit::PipelineOptions DataOptions::resolved() const {
   }
   if (!(p.derivative_span_s > 0.0) || !std::isfinite(p.derivative_span_s))
     throw InputError(fmt::format("--deriv-span {}: must be a number of seconds > 0", p.derivative_span_s));
+  if (!(p.sensor_tau_s >= 0.0) || !std::isfinite(p.sensor_tau_s))
+    throw InputError(fmt::format("--sensor-tau {}: must be a number of seconds >= 0 (0: the sensors do not lag)",
+                                 p.sensor_tau_s));
   if (causal) p.derivative = fit::DerivativeMode::causal;
   if (keep_outliers) p.remove_outliers = false;
   return p;
@@ -73,6 +76,10 @@ std::vector<OptionRow<DataOptions>> data_option_rows(bool with_avg) {
                               "Longest time between two window centres that dT/dt and d2T/dt2 may span, "
                               "across a gap or not (default 600 s)",
                               [](D& o) -> auto& { return o.pipeline.derivative_span_s; }));
+  rows.push_back(field_row<D>("--sensor-tau",
+                              "Time constant in s of the temperature sensors' lag behind the gyro's temperature: "
+                              "temperatures are read as T + tau dT/dt (default 0: no lag)",
+                              [](D& o) -> auto& { return o.pipeline.sensor_tau_s; }));
   rows.push_back(field_row<D>("--causal", "Backward differences for dT/dt and d2T (a real-time compensator); default central",
                               &D::causal));
   rows.push_back(field_row<D>("--keep-outliers", "Do not remove counting glitches", &D::keep_outliers));
