@@ -119,6 +119,7 @@ std::vector<Base> bases(const std::string& scenario) {
 struct Outcome {
   bool anything = false;  // something passed the test
   bool step_found = false;
+  bool step_covered = false;  // the found step's 95 % interval holds its size
   bool effect_first = false;
   double floor = 0;
 };
@@ -130,7 +131,10 @@ Outcome run(const fit::PreparedData& data, const std::vector<const fit::Term*>& 
   o.floor = d.noise_floor_dph;
   for (const studies::CandidateReport& c : d.candidates) o.anything = o.anything || c.passed();
   for (const studies::StepEvent& e : d.events)
-    if (e.significant && std::abs(e.time_s - step_time_s) <= 3600.0 && e.size_dph * step_dph > 0.0) o.step_found = true;
+    if (e.significant && std::abs(e.time_s - step_time_s) <= 3600.0 && e.size_dph * step_dph > 0.0) {
+      o.step_found = true;
+      o.step_covered = e.size_interval_dph.lower <= step_dph && step_dph <= e.size_interval_dph.upper;
+    }
   if (!effect.empty() && !d.candidates.empty()) {
     const studies::CandidateReport& first = d.candidates.front();
     const bool named = first.term->name == effect ||
@@ -194,9 +198,9 @@ int main(int argc, char** argv) {
     if (part == "all" || part == "clean")
       md += fmt::format("| clean records | anything significant |\n|---|---|\n| {} | {} |\n\n", clean, share(alarms, clean));
     if (part == "all" || part == "steps") {
-      md += "| step | found (significant, within 1 h, right sign) | anything significant |\n|---|---|---|\n";
+      md += "| step | found (significant, within 1 h, right sign) | its 95 % interval holds the size | anything significant |\n|---|---|---|---|\n";
       for (const double k : {2.0, 4.0, 6.0, 10.0}) {
-        int found = 0, any = 0;
+        int found = 0, any = 0, covered = 0;
         for (int s = 1; s <= seeds; ++s) {
           fit::PreparedData d = record(s, 2);
           Rng rng = make_rng(static_cast<std::uint64_t>(s), 3);
@@ -217,9 +221,11 @@ int main(int argc, char** argv) {
             fmt::print(stderr, "\n");
           }
           found += o.step_found;
+          covered += o.step_covered;
           any += o.anything;
         }
-        md += fmt::format("| {:g} × floor | {} | {} |\n", k, share(found, seeds), share(any, seeds));
+        md += fmt::format("| {:g} × floor | {} | {} | {} |\n", k, share(found, seeds),
+                          found > 0 ? share(covered, found) : std::string("-"), share(any, seeds));
         fmt::print(stderr, "{}: step {:g}x: {} found\n", cell.name, k, found);
       }
     }

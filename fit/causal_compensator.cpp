@@ -44,9 +44,10 @@ double CausalCompensator::update(double t, double temp, double temp2, double gyr
     prefix.run.resize(keep);
     for (auto& [name, values] : prefix.extra) values.resize(keep);
     // Edge rates are not read in causal mode (fit/data/derivatives.h); kept the windows' length.
-    if (!prefix.temp_rate_c_per_s.empty()) prefix.temp_rate_c_per_s.resize(keep);
-    if (!prefix.temp2_rate_c_per_s.empty()) prefix.temp2_rate_c_per_s.resize(keep);
-    for (auto& [name, values] : prefix.extra_rate) values.resize(keep);
+    for (auto* v : {&prefix.temp_rate_c_per_s, &prefix.temp2_rate_c_per_s, &prefix.temp_rate_se, &prefix.temp2_rate_se})
+      if (!v->empty()) v->resize(keep);
+    for (auto* m : {&prefix.extra_rate, &prefix.extra_rate_se})
+      for (auto& [name, values] : *m) values.resize(keep);
     window_bias_.push_back(bias_of(prefix));
   }
   if (!window_bias_.empty()) return window_bias_.back();

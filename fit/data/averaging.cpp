@@ -102,9 +102,15 @@ void WindowAverager::close_window() {
       series_.extra[extra_names_[i]].push_back(sum_extra_[i] / n);
     const double none = std::numeric_limits<double>::quiet_NaN();
     series_.temp_rate_c_per_s.push_back(whole_runs_ ? none : temp_edge_.rate());
-    if (has_temp2_) series_.temp2_rate_c_per_s.push_back(whole_runs_ ? none : temp2_edge_.rate());
-    for (std::size_t i = 0; i < extra_names_.size(); ++i)
+    series_.temp_rate_se.push_back(whole_runs_ ? none : temp_edge_.standard_error());
+    if (has_temp2_) {
+      series_.temp2_rate_c_per_s.push_back(whole_runs_ ? none : temp2_edge_.rate());
+      series_.temp2_rate_se.push_back(whole_runs_ ? none : temp2_edge_.standard_error());
+    }
+    for (std::size_t i = 0; i < extra_names_.size(); ++i) {
       series_.extra_rate[extra_names_[i]].push_back(whole_runs_ ? none : extra_edges_[i].rate());
+      series_.extra_rate_se[extra_names_[i]].push_back(whole_runs_ ? none : extra_edges_[i].standard_error());
+    }
   } else {
     ++report_.dropped_windows;
   }

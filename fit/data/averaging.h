@@ -67,8 +67,9 @@ struct AveragedSeries {
   // samples, and with bursts (each burst's own rate is noise: the rates
   // come from neighbouring bursts, fit/data/derivatives.h). Empty when the
   // series was not made by a WindowAverager.
-  std::vector<double> temp_rate_c_per_s, temp2_rate_c_per_s;
-  std::map<std::string, std::vector<double>, std::less<>> extra_rate;
+  // Each with its standard error (EdgeRate::standard_error), in the *_se fields.
+  std::vector<double> temp_rate_c_per_s, temp2_rate_c_per_s, temp_rate_se, temp2_rate_se;
+  std::map<std::string, std::vector<double>, std::less<>> extra_rate, extra_rate_se;
   std::vector<std::size_t> run;                   // index of the gap-free run the window belongs to
   double start_time_s = 0;                        // time of the first sample of the record
   std::size_t size() const { return time_s.size(); }

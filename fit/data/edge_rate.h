@@ -16,6 +16,16 @@
 // span (a ramp's start and end), and the bias lands on the rate's
 // coefficient (issue: dT read 0.35–0.40 % high on cycles with 1–5 °C/min
 // ramps).
+//
+// Its noise: each edge's value is an extrapolation from k samples, so a
+// sensor's noise and resolution (0.003 °C, 0.01 °C steps at 1 Hz: ±5e-5 °C/s
+// over 100 s) reach the rate, while a difference of window means averages
+// them away. Where the two agree within three times the edges' standard error
+// (standard_error(): the sample noise from the window's second differences,
+// Σ(x_{i+1} − 2x_i + x_{i−1})²/6n, which a trend does not inflate and a
+// sensor's steps do enter), the smooth part of a
+// record, the difference of means is kept (derivatives.h); where they do
+// not, at a ramp's start or end, the edges' rate is taken.
 
 #include <cstddef>
 #include <vector>
@@ -30,9 +40,11 @@ class EdgeRate {
   void add(double time_s, double value);
   // ẋ_w; NaN with fewer than 2k samples (the edges' lines would share samples).
   double rate() const;
+  // Its standard error from the samples' noise; NaN as rate().
+  double standard_error() const;
   void reset();
 
-  // k for a window of `window_s`: 5 % of its samples, at least 2 and at most 64.
+  // k for a window of `window_s`: 10 % of its samples, at least 3 and at most 64.
   static std::size_t samples_for(double window_s, double sample_interval_s);
 
  private:
@@ -40,6 +52,7 @@ class EdgeRate {
   double interval_s_;
   std::vector<double> first_t_, first_x_, last_t_, last_x_;  // last_*: a ring of the latest k
   std::size_t count_ = 0;
+  double before_ = 0, latest_ = 0, second_differences_ = 0;  // Σ (x_{i+1} − 2x_i + x_{i−1})²
 };
 
 }  // namespace gyrotherm::fit

@@ -122,3 +122,22 @@ GlsFit gls(const NoiseWhitener& whitener, const Eigen::MatrixXd& x, const Eigen:
 }
 
 }  // namespace gyrotherm::fit
+
+namespace gyrotherm::fit {
+
+double widest_variance(const std::vector<NoiseWhitener>& whiteners, const Eigen::MatrixXd& x, Eigen::Index k) {
+  Eigen::MatrixXd design(x.rows(), x.cols() + 1);
+  design << Eigen::VectorXd::Ones(x.rows()), x;
+  double widest = 0.0;
+  for (const NoiseWhitener& w : whiteners) {
+    const Eigen::MatrixXd xw = w.whiten(design);
+    const Eigen::MatrixXd info = xw.transpose() * xw;
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(info);
+    if (ldlt.info() != Eigen::Success) continue;
+    const Eigen::VectorXd unit = Eigen::VectorXd::Unit(info.rows(), k);
+    widest = std::max(widest, unit.dot(ldlt.solve(unit)));
+  }
+  return widest;
+}
+
+}  // namespace gyrotherm::fit

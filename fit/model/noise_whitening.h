@@ -65,4 +65,10 @@ struct GlsFit {
 };
 GlsFit gls(const NoiseWhitener& whitener, const Eigen::MatrixXd& x, const Eigen::VectorXd& y);
 
+// The variance of coefficient k (0: the intercept) of GLS on [1, x], the
+// widest over `whiteners` (one per noise model the record supports alike,
+// fit::plausible_models): since the record cannot tell which holds, an
+// interval from the narrowest would claim more than it shows.
+double widest_variance(const std::vector<NoiseWhitener>& whiteners, const Eigen::MatrixXd& x, Eigen::Index k);
+
 }  // namespace gyrotherm::fit

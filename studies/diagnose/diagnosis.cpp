@@ -69,12 +69,14 @@ void size_steps(Diagnosis& d, const fit::PreparedData& data, const std::vector<c
   const std::vector<double> params = fit::fit_parameters(data.derived, data.series.gyro_dph, final_terms);
   const Eigen::VectorXd y =
       Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size()));
-  std::optional<fit::NoiseWhitener> whitener;
-  try {
-    whitener.emplace(d.noise->model, d.noise->grid);
-  } catch (const FitError&) {
-    return;
+  std::vector<fit::NoiseWhitener> whiteners;  // the point model first, then those the record supports alike
+  for (const fit::NoiseModel& m : fit::plausible_models(d.noise->model, d.noise->grid)) {
+    try {
+      whiteners.emplace_back(m, d.noise->grid);
+    } catch (const FitError&) {
+    }
   }
+  if (whiteners.empty()) return;
   for (const CandidateReport& c : d.candidates) {
     if (!fit::is_step_term(c.term) || !(c.significant || c.p_value < options.alpha)) continue;
     std::vector<const fit::Term*> with = final_terms;
@@ -85,12 +87,14 @@ void size_steps(Diagnosis& d, const fit::PreparedData& data, const std::vector<c
     }
     const auto k = static_cast<Eigen::Index>(std::find(with.begin(), with.end(), c.term) - with.begin()) + 1;
     try {
-      const fit::GlsFit f = fit::gls(*whitener, fit::design_matrix(data.derived, with, p), y);
+      const Eigen::MatrixXd x = fit::design_matrix(data.derived, with, p);
+      const fit::GlsFit f = fit::gls(whiteners.front(), x, y);
       StepEvent e;
       e.time_s = c.term->step_time_s;
       e.log_time_s = e.time_s + data.series.start_time_s;
       e.size_dph = f.beta[k];
-      const double half = 1.959963984540054 * std::sqrt(std::max(0.0, f.covariance(k, k)));
+      const double half =
+          1.959963984540054 * std::sqrt(std::max({0.0, f.covariance(k, k), fit::widest_variance(whiteners, x, k)}));
       e.size_interval_dph = {e.size_dph - half, e.size_dph + half};
       e.p_value = c.p_value;
       e.significant = c.significant && c.confounded_with.empty();

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -157,18 +158,47 @@ std::vector<CandidateScore> score_all(const fit::NoiseWhitener& whitener, const 
 }
 
 // A candidate's report at its best grid value under the round's noise.
-CandidateReport report_of(const Round& r, const fit::NoiseWhitener& whitener, const Grid& g, const CandidateScore& s,
+// A parameter's value between the grid's neighbours of the best: the one
+// whose column removes the most of the whitened residual (Brent's method on
+// ln θ, boost::math::tools::brent_find_minima).
+double refined_parameter(const Round& r, const fit::NoiseWhitener& whitener, const Grid& g, std::size_t best) {
+  const std::size_t lo = best > 0 ? best - 1 : best, hi = std::min(best + 1, g.values.size() - 1);
+  if (lo == hi) return g.values[best];
+  Eigen::MatrixXd model(r.x.rows(), r.x.cols() + 1);
+  model << Eigen::VectorXd::Ones(r.x.rows()), r.x;
+  const Eigen::MatrixXd xw = whitener.whiten(model);
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(xw);
+  const Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(xw.rows(), xw.cols());
+  Eigen::VectorXd e = whitener.whiten(r.y);
+  e -= q * (q.transpose() * e);
+  const auto loss = [&](double log_theta) {
+    Eigen::VectorXd c = whitener.whiten(Eigen::VectorXd(
+        fit::design_matrix(r.data.derived, {g.term}, {std::exp(log_theta)}).col(0)));
+    c -= q * (q.transpose() * c);
+    const double n2 = c.squaredNorm();
+    return n2 > 0.0 ? -std::pow(c.dot(e), 2) / n2 : 0.0;
+  };
+  const auto [x, f] = boost::math::tools::brent_find_minima(loss, std::log(g.values[lo]), std::log(g.values[hi]), 30);
+  return f < loss(std::log(g.values[best])) ? std::exp(x) : g.values[best];
+}
+
+CandidateReport report_of(const Round& r, const fit::NoiseWhitener& whitener,
+                          const std::vector<fit::NoiseWhitener>& plausible, const Grid& g, const CandidateScore& s,
                           double level, std::size_t block, const DiagnosisOptions& options) {
-  const Eigen::VectorXd column = g.columns.col(static_cast<Eigen::Index>(s.best));
-  const Eigen::MatrixXd xw = with_column(r.x, column);
   CandidateReport c;
   c.term = g.term != nullptr ? g.term : fit::step_term(g.values[s.best]);
-  if (g.term != nullptr && g.term->parameter) c.parameter = g.values[s.best];
+  Eigen::VectorXd column = g.columns.col(static_cast<Eigen::Index>(s.best));
+  if (g.term != nullptr && g.term->parameter) {
+    c.parameter = refined_parameter(r, whitener, g, s.best);
+    column = fit::design_matrix(r.data.derived, {g.term}, {c.parameter}).col(0);
+  }
+  const Eigen::MatrixXd xw = with_column(r.x, column);
   const fit::GlsFit f = fit::gls(whitener, xw, r.y);
   const auto last = f.beta.size() - 1;
   const double dof = static_cast<double>(r.y.size() - f.beta.size());
   c.coefficient = f.beta[last];
-  c.coefficient_interval = interval_of(c.coefficient, f.covariance(last, last), dof);
+  c.coefficient_interval =
+      interval_of(c.coefficient, std::max(f.covariance(last, last), fit::widest_variance(plausible, xw, last)), dof);
   const fit::LinearProblem problem(xw, r.y, std::vector<std::string>(static_cast<std::size_t>(xw.cols()), "x"),
                                    fit::Collinear::keep);
   c.instability_after_dph = problem.sigma_two_pass(problem.physical(fit::least_squares_optimum(problem)));
@@ -327,15 +357,15 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
     // random walk), but its slow components are bounded loosely.
     const fit::NoiseWhitener whitener(noise, grid);
     std::vector<CandidateScore> scores = score_all(whitener, r, grids, untried, options.draws, seed);
-    const std::vector<fit::NoiseModel> plausible = fit::plausible_models(noise, grid);
-    for (std::size_t m = 1; m < plausible.size(); ++m) {
-      std::optional<fit::NoiseWhitener> other;
+    std::vector<fit::NoiseWhitener> others;
+    for (const fit::NoiseModel& m : fit::plausible_models(noise, grid)) {
       try {
-        other.emplace(plausible[m], grid);
+        others.emplace_back(m, grid);
       } catch (const FitError&) {
-        continue;
       }
-      const std::vector<CandidateScore> more = score_all(*other, r, grids, untried, options.draws, seed);
+    }
+    for (std::size_t m = 1; m < others.size(); ++m) {
+      const std::vector<CandidateScore> more = score_all(others[m], r, grids, untried, options.draws, seed);
       for (std::size_t i = 0; i < scores.size(); ++i) {
         scores[i].p_value = std::max(scores[i].p_value, more[i].p_value);
         scores[i].p_bootstrap = std::max(scores[i].p_bootstrap, more[i].p_bootstrap);
@@ -365,7 +395,7 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
         continue;
       }
       try {
-        CandidateReport c = report_of(r, whitener, g, scores[i], level(untried[i]), block, options);
+        CandidateReport c = report_of(r, whitener, others, g, scores[i], level(untried[i]), block, options);
         c.round = round_number;
         round.push_back(std::move(c));
         which.push_back(untried[i]);
