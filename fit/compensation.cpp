@@ -176,8 +176,7 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   c.data.raw_samples = m.size();
   if (pipeline.remove_outliers) c.data.outliers = flag_outliers(m, pipeline.outliers, valid);
   c.data.series = average_windows(m, valid, pipeline.averaging, &c.data.averaging);
-  c.data.derived = derive(c.data.series, pipeline.derivative, pipeline.derivative_span_s, pipeline.sensor_tau_s);
-  c.data.derivative_span_s = pipeline.derivative_span_s;
+  fit::derive_into(c.data, pipeline);
   check_columns(fit.terms, c.data, pipeline.columns);
 
   window_models(c, fit);

@@ -77,6 +77,13 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
       intervals[fit.terms[k]->name] = {fit.engine.intervals[k].lower, fit.engine.intervals[k].upper};
     j["intervals_95"] = intervals;
     j["interval_method"] = fit.engine.interval_method;
+    if (!fit.lag_sensitivity.empty()) {
+      // The sensor lag (s) that would move each rate or gradient term by its half-width (null: none would).
+      Json lag;
+      for (const LagSensitivity& l : fit.lag_sensitivity)
+        lag[fit.terms[l.term]->name] = std::isfinite(l.lag_s) ? Json(l.lag_s) : Json(nullptr);
+      j["lag_to_move_by_interval_s"] = lag;
+    }
   }
   if (fit.noise) j["noise_model"] = noise_model_json(fit.noise->model);
   {

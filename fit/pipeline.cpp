@@ -120,6 +120,40 @@ ModelFit reference_fit(const PreparedData& data, const std::vector<const Term*>&
   return fit_model(data, terms, find_engine("ols"), {});
 }
 
+namespace {
+
+// Rate terms (dT, T*dT, d2T, hyst) and the gradient: what a sensor's lag moves.
+bool lag_moves(const Term& t) {
+  return t.family == effects::Family::rate || t.needs_temp2();
+}
+
+std::vector<LagSensitivity> lag_sensitivity(const PreparedData& data, const ModelFit& fit) {
+  std::vector<LagSensitivity> out;
+  if (fit.engine.intervals.size() != fit.terms.size() || data.series.size() < 3) return out;
+  if (std::none_of(fit.terms.begin(), fit.terms.end(), [](const Term* t) { return lag_moves(*t); })) return out;
+  constexpr double kProbeS = 10.0;
+  const DerivedSeries delagged = derive(data.series, data.derivative, data.derivative_span_s, data.sensor_tau_s + kProbeS);
+  const Eigen::VectorXd y =
+      Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size()));
+  Coefficients moved;
+  try {
+    const LinearProblem problem(design_matrix(delagged, fit.terms, fit.parameters), y, term_names(fit.terms),
+                                Collinear::keep);
+    moved = problem.physical(least_squares_optimum(problem));
+  } catch (const FitError&) {
+    return out;
+  }
+  for (std::size_t k = 0; k < fit.terms.size(); ++k) {
+    if (!lag_moves(*fit.terms[k])) continue;
+    const double half = 0.5 * (fit.engine.intervals[k].upper - fit.engine.intervals[k].lower);
+    const double per_s = std::abs(moved.b[k] - fit.coefficients.b[k]) / kProbeS;
+    out.push_back({k, per_s > 0.0 ? half / per_s : std::numeric_limits<double>::infinity()});
+  }
+  return out;
+}
+
+}  // namespace
+
 WindowGrid window_grid(const PreparedData& data) {
   WindowGrid grid;
   grid.time_s = data.series.time_s;
@@ -230,6 +264,7 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
                                    "; with the fitted parameters' uncertainty (linearised)";
     }
   }
+  fit.lag_sensitivity = lag_sensitivity(data, fit);
   return fit;
 }
 

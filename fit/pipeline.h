@@ -52,6 +52,22 @@ PipelineOptions reading_columns_of(PipelineOptions options, const std::vector<co
 void check_columns(const std::vector<const Term*>& terms, const PreparedData& data,
                    const ColumnMap& columns);
 
+// A temperature sensor that lags the gyro's temperature by τ reads T − τ·dT/dt
+// (first order): a rate term's coefficient then takes up part of the
+// temperature terms' (dT/dt read late looks like a rate effect), and a
+// gradient's its share. The record alone cannot tell a lag from a rate
+// effect, so for each rate and gradient term the fit says which lag would
+// move its coefficient by its own 95 % half-width: the model refitted with
+// the temperatures de-lagged by 10 s more than given (--sensor-tau), the
+// coefficient's change scaled.
+struct LagSensitivity {
+  std::size_t term = 0;       // index into ModelFit::terms
+  double lag_s = 0;           // the lag that moves it by its half-width (∞: none does)
+};
+// Below this a lag is common in practice (a sensor mounted on the case, tens
+// of seconds behind the gyro block): the report cautions.
+inline constexpr double kPlausibleSensorLagS = 60.0;
+
 struct ModelFit {
   std::vector<const Term*> terms;
   std::vector<double> parameters;  // per term, NaN where the term has none
@@ -71,6 +87,7 @@ struct ModelFit {
   // when the record has too few windows); ols's intervals come from it.
   std::shared_ptr<const NoiseContext> noise;
   RecordSupport support;  // what the record can tell these terms
+  std::vector<LagSensitivity> lag_sensitivity;  // rate and gradient terms with intervals
   double ratio() const { return instability_before_dph / instability_after_dph; }
 };
 

@@ -120,6 +120,7 @@ std::vector<RowCase<fit::ColumnMap>> column_cases() {
 
 std::vector<RowCase<DataOptions>> data_cases(bool with_avg) {
   std::vector<RowCase<DataOptions>> cases = {{"deriv_span", "300", FIELD(pipeline.derivative_span_s)},
+                                             {"sensor_tau", "20", FIELD(pipeline.sensor_tau_s)},
                                              {"causal", "true", FIELD(causal)},
                                              {"keep_outliers", "true", FIELD(keep_outliers)},
                                              {"outlier_threshold", "5", FIELD(outlier_threshold)}};

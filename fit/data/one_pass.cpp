@@ -21,8 +21,7 @@ PreparedData Preparer::finish() {
   d_.outliers.scale_dph =
       !filter_ || filter_->scales().empty() ? d_.outliers.floor_dph : median_in_place(filter_->scales());
   check_windows_survive(d_.file, d_.series, *averager_, o_.averaging);
-  d_.derived = derive(d_.series, o_.derivative, o_.derivative_span_s, o_.sensor_tau_s);
-  d_.derivative_span_s = o_.derivative_span_s;
+  derive_into(d_, o_);
   d_.cautions = unit_cautions(d_.units, probe_.summary());
   return std::move(d_);
 }

@@ -8,6 +8,13 @@
 
 namespace gyrotherm::fit {
 
+void derive_into(PreparedData& d, const PipelineOptions& options) {
+  d.derived = derive(d.series, options.derivative, options.derivative_span_s, options.sensor_tau_s);
+  d.derivative = options.derivative;
+  d.derivative_span_s = options.derivative_span_s;
+  d.sensor_tau_s = options.sensor_tau_s;
+}
+
 PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) {
   PreparedData d;
   d.file = m.file;
@@ -17,8 +24,7 @@ PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) 
   std::vector<unsigned char> valid(m.size(), 1);
   if (options.remove_outliers) d.outliers = flag_outliers(m, options.outliers, valid);
   d.series = average_windows(m, valid, options.averaging, &d.averaging);
-  d.derived = derive(d.series, options.derivative, options.derivative_span_s, options.sensor_tau_s);
-  d.derivative_span_s = options.derivative_span_s;
+  derive_into(d, options);
   return d;
 }
 

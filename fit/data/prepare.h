@@ -38,9 +38,15 @@ struct PreparedData {
   AveragingReport averaging;
   AveragedSeries series;
   DerivedSeries derived;
-  double derivative_span_s = kDefaultDerivativeSpanS;  // as derived
+  // As derived (PipelineOptions): the mode, the span and the sensors' lag.
+  DerivativeMode derivative = DerivativeMode::central;
+  double derivative_span_s = kDefaultDerivativeSpanS;
+  double sensor_tau_s = 0.0;
   bool has_temp2() const { return !series.temp2_c.empty(); }
 };
+
+// d.derived from d.series by the options' derivatives (and the fields above).
+void derive_into(PreparedData& d, const PipelineOptions& options);
 
 PreparedData prepare_data(const Measurement& measurement, const PipelineOptions& options);
 

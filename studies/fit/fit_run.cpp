@@ -67,6 +67,12 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
     if (!result.support.flags[k].empty())
       out += fmt::format("  caution, {}: {}; its number is not a property of the gyro alone\n",
                          terms[k]->name, result.support.flags[k]);
+  for (const fit::LagSensitivity& l : result.lag_sensitivity)
+    if (l.lag_s < fit::kPlausibleSensorLagS)
+      out += fmt::format("  caution, {}: a temperature sensor lagging the gyro by {:.3g} s (which this record cannot "
+                         "exclude) would move it by its 95 % half-width; give the sensor's time constant with "
+                         "--sensor-tau if it is known\n",
+                         terms[l.term]->name, l.lag_s);
   out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n", fit::averages_name(data, c.pipeline),
                      result.instability_before_dph, result.instability_after_dph, result.ratio());
   out += fmt::format("engine: {}\n", result.engine.brief_report());
