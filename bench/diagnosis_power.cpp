@@ -27,7 +27,7 @@
 #include <boost/random/uniform_real_distribution.hpp>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
+#include <cstdlib>  // atoi
 #include <algorithm>
 #include <fstream>
 #include <string>
@@ -161,7 +161,6 @@ int main(int argc, char** argv) {
   const double span = base.front().data.series.time_s.back() - base.front().data.series.start_time_s;
   std::string md;
   for (const Cell& cell : cells(grid)) {
-    if (std::getenv("GT_CELLS") && cell.name.find(std::getenv("GT_CELLS")) == std::string::npos) continue;
     // A trial: base k's record with a fresh draw of the cell's noise.
     const auto record = [&](int seed, std::uint64_t stream) {
       const Base& b = base[static_cast<std::size_t>(seed) % kBases];
@@ -179,16 +178,6 @@ int main(int argc, char** argv) {
     const int clean = part == "steps" || part == "effects" ? std::min(seeds, 20) : seeds;
     for (int s = 1; s <= clean; ++s) {
       const Outcome o = run(record(s, 1), model, -1e9, 0.0, "");
-      if (o.anything && std::getenv("GT_DEBUG") != nullptr) {
-        const studies::Diagnosis dd = studies::diagnose(record(s, 1), model, fit::find_engine("ols"), {});
-        fmt::print(stderr, "ALARM seed {}: ", s);
-        for (std::size_t i = 0; i < dd.candidates.size() && i < 2; ++i)
-          fmt::print(stderr, "{} p={:.2g} pb={:.2g} n={:.1f} lvl={:.2g} red={:.0f} sig={}; ", dd.candidates[i].term->name,
-                     dd.candidates[i].p_value, dd.candidates[i].p_bootstrap, dd.candidates[i].tests, dd.candidates[i].level,
-                     dd.candidates[i].reduction_pct, dd.candidates[i].significant);
-        fmt::print(stderr, " fit noise: {}\n  found noise: {}\n", dd.fit.noise ? dd.fit.noise->model.description() : "",
-                   dd.noise->model.description());
-      }
       alarms += o.anything;
       floor_sum += o.floor;
     }
@@ -210,16 +199,6 @@ int main(int argc, char** argv) {
           for (std::size_t p = 0; p < d.series.size(); ++p)
             if (d.series.time_s[p] - d.series.start_time_s >= t) d.series.gyro_dph[p] += size;
           const Outcome o = run(d, model, t, size, "");
-          if (!o.step_found && k >= 4 && std::getenv("GT_DEBUG") != nullptr) {
-            const studies::Diagnosis dd = studies::diagnose(d, model, fit::find_engine("ols"), {});
-            fmt::print(stderr, "MISS seed {} t {:.0f} size {:.4f}: ", s, t, size);
-            for (std::size_t i = 0; i < dd.candidates.size() && i < 3; ++i)
-              fmt::print(stderr, "{} p={:.2g} lvl={:.2g} red={:.0f} sig={} conf={}; ", dd.candidates[i].term->name,
-                         dd.candidates[i].p_value, dd.candidates[i].level, dd.candidates[i].reduction_pct,
-                         dd.candidates[i].significant, dd.candidates[i].confounded_with.size());
-            for (const auto& e : dd.events) fmt::print(stderr, "[event {:.0f} {:.4f} {}]", e.time_s, e.size_dph, e.significant);
-            fmt::print(stderr, "\n");
-          }
           found += o.step_found;
           covered += o.step_covered;
           any += o.anything;
@@ -244,13 +223,11 @@ int main(int argc, char** argv) {
         const double threshold = 1.96 * std::sqrt(f.covariance(xc.cols(), xc.cols()));
         std::string row = fmt::format("| {} | {:.3g} {} |", term->name, threshold, term->coefficient_unit());
         for (const double k : {3.0, 6.0}) {
-          if (std::getenv("GT_ONLY3") && k > 3.0) continue;
           int first = 0;
           for (int s = 1; s <= seeds; ++s) {
             fit::PreparedData d = record(s, 4);
             const Eigen::MatrixXd col = fit::design_matrix(d.derived, {term}, param);
             for (std::size_t p = 0; p < d.series.size(); ++p) d.series.gyro_dph[p] += k * threshold * col(static_cast<Eigen::Index>(p), 0);
-            if (std::getenv("GT_DEBUG_SEL")) fmt::print(stderr, "seed {} k {}\n", s, k);
             first += run(d, model, -1e9, 0.0, std::string(term->name)).effect_first;
           }
           row += fmt::format(" {} |", share(first, seeds));

@@ -69,33 +69,47 @@ int main(int argc, char** argv) {
   sim::Scenario short_cycle = scenario;
   for (sim::Segment& s : short_cycle.segments)
     if (s.kind == sim::SegmentKind::hold) s.duration_s = 1800.0;
+  // The paper's random profile (Test 1: 1 °C/min ramps, 8 h holds, 75 h, the whole INS).
+  const sim::Scenario random = sim::load_scenario(std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/random.toml");
+  const sim::RigConfig random_rig = sim::load_rig(random.rig_file);
   const std::string header =
-      "| noise | intervals | covered T | T^2 | dT | bias T / T^2 / dT | sd T / T^2 / dT | "
+      "| noise | method | covered T | T^2 | dT | bias T / T^2 / dT | sd T / T^2 / dT | "
       "half-width T / T^2 / dT |\n|---|---|---|---|---|---|---|---|\n";
-  auto table = [&](const sim::Scenario& sc, const std::vector<const char*>& methods) {
+  struct Named {
+    const char* label;
+    studies::CoverageMethod method;
+  };
+  auto table = [&](const sim::Scenario& sc, const sim::RigConfig& r, const std::vector<Named>& methods) {
+    std::vector<studies::CoverageMethod> m;
+    for (const Named& n : methods) m.push_back(n.method);
     for (const std::string& variant : variants) {
       sim::GyroConfig g = gyro;
       g.noise = studies::noise_variant(variant, gyro.noise);
-      for (const char* method : methods) {
-        studies::CoverageOptions options;
-        options.intervals = method;
-        options.seeds = seeds;
-        const studies::Coverage c = studies::interval_coverage(sc, rig, g, options);
-        const auto& t = c.terms;
+      studies::CoverageOptions options;
+      options.seeds = seeds;
+      const std::vector<studies::Coverage> all = studies::interval_coverage(sc, r, g, options, m);
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        const auto& t = all[i].terms;
         auto pct = [&](int k) { return 100.0 * t[static_cast<std::size_t>(k)].covered / seeds; };
         md += fmt::format(
             "| {} | {} | {:.1f} % | {:.1f} % | {:.1f} % | {:+.3f} / {:+.3f} / {:+.4f} | {:.3f} / "
             "{:.3f} / {:.4f} | {:.3f} / {:.3f} / {:.4f} |\n",
-            variant, method, pct(0), pct(1), pct(2), t[0].bias, t[1].bias, t[2].bias, t[0].sd,
+            variant, methods[i].label, pct(0), pct(1), pct(2), t[0].bias, t[1].bias, t[2].bias, t[0].sd,
             t[1].sd, t[2].sd, t[0].half_width, t[1].half_width, t[2].half_width);
-        fmt::print(stderr, "{} {}: {} {} {}\n", variant, method, t[0].covered, t[1].covered, t[2].covered);
+        fmt::print(stderr, "{} {}: {} {} {}\n", variant, methods[i].label, t[0].covered, t[1].covered, t[2].covered);
       }
     }
   };
+  const Named model{"ols model", {"ols", "model", 0.0}}, bootstrap{"ols bootstrap", {"ols", "bootstrap", 0.0}},
+      nw{"ols nw", {"ols", "nw", 0.0}}, gls{"gls", {"gls", "", 0.0}},
+      delagged{"ols model, --sensor-tau 20", {"ols", "model", 20.0}},
+      gls_delagged{"gls, --sensor-tau 20", {"gls", "", 20.0}};
   md += header;
-  table(scenario, {"model", "bootstrap", "nw"});
+  table(scenario, rig, {model, bootstrap, nw, gls, delagged, gls_delagged});
   md += "\n## The short cycle (0.5 h soaks, 2.8 h, about 100 windows)\n\n" + header;
-  table(short_cycle, {"model", "bootstrap"});
+  table(short_cycle, rig, {model, bootstrap, gls});
+  md += "\n## The random profile (Test 1: 1 °C/min ramps, 8 h holds, 75 h, the whole INS: rig_ins)\n\n" + header;
+  table(random, random_rig, {model, gls, delagged, gls_delagged});
   md += kReading;
   write_file_atomically(out, md);
   fmt::print("wrote {}\n", out);

@@ -225,13 +225,13 @@ INSTANTIATE_TEST_SUITE_P(Registry, EngineContract, ::testing::ValuesIn(registere
                          [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
 
 TEST(EngineRegistry, HoldsTheIssuesEnginesAndNamesTheKnownOnes) {
-  EXPECT_EQ(registered(), (std::vector<std::string>{"ols", "stepwise", "afsa", "iafsa", "pso", "de",
+  EXPECT_EQ(registered(), (std::vector<std::string>{"ols", "gls", "stepwise", "afsa", "iafsa", "pso", "de",
                                                     "cmaes", "abc"}));
   try {
     find_engine("ga");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown engine 'ga' (known engines: ols, stepwise"),
+    EXPECT_NE(std::string(e.what()).find("unknown engine 'ga' (known engines: ols, gls, stepwise"),
               std::string::npos);
   }
 }

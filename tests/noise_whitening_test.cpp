@@ -64,6 +64,15 @@ TEST(NoiseWhitening, WhitenedIdentityIsTheInverseCholeskyFactor) {
   }
 }
 
+TEST(NoiseWhitening, SolveIsTheInverseCovariance) {
+  const WindowGrid g = uneven_grid();
+  const NoiseModel m = every_component();
+  const Eigen::MatrixXd c = dense(m, g);
+  const auto n = static_cast<Eigen::Index>(g.size());
+  const Eigen::MatrixXd should_be_identity = NoiseWhitener(m, g).solve(c);
+  EXPECT_LT((should_be_identity - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff(), 1e-7);
+}
+
 TEST(NoiseWhitening, GlsEqualsTheDenseFormula) {
   const WindowGrid g = uneven_grid();
   const NoiseModel m = every_component();

@@ -406,8 +406,9 @@ TEST_F(ScoreBaseline, AStarvedEngineIsNamedWithTheMetric) {
   EXPECT_TRUE(metrics.count("success_rate"));
   // Evaluations to the target: now "not reached"; a regression whenever the baseline's
   // interval for its median was reached at all.
-  if (std::isfinite(good_->engines[1].evaluations_to_target.median_ci.high))
+  if (std::isfinite(good_->engines[1].evaluations_to_target.median_ci.high)) {
     EXPECT_TRUE(metrics.count("evals_to_target_median"));
+  }
   const auto it = std::find_if(c.regressions.begin(), c.regressions.end(),
                                [](const Regression& r) { return r.metric == "success_rate"; });
   EXPECT_NE(it->message.find("iafsa: success_rate = 0"), std::string::npos) << it->message;

@@ -103,7 +103,7 @@ FitResult Evaluator::result(std::string engine, long iterations, Termination fal
 
 const std::vector<EngineInfo>& engine_registry() {
   static const std::vector<EngineInfo> registry = [] {
-    std::vector<EngineInfo> r = {ols_engine_info(), stepwise_engine_info(), afsa_engine_info(),
+    std::vector<EngineInfo> r = {ols_engine_info(), gls_engine_info(), stepwise_engine_info(), afsa_engine_info(),
                                  iafsa_engine_info()};
     for (EngineInfo& info : pagmo_engine_infos()) r.push_back(std::move(info));
     return r;

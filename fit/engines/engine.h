@@ -191,6 +191,7 @@ EngineInfo engine_info(std::string name, std::string description, bool stochasti
 
 // The registry entries, one function per engine file.
 EngineInfo ols_engine_info();
+EngineInfo gls_engine_info();
 EngineInfo stepwise_engine_info();
 EngineInfo afsa_engine_info();
 EngineInfo iafsa_engine_info();

@@ -91,6 +91,24 @@ Eigen::MatrixXd NoiseWhitener::whiten(const Eigen::MatrixXd& x) const {
   return z;
 }
 
+Eigen::MatrixXd NoiseWhitener::solve(const Eigen::MatrixXd& x) const {
+  const Eigen::Index l = static_cast<Eigen::Index>(d_.size()), r = a_.size();
+  const Eigen::Map<const Eigen::VectorXd> d(d_.data(), l);
+  const Eigen::MatrixXd w = d.cwiseSqrt().cwiseInverse().asDiagonal() * whiten(x);  // D⁻¹L⁻¹x
+  Eigen::MatrixXd y(x.rows(), x.cols());
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(r, x.cols());
+  for (Eigen::Index m = l - 1; m >= 0; --m) {
+    if (m < l - 1) {
+      const double dt = time_s_[static_cast<std::size_t>(m + 1)] - time_s_[static_cast<std::size_t>(m)];
+      g.noalias() += a_ * y.row(m + 1);
+      for (Eigen::Index j = 0; j < r; ++j)
+        if (!random_walk_[static_cast<std::size_t>(j)]) g.row(j) *= std::exp(-rate_[j] * dt);
+    }
+    y.row(m).noalias() = w.row(m) - w_.col(m).transpose() * g;
+  }
+  return y;
+}
+
 Eigen::VectorXd NoiseWhitener::whiten(const Eigen::VectorXd& x) const {
   return whiten(Eigen::MatrixXd(x)).col(0);
 }

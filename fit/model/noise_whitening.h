@@ -42,6 +42,9 @@ class NoiseWhitener {
   // drawn from the model.
   Eigen::MatrixXd whiten(const Eigen::MatrixXd& x) const;
   Eigen::VectorXd whiten(const Eigen::VectorXd& x) const;
+  // C⁻¹x: the whitening above, then L⁻ᵀ by the backward recursion
+  // (g_l = 0, g_m = φ_{m+1} ∘ (g_{m+1} + Ũ y_{m+1}), y_m = w_m − W_mᵀ g_m).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& x) const;
   // log |C|.
   double log_determinant() const;
   std::size_t size() const { return d_.size(); }

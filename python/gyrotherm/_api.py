@@ -245,11 +245,24 @@ class Diagnosis(_Report):
         return _next_call(self._dict.get("next"))
 
 
+def _literal(text):
+    """A data option's value (text, as the command line takes it) as a Python literal."""
+    if text in ("true", "false"):
+        return "True" if text == "true" else "False"
+    try:
+        float(text)
+        return text
+    except ValueError:
+        return repr(text)
+
+
 def _next_call(step):
     if not step:
         return None
     channel = f", gyro_col={step['channel']!r}" if step.get("channel") else ""
-    return f'gyrotherm.diagnose(data, model="{step["model"]}"{channel})'
+    # The data options the diagnosis was given (columns, units, avg ...), as keywords.
+    given = "".join(f", {k}={_literal(v)}" for k, v in (step.get("options") or {}).items())
+    return f'gyrotherm.diagnose(data, model="{step["model"]}"{channel}{given})'
 
 
 class AllanResult(_Report):

@@ -45,40 +45,52 @@ sim::NoiseConfig noise_variant(const std::string& name, sim::NoiseConfig n) {
 
 Coverage interval_coverage(const sim::Scenario& scenario, const sim::RigConfig& rig,
                            const sim::GyroConfig& gyro, const CoverageOptions& options) {
+  return interval_coverage(scenario, rig, gyro, options, {CoverageMethod{"ols", options.intervals, 0.0}}).front();
+}
+
+std::vector<Coverage> interval_coverage(const sim::Scenario& scenario, const sim::RigConfig& rig,
+                                        const sim::GyroConfig& gyro, const CoverageOptions& options,
+                                        const std::vector<CoverageMethod>& methods) {
   const auto terms = fit::parse_formula(options.model);
-  fit::EngineSettings settings;
-  settings.options["intervals"] = options.intervals;
-  Coverage out;
-  out.seeds = options.seeds;
+  Coverage blank;
+  blank.seeds = options.seeds;
   std::vector<std::size_t> index;
   for (std::size_t j = 0; j < terms.size(); ++j) {
     const auto it = gyro.coefficient.find(std::string(terms[j]->name));
     if (it == gyro.coefficient.end() || it->second == 0.0) continue;
-    out.terms.push_back({std::string(terms[j]->name), it->second});
+    blank.terms.push_back({std::string(terms[j]->name), it->second});
     index.push_back(j);
   }
-  std::vector<double> sum(index.size(), 0.0), sum2(index.size(), 0.0);
+  std::vector<Coverage> out(methods.size(), blank);
+  std::vector<std::vector<double>> sum(methods.size(), std::vector<double>(index.size(), 0.0)), sum2 = sum;
   for (int s = 0; s < options.seeds; ++s) {
     sim::Scenario sc = scenario;
     sc.seed = options.first_seed + static_cast<std::uint64_t>(s);
     const fit::Measurement m = measurement_of(sim::Simulator(sc, rig, gyro).run(), scenario.name);
-    const fit::PreparedData data = fit::prepare_data(m, {});
-    const fit::ModelFit f = fit::fit_model(data, terms, fit::find_engine("ols"), settings);
-    for (std::size_t k = 0; k < index.size(); ++k) {
-      TermCoverage& t = out.terms[k];
-      const fit::Interval& iv = f.engine.intervals[index[k]];
-      t.covered += iv.lower <= t.truth && t.truth <= iv.upper;
-      const double err = f.coefficients.b[index[k]] / t.truth - 1.0;
-      sum[k] += err;
-      sum2[k] += err * err;
-      t.half_width += 0.5 * (iv.upper - iv.lower) / std::abs(t.truth) / options.seeds;
+    for (std::size_t i = 0; i < methods.size(); ++i) {
+      fit::PipelineOptions pipeline;
+      pipeline.sensor_tau_s = methods[i].sensor_tau_s;
+      fit::EngineSettings settings;
+      if (!methods[i].intervals.empty()) settings.options["intervals"] = methods[i].intervals;
+      const fit::PreparedData data = fit::prepare_data(m, pipeline);
+      const fit::ModelFit f = fit::fit_model(data, terms, fit::find_engine(methods[i].engine), settings);
+      for (std::size_t k = 0; k < index.size(); ++k) {
+        TermCoverage& t = out[i].terms[k];
+        const fit::Interval& iv = f.engine.intervals[index[k]];
+        t.covered += iv.lower <= t.truth && t.truth <= iv.upper;
+        const double err = f.coefficients.b[index[k]] / t.truth - 1.0;
+        sum[i][k] += err;
+        sum2[i][k] += err * err;
+        t.half_width += 0.5 * (iv.upper - iv.lower) / std::abs(t.truth) / options.seeds;
+      }
     }
   }
-  for (std::size_t k = 0; k < index.size(); ++k) {
-    TermCoverage& t = out.terms[k];
-    t.bias = sum[k] / options.seeds;
-    t.sd = std::sqrt(std::max(0.0, sum2[k] / options.seeds - t.bias * t.bias));
-  }
+  for (std::size_t i = 0; i < methods.size(); ++i)
+    for (std::size_t k = 0; k < index.size(); ++k) {
+      TermCoverage& t = out[i].terms[k];
+      t.bias = sum[i][k] / options.seeds;
+      t.sd = std::sqrt(std::max(0.0, sum2[i][k] / options.seeds - t.bias * t.bias));
+    }
   return out;
 }
 

@@ -21,9 +21,18 @@ const std::vector<std::string>& noise_variant_names();
 
 struct CoverageOptions {
   std::string model = "T + T^2 + dT";
-  std::string intervals = "model";  // ols's intervals option
+  std::string intervals = "model";  // ols's intervals option (the one-method form below)
   int seeds = 100;
   std::uint64_t first_seed = 1;
+};
+
+// One way of fitting each simulated record: an engine, its intervals option
+// (empty: the engine's default) and the temperature sensor's time constant
+// the pipeline de-lags by (--sensor-tau; 0: none).
+struct CoverageMethod {
+  std::string engine = "ols";
+  std::string intervals;
+  double sensor_tau_s = 0.0;
 };
 
 struct TermCoverage {
@@ -43,5 +52,10 @@ struct Coverage {
 // with ols and counts the intervals that hold the truth.
 Coverage interval_coverage(const sim::Scenario& scenario, const sim::RigConfig& rig,
                            const sim::GyroConfig& gyro, const CoverageOptions& options);
+// The same for several methods on the same records (each simulated once): one
+// Coverage per method, in order.
+std::vector<Coverage> interval_coverage(const sim::Scenario& scenario, const sim::RigConfig& rig,
+                                        const sim::GyroConfig& gyro, const CoverageOptions& options,
+                                        const std::vector<CoverageMethod>& methods);
 
 }  // namespace gyrotherm::studies

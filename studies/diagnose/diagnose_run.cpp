@@ -14,6 +14,7 @@
 #include "fit/model/formula.h"
 #include "sim/util/format.h"
 #include "studies/diagnose/diagnose_plots.h"
+#include "studies/options/pipeline_options.h"
 #include "studies/record_source.h"
 
 namespace gyrotherm::studies {
@@ -149,6 +150,7 @@ DiagnoseRun diagnose_record(const DiagnoseRequest& request, const RecordSource& 
         ++channel_index;
         report(fmt::format("{}: done", channel), 0.0);
         if (channels.size() > 1) c.report.channel = channel;
+        c.report.data_options = given_data_options(request.pipeline);
         if (source.table() != nullptr) c.report.style = CallStyle::python;
         return c;
       });

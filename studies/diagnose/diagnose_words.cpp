@@ -4,7 +4,9 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <map>
+#include <string_view>
 
 #include "fit/model/formula.h"
 #include "sim/util/format.h"
@@ -175,13 +177,46 @@ std::string verdict_text(const Diagnosis& d) {
   return verdict;
 }
 
+namespace {
+
+// A value as a shell word: quoted unless it is plain.
+std::string shell_word(const std::string& v) {
+  const bool plain = !v.empty() && std::all_of(v.begin(), v.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("._-+/,:=").find(c) != std::string_view::npos;
+  });
+  if (plain) return v;
+  std::string quoted = "'";
+  for (char c : v) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// A value as a Python literal: a number or flag bare, text quoted.
+std::string python_literal(const GivenOption& o) {
+  if (o.kind == OptionKind::flag) return o.value == "true" ? "True" : "False";
+  if (o.kind == OptionKind::number || o.kind == OptionKind::integer) return o.value;
+  std::string quoted = "'";
+  for (char c : o.value) quoted += c == '\'' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+  return quoted + "'";
+}
+
+}  // namespace
+
 std::string next_step_text(const std::string& record, const std::vector<const fit::Term*>& model,
-                           const std::string& channel, CallStyle style) {
+                           const std::string& channel, CallStyle style, const std::vector<GivenOption>& data_options) {
+  std::string rest;
+  for (const GivenOption& o : data_options) {
+    if (!channel.empty() && o.keyword == "gyro_col") continue;  // the channel's own, below
+    if (style == CallStyle::python)
+      rest += fmt::format(", {}={}", o.keyword, python_literal(o));
+    else
+      rest += o.kind == OptionKind::flag ? (o.value == "true" ? " " + o.flag : std::string())
+                                         : fmt::format(" {} {}", o.flag, shell_word(o.value));
+  }
   if (style == CallStyle::python)
-    return fmt::format("gyrotherm.diagnose(data, model=\"{}\"{})", fit::formula_text(model),
-                       channel.empty() ? "" : fmt::format(", gyro_col='{}'", channel));
-  return fmt::format("gyrotherm diagnose {} --model \"{}\"{}", record, fit::formula_text(model),
-                     channel.empty() ? "" : " --gyro-col " + channel);
+    return fmt::format("gyrotherm.diagnose(data, model=\"{}\"{}{})", fit::formula_text(model),
+                       channel.empty() ? "" : fmt::format(", gyro_col='{}'", channel), rest);
+  return fmt::format("gyrotherm diagnose {} --model \"{}\"{}{}", shell_word(record), fit::formula_text(model),
+                     channel.empty() ? "" : " --gyro-col " + shell_word(channel), rest);
 }
 
 std::string significance_text(const DiagnosisOptions& o) {

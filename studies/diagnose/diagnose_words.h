@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "studies/diagnose/diagnosis.h"
+#include "studies/options/option_table.h"
 
 namespace gyrotherm::studies {
 
@@ -35,9 +36,11 @@ std::vector<std::string> skipped_texts(const std::vector<Skipped>& skipped);
 // removes, or that nothing is significant; what the record cannot tell is
 // named (its reasons are in confounding_text), what remains is appended.
 std::string verdict_text(const Diagnosis& d);
-// "gyrotherm diagnose FILE --model "…" [--gyro-col C]" or "gyrotherm.diagnose(data, model="…"[, gyro_col='C'])".
+// "gyrotherm diagnose FILE --model "…" [--gyro-col C] [the data options
+// given]" or "gyrotherm.diagnose(data, model="…"[, gyro_col='C'][, time_col='t', …])".
 std::string next_step_text(const std::string& record, const std::vector<const fit::Term*>& model,
-                           const std::string& channel, CallStyle style);
+                           const std::string& channel, CallStyle style,
+                           const std::vector<GivenOption>& data_options = {});
 // How the candidates were tested (diagnose --json's `significance`).
 std::string significance_text(const DiagnosisOptions& options);
 // "0.01 h", times since the record's start.

@@ -163,7 +163,7 @@ DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnM
 
 std::string next_command(const DiagnoseReport& report) {
   if (report.diagnosis.suggested.empty()) return "";
-  return next_step_text(report.record, report.diagnosis.suggested, report.channel, report.style);
+  return next_step_text(report.record, report.diagnosis.suggested, report.channel, report.style, report.data_options);
 }
 
 nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
@@ -253,11 +253,16 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
     verdict["removed_pct"] = d.verdict.removed_pct;
   }
   j["verdict_data"] = verdict;
-  j["next_command"] = next_step_text(report.record, d.suggested, report.channel, CallStyle::command_line);
+  j["next_command"] =
+      next_step_text(report.record, d.suggested, report.channel, CallStyle::command_line, report.data_options);
   if (d.suggested.empty()) j["next_command"] = "";
+  nlohmann::ordered_json given = nlohmann::ordered_json::object();
+  for (const GivenOption& o : report.data_options)
+    if (report.channel.empty() || o.keyword != "gyro_col") given[o.keyword] = o.value;
   j["next"] = d.suggested.empty() ? nlohmann::ordered_json(nullptr)
                                    : nlohmann::ordered_json{{"model", fit::formula_text(d.suggested)},
-                                                            {"channel", report.channel}};
+                                                            {"channel", report.channel},
+                                                            {"options", given}};
   j["plan_command"] = report.plan ? plan_command_text(*report.plan) : std::string();
   if (report.plan) {
     nlohmann::ordered_json separate = nlohmann::ordered_json::object(), param = nlohmann::ordered_json::object();

@@ -36,6 +36,7 @@ struct DiagnoseReport {
   double start_time_s = 0;              // the record's first sample on the log's own clock
   std::string record;                   // the record's name, as a next step names it
   std::string channel;                  // with several gyro channels, this one's (else "")
+  std::vector<GivenOption> data_options;  // the data options given (columns, units, --avg …), for a next step
   CallStyle style = CallStyle::command_line;  // how a next step is written (arrays: Python)
   std::optional<PlanSuggestion> plan;   // the test that would separate the verdict's group
 };

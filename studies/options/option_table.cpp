@@ -58,6 +58,10 @@ std::vector<std::size_t> rows_for_keywords(const std::string& command, const std
   return out;
 }
 
+namespace detail {
+std::string number_text(double value) { return fmt::format("{}", value); }
+}  // namespace detail
+
 double parse_number(std::string_view option, const std::string& text) {
   const std::string_view digits = text.starts_with('+') ? std::string_view(text).substr(1) : std::string_view(text);
   double value = 0.0;

@@ -52,7 +52,12 @@ struct OptionRow {
   // What --help shows after the names: "FLOAT", "INT", "UINT", "TEXT", for a
   // list "TEXT ..." (plan's --range: "FLOAT x 2"); "" for a flag.
   std::string value_name;
+  // The field's value as a user would write it (a list's values joined by
+  // ","; nothing for an optional not set); empty where the row has no field.
+  std::function<std::optional<std::string>(const Options&)> get;
 };
+
+
 
 template <class Options>
 struct OptionTable {
@@ -79,6 +84,27 @@ std::vector<OptionInfo> list_options(const OptionTable<Options>& table) {
 std::string keyword_of(std::string_view names);
 // The name a message uses: the longest of the names ("--output").
 std::string display_name(std::string_view names);
+
+// An option whose value differs from the default, as a next step repeats it.
+struct GivenOption {
+  std::string flag;     // "--time-col"
+  std::string keyword;  // "time_col"
+  std::string value;    // "time_us"; "true" for a flag
+  OptionKind kind = OptionKind::text;
+};
+
+// The rows whose field differs from a default-constructed Options', in order.
+template <class Options>
+std::vector<GivenOption> given_options(const std::vector<OptionRow<Options>>& rows, const Options& now) {
+  const Options defaults{};
+  std::vector<GivenOption> out;
+  for (const OptionRow<Options>& r : rows) {
+    if (!r.get) continue;
+    const std::optional<std::string> value = r.get(now);
+    if (value && value != r.get(defaults)) out.push_back({display_name(r.names), r.keyword, *value, r.kind});
+  }
+  return out;
+}
 
 using KeywordValues = std::vector<std::pair<std::string, std::string>>;
 
@@ -117,6 +143,26 @@ Int parse_whole(std::string_view option, const std::string& text) {
 namespace detail {
 template <class T> struct unwrap_optional { using type = T; };
 template <class T> struct unwrap_optional<std::optional<T>> { using type = T; };
+std::string number_text(double value);
+template <class T>
+std::optional<std::string> value_text(const T& v) {
+  if constexpr (std::is_same_v<T, std::string>) {
+    return v;
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return std::string(v ? "true" : "false");
+  } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+    std::string joined;
+    for (const std::string& e : v) joined += (joined.empty() ? "" : ",") + e;
+    return joined;
+  } else if constexpr (requires { v.has_value(); }) {
+    if (!v) return std::nullopt;
+    return value_text(*v);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return number_text(static_cast<double>(v));
+  } else {
+    return std::to_string(v);
+  }
+}
 }  // namespace detail
 
 // A row that parses its value into one field, the kind following the field's
@@ -131,6 +177,10 @@ OptionRow<Options> field_row(std::string names, std::string help, Field field, b
   using Value = typename detail::unwrap_optional<T>::type;
   OptionRow<Options> row{.names = names, .keyword = keyword_of(names), .help = std::move(help), .required = required};
   const std::string name = display_name(names);
+  row.get = [field](const Options& o) -> std::optional<std::string> {
+    const T& v = std::invoke(field, const_cast<Options&>(o));  // read only
+    return detail::value_text(v);
+  };
   if constexpr (std::is_same_v<T, std::vector<std::string>>) {
     row.kind = OptionKind::list;
     row.value_name = "TEXT ...";
@@ -171,8 +221,10 @@ OptionRow<Options> nested_row(std::string names, std::string help, Outer Options
 template <class Whole, class Part, class Get>
 void append_rows(std::vector<OptionRow<Whole>>& rows, const std::vector<OptionRow<Part>>& part_rows, Get part) {
   for (const OptionRow<Part>& r : part_rows) {
-    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name};
+    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name, {}};
     w.set = [set = r.set, part](Whole& o, const std::string& v) { set(std::invoke(part, o), v); };
+    if (r.get)
+      w.get = [get = r.get, part](const Whole& o) { return get(std::invoke(part, const_cast<Whole&>(o))); };
     rows.push_back(std::move(w));
   }
 }

@@ -90,6 +90,18 @@ std::vector<OptionRow<DataOptions>> data_option_rows(bool with_avg) {
   return rows;
 }
 
+std::vector<GivenOption> given_data_options(const fit::PipelineOptions& pipeline) {
+  DataOptions d;
+  d.pipeline = pipeline;
+  d.causal = pipeline.derivative == fit::DerivativeMode::causal;
+  d.pipeline.derivative = fit::DerivativeMode::central;
+  d.keep_outliers = !pipeline.remove_outliers;
+  d.pipeline.remove_outliers = true;
+  if (pipeline.remove_outliers && pipeline.outliers.threshold != fit::OutlierOptions{}.threshold)
+    d.outlier_threshold = pipeline.outliers.threshold;
+  return given_options(data_option_rows(true), d);
+}
+
 std::vector<const fit::Term*> ModelOptions::base_terms() const { return fit::parse_formula(model); }
 
 std::vector<const fit::Term*> ModelOptions::terms() const {

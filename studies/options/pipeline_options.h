@@ -30,6 +30,9 @@ struct DataOptions {
 // --avg (with_avg), --deriv-span, --causal, --keep-outliers,
 // --outlier-threshold and the column options.
 std::vector<OptionRow<DataOptions>> data_option_rows(bool with_avg = true);
+// The data options a resolved pipeline differs from the defaults by, as a
+// user would give them again (a next step's command or call).
+std::vector<GivenOption> given_data_options(const fit::PipelineOptions& pipeline);
 // The column and unit options alone; with fit_defaults the help says an
 // unset option keeps the fit file's.
 std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults);
