@@ -135,18 +135,22 @@ std::vector<LagSensitivity> lag_sensitivity(const PreparedData& data, const Mode
   const DerivedSeries delagged = derive(data.series, data.derivative, data.derivative_span_s, data.sensor_tau_s + kProbeS);
   const Eigen::VectorXd y =
       Eigen::Map<const Eigen::VectorXd>(data.series.gyro_dph.data(), static_cast<Eigen::Index>(data.series.size()));
-  Coefficients moved;
+  // Least squares on both (whatever the fit's engine): the move is the lag's alone.
+  const auto least_squares = [&](const DerivedSeries& d) {
+    const LinearProblem problem(design_matrix(d, fit.terms, fit.parameters), y, term_names(fit.terms), Collinear::keep);
+    return problem.physical(least_squares_optimum(problem));
+  };
+  Coefficients as_read, moved;
   try {
-    const LinearProblem problem(design_matrix(delagged, fit.terms, fit.parameters), y, term_names(fit.terms),
-                                Collinear::keep);
-    moved = problem.physical(least_squares_optimum(problem));
+    as_read = least_squares(data.derived);
+    moved = least_squares(delagged);
   } catch (const FitError&) {
     return out;
   }
   for (std::size_t k = 0; k < fit.terms.size(); ++k) {
     if (!lag_moves(*fit.terms[k])) continue;
     const double half = 0.5 * (fit.engine.intervals[k].upper - fit.engine.intervals[k].lower);
-    const double per_s = std::abs(moved.b[k] - fit.coefficients.b[k]) / kProbeS;
+    const double per_s = std::abs(moved.b[k] - as_read.b[k]) / kProbeS;
     out.push_back({k, per_s > 0.0 ? half / per_s : std::numeric_limits<double>::infinity()});
   }
   return out;

@@ -118,6 +118,11 @@ large_read=$(bench_field $large BM_LargeLog_Read/iterations:1/real_time_median b
 large_parse=$(bench_field $large BM_LargeLog_Parse/iterations:1/real_time_median bytes_per_second)
 large_fit=$(bench_field $large BM_LargeLog_Fit/iterations:1/real_time_median bytes_per_second)
 large_fit_ms=$(bench_field $large BM_LargeLog_Fit/iterations:1/real_time_median real_time)
+diag=results/bench_diagnose.json
+diag72=$(bench_field $diag BM_Diagnose/random_72h/iterations:1_median real_time)
+diag10=$(bench_field $diag BM_Diagnose/ten_days/iterations:1_median real_time)
+fit72=$(bench_field $diag BM_Fit/random_72h_median real_time)
+fit10=$(bench_field $diag BM_Fit/ten_days_median real_time)
 plan=results/bench_plan.json
 plan3=$(bench_field $plan BM_Plan/3/iterations:1/real_time_median real_time)
 plan6=$(bench_field $plan BM_Plan/6/iterations:1/real_time_median real_time)
@@ -160,6 +165,8 @@ done
   echo "| simulating 72 h at 1 Hz, noise included (≤ 40 ms): median, fastest of 5 | $(show "$sim_median" "%.1f"), $(show "$sim_min" "%.1f") ms | integrating alone (CVODE and the samples' states): $(show "$thermal_median" "%.1f"), $(show "$thermal_min" "%.1f") ms | $(ratio "$sim_median" "$thermal_median" "%.2f"), $(ratio "$sim_min" "$thermal_min" "%.2f") |"
   echo "| writing a 72 h record's CSV (≥ 250 MB/s) | $(megabytes "$write_bps") | formatting it in memory: $(megabytes "$format_bps") | $(ratio "$write_bps" "$format_bps" "%.2f") |"
   echo "| a 10-trial campaign on 2 threads (≥ 1.8× one thread) | $(show "$two_threads" "%.2f") s | one thread: $(show "$one_thread" "%.2f") s, over 2: $(show "$one_thread" "%.2f") / 2 s; the machine's own 2-thread speed-up now $(show "$ceiling" "%.2f×") | speed-up $(show "$speedup" "%.2f×") |"
+  echo "| \`diagnose\` on the 72 h record (≤ 1.5 s) | $(show "$diag72" "%.0f") ms | \`fit\` on the same: $(show "$fit72" "%.0f") ms | $(ratio "$diag72" "$fit72" "%.1f") |"
+  echo "| \`diagnose\` on 10 days (≤ 5 s) | $(show "$diag10" "%.0f") ms | \`fit\` on the same: $(show "$fit10" "%.0f") ms | $(ratio "$diag10" "$fit10" "%.1f") |"
   echo "| \`plan\` for six terms (≤ 60 s on 2 cores) | $(show "$plan6" "%.1f") s ($(show "$plan6_evals" "%.0f") predictions; the paper's three terms: $(show "$plan3" "%.1f") s) | the aim, 60 s | $(ratio "$plan6" 60 "%.2f") |"
   echo "| the same | | its predictions one after another: $(show "$plan6_evals" "%.0f") × $(show "$predict6" "%.1f") ms (one on the 8.8 h cycle) | $(awk -v a="$plan6" -v n="$plan6_evals" -v p="$predict6" 'BEGIN { if (a == "" || n == "" || p == "") print "–"; else printf "%.2f", a / (n * p / 1000) }') |"
   echo "| \`gyrotherm.fit\` (Python) on 10⁷ samples in numpy arrays (≤ 1.2× the C++ library's fit of the same arrays), CPU time | $(show "$py_s" "%.2f") s | \`bench_table\` BM_FitTable on the same arrays: $(show "$cpp_s" "%.2f") s | $(ratio "$py_s" "$cpp_s" "%.2f") |"

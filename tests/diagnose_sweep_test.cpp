@@ -38,13 +38,14 @@ struct Sweep {
   std::vector<double> time_s, temp_c, bias_dps;  // bias: what the die's temperature makes it
 };
 
-Sweep sweep() {
+// The die lags the sensor by lag_s (0: it is at the sensor's temperature).
+Sweep sweep(double lag_s = kLagS) {
   Sweep s;
   double sensor = set_point(0.0), die = sensor;
   const double h = 1.0 / kRateHz;
   for (double t = 0.0; t <= kDurationS; t += h) {
     sensor += (set_point(t) - sensor) * (1.0 - std::exp(-h / 120.0));
-    die += (sensor - die) * (1.0 - std::exp(-h / kLagS));
+    die = lag_s > 0.0 ? die + (sensor - die) * (1.0 - std::exp(-h / lag_s)) : sensor;
     s.time_s.push_back(t);
     s.temp_c.push_back(sensor);
     s.bias_dps.push_back(0.05 + 4e-3 * (die - 25.0) + 3e-5 * (die - 25.0) * (die - 25.0));
@@ -108,6 +109,36 @@ TEST(DiagnoseSweep, AHiddenLagAtTwentyTimesTheFloorIsNamedFirstAndSignificant) {
   EXPECT_EQ(again.exit_code, 0) << again.err;
   // Times since the record's start, not the logger's clock (71265 s in).
   for (const Json& seg : channel["segments"]) EXPECT_LT(seg["end_s"].get<double>(), kDurationS + 60.0);
+}
+
+// A MEMS gyro's large temperature slope makes dT sensitive to the sensor's
+// own lag: fit says so, --sensor-tau is checked, and a de-lagged fit is not
+// exported (no firmware de-lags).
+TEST(DiagnoseSweep, ALagTheRecordCannotExcludeIsACautionAndADelaggedFitIsNotExported) {
+  ScratchDir dir;
+  write_log(dir / "sweep.tsv", sweep(0.0), 0.002);  // the paper's model holds: intervals from the noise alone
+  const auto fit = run_cli(dir, std::string("fit sweep.tsv") + kColumns);
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_NE(fit.out.find("caution, dT: a temperature sensor lagging the gyro by"), std::string::npos) << fit.out;
+  EXPECT_NE(fit.out.find("give the sensor's time constant with --sensor-tau"), std::string::npos) << fit.out;
+  const auto json = run_cli(dir, std::string("fit sweep.tsv --json") + kColumns);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_LT(Json::parse(json.out)["lag_to_move_by_interval_s"]["dT"].get<double>(), 60.0);
+
+  for (const char* bad : {"-5", "nan"}) {
+    const auto r = run_cli(dir, std::string("fit sweep.tsv --sensor-tau ") + bad + kColumns);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find(std::string("--sensor-tau ") + bad + ": must be a number of seconds >= 0"),
+              std::string::npos)
+        << r.err;
+  }
+  const auto delagged = run_cli(dir, std::string("fit sweep.tsv --sensor-tau 20 -o fit.json") + kColumns);
+  ASSERT_EQ(delagged.exit_code, 0) << delagged.err;
+  const auto exported = run_cli(dir, "export fit.json --format c -o comp.h");
+  EXPECT_EQ(exported.exit_code, 2);
+  EXPECT_NE(exported.err.find("de-lagged by --sensor-tau 20 s, which no exported form applies"), std::string::npos)
+      << exported.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "comp.h"));
 }
 
 }  // namespace

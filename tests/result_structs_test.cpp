@@ -1,0 +1,66 @@
+// Results are data (docs/architecture.md, "House rules"): the diagnosis's
+// structs hold numbers, enums and names; sentences are composed by the
+// renderers (studies/diagnose/diagnose_words.h). This scans the header for
+// every text member and holds it to a list of names, so a field that would
+// carry a sentence is stopped here, where the reviewer sees why.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "cli_runner.h"
+
+namespace gyrotherm {
+namespace {
+
+// Members declared as std::string or std::vector<std::string> in a header's structs.
+std::set<std::string> text_members(const std::string& header) {
+  std::ifstream in(testing::source_path(header));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::set<std::string> out;
+  const std::regex member(R"(^\s*std::(?:vector<std::string>|string)\s+([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)\s*(?:=[^;]*)?;)");
+  std::string line;
+  for (std::istringstream lines(text.str()); std::getline(lines, line);) {
+    std::smatch m;
+    if (!std::regex_search(line, m, member)) continue;
+    std::stringstream names(m[1].str());
+    for (std::string name; std::getline(names, name, ',');) {
+      name.erase(0, name.find_first_not_of(' '));
+      name.erase(name.find_last_not_of(' ') + 1);
+      out.insert(name);
+    }
+  }
+  return out;
+}
+
+TEST(ResultStructs, TheDiagnosisHoldsNamesNotSentences) {
+  // Each text member and what it holds.
+  const std::map<std::string, std::string> names = {
+      {"candidates", "DiagnosisOptions: the terms, columns or 'step' the user named"},
+      {"excluded_columns", "DiagnosisOptions: column names"},
+      {"confounded_with", "term names"},
+      {"name", "Skipped: a term or column name"},
+      {"error", "Skipped: a FitError's message from the fit layer, quoted as thrown"},
+      {"a", "ConfoundingEvidence: a term name"},
+      {"b", "ConfoundingEvidence: a term name"},
+      {"members", "term names"},
+      {"columns_tried", "column names"},
+  };
+  std::set<std::string> expected;
+  for (const auto& [name, why] : names) expected.insert(name);
+  const std::set<std::string> found = text_members("studies/diagnose/diagnosis.h");
+  for (const std::string& f : found)
+    EXPECT_TRUE(expected.count(f)) << "studies/diagnose/diagnosis.h: the text member '" << f
+                                   << "' is not a known name; a result holds numbers, enums and names, and "
+                                      "sentences are composed in diagnose_words.cpp";
+  for (const std::string& e : expected) EXPECT_TRUE(found.count(e)) << e << " is gone: take it off the list";
+}
+
+}  // namespace
+}  // namespace gyrotherm
