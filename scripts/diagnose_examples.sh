@@ -31,7 +31,7 @@ run() {  # name, then diagnose's arguments
   "$gt" diagnose "$@" --plots "$out/$name" | sed "s|$top/||" > "$out/$name.txt"
 }
 run hop hop.csv
-run hop_after hop.csv --model "T + T^2 + dT + step@19800"
+run hop_after hop.csv --model "T + T^2 + dT + step@20000"  # as its next: line says
 run volt volt.csv
 run volt_after volt.csv --model "T + T^2 + dT + supply_v"
 echo "wrote $out"
