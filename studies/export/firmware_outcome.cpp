@@ -159,7 +159,7 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
 void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out) {
   for (const std::string& line : outcome.lines()) out->lines.push_back(line);
   for (const std::string& w : outcome.warnings) out->warnings.push_back(w);
-  out->json["firmware_outcome"] = outcome.json();
+  out->json_fields.emplace_back("firmware_outcome", outcome.json().dump());
 }
 
 nlohmann::ordered_json FirmwareOutcome::json() const {
