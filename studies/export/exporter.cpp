@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <ctime>
+#include <nlohmann/json.hpp>
 
 #include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
