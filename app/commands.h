@@ -29,8 +29,9 @@ using Run = std::function<int()>;
 std::string default_scenarios_dir();
 
 // Parses the command line: every command of app/commands.def on one CLI11
-// app. Returns -1 when *run is to be run, else the exit code (0 after
-// --help, 2 for a command line that does not parse, with its message).
+// app, which lives until the program ends (*run reads from it). Call once.
+// Returns -1 when *run is to be run, else the exit code (0 after --help, 2
+// for a command line that does not parse, with its message).
 int parse_command_line(int argc, char** argv, Run* run);
 
 // A subcommand of `app`.

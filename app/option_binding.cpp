@@ -13,7 +13,9 @@
 namespace gyrotherm::app {
 
 int parse_command_line(int argc, char** argv, Run* run) {
-  CLI::App app{"gyrotherm: thermal-test simulator and fitting benchmark for the temperature compensation of gyro "
+  // Static: the chosen command reads its options' counts and values when it
+  // runs, after this returns.
+  static CLI::App app{"gyrotherm: thermal-test simulator and fitting benchmark for the temperature compensation of gyro "
                "bias"};
   app.require_subcommand(1);
 #define COMMAND(name) add_##name##_command(app, run);
