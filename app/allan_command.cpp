@@ -2,8 +2,8 @@
 //                          [--ci C] [--plot PNG] [--json]
 // (studies/options/allan_options.h, studies/allan/allan_study.h)
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "app/option_binding.h"
 #include "studies/options/allan_options.h"
@@ -11,8 +11,9 @@
 namespace gyrotherm::app {
 
 void add_allan_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = app.add_subcommand(
-      "allan", "Allan deviation with intervals and noise coefficients, before and after compensation");
+  CLI::App* cmd = add_subcommand(
+      app, "allan",
+      "Allan deviation with intervals and noise coefficients, before and after compensation");
   bind_command<studies::AllanCommandOptions>(cmd, run, studies::allan_option_table(), [](const auto& o) {
     const std::vector<studies::AllanStudy> studies = studies::run_allan(studies::allan_request(o));
     fmt::print("{}", o.json ? studies::allan_json(studies).dump() + "\n" : studies::allan_text(studies));

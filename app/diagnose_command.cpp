@@ -1,8 +1,8 @@
 // gyrotherm diagnose DATA.csv [--model F] [--add TERM ...] [--candidates LIST] [--plots DIR] [--json] …
 // (studies/options/diagnose_options.h, studies/diagnose/diagnose_run.h)
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "app/option_binding.h"
 #include "app/progress.h"
@@ -11,8 +11,9 @@
 namespace gyrotherm::app {
 
 void add_diagnose_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = app.add_subcommand(
-      "diagnose", "Where a bias model fails on measurements, and which physical effect is missing");
+  CLI::App* cmd = add_subcommand(
+      app, "diagnose",
+      "Where a bias model fails on measurements, and which physical effect is missing");
   bind_command<studies::DiagnoseCommandOptions>(cmd, run, studies::diagnose_option_table(), [](const auto& o) {
     studies::DiagnoseRequest request = studies::diagnose_request(o);
     request.progress = step_progress();

@@ -6,7 +6,7 @@
 namespace gyrotherm::app {
 
 void add_effects_command(CLI::App& app, Run* run) {
-  add_listing_command(app, run, "effects", "List the model terms (physical effects)", fit::effects_text, [] { return fit::effects_json().dump() + "\n"; });
+  add_listing_command(app, run, "effects", "List the model terms (physical effects)", fit::effects_text, fit::effects_json);
 }
 
 }  // namespace gyrotherm::app

@@ -6,7 +6,7 @@
 namespace gyrotherm::app {
 
 void add_engines_command(CLI::App& app, Run* run) {
-  add_listing_command(app, run, "engines", "List the fitting engines and their options", fit::engines_text, [] { return fit::engines_json().dump() + "\n"; });
+  add_listing_command(app, run, "engines", "List the fitting engines and their options", fit::engines_text, fit::engines_json);
 }
 
 }  // namespace gyrotherm::app

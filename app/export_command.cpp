@@ -3,8 +3,8 @@
 //                           [--drop-unsupported] [--data CSV] [--json] -o FILE
 // A saved fit as firmware parameters or C (studies/options/export_options.h, studies/export/exporter.h).
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "app/option_binding.h"
 #include "studies/options/export_options.h"
@@ -12,7 +12,7 @@
 namespace gyrotherm::app {
 
 void add_export_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = app.add_subcommand("export", "Export a saved fit as autopilot parameters (PX4, ArduPilot) or C");
+  CLI::App* cmd = add_subcommand(app, "export", "Export a saved fit as autopilot parameters (PX4, ArduPilot) or C");
   bind_command<studies::ExportCommandOptions>(cmd, run, studies::export_option_table(), [](const auto& o) {
     const studies::ExportRequest request = studies::export_request(o);
     const studies::ExportOutput out = studies::run_export(request);

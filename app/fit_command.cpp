@@ -3,7 +3,6 @@
 //                        [-o FIT.json] [--json]
 // (studies/options/fit_options.h, studies/fit/fit_run.h)
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include "app/option_binding.h"
@@ -12,7 +11,7 @@
 namespace gyrotherm::app {
 
 void add_fit_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = app.add_subcommand("fit", "Fit a bias model to measurements (CSV)");
+  CLI::App* cmd = add_subcommand(app, "fit", "Fit a bias model to measurements (CSV)");
   bind_command<studies::FitCommandOptions>(cmd, run, studies::fit_option_table(), [](const auto& o) {
     const studies::FitRun r = studies::run_fit(studies::fit_request(o));
     fmt::print("{}", o.json ? r.json : studies::fit_text(r));

@@ -1,10 +1,80 @@
+// The one file that includes CLI11 (app/commands.h): the app, its
+// subcommands and their options.
+
 #include "app/option_binding.h"
 
 #include <CLI/CLI.hpp>
+#include <fmt/core.h>
 
+#include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 namespace gyrotherm::app {
+
+int parse_command_line(int argc, char** argv, Run* run) {
+  // Static: the chosen command reads its options' counts and values when it
+  // runs, after this returns.
+  static CLI::App app{"gyrotherm: thermal-test simulator and fitting benchmark for the temperature compensation of gyro "
+               "bias"};
+  app.require_subcommand(1);
+#define COMMAND(name) add_##name##_command(app, run);
+#include "app/commands.def"
+#undef COMMAND
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  } catch (const CLI::CallForAllHelp&) {
+    std::fputs(app.help("", CLI::AppFormatMode::All).c_str(), stdout);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "gyrotherm: {}\nRun 'gyrotherm --help' for the commands and options.\n", e.what());
+    return 2;
+  }
+  return -1;
+}
+
+CLI::App* add_subcommand(CLI::App& app, const std::string& name, const std::string& description) {
+  return app.add_subcommand(name, description);
+}
+
+void when_chosen(CLI::App* command, Run* run, Run work) {
+  command->callback([run, work = std::move(work)] { *run = work; });
+}
+
+void add_listing_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
+                         std::string (*text)(), nlohmann::ordered_json (*json)()) {
+  auto as_json = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand(name, description);
+  cmd->add_flag("--json", *as_json, "Print one JSON object");
+  when_chosen(cmd, run, [=] {
+    fmt::print("{}", *as_json ? json().dump() + "\n" : text());
+    return 0;
+  });
+}
+
+template <class T>
+CLI::Option* add_value(CLI::App* command, const std::string& names, T& value, const std::string& help) {
+  CLI::Option* option = command->add_option(names, value, help);
+  // one value per name, so that a positional after it is never taken for one
+  if constexpr (std::is_same_v<T, std::vector<std::string>>) option->allow_extra_args(false);
+  return option;
+}
+template CLI::Option* add_value(CLI::App*, const std::string&, std::string&, const std::string&);
+template CLI::Option* add_value(CLI::App*, const std::string&, int&, const std::string&);
+template CLI::Option* add_value(CLI::App*, const std::string&, long&, const std::string&);
+template CLI::Option* add_value(CLI::App*, const std::string&, std::uint64_t&, const std::string&);
+template CLI::Option* add_value(CLI::App*, const std::string&, std::vector<std::string>&, const std::string&);
+
+void add_flag(CLI::App* command, const std::string& names, bool& value, const std::string& help) {
+  command->add_flag(names, value, help);
+}
+
+void require(CLI::Option* option) { option->required(); }
+
+bool given(const CLI::Option* option) { return option->count() > 0; }
 
 std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studies::OptionInfo>& rows) {
   struct Slot {

@@ -3,8 +3,8 @@
 //   [--range LO,HI] [--max-rate R] [--min-soak S] [--longest H] [--out DIR] [--verify N] [--seed N] [--json]
 // (studies/options/plan_options.h, studies/plan/plan.h)
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "app/option_binding.h"
 #include "app/progress.h"
@@ -31,8 +31,9 @@ int run_plan(const studies::PlanCommandOptions& o) {
 }  // namespace
 
 void add_plan_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = app.add_subcommand(
-      "plan", "Design the shortest chamber test that identifies a model to the precision wanted");
+  CLI::App* cmd = add_subcommand(
+      app, "plan",
+      "Design the shortest chamber test that identifies a model to the precision wanted");
   bind_command<studies::PlanCommandOptions>(cmd, run, studies::plan_option_table(), run_plan);
 }
 

@@ -2,13 +2,12 @@
 // The main job: the paper's Table 1 scenarios on the default simulated gyro,
 // side by side with the paper's figures (studies/reproduce/reproduce.h).
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "app/commands.h"
+#include "app/option_binding.h"
 #include "app/progress.h"
 #include "sim/util/comma_list.h"
 #include "studies/reproduce/report.h"
@@ -50,12 +49,12 @@ std::string default_scenarios_dir() {
 
 void add_reproduce_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<ReproduceCli>();
-  CLI::App* cmd = app.add_subcommand("reproduce", "Reproduce the paper's Table 1 on the simulated gyro (the main job)");
-  cmd->add_option("--out", o->out, "Output folder (default results)");
-  cmd->add_option("--scenarios", o->scenarios, "Folder with cycle.toml, random.toml, warmup.toml (default scenarios/)");
-  cmd->add_option("--engines", o->engines, "Comma-separated engines (default: all)");
-  cmd->add_option("--seed", o->seed, "Seed of the stochastic engines (default 1)");
-  cmd->add_flag("--json", o->json, "Print table1.json, with the run times, on stdout");
+  CLI::App* cmd = add_subcommand(app, "reproduce", "Reproduce the paper's Table 1 on the simulated gyro (the main job)");
+  add_value(cmd, "--out", o->out, "Output folder (default results)");
+  add_value(cmd, "--scenarios", o->scenarios, "Folder with cycle.toml, random.toml, warmup.toml (default scenarios/)");
+  add_value(cmd, "--engines", o->engines, "Comma-separated engines (default: all)");
+  add_value(cmd, "--seed", o->seed, "Seed of the stochastic engines (default 1)");
+  add_flag(cmd, "--json", o->json, "Print table1.json, with the run times, on stdout");
   when_chosen(cmd, run, [o] { return run_reproduce(*o); });
 }
 

@@ -4,7 +4,6 @@
 // A Monte Carlo campaign scoring the fitting engines (studies/score/campaign.h); under
 // mpirun the trials are spread over the ranks (app/score_mpi.h).
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <chrono>
@@ -15,7 +14,7 @@
 
 #include "app/progress.h"
 #include "sim/util/comma_list.h"
-#include "app/commands.h"
+#include "app/option_binding.h"
 #include "app/score_mpi.h"
 #include "studies/score/baseline.h"
 #include "studies/score/campaign.h"
@@ -47,7 +46,7 @@ studies::ScoreOptions score_options(const ScoreCli& o) {
   s.engines = split_commas(o.engines);
   s.model = o.model;
   s.trials = o.trials;
-  if (o.seed_option != nullptr && o.seed_option->count() > 0) s.seed = o.seed;
+  if (o.seed_option != nullptr && given(o.seed_option)) s.seed = o.seed;
   for (const std::string& b : o.budgets) s.add_budget(b);
   for (const std::string& kv : o.engine_options) s.add_engine_option(kv);
   return s;
@@ -141,27 +140,26 @@ int run_score(const ScoreCli& o) {
 
 void add_score_command(CLI::App& app, Run* run) {
   auto o = std::make_shared<ScoreCli>();
-  CLI::App* cmd = app.add_subcommand(
-      "score", "Monte Carlo campaign scoring the fitting engines on a scenario (also under mpirun)");
-  cmd->add_option("scenario", o->scenario, "Scenario TOML (its [spread] table, if any, varies the gyro per trial)")
-      ->required();
-  cmd->add_option("--engines", o->engines, "Comma-separated engines (default: all)");
-  cmd->add_option("--trials", o->trials, "Number of trials N (default 100)");
-  cmd->add_option("--threads", o->threads, "Threads per process (default: one per core; 1 under mpirun)");
-  o->seed_option = cmd->add_option("--seed", o->seed, "Campaign seed S; trial k uses S + k (default: the scenario's seed)");
-  cmd->add_option("--model", o->model, "Model formula (default 'T + T^2 + dT')");
-  cmd->add_option("--budget", o->budgets,
-                  "Evaluation budget: N for every seeded engine, or ENGINE=N (repeatable; 0: the engine's default)")
-      ->allow_extra_args(false);  // one value per --budget, so the scenario is never taken for one
-  cmd->add_option("--option", o->engine_options, "Engine option ENGINE:KEY=VALUE (repeatable)")
-      ->allow_extra_args(false);
-  cmd->add_option("--baseline", o->baseline,
-                  "A saved 'score --json': exit 1 naming engine and metric where an engine is worse beyond "
-                  "Monte Carlo noise");
-  cmd->add_option("--out", o->out,
-                  "Write scoreboard.json, scoreboard.md, convergence.csv and convergence.png here "
-                  "(default: no files)");
-  cmd->add_flag("--json", o->json, "Print the scoreboard as one JSON object");
+  CLI::App* cmd = add_subcommand(
+      app, "score",
+      "Monte Carlo campaign scoring the fitting engines on a scenario (also under mpirun)");
+  require(add_value(cmd, "scenario", o->scenario,
+                    "Scenario TOML (its [spread] table, if any, varies the gyro per trial)"));
+  add_value(cmd, "--engines", o->engines, "Comma-separated engines (default: all)");
+  add_value(cmd, "--trials", o->trials, "Number of trials N (default 100)");
+  add_value(cmd, "--threads", o->threads, "Threads per process (default: one per core; 1 under mpirun)");
+  o->seed_option = add_value(cmd, "--seed", o->seed, "Campaign seed S; trial k uses S + k (default: the scenario's seed)");
+  add_value(cmd, "--model", o->model, "Model formula (default 'T + T^2 + dT')");
+  add_value(cmd, "--budget", o->budgets,
+            "Evaluation budget: N for every seeded engine, or ENGINE=N (repeatable; 0: the engine's default)");
+  add_value(cmd, "--option", o->engine_options, "Engine option ENGINE:KEY=VALUE (repeatable)");
+  add_value(cmd, "--baseline", o->baseline,
+            "A saved 'score --json': exit 1 naming engine and metric where an engine is worse beyond "
+            "Monte Carlo noise");
+  add_value(cmd, "--out", o->out,
+            "Write scoreboard.json, scoreboard.md, convergence.csv and convergence.png here "
+            "(default: no files)");
+  add_flag(cmd, "--json", o->json, "Print the scoreboard as one JSON object");
   when_chosen(cmd, run, [o] { return run_score(*o); });
 }
 

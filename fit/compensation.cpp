@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <unistd.h>
 #include <optional>
+#include <nlohmann/json.hpp>
 
 #include "sim/util/atomic_file.h"
 #include "sim/util/input_error.h"

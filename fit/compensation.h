@@ -19,7 +19,7 @@
 // compensated = gyro − B: the residual bias, centred near zero.
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 

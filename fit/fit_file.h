@@ -16,7 +16,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <utility>
 #include <vector>

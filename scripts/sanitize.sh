@@ -13,7 +13,7 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fr
 # -O1 -g1 (line tables only): the sanitizers' own advice for stack traces, and
 # half the compile time of -O2 -g on the Eigen-heavy files (93 -> 45 s for
 # fit/model/noise_model.cpp); this build is most of CI's time.
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGYROTHERM_BUILD_BENCH=OFF -DGYROTHERM_WITH_MPI=OFF -DGYROTHERM_PYTHON=OFF \
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGYROTHERM_BUILD_TESTS=ON -DGYROTHERM_BUILD_BENCH=OFF -DGYROTHERM_WITH_MPI=OFF -DGYROTHERM_PYTHON=OFF \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   > build-asan.log 2>&1 || { cat build-asan.log; exit 1; }

@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages gyrotherm needs (the list below),
-# only those that are missing; safe to run again. Needs root (or sudo).
+# Installs the Debian 12 packages gyrotherm needs, only those that are
+# missing; safe to run again. Needs root (or sudo).
+#   scripts/setup.sh           the program's (scripts/main.sh: build it, run the main job)
+#   scripts/setup.sh --tests   and those of the tests, benchmarks, Python package and
+#                              fuzzing (scripts/test.sh, sanitize.sh, fuzz.sh; .ci/run)
+# The program's list is the short one on purpose: a fresh machine gets about
+# 160 packages for it (SUNDIALS alone brings OpenMPI, PETSc and Trilinos),
+# against about 260 for both (docs/speed.md, "A first run").
 set -euo pipefail
 
 packages=(
   g++ cmake make                     # compiler and build
-  gcc                                # cc: the C export test compiles the generated header as C99
-  libeigen3-dev                      # linear algebra (QR, eigen-decompositions in tests)
+  gcc                                # C: SUNDIALS' CMake config looks for OpenMP_C
+  libeigen3-dev                      # linear algebra
   libsundials-dev                    # CVODE (pulls in OpenMPI and PETSc)
-  libgtest-dev libgmock-dev          # tests
-  libbenchmark-dev                   # bench/
   libcli11-dev                       # command line
   nlohmann-json3-dev                 # JSON
   libfmt-dev                         # formatting (g++ 12 has no <format>)
@@ -18,6 +22,10 @@ packages=(
   libpagmo-dev                       # peer optimisers (pso, de, cmaes, abc)
   libssl-dev                         # SHA-256 of input files (OpenSSL libcrypto)
   gnuplot-nox                        # plots
+)
+test_packages=(
+  libgtest-dev libgmock-dev          # tests
+  libbenchmark-dev                   # bench/
   clang libclang-rt-14-dev           # libFuzzer targets (scripts/fuzz.sh) and their sanitizer runtimes
   time                               # /usr/bin/time for peak memory (scripts/large_input.sh)
   python3-dev pybind11-dev           # the Python package (python/), for Debian's /usr/bin/python3
@@ -25,6 +33,11 @@ packages=(
   python3-pytest python3-matplotlib  # its tests and plotting helpers
   jupyter-nbconvert python3-ipykernel  # the example notebook, executed by the tests
 )
+case "${1:-}" in
+  "") ;;
+  --tests) packages+=("${test_packages[@]}") ;;
+  *) echo "usage: scripts/setup.sh [--tests]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

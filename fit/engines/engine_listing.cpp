@@ -1,6 +1,7 @@
 #include "fit/engines/engine_listing.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "fit/engines/engine.h"
 

@@ -3,7 +3,7 @@
 // people and as JSON ({"engines": [{name, description, stochastic,
 // default_evaluations, options: {KEY: rule}}]}).
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace gyrotherm::fit {

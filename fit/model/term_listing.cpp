@@ -1,6 +1,7 @@
 #include "fit/model/term_listing.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "sim/effects/effect.h"
 

@@ -3,7 +3,7 @@
 // people and as JSON ({"effects": [{term, meaning, unit, needs, columns,
 // coefficient_unit, simulator, parameter?}]}).
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace gyrotherm::fit {

@@ -9,6 +9,7 @@
 // failed thermal simulation; anything else is a RuntimeError.
 
 #include <pybind11/pybind11.h>
+#include <nlohmann/json.hpp>
 
 #include "fit/engines/engine_listing.h"
 #include "fit/model/term_listing.h"

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "python/src/arrays.h"
 #include "python/src/bindings.h"

@@ -11,7 +11,7 @@
 
 #include <functional>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "fit/data/table.h"
 #include "studies/diagnose/report.h"

@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <string_view>
+#include <nlohmann/json.hpp>
 
 #include "fit/fit_file.h"
 #include "fit/model/formula.h"

@@ -6,7 +6,7 @@
 // segments, missing_effects, verdict; and more) and the next command to run
 // (or the test that would separate what the record cannot tell apart).
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <ctime>
+#include <nlohmann/json.hpp>
 
 #include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
@@ -94,7 +95,7 @@ std::string export_text(const ExportOutput& out) {
 nlohmann::ordered_json export_json(const ExportRequest& request, const ExportOutput& out) {
   nlohmann::ordered_json j{{"format", request.format}, {"output", request.output}, {"lines", out.lines},
                            {"warnings", out.warnings}};
-  for (const auto& [key, value] : out.json.items()) j[key] = value;
+  for (const auto& [key, value] : out.json_fields) j[key] = nlohmann::ordered_json::parse(value);
   return j;
 }
 

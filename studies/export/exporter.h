@@ -19,9 +19,10 @@
 #include <functional>
 #include <optional>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "fit/data/table.h"
@@ -51,7 +52,10 @@ struct ExportOutput {
   std::string text;                   // the file
   std::vector<std::string> lines;     // for the terminal, in order
   std::vector<std::string> warnings;  // for stderr: the file does not hold them
-  nlohmann::ordered_json json = nlohmann::ordered_json::object();  // the format's own fields for --json
+  // The format's own fields for --json, (key, its value as JSON text): a
+  // member of type ordered_json would need <nlohmann/json.hpp> in every file
+  // that includes this one.
+  std::vector<std::pair<std::string, std::string>> json_fields;
 };
 
 // An exported model that leaves more than this share of the instability of

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "fit/compensation.h"
 #include "fit/pipeline.h"
@@ -159,7 +160,7 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
 void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out) {
   for (const std::string& line : outcome.lines()) out->lines.push_back(line);
   for (const std::string& w : outcome.warnings) out->warnings.push_back(w);
-  out->json["firmware_outcome"] = outcome.json();
+  out->json_fields.emplace_back("firmware_outcome", outcome.json().dump());
 }
 
 nlohmann::ordered_json FirmwareOutcome::json() const {

@@ -1,6 +1,7 @@
 #include "studies/fit/compensate_run.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "fit/channels.h"
 #include "fit/model/formula.h"

@@ -4,6 +4,7 @@
 #include <optional>
 #include <cmath>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "fit/model/formula.h"
 #include "sim/util/format.h"

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
