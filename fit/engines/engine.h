@@ -145,6 +145,9 @@ struct EngineInfo {
   std::string description;
   bool stochastic = false;
   long default_evaluations = 0;
+  // It minimises the paper's σ (eq. 6), as score and reproduce compare
+  // engines on; gls estimates otherwise and is left out of their defaults.
+  bool minimises_sigma = true;
   std::vector<OptionInfo> options;  // from the engine's option table (fit/engines/engine_options.h)
   std::function<std::unique_ptr<Engine>(const EngineSettings&)> make;
 };

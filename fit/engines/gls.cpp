@@ -104,10 +104,12 @@ void GlsOptions::validate() const { check_options("gls", option_table(), *this);
 GlsEngine::GlsEngine(GlsOptions options) : options_(std::move(options)) { options_.validate(); }
 
 EngineInfo gls_engine_info() {
-  return engine_info<GlsEngine>("gls",
+  EngineInfo info = engine_info<GlsEngine>("gls",
                                 "generalised least squares under the record's identified noise: narrower honest "
                                 "intervals where the noise has memory",
-                                /*stochastic=*/false, /*default_evaluations=*/1, &option_table);
+                                           /*stochastic=*/false, /*default_evaluations=*/1, &option_table);
+  info.minimises_sigma = false;  // not in score's and reproduce's default engines
+  return info;
 }
 
 }  // namespace gyrotherm::fit

@@ -95,7 +95,7 @@ const Term* made_term(const std::string& name, Fill fill) {
 
 const Term* step_term(double time_s) {
   return made_term(fmt::format("step@{:g}", time_s), [&](Term& t, auto keep) {
-    t.meaning = keep(fmt::format("a bias step at {:g} s (an RLG mode hop)", time_s));
+    t.meaning = keep(fmt::format("a bias step at {:g} s (a mode hop, a shock, a reset)", time_s));
     t.unit = "1";
     t.columns = effects::kTime;
     t.family = effects::Family::step;

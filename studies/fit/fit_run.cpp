@@ -29,8 +29,9 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
   if (!data.outliers.times_s.empty()) {
     std::string times;
     for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 8; ++k)
-      times += fmt::format("{}{:g}", k ? ", " : "", data.outliers.times_s[k]);
-    out += fmt::format("  glitches at t = {}{} s\n", times, data.outliers.times_s.size() > 8 ? ", ..." : "");
+      times += fmt::format("{}{:g}", k ? ", " : "", data.outliers.times_s[k] - data.series.start_time_s);
+    out += fmt::format("  glitches at {}{} s since the record's start\n", times,
+                       data.outliers.times_s.size() > 8 ? ", ..." : "");
   }
   out += fmt::format("model: B = b0 + {}   engine: {}{}\n", fit::formula_text(terms), run.engine->name,
                      run.engine->stochastic ? fmt::format(" (seed {})", run.request.settings.seed) : "");

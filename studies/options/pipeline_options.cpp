@@ -33,11 +33,12 @@ std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
   using C = fit::ColumnMap;
   using fit::Quantity;
   const auto is = [&](const std::string& plain) { return fit_defaults ? std::string(" (default: the fit's)") : plain; };
-  const std::string header = fit_defaults ? " (default: the fit's)"
-                                          : " (default: the unit the column's name states, e.g. 'time (ms)', else ";
-  const auto last = [&](const char* base) { return fit_defaults ? std::string() : std::string(base) + ")"; };
-  const auto unit_help = [&](const char* what, Quantity q, const char* base) {
-    return fmt::format("Unit of the {}: {}{}{}", what, fit::unit_names(q, " or "), header, last(base));
+  // The default: the fit's, or the unit the column's name states ("time (ms)", "gyro [rad/s]"), else the base.
+  const auto unit_help = [&](const char* what, Quantity q, const char* example, const char* base) {
+    return fmt::format("Unit of the {}: {}{}", what, fit::unit_names(q, " or "),
+                       fit_defaults ? std::string(" (default: the fit's)")
+                                    : fmt::format(" (default: the unit the column's name states, e.g. '{}', else {})",
+                                                  example, base));
   };
   return {
       field_row<C>("--time-col", "Name of the time column" + is(" (default time_s)"), &C::time),
@@ -45,9 +46,9 @@ std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
       field_row<C>("--gyro-col", "Name of the gyro output column, or several A,B,C" + is(" (default gyro_dph)"), &C::gyro),
       field_row<C>("--temp2-col", "Name of the far-side temperature column, for the grad term" + is(" (default temp2_c)"),
                    &C::temp2),
-      nested_row("--time-unit", unit_help("time column", Quantity::time, "s"), &C::units, &fit::Units::time),
-      nested_row("--gyro-unit", unit_help("gyro column", Quantity::gyro, "dph"), &C::units, &fit::Units::gyro),
-      nested_row("--temp-unit", unit_help("temperature columns", Quantity::temperature, "C"),
+      nested_row("--time-unit", unit_help("time column", Quantity::time, "time (ms)", "s"), &C::units, &fit::Units::time),
+      nested_row("--gyro-unit", unit_help("gyro column", Quantity::gyro, "gyro [rad/s]", "dph"), &C::units, &fit::Units::gyro),
+      nested_row("--temp-unit", unit_help("temperature columns", Quantity::temperature, "temp (K)", "C"),
                  &C::units, &fit::Units::temp),
       nested_row("--gyro-scale", "Multiply the gyro column by K before its unit (raw counts, a logger's scale)" + is(""),
                  &C::units, &fit::Units::gyro_scale),

@@ -67,7 +67,8 @@ ReproduceResult reproduce(const ReproduceOptions& o) {
   ReproduceResult r;
   std::vector<std::string> engines = o.engines;
   if (engines.empty())
-    for (const fit::EngineInfo& e : fit::engine_registry()) engines.push_back(e.name);
+    for (const fit::EngineInfo& e : fit::engine_registry())
+      if (e.minimises_sigma) engines.push_back(e.name);
   for (const std::string& e : engines) fit::find_engine(e);  // fail early on a bad name
 
   progress("simulating the cycle", 0.0);

@@ -80,7 +80,8 @@ Campaign::Campaign(ScoreOptions options) : options_(std::move(options)) {
 
   std::vector<std::string> names = options_.engines;
   if (names.empty())
-    for (const fit::EngineInfo& e : fit::engine_registry()) names.push_back(e.name);
+    for (const fit::EngineInfo& e : fit::engine_registry())
+      if (e.minimises_sigma) names.push_back(e.name);
   std::set<std::string> seen;
   for (const std::string& name : names) {
     const fit::EngineInfo& info = fit::find_engine(name);
