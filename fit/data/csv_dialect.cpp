@@ -22,34 +22,57 @@ struct Delimiter {
 };
 constexpr std::array<Delimiter, 3> kDelimiters = {{{"comma", ','}, {"semicolon", ';'}, {"tab", '\t'}}};
 
-// Clinger's fast path: a plain decimal [-]digits[.digits] with a mantissa m
-// below 2⁵³ and f ≤ 22 fraction digits is m / 10^f, both exact doubles, so the
-// one IEEE division is correctly rounded: the value std::from_chars gives.
-// False for anything else (left to from_chars). Reference: W. D. Clinger, "How
-// to read floating point numbers accurately", PLDI 1990.
-bool parse_plain_decimal(std::string_view text, double& value) {
+// Clinger's fast path: a plain decimal [-]digits[<point>digits][e[±]digits]
+// with a mantissa m of at most 19 digits and below 2⁵³, and a power of ten p
+// (the exponent less the fraction's digits) with |p| ≤ 22, is m · 10^p or
+// m / 10^−p of two exact doubles, so the one IEEE operation is correctly
+// rounded: the value std::from_chars gives. Reads it from p on and returns
+// where it stops (the first character that cannot continue it), or nullptr
+// for anything else (left to from_chars). Reference: W. D. Clinger, "How to
+// read floating point numbers accurately", PLDI 1990.
+const char* plain_decimal_prefix(const char* p, const char* const end, char point, double& value) {
   static constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  const char* p = text.data();
-  const char* const end = p + text.size();
+  const auto digit = [&] { return p != end && static_cast<unsigned>(*p - '0') < 10u; };
   const bool negative = p != end && *p == '-';
   if (negative) ++p;
   std::uint64_t mantissa = 0;
   const char* const digits = p;
-  for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
+  for (; digit(); ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
   const auto whole = p - digits;
   std::ptrdiff_t fraction = 0;
-  if (p != end && *p == '.') {
+  if (p != end && *p == point) {
     const char* const first = ++p;
-    for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
+    for (; digit(); ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
     fraction = p - first;
-    if (fraction == 0) return false;
+    if (fraction == 0) return nullptr;
   }
-  if (p != end || whole == 0 || whole + fraction > 19 || fraction > 22 || mantissa > (std::uint64_t{1} << 53))
-    return false;
-  const double v = static_cast<double>(mantissa) / kPow10[static_cast<std::size_t>(fraction)];
+  if (whole == 0 || whole + fraction > 19 || mantissa > (std::uint64_t{1} << 53)) return nullptr;
+  std::ptrdiff_t power = -fraction;
+  if (p != end && (*p == 'e' || *p == 'E')) {
+    ++p;
+    const bool down = p != end && *p == '-';
+    if (p != end && (*p == '-' || *p == '+')) ++p;
+    const char* const first = p;
+    std::ptrdiff_t exponent = 0;
+    for (; digit() && p - first < 4; ++p) exponent = 10 * exponent + (*p - '0');
+    if (p == first || digit()) return nullptr;  // no digits, or more than 4
+    power += down ? -exponent : exponent;
+  }
+  if (power < -22 || power > 22) return nullptr;
+  const double m = static_cast<double>(mantissa);
+  const double v = power >= 0 ? m * kPow10[static_cast<std::size_t>(power)] : m / kPow10[static_cast<std::size_t>(-power)];
   value = negative ? -v : v;
+  return p;
+}
+
+// The whole of `text` as a plain decimal with a '.' (above).
+bool parse_plain_decimal(std::string_view text, double& value) {
+  const char* const end = text.data() + text.size();
+  double read = 0.0;
+  if (plain_decimal_prefix(text.data(), end, '.', read) != end) return false;
+  value = read;
   return true;
 }
 
@@ -196,6 +219,52 @@ std::string parse_csv_number(std::string_view field, bool decimal_comma, double&
   if (!problem.empty() && has_comma && !decimal_comma)
     problem += " (a decimal comma? give --decimal-comma)";
   return problem;
+}
+
+const char* skip_csv_field(const char* p, const char* const end, char delimiter) {
+  bool quoted = false;
+  for (; p != end; ++p) {
+    if (*p == '"') quoted = !quoted;  // as split_fields: "" inside quotes toggles twice
+    else if (*p == delimiter && !quoted) return p;
+  }
+  return quoted ? nullptr : p;
+}
+
+const char* scan_csv_number(const char* p, const char* const end, char delimiter, bool decimal_comma,
+                            double& value) {
+  // trim's blanks, but never the delimiter: a tab inside quotes is left to split_fields
+  const auto skip_blanks = [&] {
+    while (p != end && (*p == ' ' || (*p == '\t' && delimiter != '\t'))) ++p;
+  };
+  skip_blanks();
+  const bool quoted = p != end && *p == '"';
+  if (quoted) {
+    ++p;
+    skip_blanks();
+  }
+  double read = 0.0;
+  p = plain_decimal_prefix(p, end, decimal_comma ? ',' : '.', read);
+  if (p == nullptr) return nullptr;
+  skip_blanks();
+  if (quoted) {
+    if (p == end || *p != '"') return nullptr;
+    ++p;
+    skip_blanks();
+  }
+  if (p != end && *p != delimiter) return nullptr;
+  value = read;
+  return p;
+}
+
+const char* scan_iso8601_field(const char* p, const char* const end, char delimiter, Timestamp& out) {
+  const char* const field_end = skip_csv_field(p, end, delimiter);
+  if (field_end == nullptr) return nullptr;
+  std::string_view text = trim(std::string_view(p, static_cast<std::size_t>(field_end - p)));
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {  // unquote_field's text, without a copy
+    text = text.substr(1, text.size() - 2);
+    if (text.find('"') != std::string_view::npos) return nullptr;
+  }
+  return parse_iso8601(text, out) ? field_end : nullptr;
 }
 
 bool parse_iso8601(std::string_view text, Timestamp& out) {

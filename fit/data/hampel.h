@@ -18,8 +18,10 @@
 // Most samples are far from any glitch: a sample within t · s_floor of every
 // value of its window is within it of their median too, so it is kept without
 // the median, in O(1), from the window's running minimum and maximum
-// (monotone queues). Near a glitch the window is kept sorted for a while, so
-// the median is a lookup; the MAD is one selection.
+// (monotone queues). Near a glitch the window is kept in order for a while (an
+// order-statistic tree, fit/data/order_statistic_tree.h), so that the median
+// and the MAD cost O(log w) and O(log² w) for a window of w samples, and each
+// sample entering or leaving O(log w).
 //
 // The windows: centred, ±W/2 around the sample (offline and one-pass:
 // CentredHampel, which judges a sample once the samples after it have
@@ -37,6 +39,8 @@
 #include <deque>
 #include <utility>
 #include <vector>
+
+#include "fit/data/order_statistic_tree.h"
 
 namespace gyrotherm::fit {
 
@@ -75,7 +79,7 @@ class HampelWindow {
   // Near a glitch: the values in order, until the shortcut has kept a
   // window's worth of samples in a row.
   bool sorting_ = false;
-  std::vector<double> sorted_;
+  OrderStatisticTree sorted_;
   std::size_t clean_ = 0;
   std::vector<double> scratch_;
 };
