@@ -11,9 +11,9 @@ void HampelWindow::push(double x) {
   const std::uint64_t seq = first_ + values_.size();
   values_.push_back(x);
   while (!lowest_.empty() && lowest_.back().second >= x) lowest_.pop_back();
-  lowest_.emplace_back(seq, x);
+  lowest_.push_back({seq, x});
   while (!highest_.empty() && highest_.back().second <= x) highest_.pop_back();
-  highest_.emplace_back(seq, x);
+  highest_.push_back({seq, x});
   if (sorting_) sorted_.insert(x, seq);
 }
 
@@ -50,7 +50,8 @@ HampelWindow::Verdict HampelWindow::judge(double x, bool want_scale) {
   if (sorting_) {
     median = sorted_.median();
   } else {
-    scratch_.assign(values_.begin(), values_.end());
+    scratch_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) scratch_[i] = values_[i];
     median = median_in_place(scratch_);
   }
   const double deviation = std::abs(x - median);

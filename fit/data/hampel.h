@@ -36,11 +36,11 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <utility>
 #include <vector>
 
 #include "fit/data/order_statistic_tree.h"
+#include "fit/data/ring_buffer.h"
 
 namespace gyrotherm::fit {
 
@@ -73,9 +73,9 @@ class HampelWindow {
 
  private:
   HampelRule rule_;
-  std::deque<double> values_;
+  RingBuffer<double> values_;
   std::uint64_t first_ = 0;  // the sequence number of values_.front()
-  std::deque<std::pair<std::uint64_t, double>> lowest_, highest_;
+  RingBuffer<std::pair<std::uint64_t, double>> lowest_, highest_;
   // Near a glitch: the values in order, until the shortcut has kept a
   // window's worth of samples in a row.
   bool sorting_ = false;
@@ -96,7 +96,7 @@ class CentredHampel {
 
   template <class Judged>
   void add(double t, double x, Payload payload, Judged&& judged) {
-    pending_.push_back({t, x, std::move(payload)});
+    pending_.push_back(Entry{t, x, std::move(payload)});
     advance(false, judged);
   }
   template <class Judged>
@@ -133,7 +133,7 @@ class CentredHampel {
   HampelWindow window_;
   double half_s_;
   std::size_t stride_;
-  std::deque<Entry> pending_;
+  RingBuffer<Entry> pending_;
   std::size_t base_ = 0, lo_ = 0, hi_ = 0, next_ = 0;
   std::vector<double> scales_;
 };
@@ -148,7 +148,7 @@ class TrailingHampel {
  private:
   HampelWindow window_;
   double window_s_;
-  std::deque<double> times_;
+  RingBuffer<double> times_;
 };
 
 }  // namespace gyrotherm::fit
