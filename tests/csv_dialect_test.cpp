@@ -92,21 +92,21 @@ TEST(CsvDialect, TheFastPathReadsWhatTheGeneralOneReads) {
     std::string line = random_field(rng);
     for (int k = 0; k < 3; ++k) line += delimiter + random_field(rng);
     std::vector<std::string_view> fields;
-    const bool splits = split_fields(line, delimiter, fields).empty();
     const char* p = line.data();
     const char* const end = p + line.size();
-    for (std::size_t f = 0; p != nullptr; ++f) {
+    if (!split_fields(line, delimiter, fields).empty()) {  // a quote left open: the fast path stops somewhere too
+      for (p = skip_csv_field(p, end, delimiter); p != nullptr && p != end;) p = skip_csv_field(p + 1, end, delimiter);
+      EXPECT_EQ(p, nullptr) << line;
+      continue;
+    }
+    for (std::size_t f = 0;; ++f) {
       const char* start = p;
       double value = 0.0, expected = 0.0;
       Timestamp t, u;
       const char* number = scan_csv_number(start, end, delimiter, comma, value);
       const char* iso = scan_iso8601_field(start, end, delimiter, t);
       p = skip_csv_field(start, end, delimiter);
-      if (p == nullptr) {
-        EXPECT_FALSE(splits) << line;
-        break;
-      }
-      ASSERT_TRUE(splits) << line;
+      ASSERT_NE(p, nullptr) << line;
       ASSERT_LT(f, fields.size()) << line;
       ASSERT_EQ(std::string_view(start, static_cast<std::size_t>(p - start)), fields[f]) << line;
       if (number != nullptr) {

@@ -95,7 +95,9 @@ TEST(CentredHampel, DecisionsAndScalesAreTheRuleComputedByBruteForce) {
         if (k % stride == 0) scales.push_back(s);
       }
       EXPECT_EQ(filter.scales(), scales) << "kind " << kind;
-      if (kind != 1) EXPECT_GT(glitches, 5u);
+      if (kind != 1) {
+        EXPECT_GT(glitches, 5u);
+      }
     }
 }
 
