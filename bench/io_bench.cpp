@@ -12,8 +12,13 @@
 // cache, one iteration each, so the distance of `fit` to each limit shows:
 //  BM_LargeLog_Read: the bytes read in 1 MB blocks, nothing done with them;
 //  BM_LargeLog_Parse: fit::for_each_row on one thread, the rows summed;
-//  BM_LargeLog_Fit: what `gyrotherm fit` does, fit::prepare_csv (one pass,
-//    two threads, fit/data/streaming.h) and the ols fit of T + T^2 + dT.
+//  BM_LargeLog_Prepare: fit::prepare_csv alone (one pass, two threads,
+//    fit/data/streaming.h: parse on one, glitch filter and windows on the other);
+//  BM_LargeLog_Filter: the second thread's work alone, on the rows already
+//    parsed into arrays (fit::prepare_table, the same one-pass preparer);
+//  BM_LargeLog_Fit: what `gyrotherm fit` does, fit::prepare_csv and the ols
+//    fit of T + T^2 + dT (its intervals as the command's, a bootstrap where
+//    the record's noise is random-walk dominated).
 
 #include <benchmark/benchmark.h>
 #include <unistd.h>
@@ -27,6 +32,7 @@
 
 #include "fit/data/measurement.h"
 #include "fit/data/streaming.h"
+#include "fit/data/table.h"
 #include "fit/engines/engine.h"
 #include "fit/model/formula.h"
 #include "fit/pipeline.h"
@@ -137,6 +143,28 @@ void BM_LargeLog_Parse(benchmark::State& state, const std::filesystem::path& csv
   set_large_counters(state, csv);
 }
 
+void BM_LargeLog_Prepare(benchmark::State& state, const std::filesystem::path& csv) {
+  for (auto _ : state) {
+    const fit::PreparedData d = fit::prepare_csv(csv, fit::PipelineOptions{});
+    benchmark::DoNotOptimize(d.series.gyro_dph.data());
+    state.counters["windows"] = static_cast<double>(d.series.size());
+  }
+  set_large_counters(state, csv);
+}
+
+void BM_LargeLog_Filter(benchmark::State& state, const std::filesystem::path& csv) {
+  const fit::Measurement m = fit::read_measurement_csv(csv);
+  fit::Table table;
+  table.columns = {{"time_s", m.time_s.data(), m.size()}, {"temp_c", m.temp_c.data(), m.size()},
+                   {"gyro_dph", m.gyro_dph.data(), m.size()}};
+  if (m.has_temp2()) table.columns.push_back({"temp2_c", m.temp2_c.data(), m.size()});
+  for (auto _ : state) {
+    const fit::PreparedData d = fit::prepare_table(table, fit::PipelineOptions{});
+    benchmark::DoNotOptimize(d.series.gyro_dph.data());
+  }
+  set_large_counters(state, csv);
+}
+
 void BM_LargeLog_Fit(benchmark::State& state, const std::filesystem::path& csv) {
   const auto terms = fit::parse_formula("T + T^2 + dT");
   const fit::EngineInfo& ols = fit::find_engine("ols");
@@ -166,6 +194,8 @@ int main(int argc, char** argv) {
     }
     for (auto [name, fn] : {std::pair{"BM_LargeLog_Read", &BM_LargeLog_Read},
                             std::pair{"BM_LargeLog_Parse", &BM_LargeLog_Parse},
+                            std::pair{"BM_LargeLog_Prepare", &BM_LargeLog_Prepare},
+                            std::pair{"BM_LargeLog_Filter", &BM_LargeLog_Filter},
                             std::pair{"BM_LargeLog_Fit", &BM_LargeLog_Fit}})
       benchmark::RegisterBenchmark(name, fn, csv)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
   }

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Measures fitting a 10-day log at 10 Hz (8.76 million rows): simulates it
-# once into build/large/ (about 580 MB), then times `gyrotherm fit` on it and
+# once into build/large/ (about 580 MB), then, from the page cache, times
+# `gyrotherm fit` on it five times beside `wc -l` and `cat` of the same file
+# (interleaved, so that the ratios are of one moment on a shared machine),
 # records the peak memory, and runs bench_io's large-log benchmarks (a plain
-# read of the bytes, parsing alone, fit) on it; writes results/large_input.md
-# and results/bench_large.json, which scripts/bench.sh includes in
+# read of the bytes, parsing alone, preparing alone, the preparing thread
+# alone, fit) on it; writes results/large_input.md and
+# results/bench_large.json and results/bench_large_commands.json (the
+# commands' median seconds), which scripts/bench.sh includes in
 # results/benchmarks.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,8 +34,28 @@ if [ ! -f build/large/tenday.csv ]; then
 fi
 rows=$(($(wc -l < build/large/tenday.csv) - 3))
 size="$(($(stat -c %s build/large/tenday.csv) / 1000000)) MB ($(du -m build/large/tenday.csv | cut -f1) MiB)"
-cat build/large/tenday.csv > /dev/null  # into the page cache
-/usr/bin/time -v build/app/gyrotherm fit build/large/tenday.csv > build/large/fit.txt 2> build/large/time.txt
+csv=build/large/tenday.csv
+cat "$csv" > /dev/null  # into the page cache
+/usr/bin/time -v build/app/gyrotherm fit "$csv" > build/large/fit.txt 2> build/large/time.txt
+# seconds COMMAND...: the wall time of one run, output discarded.
+seconds() {
+  local start=$EPOCHREALTIME
+  "$@" > /dev/null
+  awk -v a="$start" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.4f\n", b - a }'
+}
+: > build/large/times.txt
+for run in 1 2 3 4 5; do
+  echo "cat $(seconds cat "$csv")" >> build/large/times.txt
+  echo "wc $(seconds wc -l "$csv")" >> build/large/times.txt
+  echo "fit $(seconds build/app/gyrotherm fit "$csv")" >> build/large/times.txt
+done
+# median NAME: of the five times.
+median() { awk -v n="$1" '$1 == n { print $2 }' build/large/times.txt | sort -g | sed -n 3p; }
+cat_s=$(median cat); wc_s=$(median wc); fit_s=$(median fit)
+bytes=$(stat -c %s "$csv")
+per_s() { awk -v b="$bytes" -v t="$1" 'BEGIN { printf "%.0f", b / t / 1e6 }'; }
+printf '{\n  "file_bytes": %s,\n  "cat_s": %s,\n  "wc_l_s": %s,\n  "fit_s": %s\n}\n' \
+  "$bytes" "$cat_s" "$wc_s" "$fit_s" > results/bench_large_commands.json
 GYROTHERM_LARGE_CSV=build/large/tenday.csv build/bench/bench_io --benchmark_filter=LargeLog \
   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
   --benchmark_out=results/bench_large.json.tmp --benchmark_out_format=json > /dev/null
@@ -46,6 +70,8 @@ field() {
 mbs() { awk -v b="$(field "$1" bytes_per_second)" 'BEGIN { printf "%.0f", b / 1e6 }'; }
 secs() { awk -v t="$(field "$1" real_time)" 'BEGIN { printf "%.2f", t / 1e3 }'; }
 read_mbs=$(mbs BM_LargeLog_Read); parse_mbs=$(mbs BM_LargeLog_Parse); fit_mbs=$(mbs BM_LargeLog_Fit)
+prepare_mbs=$(mbs BM_LargeLog_Prepare); filter_mbs=$(mbs BM_LargeLog_Filter)
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 rss_kb=$(awk -F: '/Maximum resident set size/ {gsub(/ /,"",$2); print $2}' build/large/time.txt)
 elapsed=$(awk -F': ' '/Elapsed \(wall clock\)/ {print $2}' build/large/time.txt)
 windows=$(grep -o '[0-9]* windows of' build/large/fit.txt | cut -d' ' -f1)
@@ -66,16 +92,28 @@ windows=$(grep -o '[0-9]* windows of' build/large/fit.txt | cut -d' ' -f1)
   echo "its libraries (about 44 MB for any input), the 8 MB prefix of 262 144 rows and the batches"
   echo "in flight, independent of the record's length."
   echo
-  echo "The limits, from the page cache, by \`bench_io\` in the same run (medians of 5; MB = 10⁶ bytes):"
+  echo "The command against the plainest programs on the same bytes, timed in turn in the same run"
+  echo "(each the median of 5, from the page cache; MB = 10⁶ bytes):"
+  echo
+  echo "| command | time | throughput | \`fit\` against it |"
+  echo "|---|---|---|---|"
+  echo "| \`cat\` (to /dev/null) | $cat_s s | $(per_s "$cat_s") MB/s | $(ratio "$cat_s" "$fit_s") |"
+  echo "| \`wc -l\` | $wc_s s | $(per_s "$wc_s") MB/s | $(ratio "$wc_s" "$fit_s") |"
+  echo "| \`gyrotherm fit\` | $fit_s s | $(per_s "$fit_s") MB/s | 1 |"
+  echo
+  echo "The limits, by \`bench_io\` in the same run (medians of 5):"
   echo
   echo "| step on the same bytes | time | throughput | \`fit\` against it |"
   echo "|---|---|---|---|"
-  echo "| read the bytes (1 MB blocks) | $(secs BM_LargeLog_Read) s | $read_mbs MB/s | $(awk -v a="$fit_mbs" -v b="$read_mbs" 'BEGIN { printf "%.2f", a / b }') |"
-  echo "| parse alone, one thread (\`for_each_row\`) | $(secs BM_LargeLog_Parse) s | $parse_mbs MB/s | $(awk -v a="$fit_mbs" -v b="$parse_mbs" 'BEGIN { printf "%.2f", a / b }') |"
+  echo "| read the bytes (1 MB blocks) | $(secs BM_LargeLog_Read) s | $read_mbs MB/s | $(ratio "$fit_mbs" "$read_mbs") |"
+  echo "| parse alone, one thread (\`for_each_row\`) | $(secs BM_LargeLog_Parse) s | $parse_mbs MB/s | $(ratio "$fit_mbs" "$parse_mbs") |"
+  echo "| the preparing thread's work alone (glitch filter, windows; on parsed arrays) | $(secs BM_LargeLog_Filter) s | $filter_mbs MB/s | $(ratio "$fit_mbs" "$filter_mbs") |"
+  echo "| \`prepare_csv\`: both threads | $(secs BM_LargeLog_Prepare) s | $prepare_mbs MB/s | $(ratio "$fit_mbs" "$prepare_mbs") |"
   echo "| \`fit\`: read, parse, filter, average, ols | $(secs BM_LargeLog_Fit) s | $fit_mbs MB/s | 1 |"
   echo
-  echo "Parsing is the bound: the filter and the averages keep pace on the second core, so"
-  echo "\`fit\` runs at the speed of the parser; reading the bytes alone is several times faster."
+  echo "One thread parses while the other filters and averages; \`prepare_csv\` runs at the"
+  echo "speed of the slower of the two where both have a core (on a machine busy with other"
+  echo "work they take turns, and it runs nearer the two added)."
   echo
   echo '```'
   cat build/large/fit.txt

@@ -11,7 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "expect_input_error.h"
@@ -63,6 +65,92 @@ TEST(CsvDialect, DecimalCommasReadAsTheirPointedTwins) {
   EXPECT_DOUBLE_EQ(v, 1.2e-71);
   // Without the option a decimal comma is no number, and the message says which option reads it.
   EXPECT_NE(parse_csv_number("20,5", false, v).find("give --decimal-comma"), std::string::npos);
+}
+
+// A field of the kinds data rows hold, and of the kinds the fast path leaves
+// to the general one: numbers in every notation, quotes, blanks, text, the delimiters.
+std::string random_field(std::mt19937_64& rng) {
+  static const std::vector<std::string> pieces = {
+      "0",    "7",    "-",    "+",     ".",     ",",    "e",   "E-",  "e+0", "05",  "123456789", "9999999999",
+      "\"",  " ",    "\t",  ";",     "nan",   "inf",  "x",   "1e30", "2026-11-26T05:38:35.25Z", "00000"};
+  std::uniform_int_distribution<std::size_t> pick(0, pieces.size() - 1), count(0, 5);
+  std::string out;
+  for (std::size_t k = count(rng); k > 0; --k) out += pieces[pick(rng)];
+  return out;
+}
+
+// Whatever a line holds, the fast path (scan_csv_number, skip_csv_field,
+// scan_iso8601_field) takes a field only where split_fields finds the same
+// field and parse_csv_number (or parse_iso8601 of unquote_field) the same
+// number, to the bit.
+TEST(CsvDialect, TheFastPathReadsWhatTheGeneralOneReads) {
+  std::mt19937_64 rng(11);
+  std::size_t taken = 0, left = 0;
+  for (int line_number = 0; line_number < 60000; ++line_number) {
+    const char delimiter = ",;\t"[line_number % 3];
+    const bool comma = delimiter != ',' && line_number % 2 == 0;
+    std::string line = random_field(rng);
+    for (int k = 0; k < 3; ++k) line += delimiter + random_field(rng);
+    std::vector<std::string_view> fields;
+    const char* p = line.data();
+    const char* const end = p + line.size();
+    if (!split_fields(line, delimiter, fields).empty()) {  // a quote left open: the fast path stops somewhere too
+      for (p = skip_csv_field(p, end, delimiter); p != nullptr && p != end;) p = skip_csv_field(p + 1, end, delimiter);
+      EXPECT_EQ(p, nullptr) << line;
+      continue;
+    }
+    for (std::size_t f = 0;; ++f) {
+      const char* start = p;
+      double value = 0.0, expected = 0.0;
+      Timestamp t, u;
+      const char* number = scan_csv_number(start, end, delimiter, comma, value);
+      const char* iso = scan_iso8601_field(start, end, delimiter, t);
+      p = skip_csv_field(start, end, delimiter);
+      ASSERT_NE(p, nullptr) << line;
+      ASSERT_LT(f, fields.size()) << line;
+      ASSERT_EQ(std::string_view(start, static_cast<std::size_t>(p - start)), fields[f]) << line;
+      if (number != nullptr) {
+        ++taken;
+        ASSERT_EQ(number, p) << line;
+        ASSERT_EQ(parse_csv_number(fields[f], comma, expected), "") << fields[f];
+        EXPECT_EQ(std::signbit(value), std::signbit(expected)) << fields[f];
+        EXPECT_EQ(value, expected) << fields[f];
+      } else {
+        ++left;
+      }
+      if (iso != nullptr) {
+        ASSERT_EQ(iso, p);
+        ASSERT_TRUE(parse_iso8601(unquote_field(fields[f]), u)) << fields[f];
+        EXPECT_EQ(t.seconds, u.seconds);
+        EXPECT_EQ(t.fraction, u.fraction);
+      }
+      if (p == end) {
+        EXPECT_EQ(f + 1, fields.size()) << line;
+        break;
+      }
+      ++p;
+    }
+  }
+  EXPECT_GT(taken, 10000u);
+  EXPECT_GT(left, 10000u);
+}
+
+TEST(CsvDialect, TheFastPathTakesTheUsualNumbers) {
+  double v = 0.0;
+  for (const auto& [text, expected] : std::vector<std::pair<std::string, double>>{
+           {"20.5", 20.5}, {" -0.125 ", -0.125}, {"\"3.25\"", 3.25}, {" \" 7 \" ", 7.0}, {"6.78739e-05", 6.78739e-05},
+           {"1E3", 1e3}, {"-2.5e+2", -250.0}, {"9007199254740992", 9007199254740992.0}}) {
+    const char* end = text.data() + text.size();
+    ASSERT_EQ(scan_csv_number(text.data(), end, ',', false, v), end) << text;
+    EXPECT_EQ(v, expected) << text;
+  }
+  const std::string comma = "-20,5;";
+  ASSERT_EQ(scan_csv_number(comma.data(), comma.data() + comma.size(), ';', true, v), comma.data() + 5);
+  EXPECT_EQ(v, -20.5);
+  for (const std::string text : {"+1", "1.", ".5", "1e", "1e400", "12345678901234567890", "1.5x", "\"1", "0x10", ""}) {
+    const char* end = text.data() + text.size();
+    EXPECT_EQ(scan_csv_number(text.data(), end, ',', false, v), nullptr) << text;
+  }
 }
 
 TEST(CsvDialect, Iso8601TimestampsAreUtcSeconds) {

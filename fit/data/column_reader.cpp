@@ -14,6 +14,7 @@
 namespace gyrotherm::fit::column_rules {
 
 std::string out_of_range(Role role, double v) {
+  if (in_range(role, v)) return {};
   switch (role) {
     case kTemp:
     case kTemp2:
@@ -155,6 +156,10 @@ void ColumnReader::resolve_columns(std::vector<std::string> names_given, std::si
       if (!taken && !names[column].empty()) extras_.push_back({column, names[column], false});
     }
   std::sort(extras_.begin(), extras_.end(), [](const Extra& a, const Extra& b) { return a.column < b.column; });
+  needed_.clear();
+  for (std::size_t column = 0; column < names.size(); ++column)
+    if (role_of_column_[column] != kNoRole) needed_.push_back({column, static_cast<Role>(role_of_column_[column])});
+  values_.assign(names.size(), 0.0);
   header_row_ = header_row;
 }
 
@@ -169,16 +174,15 @@ void ColumnReader::take_values(std::size_t row, Measurement& m) {
   std::array<double, kRoles> value{};
   for (const Extra& e : extras_)
     if (e.numeric && !sink_) m.extra[e.name].push_back(values_[e.column]);
-  for (std::size_t column = 0; column < values_.size(); ++column) {
-    const int role = role_of_column_[column];
-    if (role < 0 || role >= kRoles) continue;  // kNoRole
+  for (const auto [column, role] : needed_) {
+    const auto r = static_cast<std::size_t>(role);
+    if (r >= kRoles) continue;  // never: needed_ holds roles (g++ cannot tell)
     const double read = values_[column];
-    value[role] = convert(static_cast<Role>(role), read);
-    const std::string range = out_of_range(static_cast<Role>(role), value[role]);
-    if (!range.empty())
-      fail(row, fmt::format("column {}: {}{}", m.columns[column], range,
-                            read == value[role] ? std::string()
-                                                : fmt::format(" (read {:g}, converted by {})", read, units_.description())));
+    value[r] = convert(role, read);
+    if (!in_range(role, value[r]))
+      fail(row, fmt::format("column {}: {}{}", m.columns[column], out_of_range(role, value[r]),
+                            read == value[r] ? std::string()
+                                             : fmt::format(" (read {:g}, converted by {})", read, units_.description())));
   }
   if (csv_.rate_hz > 0.0) {
     value[kTime] = static_cast<double>(rows_) / csv_.rate_hz;

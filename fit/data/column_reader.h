@@ -18,6 +18,7 @@
 // a table's index from 0 ("arrays: index 56: …").
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -35,7 +36,17 @@ inline constexpr std::array<const char*, kRoles> kOptionOf = {"--time-col", "--t
 inline constexpr std::array<const char*, kRoles> kWhatOf = {"time", "temperature", "gyro", "second temperature"};
 
 // Values no instrument produces: a guard against a wrong column or unit, and
-// against numbers whose squares overflow in the fit. "" when `v` is plausible.
+// against numbers whose squares overflow in the fit. "" when `v` is plausible
+// (in_range, the test alone).
+inline bool in_range(Role role, double v) {
+  switch (role) {
+    case kTemp:
+    case kTemp2: return !(v < -273.15 || v > 1000.0);
+    case kGyro: return !(std::abs(v) > 1e9);
+    case kTime: return !(std::abs(v) > 1e12);
+    default: return true;
+  }
+}
 std::string out_of_range(Role role, double v);
 
 // "a, b, ''": column names for a message.
@@ -116,6 +127,11 @@ class ColumnReader {
   bool temp_in_c_ = true;
   CsvDialect csv_;                   // the text's form and --rate (none for an autopilot log)
   std::vector<int> role_of_column_;  // Role of each column
+  struct Needed {
+    std::size_t column;
+    Role role;
+  };
+  std::vector<Needed> needed_;  // the columns with a role, in column order
   std::vector<double> values_;       // the row's numbers, by column
   bool iso_time_ = false;            // the time column holds ISO 8601 timestamps
   // Extra columns: column → its vector in the measurement, and whether a

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <bit>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -22,34 +23,137 @@ struct Delimiter {
 };
 constexpr std::array<Delimiter, 3> kDelimiters = {{{"comma", ','}, {"semicolon", ';'}, {"tab", '\t'}}};
 
-// Clinger's fast path: a plain decimal [-]digits[.digits] with a mantissa m
-// below 2⁵³ and f ≤ 22 fraction digits is m / 10^f, both exact doubles, so the
-// one IEEE division is correctly rounded: the value std::from_chars gives.
-// False for anything else (left to from_chars). Reference: W. D. Clinger, "How
-// to read floating point numbers accurately", PLDI 1990.
-bool parse_plain_decimal(std::string_view text, double& value) {
+// Numbers eight bytes at a time (SWAR, where eight remain in the field's
+// line): the bytes that are not digits are marked, and the leading digits
+// combined in three multiplications (D. Lemire's fast_float,
+// parse_eight_digits_unrolled). Little-endian: p[0] is the lowest byte.
+constexpr std::uint64_t kOnes = 0x0101010101010101ull;
+constexpr bool kSwar = std::endian::native == std::endian::little;
+
+std::uint64_t load8(const char* p) {
+  std::uint64_t w = 0;
+  std::memcpy(&w, p, 8);
+  return w;
+}
+
+// How many of w's bytes, from the first, are digits. A byte is one when its
+// high nibble is 3 and stays 3 with 6 added (a carry out of a byte ≥ 0xFA
+// only follows a non-digit, so the count is exact).
+int leading_digits(std::uint64_t w) {
+  const std::uint64_t high = 0xF0 * kOnes, threes = 0x30 * kOnes;
+  const std::uint64_t not_digit = ((w & high) ^ threes) | (((w + 0x06 * kOnes) & high) ^ threes);
+  return not_digit == 0 ? 8 : std::countr_zero(not_digit) / 8;
+}
+
+// The number the first k (1 to 8) bytes of w write, all digits.
+std::uint32_t digits_value(std::uint64_t w, int k) {
+  std::uint64_t v = (w - 0x30 * kOnes) << (8 * (8 - k));  // the k digits in the top bytes, zeros before them
+  v = v * 10 + (v >> 8);
+  v = (((v & 0x000000FF000000FFull) * 0x000F424000000064ull) +
+       (((v >> 16) & 0x000000FF000000FFull) * 0x0000271000000001ull)) >> 32;
+  return static_cast<std::uint32_t>(v);
+}
+
+// The digits from p on, at most to end, appended to `mantissa` (which wraps
+// beyond 19 digits: the caller refuses those); returns where they stop.
+[[gnu::always_inline]] inline const char* digit_run(const char* p, const char* const end, std::uint64_t& mantissa) {
+  static constexpr std::array<std::uint64_t, 9> kScale = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000};
+  if constexpr (kSwar) {
+    while (end - p >= 8) {
+      const std::uint64_t w = load8(p);
+      const int k = leading_digits(w);
+      if (k == 0) return p;
+      mantissa = mantissa * kScale[static_cast<std::size_t>(k)] + digits_value(w, k);
+      p += k;
+      if (k < 8) return p;
+    }
+  }
+  for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
+  return p;
+}
+
+// The usual number, digits[<point>digits] of at most 7 digits in all, in one
+// word: the point taken out by a second load one byte on. False (p as it was)
+// for anything else.
+[[gnu::always_inline]] inline bool short_decimal(const char*& p, const char* const end, char point,
+                                                 std::uint64_t& mantissa, std::ptrdiff_t& whole,
+                                                 std::ptrdiff_t& fraction) {
+  if (!kSwar || end - p < 9) return false;
+  const std::uint64_t w = load8(p);
+  const int k1 = leading_digits(w);
+  if (k1 == 0 || k1 == 8) return false;
+  if (p[k1] != point) {  // digits alone
+    mantissa = digits_value(w, k1);
+    whole = k1;
+    fraction = 0;
+    p += k1;
+    return true;
+  }
+  const std::uint64_t before = (std::uint64_t{1} << (8 * k1)) - 1;
+  const std::uint64_t joined = (w & before) | (load8(p + 1) & ~before);  // without the point
+  const int k = leading_digits(joined);
+  if (k == k1 || k == 8) return false;  // no digit after the point, or perhaps more than 8 digits
+  mantissa = digits_value(joined, k);
+  whole = k1;
+  fraction = k - k1;
+  p += k + 1;
+  return true;
+}
+
+// Clinger's fast path: a plain decimal [-]digits[<point>digits][e[±]digits]
+// with a mantissa m of at most 19 digits and below 2⁵³, and a power of ten p
+// (the exponent less the fraction's digits) with |p| ≤ 22, is m · 10^p or
+// m / 10^−p of two exact doubles, so the one IEEE operation is correctly
+// rounded: the value std::from_chars gives. Reads it from p on and returns
+// where it stops (the first character that cannot continue it), or nullptr
+// for anything else (left to from_chars). Reference: W. D. Clinger, "How to
+// read floating point numbers accurately", PLDI 1990.
+[[gnu::always_inline]] inline const char* plain_decimal_prefix(const char* p, const char* const end, char point,
+                                                              double& value) {
   static constexpr std::array<double, 23> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  const char* p = text.data();
-  const char* const end = p + text.size();
+  const auto digit = [&] { return p != end && static_cast<unsigned>(*p - '0') < 10u; };
   const bool negative = p != end && *p == '-';
   if (negative) ++p;
   std::uint64_t mantissa = 0;
-  const char* const digits = p;
-  for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
-  const auto whole = p - digits;
-  std::ptrdiff_t fraction = 0;
-  if (p != end && *p == '.') {
-    const char* const first = ++p;
-    for (; p != end && static_cast<unsigned>(*p - '0') < 10u; ++p) mantissa = 10 * mantissa + static_cast<unsigned>(*p - '0');
-    fraction = p - first;
-    if (fraction == 0) return false;
+  std::ptrdiff_t whole = 0, fraction = 0;
+  if (!short_decimal(p, end, point, mantissa, whole, fraction)) {
+    const char* const digits = p;
+    p = digit_run(p, end, mantissa);
+    whole = p - digits;
+    if (p != end && *p == point) {
+      const char* const first = ++p;
+      p = digit_run(p, end, mantissa);
+      fraction = p - first;
+      if (fraction == 0) return nullptr;
+    }
   }
-  if (p != end || whole == 0 || whole + fraction > 19 || fraction > 22 || mantissa > (std::uint64_t{1} << 53))
-    return false;
-  const double v = static_cast<double>(mantissa) / kPow10[static_cast<std::size_t>(fraction)];
+  if (whole == 0 || whole + fraction > 19 || mantissa > (std::uint64_t{1} << 53)) return nullptr;
+  std::ptrdiff_t power = -fraction;
+  if (p != end && (*p == 'e' || *p == 'E')) {
+    ++p;
+    const bool down = p != end && *p == '-';
+    if (p != end && (*p == '-' || *p == '+')) ++p;
+    const char* const first = p;
+    std::ptrdiff_t exponent = 0;
+    for (; digit() && p - first < 4; ++p) exponent = 10 * exponent + (*p - '0');
+    if (p == first || digit()) return nullptr;  // no digits, or more than 4
+    power += down ? -exponent : exponent;
+  }
+  if (power < -22 || power > 22) return nullptr;
+  const double m = static_cast<double>(mantissa);
+  const double v = power >= 0 ? m * kPow10[static_cast<std::size_t>(power)] : m / kPow10[static_cast<std::size_t>(-power)];
   value = negative ? -v : v;
+  return p;
+}
+
+// The whole of `text` as a plain decimal with a '.' (above).
+bool parse_plain_decimal(std::string_view text, double& value) {
+  const char* const end = text.data() + text.size();
+  double read = 0.0;
+  if (plain_decimal_prefix(text.data(), end, '.', read) != end) return false;
+  value = read;
   return true;
 }
 
@@ -196,6 +300,92 @@ std::string parse_csv_number(std::string_view field, bool decimal_comma, double&
   if (!problem.empty() && has_comma && !decimal_comma)
     problem += " (a decimal comma? give --decimal-comma)";
   return problem;
+}
+
+namespace {
+
+// The first delimiter or quote from p on, or end; eight bytes at a time where
+// eight remain (a zero byte of w ^ c·kOnes marks c; the lowest mark is exact).
+const char* next_delimiter_or_quote(const char* p, const char* const end, char delimiter) {
+  if constexpr (kSwar) {
+    const std::uint64_t delimiters = kOnes * static_cast<unsigned char>(delimiter), quotes = kOnes * '"';
+    const auto zero_bytes = [](std::uint64_t v) { return (v - kOnes) & ~v & (0x80 * kOnes); };
+    for (; end - p >= 8; p += 8) {
+      const std::uint64_t w = load8(p);
+      if (const std::uint64_t marks = zero_bytes(w ^ delimiters) | zero_bytes(w ^ quotes); marks != 0)
+        return p + std::countr_zero(marks) / 8;
+    }
+  }
+  for (; p != end && *p != delimiter && *p != '"'; ++p) {
+  }
+  return p;
+}
+
+}  // namespace
+
+const char* skip_csv_field(const char* p, const char* const end, char delimiter) {
+  bool quoted = false;  // as split_fields: "" inside quotes toggles twice
+  for (;; ++p) {
+    p = next_delimiter_or_quote(p, end, delimiter);
+    if (p == end) return quoted ? nullptr : p;
+    if (*p == '"') quoted = !quoted;
+    else if (!quoted) return p;
+  }
+}
+
+namespace {
+
+// scan_csv_number for a field with blanks or quotes around the number.
+const char* scan_csv_number_around(const char* p, const char* const end, char delimiter, bool decimal_comma,
+                                   double& value) {
+  // trim's blanks, but never the delimiter: a tab inside quotes is left to split_fields
+  const auto skip_blanks = [&] {
+    while (p != end && (*p == ' ' || (*p == '\t' && delimiter != '\t'))) ++p;
+  };
+  skip_blanks();
+  const bool quoted = p != end && *p == '"';
+  if (quoted) {
+    ++p;
+    skip_blanks();
+  }
+  double read = 0.0;
+  p = plain_decimal_prefix(p, end, decimal_comma ? ',' : '.', read);
+  if (p == nullptr) return nullptr;
+  skip_blanks();
+  if (quoted) {
+    if (p == end || *p != '"') return nullptr;
+    ++p;
+    skip_blanks();
+  }
+  if (p != end && *p != delimiter) return nullptr;
+  value = read;
+  return p;
+}
+
+}  // namespace
+
+const char* scan_csv_number(const char* p, const char* const end, char delimiter, bool decimal_comma,
+                            double& value) {
+  if (p != end && (*p == '-' || static_cast<unsigned>(*p - '0') < 10u)) {  // most fields: the number alone
+    double read = 0.0;
+    const char* const after = plain_decimal_prefix(p, end, decimal_comma ? ',' : '.', read);
+    if (after != nullptr && (after == end || *after == delimiter)) {
+      value = read;
+      return after;
+    }
+  }
+  return scan_csv_number_around(p, end, delimiter, decimal_comma, value);
+}
+
+const char* scan_iso8601_field(const char* p, const char* const end, char delimiter, Timestamp& out) {
+  const char* const field_end = skip_csv_field(p, end, delimiter);
+  if (field_end == nullptr) return nullptr;
+  std::string_view text = trim(std::string_view(p, static_cast<std::size_t>(field_end - p)));
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {  // unquote_field's text, without a copy
+    text = text.substr(1, text.size() - 2);
+    if (text.find('"') != std::string_view::npos) return nullptr;
+  }
+  return parse_iso8601(text, out) ? field_end : nullptr;
 }
 
 bool parse_iso8601(std::string_view text, Timestamp& out) {

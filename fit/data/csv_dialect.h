@@ -63,6 +63,25 @@ std::string unquote_field(std::string_view field);
 // options do not expect.
 std::string parse_csv_number(std::string_view field, bool decimal_comma, double& value);
 
+// The fast path of a data row, field by field without copies: each function
+// reads the field that starts at p (the line ends at `end`) and returns where
+// it ends (at the delimiter or at `end`), or nullptr for a field it does not
+// take, which is then left to split_fields, parse_csv_number and unquote_field
+// (they give the same value, or the message). Whatever they take, they read
+// as those do, bit for bit.
+//
+// A field the row does not need, by split_fields' quotes (nullptr: a quote
+// left open at the end of the line).
+const char* skip_csv_field(const char* p, const char* end, char delimiter);
+// A number: blanks, RFC 4180 quotes around it, [-]digits[.digits][e[±]dd]
+// (',' for the point with decimal_comma) as Clinger's fast path reads it
+// exactly (parse_csv_number's first step); nullptr for anything else (a
+// leading '+', more than 19 digits, powers of ten beyond ±22, nan, text).
+const char* scan_csv_number(const char* p, const char* end, char delimiter, bool decimal_comma, double& value);
+struct Timestamp;
+// An ISO 8601 timestamp (parse_iso8601 of unquote_field's text).
+const char* scan_iso8601_field(const char* p, const char* end, char delimiter, Timestamp& out);
+
 // An ISO 8601 date and time (above) as whole seconds since 1970-01-01 UTC
 // and the fraction of a second; false when `text` is not one.
 struct Timestamp {

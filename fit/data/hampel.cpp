@@ -11,14 +11,14 @@ void HampelWindow::push(double x) {
   const std::uint64_t seq = first_ + values_.size();
   values_.push_back(x);
   while (!lowest_.empty() && lowest_.back().second >= x) lowest_.pop_back();
-  lowest_.emplace_back(seq, x);
+  lowest_.push_back({seq, x});
   while (!highest_.empty() && highest_.back().second <= x) highest_.pop_back();
-  highest_.emplace_back(seq, x);
-  if (sorting_) sorted_.insert(std::upper_bound(sorted_.begin(), sorted_.end(), x), x);
+  highest_.push_back({seq, x});
+  if (sorting_) sorted_.insert(x, seq);
 }
 
 void HampelWindow::pop() {
-  if (sorting_) sorted_.erase(std::lower_bound(sorted_.begin(), sorted_.end(), values_.front()));
+  if (sorting_) sorted_.erase(values_.front(), first_);
   values_.pop_front();
   ++first_;
   while (!lowest_.empty() && lowest_.front().first < first_) lowest_.pop_front();
@@ -40,22 +40,32 @@ HampelWindow::Verdict HampelWindow::judge(double x, bool want_scale) {
       return {};
     }
     clean_ = 0;
+    if (!sorting_) {  // near a glitch: keep the window in order for a while
+      sorting_ = true;
+      for (std::size_t i = 0; i < n; ++i) sorted_.insert(values_[i], first_ + i);
+    }
   }
-  scratch_.assign(values_.begin(), values_.end());
-  if (!want_scale && !sorting_) {  // near a glitch: keep the window sorted for a while
-    sorting_ = true;
-    sorted_ = scratch_;
-    std::sort(sorted_.begin(), sorted_.end());
+  // (A sample given the full test for the report alone gets its median and MAD by selection.)
+  double median = 0.0;
+  if (sorting_) {
+    median = sorted_.median();
+  } else {
+    scratch_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) scratch_[i] = values_[i];
+    median = median_in_place(scratch_);
   }
-  // (A sample given the full test for the report alone gets its median by selection.)
-  const double median =
-      sorting_ ? (n % 2 == 1 ? sorted_[n / 2] : 0.5 * (sorted_[n / 2 - 1] + sorted_[n / 2])) : median_in_place(scratch_);
   const double deviation = std::abs(x - median);
   if (!want_scale && !(deviation > bound)) return {};
-  for (std::size_t i = 0; i < n; ++i) scratch_[i] = std::abs(values_[i] - median);
+  double mad = 0.0;
+  if (sorting_) {
+    mad = sorted_.median_abs_deviation(median);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) scratch_[i] = std::abs(values_[i] - median);
+    mad = median_in_place(scratch_);
+  }
   Verdict v;
   v.scaled = true;
-  v.scale = std::max(kMadToSigma * median_in_place(scratch_), rule_.floor_dph);
+  v.scale = std::max(kMadToSigma * mad, rule_.floor_dph);
   v.glitch = deviation > rule_.threshold * v.scale && deviation > rule_.zero_dph;
   return v;
 }

@@ -18,8 +18,10 @@
 // Most samples are far from any glitch: a sample within t · s_floor of every
 // value of its window is within it of their median too, so it is kept without
 // the median, in O(1), from the window's running minimum and maximum
-// (monotone queues). Near a glitch the window is kept sorted for a while, so
-// the median is a lookup; the MAD is one selection.
+// (monotone queues). Near a glitch the window is kept in order for a while (an
+// order-statistic tree, fit/data/order_statistic_tree.h), so that the median
+// and the MAD cost O(log w) and O(log² w) for a window of w samples, and each
+// sample entering or leaving O(log w).
 //
 // The windows: centred, ±W/2 around the sample (offline and one-pass:
 // CentredHampel, which judges a sample once the samples after it have
@@ -34,9 +36,11 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <utility>
 #include <vector>
+
+#include "fit/data/order_statistic_tree.h"
+#include "fit/data/ring_buffer.h"
 
 namespace gyrotherm::fit {
 
@@ -69,13 +73,13 @@ class HampelWindow {
 
  private:
   HampelRule rule_;
-  std::deque<double> values_;
+  RingBuffer<double> values_;
   std::uint64_t first_ = 0;  // the sequence number of values_.front()
-  std::deque<std::pair<std::uint64_t, double>> lowest_, highest_;
+  RingBuffer<std::pair<std::uint64_t, double>> lowest_, highest_;
   // Near a glitch: the values in order, until the shortcut has kept a
   // window's worth of samples in a row.
   bool sorting_ = false;
-  std::vector<double> sorted_;
+  OrderStatisticTree sorted_;
   std::size_t clean_ = 0;
   std::vector<double> scratch_;
 };
@@ -92,7 +96,7 @@ class CentredHampel {
 
   template <class Judged>
   void add(double t, double x, Payload payload, Judged&& judged) {
-    pending_.push_back({t, x, std::move(payload)});
+    pending_.push_back(Entry{t, x, std::move(payload)});
     advance(false, judged);
   }
   template <class Judged>
@@ -129,7 +133,7 @@ class CentredHampel {
   HampelWindow window_;
   double half_s_;
   std::size_t stride_;
-  std::deque<Entry> pending_;
+  RingBuffer<Entry> pending_;
   std::size_t base_ = 0, lo_ = 0, hi_ = 0, next_ = 0;
   std::vector<double> scales_;
 };
@@ -144,7 +148,7 @@ class TrailingHampel {
  private:
   HampelWindow window_;
   double window_s_;
-  std::deque<double> times_;
+  RingBuffer<double> times_;
 };
 
 }  // namespace gyrotherm::fit

@@ -45,6 +45,7 @@ class Preparer {
     ++d_.raw_samples;
     probe_.add(r.t, r.temp, r.gyro);
     if (!averager_) {
+      if (prefix_.empty()) prefix_.reserve(kPrefixRows);  // once: no copies and fresh pages as it grows
       prefix_.push_back(r);
       if (prefix_.size() == kPrefixRows) begin_stream(false);
       return;

@@ -15,7 +15,8 @@
 //     offline filter's window (the samples within ±W/2), median, MAD and
 //     decisions. A sample is judged once a sample more than W/2 after it has
 //     arrived; most are kept in O(1) by the window's running minimum and
-//     maximum, the window is kept sorted near glitches. The report's scale is
+//     maximum, and near glitches the window is kept in order (an
+//     order-statistic tree: median O(log w), MAD O(log² w)). The report's scale is
 //     taken over every max(1, n/10⁴)-th sample of a record that fits in the
 //     prefix (as in memory), over every 1000th sample of a longer one.
 //  3. Averaging. Judged samples go straight into the window averager.
