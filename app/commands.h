@@ -40,6 +40,9 @@ CLI::App* add_subcommand(CLI::App& app, const std::string& name, const std::stri
 // When the user picks `command`, *run becomes `work`.
 void when_chosen(CLI::App* command, Run* run, Run work);
 
+// What a command prints: `json` (one line) with --json, else `text`; returns 0.
+int print_report(bool as_json, const nlohmann::ordered_json& json, const std::string& text);
+
 // A command that lists a registry: NAME [--json], printing text() or json()'s one line.
 void add_listing_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
                          std::string (*text)(), nlohmann::ordered_json (*json)());

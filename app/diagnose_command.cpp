@@ -11,10 +11,8 @@
 namespace gyrotherm::app {
 
 void add_diagnose_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = add_subcommand(
-      app, "diagnose",
-      "Where a bias model fails on measurements, and which physical effect is missing");
-  bind_command<studies::DiagnoseCommandOptions>(cmd, run, studies::diagnose_option_table(), [](const auto& o) {
+  add_table_command<studies::DiagnoseCommandOptions>(app, run, "diagnose", "Where a bias model fails on measurements, and which physical effect is missing",
+      studies::diagnose_option_table(), [](const auto& o) {
     studies::DiagnoseRequest request = studies::diagnose_request(o);
     request.progress = step_progress();
     const studies::DiagnoseRun r = studies::run_diagnose(request);

@@ -12,8 +12,8 @@
 namespace gyrotherm::app {
 
 void add_export_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = add_subcommand(app, "export", "Export a saved fit as autopilot parameters (PX4, ArduPilot) or C");
-  bind_command<studies::ExportCommandOptions>(cmd, run, studies::export_option_table(), [](const auto& o) {
+  add_table_command<studies::ExportCommandOptions>(app, run, "export", "Export a saved fit as autopilot parameters (PX4, ArduPilot) or C",
+      studies::export_option_table(), [](const auto& o) {
     const studies::ExportRequest request = studies::export_request(o);
     const studies::ExportOutput out = studies::run_export(request);
     fmt::print("{}", request.json ? studies::export_json(request, out).dump() + "\n" : studies::export_text(out));

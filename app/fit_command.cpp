@@ -11,8 +11,8 @@
 namespace gyrotherm::app {
 
 void add_fit_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = add_subcommand(app, "fit", "Fit a bias model to measurements (CSV)");
-  bind_command<studies::FitCommandOptions>(cmd, run, studies::fit_option_table(), [](const auto& o) {
+  add_table_command<studies::FitCommandOptions>(app, run, "fit", "Fit a bias model to measurements (CSV)",
+      studies::fit_option_table(), [](const auto& o) {
     const studies::FitRun r = studies::run_fit(studies::fit_request(o));
     fmt::print("{}", o.json ? r.json : studies::fit_text(r));
     return 0;

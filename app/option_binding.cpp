@@ -36,6 +36,11 @@ int parse_command_line(int argc, char** argv, Run* run) {
   return -1;
 }
 
+int print_report(bool as_json, const nlohmann::ordered_json& json, const std::string& text) {
+  fmt::print("{}", as_json ? json.dump() + "\n" : text);
+  return 0;
+}
+
 CLI::App* add_subcommand(CLI::App& app, const std::string& name, const std::string& description) {
   return app.add_subcommand(name, description);
 }

@@ -50,4 +50,11 @@ void bind_command(CLI::App* command, Run* run, const studies::OptionTable<Option
   });
 }
 
+// A subcommand `name` with its option table, in one call.
+template <class Options>
+void add_table_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
+                       const studies::OptionTable<Options>& table, std::function<int(const Options&)> work) {
+  bind_command<Options>(add_subcommand(app, name, description), run, table, std::move(work));
+}
+
 }  // namespace gyrotherm::app

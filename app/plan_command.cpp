@@ -31,10 +31,7 @@ int run_plan(const studies::PlanCommandOptions& o) {
 }  // namespace
 
 void add_plan_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = add_subcommand(
-      app, "plan",
-      "Design the shortest chamber test that identifies a model to the precision wanted");
-  bind_command<studies::PlanCommandOptions>(cmd, run, studies::plan_option_table(), run_plan);
+  add_table_command<studies::PlanCommandOptions>(app, run, "plan", "Design the shortest chamber test that identifies a model to the precision wanted", studies::plan_option_table(), run_plan);
 }
 
 }  // namespace gyrotherm::app

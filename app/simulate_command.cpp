@@ -2,7 +2,6 @@
 //                    [--hidden TERM=COEF ...] -o OUT.csv [--plot PNG] [--json]
 // (studies/options/simulate_options.h, sim/simulation_run.h)
 
-#include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "app/option_binding.h"
@@ -11,13 +10,10 @@
 namespace gyrotherm::app {
 
 void add_simulate_command(CLI::App& app, Run* run) {
-  CLI::App* cmd = add_subcommand(
-      app, "simulate",
-      "Simulate a thermal test: gyro output and temperatures at the scenario's rate, with known truth");
-  bind_command<studies::SimulateCommandOptions>(cmd, run, studies::simulate_option_table(), [](const auto& o) {
+  add_table_command<studies::SimulateCommandOptions>(app, run, "simulate", "Simulate a thermal test: gyro output and temperatures at the scenario's rate, with known truth",
+      studies::simulate_option_table(), [](const auto& o) {
     const sim::SimulationRun r = sim::simulate_to_files(studies::simulate_request(o));
-    fmt::print("{}", o.json ? sim::simulation_json(r).dump() + "\n" : sim::simulation_text(r));
-    return 0;
+    return print_report(o.json, sim::simulation_json(r), sim::simulation_text(r));
   });
 }
 

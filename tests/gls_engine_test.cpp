@@ -2,8 +2,6 @@
 // coverage over seeds of a known noise, and its width against ols's under the
 // same honest covariance.
 
-#include "fit/engines/gls.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -12,6 +10,7 @@
 #include <cmath>
 #include <memory>
 
+#include "fit/engines/engine.h"
 #include "fit/engines/ols.h"
 #include "fit/model/noise_model.h"
 #include "fit_test_data.h"
@@ -48,6 +47,13 @@ NoiseModel gauss_markov() {
 }
 
 // The paper's model on the synthetic cycle with a draw of `noise`, the noise attached as identified.
+// The registry's gls with covariance=COVARIANCE ("" for the default).
+FitResult gls_fit(const LinearProblem& problem, const std::string& covariance = "") {
+  EngineSettings settings;
+  if (!covariance.empty()) settings.options["covariance"] = covariance;
+  return find_engine("gls").make(settings)->fit(problem);
+}
+
 LinearProblem problem_with(const NoiseModel& noise, std::uint64_t seed) {
   const AveragedSeries s = synthetic_cycle(kWindows);
   const DerivedSeries d = derive(s, DerivativeMode::central);
@@ -67,7 +73,7 @@ LinearProblem problem_with(const NoiseModel& noise, std::uint64_t seed) {
 TEST(GlsEngine, EqualsTheDenseFormula) {
   const NoiseModel noise = gauss_markov();
   const LinearProblem problem = problem_with(noise, 3);
-  const FitResult r = GlsEngine({.covariance = "model"}).fit(problem);
+  const FitResult r = gls_fit(problem, "model");
   const Eigen::MatrixXd& x = problem.scaled_design();
   const auto l = x.rows();
   Eigen::MatrixXd design(l, x.cols() + 1);
@@ -100,7 +106,7 @@ TEST(GlsEngine, IntervalsCoverAndAreNarrowerThanLeastSquaresUnderRandomWalk) {
   const int seeds = 300;
   for (int s = 1; s <= seeds; ++s) {
     const LinearProblem problem = problem_with(walk(), static_cast<std::uint64_t>(s));
-    const FitResult g = GlsEngine({.covariance = "model"}).fit(problem);
+    const FitResult g = gls_fit(problem, "model");
     const FitResult o = OlsEngine({.intervals = "model"}).fit(problem);
     for (int j = 0; j < 3; ++j) {
       covered[j] += g.intervals[j].lower <= truth[j] && truth[j] <= g.intervals[j].upper;
@@ -121,7 +127,7 @@ TEST(GlsEngine, IntervalsCoverAndAreNarrowerThanLeastSquaresUnderRandomWalk) {
 
 TEST(GlsEngine, WithoutAnIdentifiedNoiseItIsLeastSquaresAndSaysSo) {
   const LinearProblem problem = paper_problem(0.002, 0.5, 4);
-  const FitResult g = GlsEngine().fit(problem);
+  const FitResult g = gls_fit(problem);
   const FitResult o = OlsEngine().fit(problem);
   EXPECT_EQ(g.z, o.z);
   EXPECT_EQ(g.engine, "gls");
@@ -129,7 +135,7 @@ TEST(GlsEngine, WithoutAnIdentifiedNoiseItIsLeastSquaresAndSaysSo) {
 }
 
 TEST(GlsEngine, RefusesAnUnknownCovariance) {
-  EXPECT_THROW(GlsEngine({.covariance = "sandwich"}), InputError);
+  EXPECT_THROW(gls_fit(paper_problem(0.002), "sandwich"), InputError);
 }
 
 }  // namespace

@@ -1,4 +1,28 @@
-#include "fit/engines/gls.h"
+// `gls`: generalised least squares under the record's identified noise.
+//
+//   β̂ = (X̃ᵀC⁻¹X̃)⁻¹ X̃ᵀC⁻¹ỹ   on the design with its intercept column, C the
+//   window means' covariance of the noise identified on the least-squares
+//   residual (LinearProblem::noise(), fit/model/noise_model.h), applied in
+//   O(l·r) by its semi-separable Cholesky factor (fit/model/noise_whitening.h).
+//
+// Where the noise has memory (flicker, Gauss–Markov, random walk) GLS weighs
+// the windows as the noise makes them informative, and its intervals are
+// narrower than least squares' under the same honest covariance (measured in
+// results/ols_coverage.md). It does not minimise the paper's σ of eq. (6):
+// its residual's σ is a little above ols's, by design.
+//
+// 95 % intervals: the estimate's variance under each noise structure the
+// record supports alike (the identified model and its alternatives, as ols's
+// sandwich takes them), Var = A C' Aᵀ with
+// A = (X̃ᵀC⁻¹X̃)⁻¹X̃ᵀC⁻¹, the widest per coefficient (covariance=widest, the
+// default) or the point model's alone (covariance=model); Student t with
+// least squares' Satterthwaite degrees of freedom under the same noise.
+// Without an identified noise (too few windows) it is ols, and says so.
+//
+// Reference: Kariya & Kurata, Generalized Least Squares (Wiley 2004), ch. 2;
+// the covariance of a GLS estimate under a misspecified C, ibid. §2.5.
+
+#include <string>
 
 #include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
@@ -6,6 +30,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "fit/engines/engine.h"
 #include "fit/engines/engine_options.h"
 #include "fit/engines/ols.h"
 #include "fit/model/linear_problem.h"
@@ -15,6 +40,31 @@
 namespace gyrotherm::fit {
 
 namespace {
+
+struct GlsOptions {
+  std::string covariance = "widest";  // widest (over the noise structures the record supports alike) or model
+  void validate() const;
+};
+
+class GlsEngine : public Engine {
+ public:
+  explicit GlsEngine(GlsOptions options) : options_(std::move(options)) { options_.validate(); }
+  FitResult fit(const LinearProblem& problem, FitObserver* observer) const override;
+
+ private:
+  GlsOptions options_;
+};
+
+const OptionTable<GlsOptions>& option_table() {
+  static const OptionTable<GlsOptions> table = {
+      {"covariance", &GlsOptions::covariance, one_of({"widest", "model"}),
+       "widest (each interval the widest under the noise models the record supports alike) or model (the "
+       "identified model's alone)"},
+  };
+  return table;
+}
+
+void GlsOptions::validate() const { check_options("gls", option_table(), *this); }
 
 // The variance of each coefficient of A·y (A = (XᵀC⁻¹X)⁻¹XᵀC⁻¹ on [1, X]) under
 // each model, the widest kept.
@@ -85,23 +135,6 @@ FitResult GlsEngine::fit(const LinearProblem& problem, FitObserver* observer) co
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
-
-namespace {
-
-const OptionTable<GlsOptions>& option_table() {
-  static const OptionTable<GlsOptions> table = {
-      {"covariance", &GlsOptions::covariance, one_of({"widest", "model"}),
-       "widest (each interval the widest under the noise models the record supports alike) or model (the "
-       "identified model's alone)"},
-  };
-  return table;
-}
-
-}  // namespace
-
-void GlsOptions::validate() const { check_options("gls", option_table(), *this); }
-
-GlsEngine::GlsEngine(GlsOptions options) : options_(std::move(options)) { options_.validate(); }
 
 EngineInfo gls_engine_info() {
   EngineInfo info = engine_info<GlsEngine>("gls",

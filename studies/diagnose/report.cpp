@@ -203,15 +203,15 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
                                 // significant by itself; the group is.
                                 {"significant", c.passed() && c.confounded_with.empty()},
                                 {"group_significant", c.passed() && !c.confounded_with.empty()},
-                                {"p_value", c.p_value},
-                                {"level", c.level},
-                                {"p_bootstrap", c.p_bootstrap},
-                                {"effective_tests", c.tests},
-                                {"likelihood_share", c.likelihood_share},
-                                {"round", c.round},
-                                {"cv_gain_pct", std::isfinite(c.cv_gain_pct) ? nlohmann::ordered_json(c.cv_gain_pct)
-                                                                             : nlohmann::ordered_json(nullptr)},
-                                {"confounded_with", c.confounded_with}};
+                                {"p_value", c.p_value}};
+    // The likelihood test's other numbers, then the check and the group.
+    const std::pair<const char*, double> test[] = {
+        {"level", c.level}, {"p_bootstrap", c.p_bootstrap}, {"effective_tests", c.tests},
+        {"likelihood_share", c.likelihood_share}};
+    for (const auto& [name, value] : test) e[name] = value;
+    e["round"] = c.round;
+    e["cv_gain_pct"] = std::isfinite(c.cv_gain_pct) ? nlohmann::ordered_json(c.cv_gain_pct) : nlohmann::ordered_json(nullptr);
+    e["confounded_with"] = c.confounded_with;
     if (c.term->parameter) e[c.term->parameter->name] = c.parameter;
     effects.push_back(e);
   }
