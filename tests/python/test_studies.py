@@ -41,6 +41,16 @@ def test_diagnose_on_arrays_suggests_a_python_call(cycle_csv):
     assert "next: gyrotherm diagnose " in gyrotherm.diagnose(cycle_csv, model="T + T^2 + dT").summary()
 
 
+def test_the_next_call_repeats_the_data_options_and_runs(cycle_csv):
+    data = read_csv(cycle_csv)
+    d = gyrotherm.diagnose(data, model="T + T^2 + dT", avg=200, deriv_span=900)
+    assert d.as_dict()["next"]["options"] == {"avg": "200", "deriv_span": "900"}
+    call = d.next_call
+    assert call.endswith(", avg=200, deriv_span=900)"), call
+    again = eval(call, {"gyrotherm": gyrotherm, "data": data})  # runs as printed
+    assert again.as_dict()["model"] == d.as_dict()["next"]["model"]
+
+
 def test_diagnose_on_arrays_of_several_channels_suggests_each_channels_call(cycle_csv):
     data = dict(read_csv(cycle_csv))
     data["gyro a"] = data["gyro_dph"]  # a channel name with a space
