@@ -1,5 +1,7 @@
 #include "fit/pipeline.h"
 
+#include <boost/math/tools/minima.hpp>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -212,21 +214,11 @@ std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vect
           best_x = x;
         }
       }
-      // Golden section between the grid neighbours of the best point.
+      // Brent's method between the grid neighbours of the best point.
       const double step = (hi - lo) / (kGrid - 1);
-      double a = std::max(lo, best_x - step), b = std::min(hi, best_x + step);
-      const double g = (std::sqrt(5.0) - 1.0) / 2.0;
-      double c = b - g * (b - a), d = a + g * (b - a);
-      double fc = sigma_at(c), fd = sigma_at(d);
-      for (int it = 0; it < 40; ++it) {
-        if (fc < fd) {
-          b = d; d = c; fd = fc; c = b - g * (b - a); fc = sigma_at(c);
-        } else {
-          a = c; c = d; fc = fd; d = a + g * (b - a); fd = sigma_at(d);
-        }
-      }
-      const double refined = fc < fd ? c : d;
-      params[j] = std::exp(std::min(fc, fd) < best_f ? refined : best_x);
+      const auto [refined, f] =
+          boost::math::tools::brent_find_minima(sigma_at, std::max(lo, best_x - step), std::min(hi, best_x + step), 30);
+      params[j] = std::exp(f < best_f ? refined : best_x);
     }
   }
   return params;

@@ -9,8 +9,9 @@
 // Nonlinear term parameters (warmup's τ, hyst's dead band) are found by
 // variable projection: for a candidate parameter the linear coefficients are
 // the exact least-squares ones, so the parameter is chosen to minimise the
-// least-squares σ by a bounded 1-D search (a log-spaced grid, then golden
-// section around the best grid point; one parameter at a time, repeated);
+// least-squares σ by a bounded 1-D search (a log-spaced grid, then Brent's
+// method (Boost.Math) around the best grid point; one parameter at a time,
+// repeated);
 // the chosen engine then fits the linear coefficients at that parameter.
 //
 // Their 95 % intervals (with ols, whose intervals are autocorrelation-robust)
