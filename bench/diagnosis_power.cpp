@@ -30,6 +30,7 @@
 #include <cstdlib>  // atoi
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,7 @@ std::vector<Base> bases(const std::string& scenario) {
 
 struct Outcome {
   bool anything = false;  // something passed the test
+  std::vector<std::string> passed;  // what passed ("step" for any step)
   bool step_found = false;
   bool step_covered = false;  // the found step's 95 % interval holds its size
   bool effect_first = false;
@@ -129,7 +131,12 @@ Outcome run(const fit::PreparedData& data, const std::vector<const fit::Term*>& 
   const studies::Diagnosis d = studies::diagnose(data, model, fit::find_engine("ols"), {});
   Outcome o;
   o.floor = d.noise_floor_dph;
-  for (const studies::CandidateReport& c : d.candidates) o.anything = o.anything || c.passed();
+  for (const studies::CandidateReport& c : d.candidates)
+    if (c.passed()) {
+      o.anything = true;
+      const std::string name(c.term->name);
+      o.passed.push_back(name.rfind("step@", 0) == 0 ? "step" : name);
+    }
   for (const studies::StepEvent& e : d.events)
     if (e.significant && std::abs(e.time_s - step_time_s) <= 3600.0 && e.size_dph * step_dph > 0.0) {
       o.step_found = true;
@@ -175,17 +182,23 @@ int main(int argc, char** argv) {
     // Clean records: false alarms, and the floor that sizes the steps.
     int alarms = 0;
     double floor_sum = 0.0;
+    std::map<std::string, int> alarm_terms;  // what passed on the clean records
     const int clean = part == "steps" || part == "effects" ? std::min(seeds, 20) : seeds;
     for (int s = 1; s <= clean; ++s) {
       const Outcome o = run(record(s, 1), model, -1e9, 0.0, "");
       alarms += o.anything;
+      for (const std::string& name : o.passed) ++alarm_terms[name];
       floor_sum += o.floor;
     }
     const double floor = floor_sum / clean;
     md += fmt::format("\n## {}\n\nnoise floor (diagnose's estimate, mean of {} clean records): {:.3g} °/h\n\n", cell.name,
                       clean, floor);
-    if (part == "all" || part == "clean")
-      md += fmt::format("| clean records | anything significant |\n|---|---|\n| {} | {} |\n\n", clean, share(alarms, clean));
+    if (part == "all" || part == "clean") {
+      std::string what;
+      for (const auto& [name, n] : alarm_terms) what += fmt::format("{}{} {}", what.empty() ? "" : ", ", name, n);
+      md += fmt::format("| clean records | anything significant | what passed (records) |\n|---|---|---|\n| {} | {} | {} |\n\n",
+                        clean, share(alarms, clean), what.empty() ? "-" : what);
+    }
     if (part == "all" || part == "steps") {
       md += "| step | found (significant, within 1 h, right sign) | its 95 % interval holds the size | anything significant |\n|---|---|---|---|\n";
       for (const double k : {2.0, 4.0, 6.0, 10.0}) {
