@@ -1,6 +1,7 @@
 #include "studies/coverage/interval_coverage.h"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "fit/model/formula.h"
@@ -67,12 +68,18 @@ std::vector<Coverage> interval_coverage(const sim::Scenario& scenario, const sim
     sim::Scenario sc = scenario;
     sc.seed = options.first_seed + static_cast<std::uint64_t>(s);
     const fit::Measurement m = measurement_of(sim::Simulator(sc, rig, gyro).run(), scenario.name);
+    // The record prepared once per sensor time constant the methods use.
+    std::map<double, fit::PreparedData> prepared;
     for (std::size_t i = 0; i < methods.size(); ++i) {
-      fit::PipelineOptions pipeline;
-      pipeline.sensor_tau_s = methods[i].sensor_tau_s;
+      auto it = prepared.find(methods[i].sensor_tau_s);
+      if (it == prepared.end()) {
+        fit::PipelineOptions pipeline;
+        pipeline.sensor_tau_s = methods[i].sensor_tau_s;
+        it = prepared.emplace(methods[i].sensor_tau_s, fit::prepare_data(m, pipeline)).first;
+      }
+      const fit::PreparedData& data = it->second;
       fit::EngineSettings settings;
       if (!methods[i].intervals.empty()) settings.options["intervals"] = methods[i].intervals;
-      const fit::PreparedData data = fit::prepare_data(m, pipeline);
       const fit::ModelFit f = fit::fit_model(data, terms, fit::find_engine(methods[i].engine), settings);
       for (std::size_t k = 0; k < index.size(); ++k) {
         TermCoverage& t = out[i].terms[k];
