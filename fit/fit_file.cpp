@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fit/model/formula.h"
+#include "fit/record_support.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
@@ -88,14 +89,22 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
   if (fit.noise) j["noise_model"] = noise_model_json(fit.noise->model);
   {
     const RecordSupport& s = fit.support;
-    Json flags = Json::object();
+    Json flags = Json::object(), reasons = Json::object();
     for (std::size_t k = 0; k < fit.terms.size() && k < s.flags.size(); ++k)
       if (!s.flags[k].empty()) flags[fit.terms[k]->name] = s.flags[k];
+    for (std::size_t k = 0; k < fit.terms.size() && k < s.reasons.size(); ++k)
+      if (!s.reasons[k].empty()) {
+        Json list = Json::array();
+        for (SupportReason r : s.reasons[k]) list.push_back(to_string(r));
+        reasons[fit.terms[k]->name] = list;
+      }
     j["record"] = {{"temp_range_c", {s.temp_min_c, s.temp_max_c}},
                    {"temperature_levels", s.temperature_levels},
                    {"level_width_c", s.level_width_c},
+                   {"largest_gap_c", {s.gap_from_c, s.gap_to_c}},
                    {"temp_time_correlation", s.temp_time_correlation},
-                   {"flags", flags}};
+                   {"flags", flags},
+                   {"reasons", reasons}};
   }
   if (!fit.engine.p_values.empty()) {
     Json p;
@@ -297,6 +306,32 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     if (d.contains("sample_interval_s")) s.sample_interval_s = number(d["sample_interval_s"], "data.sample_interval_s");
     if (d.contains("outlier_floor_dph")) s.outlier_floor_dph = number(d["outlier_floor_dph"], "data.outlier_floor_dph");
     if (d.contains("bursts") && d["bursts"].is_boolean()) s.bursts = d["bursts"].get<bool>();
+  }
+  // The terms the record could not support over its range, with why (fit
+  // files from before record.reasons have none).
+  if (j.contains("record") && j["record"].is_object() && j["record"].contains("reasons")) {
+    const nlohmann::json& record = j["record"];
+    const nlohmann::json& reasons = record["reasons"];
+    if (!reasons.is_object())
+      throw InputError(fmt::format("{}: record.reasons: expected {{term: [reason, ...]}}", file.string()));
+    for (const auto& [term, list] : reasons.items()) {
+      bool limits = false;
+      for (const nlohmann::json& r : list.is_array() ? list : nlohmann::json::array()) {
+        bool known = false;
+        for (int k = 0; k < kSupportReasons; ++k)
+          if (r.is_string() && r.get<std::string>() == to_string(static_cast<SupportReason>(k))) {
+            known = true;
+            limits = limits || limits_range(static_cast<SupportReason>(k));
+          }
+        if (!known)
+          throw InputError(fmt::format("{}: record.reasons.{}: expected a list of narrow_range, few_levels, gap, "
+                                       "time_locked",
+                                       file.string(), term));
+      }
+      if (!limits) continue;
+      const nlohmann::json* why = record.contains("flags") && record["flags"].contains(term) ? &record["flags"][term] : nullptr;
+      s.support_flags.emplace_back(term, why && why->is_string() ? why->get<std::string>() : list.dump());
+    }
   }
   return s;
 }

@@ -51,6 +51,10 @@ struct SavedFit {
   // fit files written before it was saved.
   std::optional<std::pair<double, double>> temp_range_c;
   std::string data_file;  // the data it was fitted on, as given to fit
+  // Per term the record it was fitted on cannot support over its range, why
+  // (fit/record_support.h: too few temperature levels, too narrow a range, a
+  // gap with no data; not temperature locked to time, a caution of meaning).
+  std::vector<std::pair<std::string, std::string>> support_flags;
   // Of that data, for the real-time compensator (fit/causal_compensator.h):
   // the sample interval, the burst mode and the glitch rule's floor.
   std::optional<double> sample_interval_s, outlier_floor_dph;

@@ -10,6 +10,7 @@ namespace gyrotherm::fit {
 RecordSupport record_support(const PreparedData& data, const std::vector<const Term*>& terms) {
   RecordSupport s;
   s.flags.assign(terms.size(), "");
+  s.reasons.assign(terms.size(), {});
   const std::vector<double>& T = data.series.temp_c;
   const std::vector<double>& t = data.series.time_s;
   if (T.empty()) return s;
@@ -20,8 +21,17 @@ RecordSupport record_support(const PreparedData& data, const std::vector<const T
   s.level_width_c = std::max(0.5, range / 40.0);
   std::map<long, int> bins;
   for (double v : T) ++bins[static_cast<long>(std::floor((v - s.temp_min_c) / s.level_width_c))];
-  const int needed = std::max(2, static_cast<int>(std::ceil(0.03 * static_cast<double>(T.size()))));
-  for (const auto& [bin, count] : bins) s.temperature_levels += count >= needed;
+  // The effective number of levels: the perplexity exp(H) of the windows'
+  // share per bin (a Hill number), rounded: two equal plateaus are 2, a
+  // plateau with a tenth of the windows elsewhere less than 2, and a ramp
+  // as many as the bins it crosses (a count of bins above a share would
+  // call a steady ramp no level at all).
+  double entropy = 0.0;
+  for (const auto& [bin, count] : bins) {
+    const double p = static_cast<double>(count) / static_cast<double>(T.size());
+    entropy -= p * std::log(p);
+  }
+  s.temperature_levels = static_cast<int>(std::lround(std::exp(entropy)));
   // Spearman's rank correlation: any monotone warm-up or cool-down is 1.
   auto ranks = [](const std::vector<double>& v) {
     std::vector<std::size_t> order(v.size());
@@ -45,26 +55,59 @@ RecordSupport record_support(const PreparedData& data, const std::vector<const T
     stT += (rt[i] - mean) * (rT[i] - mean);
   }
   s.temp_time_correlation = stt > 0 && sTT > 0 ? stT / std::sqrt(stt * sTT) : 0.0;
+  {
+    std::vector<double> sorted = T;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 1; i < sorted.size(); ++i)
+      if (sorted[i] - sorted[i - 1] > s.gap_to_c - s.gap_from_c) {
+        s.gap_from_c = sorted[i - 1];
+        s.gap_to_c = sorted[i];
+      }
+  }
+  const double gap = s.gap_to_c - s.gap_from_c;
 
   for (std::size_t j = 0; j < terms.size(); ++j) {
     const effects::Family family = terms[j]->family;
     if (family != effects::Family::temperature_power && family != effects::Family::temperature_state)
       continue;
     std::vector<std::string> why;
-    if (range < kNarrowRangeC)
+    std::vector<SupportReason>& reasons = s.reasons[j];
+    if (range < kNarrowRangeC) {
+      reasons.push_back(SupportReason::narrow_range);
       why.push_back(fmt::format("the record spans only {:.2g} °C", range));
-    if (s.temperature_levels < kMinTemperatureLevels)
+    }
+    if (s.temperature_levels < kMinTemperatureLevels) {
+      reasons.push_back(SupportReason::few_levels);
       why.push_back(fmt::format("it rests on {} temperature level{}", s.temperature_levels,
                                 s.temperature_levels == 1 ? "" : "s"));
-    if (std::abs(s.temp_time_correlation) > kTimeLockedCorrelation)
+    }
+    if (range >= kNarrowRangeC && gap > kGapShareOfRange * range) {
+      reasons.push_back(SupportReason::gap);
+      why.push_back(fmt::format("no data between {:.1f} and {:.1f} °C ({:.0f} % of the range): the model there is a "
+                                "guess",
+                                s.gap_from_c, s.gap_to_c, 100.0 * gap / range));
+    }
+    if (std::abs(s.temp_time_correlation) > kTimeLockedCorrelation) {
+      reasons.push_back(SupportReason::time_locked);
       why.push_back(fmt::format("temperature follows time (r = {:.2f}): a drift would be read as "
                                 "temperature",
                                 s.temp_time_correlation));
+    }
     std::string text;
     for (const std::string& w : why) text += (text.empty() ? "" : "; ") + w;
     s.flags[j] = text;
   }
   return s;
+}
+
+std::string_view to_string(SupportReason r) {
+  switch (r) {
+    case SupportReason::narrow_range: return "narrow_range";
+    case SupportReason::few_levels: return "few_levels";
+    case SupportReason::gap: return "gap";
+    case SupportReason::time_locked: return "time_locked";
+  }
+  return "?";
 }
 
 std::string describe_support(const RecordSupport& s) {

@@ -27,8 +27,16 @@ cd build-asan
 # so are plan's whole searches (tens of seconds each in the normal build;
 # its refusals and one full search that finds nothing still run here), and
 # the step cases on the 75 h random profile (about 55 s each here; the
-# cycle's cases run the same code).
+# cycle's cases run the same code). Cases that repeat one code path over
+# effects, step times or seeds run once here (the rest in the normal build):
+# of the per-effect diagnoses only grad's (the one with a second
+# temperature), of the cycle's step cases only 19800_up, of the end-to-end
+# polynomial terms none beyond T^3; and the three slowest diagnose cases
+# (40-65 s each here), whose paths the other diagnose cases run.
 studies='IntervalsCover|NineOfTen|UnbiasedAndCovered|UniformPValues|PValuesAreUniform|RarelyShowAStep|RecoveryOverSeeds|PlanIsShorterThanEveryRecipe|ThePlanMeetsItsTarget|PredictionMatchesTheSpread|NotPassedOffAsDrift/random'
+studies+='|ReachesTheFloor/t|ReachesTheFloor/warmup|ReachesTheFloor/hyst|ReachesTheFloor/T_3|ReachesTheFloor/T_dT|ReachesTheFloor/d2T'
+studies+='|NotPassedOffAsDrift/cycle_7200_up|NotPassedOffAsDrift/cycle_25200_down|TemperatureFourth.WorksEndToEnd|TemperatureFifth.WorksEndToEnd'
+studies+='|NamedFirstOrGroupedNeverTheLagAlone|AnotherGyroAxisIsNoCauseUnlessNamed|DriftOnAMonotoneWarmUpCannotBeToldFromTemperature'
 # The program's tests in one process per core (GoogleTest's sharding) rather
 # than ctest's process per test: 600 starts of the sanitized program cost
 # 0.2 s each (270 s against 326 s for the whole run on 2 cores). The normal

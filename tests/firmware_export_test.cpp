@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fmt/format.h>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -183,6 +184,47 @@ TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
   gyrotherm::testing::write_text(dir / "old.json", old.dump());
   expect_refused(dir, "export old.json --format ardupilot -o out.txt", "no data.temp_range_c");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
+}
+
+// A fit on two temperature plateaus (13 and 47.5 °C, two sessions joined):
+// the parameters would claim the curve between them, where nothing was
+// measured. export refuses, naming the caution, and writes nothing; with
+// --accept-caution it writes the file with the caution at its top, on stderr
+// and in --json.
+TEST(CliExport, AFitOnTwoPlateausIsRefusedUnlessTheCautionIsAccepted) {
+  ScratchDir dir;
+  std::string csv = "time_s,temp_c,gyro_dph\n";
+  for (int k = 0; k < 4 * 3600; ++k) {
+    const double temp = k < 2 * 3600 ? 13.0 : 47.5;
+    const double noise = 0.01 * std::sin(0.37 * k) + 0.007 * std::cos(1.9 * k);
+    const double t = temp + 0.4 * std::sin(2.0 * M_PI * k / 1800.0);  // each session wanders a little
+    csv += fmt::format("{},{:.3f},{:.6f}\n", k, t, 2.0 + 0.05 * t + noise);
+  }
+  gyrotherm::testing::write_text(dir / "plateaus.csv", csv);
+  const auto fitted = run_cli(dir, "fit plateaus.csv --model 'T + T^2' -o fit.json");
+  ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
+  const nlohmann::json fit = nlohmann::json::parse(slurp(dir / "fit.json"));
+  EXPECT_EQ(fit["record"]["reasons"]["T^2"], nlohmann::json({"few_levels", "gap"})) << fit["record"].dump();
+  for (const std::string format : {"px4", "ardupilot", "c"}) {
+    const auto refused = run_cli(dir, "export fit.json --format " + format + " -o out.txt");
+    EXPECT_EQ(refused.exit_code, 2) << format;
+    EXPECT_NE(refused.err.find("cannot support these terms"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("T^2: it rests on 2 temperature levels"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("no data between 13.4 and 47.1 °C"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("--accept-caution"), std::string::npos) << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
+    const auto accepted = run_cli(dir, "export fit.json --format " + format + " --accept-caution --json -o out.txt");
+    ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
+    const std::string text = slurp(dir / "out.txt");
+    const std::string comment = format == "c" ? "//" : "#";
+    EXPECT_EQ(text.rfind(comment + " CAUTION (exported with --accept-caution)", 0), 0u) << text.substr(0, 200);
+    EXPECT_NE(text.find(comment + "   gyro_dph: T^2: it rests on 2 temperature levels"), std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(accepted.out);
+    bool warned = false;
+    for (const auto& w : j["warnings"]) warned = warned || w.get<std::string>().rfind("caution: gyro_dph: T^2:", 0) == 0;
+    EXPECT_TRUE(warned) << j["warnings"].dump();
+    std::filesystem::remove(dir / "out.txt");
+  }
 }
 
 }  // namespace

@@ -185,7 +185,8 @@ TEST(OptionTable, ExportRows) {
                   {"axes", "gz,-,gx", FIELD(request.axes)}, {"channel", "gx", FIELD(request.channel)},
                   {"prefix", "my", FIELD(request.prefix)}, {"instance", "3", FIELD(request.instance)},
                   {"device_id", "4294967296", FIELD(request.device_id)}, {"boot_temp", "-5", FIELD(request.boot_temp_c)},
-                  {"drop_unsupported", "true", FIELD(request.drop_unsupported)}, {"data", "d.csv", FIELD(request.data)},
+                  {"drop_unsupported", "true", FIELD(request.drop_unsupported)},
+                  {"accept_caution", "true", FIELD(request.accept_caution)}, {"data", "d.csv", FIELD(request.data)},
                   {"json", "true", FIELD(request.json)}, {"output", "p.params", FIELD(request.output)}});
 }
 

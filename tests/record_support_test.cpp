@@ -8,6 +8,7 @@
 
 #include <boost/random/mersenne_twister.hpp>
 #include <boost/random/normal_distribution.hpp>
+#include <algorithm>
 #include <cmath>
 
 #include "fit/model/formula.h"
@@ -74,6 +75,26 @@ TEST(RecordSupport, ARampingCycleRaisesNoFlag) {
   EXPECT_EQ(f.support.flags[0], "");
   EXPECT_NEAR(f.support.temp_min_c, -20.0, 0.1);
   EXPECT_NEAR(f.support.temp_max_c, 40.0, 0.1);
+}
+
+TEST(RecordSupport, ASteadyRampIsManyLevelsAndTwoPlateausHaveAGap) {
+  // A 2 h ramp over 30 °C: every bin it crosses is a level, no gap.
+  const ModelFit ramp = fit_t(record(2.0, [](double t) { return 10.0 + 30.0 * t / 7200.0; }, 0.0, 1));
+  EXPECT_GE(ramp.support.temperature_levels, 30);
+  EXPECT_LT(ramp.support.gap_to_c - ramp.support.gap_from_c, 1.0);
+  ASSERT_EQ(ramp.support.reasons.size(), 1u);
+  for (SupportReason r : ramp.support.reasons[0]) EXPECT_EQ(r, SupportReason::time_locked);
+  // Two plateaus: two levels and the gap between them.
+  const ModelFit two = fit_t(record(8.0, [](double t) { return t < 4 * 3600 ? 10.0 : 40.0; }, 1e-3, 1));
+  EXPECT_NEAR(two.support.gap_from_c, 10.0, 0.5);
+  EXPECT_NEAR(two.support.gap_to_c, 40.0, 0.5);
+  const auto& why = two.support.reasons[0];
+  EXPECT_NE(std::find(why.begin(), why.end(), SupportReason::few_levels), why.end());
+  EXPECT_NE(std::find(why.begin(), why.end(), SupportReason::gap), why.end());
+  EXPECT_NE(two.support.flags[0].find("no data between 10.0 and 40.0 °C"), std::string::npos) << two.support.flags[0];
+  // A plateau with a tenth of the windows on a second one: under two levels.
+  const ModelFit lopsided = fit_t(record(10.0, [](double t) { return t < 9 * 3600 ? 10.0 : 40.0; }, 1e-3, 1));
+  EXPECT_LE(lopsided.support.temperature_levels, 2);
 }
 
 }  // namespace

@@ -223,9 +223,10 @@ std::string significance_text(const DiagnosisOptions& o) {
   return fmt::format(
       "likelihood under the record's identified noise (REML, identified again with each round's leading candidate "
       "as a fixed effect): the share of the whitened residual each candidate removes at its best parameter or step "
-      "position, p from a parametric bootstrap of {} draws (Sidak over the grid's effective number of tests); "
-      "weighted Holm over the candidates at {:g} (each registry term and the step family weigh 1, the log's "
-      "columns together 1), and at least {:g} % of the excess removed",
+      "position, p from a parametric bootstrap of {} draws (Sidak over the grid's effective number of tests), the "
+      "largest over the noise models the record supports alike; weighted step-down over the candidates at {:g} "
+      "(each registry term and the step family weigh 1, the log's columns together 1; Sidak over the family's "
+      "effective number of tests from the same draws), and at least {:g} % of the excess removed",
       o.draws, o.alpha, o.min_reduction_pct);
 }
 

@@ -35,12 +35,14 @@
 //     candidate as a fixed effect too, so that an effect (a mode hop, a slow
 //     lag) is not first read as noise (random walk, Gauss–Markov) and then
 //     tested against itself; every candidate of the round is tested under
-//     the second. The family-wise error over the candidates is held by
-//     weighted Bonferroni, step-down over the rounds (Holm): each registry
-//     term and the step family weigh one, the log's columns together one, so
-//     logged columns never dilute the physical candidates. A candidate is
-//     significant when p ≤ α·w/W (W the weights still untested) and it
-//     removes at least 10 % of the excess. Ranking is greedy (forward
+//     the second, and under each noise model the record supports alike
+//     (the largest p). The family-wise error over the candidates is held
+//     step-down over the rounds (Holm): each registry term and the step
+//     family weigh one, the log's columns together one, so logged columns
+//     never dilute the physical candidates. A candidate is significant when
+//     p ≤ w·(1 − (1 − α)^{1/W_eff}) (W_eff the effective number of tests of
+//     the candidates still untested, from the same draws: likelihood_test.h)
+//     and it removes at least 10 % of the excess. Ranking is greedy (forward
 //     selection): the significant candidate with the largest likelihood gain
 //     joins the model and the others are tested again, so a second hidden
 //     effect is judged on what the first leaves; the reductions are shares
@@ -133,7 +135,7 @@ struct CandidateReport {
   double p_value = 1;                  // over its own grid, before the family correction
   double p_bootstrap = 1;              // the share of the bootstrap's draws at least as large (a check)
   double tests = 1;                    // its grid's effective number of independent tests
-  double level = 0;                    // the level p was compared with: α·w/W
+  double level = 0;                    // the level p was compared with: w·(1 − (1 − α)^{1/W_eff})
   double cv_gain_pct = std::numeric_limits<double>::quiet_NaN();  // block cross-validated SSE gain (a check)
   int round = 1;                       // the round of forward selection that scored it
   bool significant = false;

@@ -35,8 +35,14 @@ LikelihoodTest::LikelihoodTest(const fit::NoiseWhitener& whitener, const Eigen::
   columns_.resize(l, 0);
 }
 
-std::size_t LikelihoodTest::add(const Eigen::MatrixXd& columns) {
+double family_level(double alpha, double weight, double family_tests) {
+  return weight * -std::expm1(std::log1p(-alpha) / std::max(family_tests, 1e-12));
+}
+
+std::size_t LikelihoodTest::add(const Eigen::MatrixXd& columns, double weight) {
   const std::size_t index = scores_.size();
+  weights_.push_back(weight);
+  family_tests_ += weight;
   CandidateScore s;
   Eigen::MatrixXd w = whitener_.whiten(columns);
   const Eigen::VectorXd before = w.colwise().squaredNorm();
@@ -102,6 +108,23 @@ void LikelihoodTest::calibrate(int draws, std::uint64_t seed) {
     s.tests = grid_size[j] == 1 || !(sum > 0.0) ? 1.0 : std::max(1.0, draws / sum);
     s.p_value = -std::expm1(s.tests * std::log1p(-single_p(s.share, dof_)));
   }
+  // The family: each draw's smallest p_j/w_j over the candidates, Q_b, and
+  // W_eff = B / Σ_b −ln(1 − Q_b), within [the largest weight, W].
+  double sum = 0.0, heaviest = 0.0;
+  for (std::size_t j = 0; j < scores_.size(); ++j)
+    if (scores_[j].fitted) heaviest = std::max(heaviest, weights_[j]);
+  if (!(heaviest > 0.0)) return;
+  for (Eigen::Index b = 0; b < draws; ++b) {
+    double q = 1.0;
+    for (std::size_t j = 0; j < scores_.size(); ++j) {
+      const CandidateScore& s = scores_[j];
+      if (!s.fitted || !(weights_[j] > 0.0)) continue;
+      const double p = -std::expm1(s.tests * std::log1p(-single_p(largest(static_cast<Eigen::Index>(j), b), dof_)));
+      q = std::min(q, p / weights_[j]);
+    }
+    sum += -std::log1p(-std::min(q, 1.0 - 1e-16));
+  }
+  if (sum > 0.0) family_tests_ = std::clamp(draws / sum, heaviest, family_tests_);
 }
 
 }  // namespace gyrotherm::studies

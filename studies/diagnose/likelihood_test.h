@@ -32,6 +32,17 @@
 // record's; how far they hold under noise identified from the record itself
 // is measured in results/diagnosis_power.md.
 //
+// The family: candidates are strongly correlated (a drift in time, a
+// warm-up, a slow lag and a step late in the record remove much the same
+// part), so a Bonferroni split of α over them is far stricter than the
+// family-wise error needs. With each candidate's weight w_j (its share of
+// α), the same draws give every candidate's p on each draw and so the
+// draw's smallest p_j/w_j, Q_b; as for a grid, −ln(1 − Q_b) is
+// exponential with rate W_eff, the family's effective number of tests
+// (W_eff ≤ W = Σ w_j, equal when the candidates are independent), and a
+// candidate passes when p_j ≤ w_j·(1 − (1 − α)^{1/W_eff}) (Westfall & Young's
+// min-p adjustment, in Šidák's form).
+//
 // References: R. H. Westfall, S. S. Young, "Resampling-based multiple
 // testing" (Wiley 1993), ch. 2 (max-statistics over correlated tests);
 // Z. Šidák, JASA 62 (1967) 626–633; T. Nyholt, Am. J. Hum. Genet. 74 (2004)
@@ -59,13 +70,17 @@ class LikelihoodTest {
   // model: the current model's regressors (no intercept column); y: the window means.
   LikelihoodTest(const fit::NoiseWhitener& whitener, const Eigen::MatrixXd& model, const Eigen::VectorXd& y);
 
-  // A candidate's grid, one column per value (l × g); returns its index.
-  std::size_t add(const Eigen::MatrixXd& columns);
+  // A candidate's grid, one column per value (l × g), and its weight in the
+  // family-wise correction; returns its index.
+  std::size_t add(const Eigen::MatrixXd& columns, double weight = 1.0);
   // Draws the bootstrap (draws × windows independent normals from `seed`'s
   // stream) and scores every candidate added.
   void calibrate(int draws, std::uint64_t seed);
   const CandidateScore& score(std::size_t candidate) const { return scores_[candidate]; }
   std::size_t candidates() const { return scores_.size(); }
+  // W_eff: the family's effective number of tests (weighted; W = Σ w_j
+  // before calibration or where the draws cannot tell).
+  double family_tests() const { return family_tests_; }
   // ν = l − m − 1.
   double residual_dof() const { return dof_; }
   // The whitened, projected residual's squared norm (the model's −2 ln L part).
@@ -83,6 +98,12 @@ class LikelihoodTest {
   std::vector<std::size_t> owner_;  // candidate of each stored column
   std::vector<std::size_t> grid_index_;  // its index in the candidate's grid
   std::vector<CandidateScore> scores_;
+  std::vector<double> weights_;
+  double family_tests_ = 0;
 };
+
+// The level a candidate of weight w is compared with in a family of W_eff
+// effective tests: w·(1 − (1 − α)^{1/W_eff}).
+double family_level(double alpha, double weight, double family_tests);
 
 }  // namespace gyrotherm::studies

@@ -344,7 +344,8 @@ ExporterInfo c_exporter() {
                                            : ""));
             warn_if_little_compensation(f, f.instability_after_dph, &out);
             return out;
-          }};
+          },
+          "//"};
 }
 
 }  // namespace gyrotherm::studies

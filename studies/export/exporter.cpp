@@ -110,7 +110,30 @@ ExportOutput run_export(const ExportRequest& request) {
           "{}: the fit reads its temperatures de-lagged by --sensor-tau {:g} s, which no exported form applies "
           "(firmwares and the C compensator read the sensor as it is): fit again without --sensor-tau to export",
           request.fit_file, f.pipeline.sensor_tau_s));
+  // What the record could not support travels with the parameters, or stops them.
+  std::vector<std::string> cautions;
+  for (const fit::SavedFit& f : fits)
+    for (const auto& [term, why] : f.support_flags)
+      cautions.push_back(fmt::format("{}: {}: {}", channel_name(f), term, why));
+  if (!cautions.empty() && !request.accept_caution) {
+    std::string list;
+    for (const std::string& c : cautions) list += "\n  " + c;
+    throw InputError(fmt::format(
+        "{}: the record it was fitted on cannot support these terms, so the exported parameters would claim more "
+        "than the fit showed:{}\nmeasure where the record has no data (a test over the whole range: 'gyrotherm "
+        "plan'), or export anyway with --accept-caution (the cautions then go into the file)",
+        request.fit_file, list));
+  }
   ExportOutput out = exporter.write(request, fits);
+  if (!cautions.empty()) {
+    std::string top = fmt::format("{} CAUTION (exported with --accept-caution): the record the fit was made on cannot "
+                                  "support:\n", exporter.comment);
+    for (const std::string& c : cautions) {
+      top += fmt::format("{}   {}\n", exporter.comment, c);
+      out.warnings.push_back("caution: " + c);
+    }
+    out.text = top + out.text;
+  }
   write_file_atomically(request.output, out.text);
   return out;
 }

@@ -41,6 +41,10 @@ struct ExportRequest {
   long long device_id = 0;      // PX4's TC_G{n}_ID
   std::optional<double> boot_temp_c;  // ArduPilot: the gyro offsets' boot temperature (default: the record's first)
   bool drop_unsupported = false;
+  // Export even where the fit's record cannot support a term (too few
+  // temperature levels, a gap, a narrow range): the cautions go into the
+  // file's header, stderr and --json.
+  bool accept_caution = false;
   std::string data;     // the fitted data, for the cost of dropping terms
   const fit::Table* data_table = nullptr;  // or that data as arrays (the Python package's), in place of `data`
   std::string output;
@@ -75,6 +79,7 @@ struct ExporterInfo {
   std::string name;
   std::string description;  // for --help
   std::function<ExportOutput(const ExportRequest&, const std::vector<fit::SavedFit>&)> write;
+  std::string comment = "#";  // how the format starts a comment line
 };
 
 const std::vector<ExporterInfo>& exporter_registry();
@@ -86,7 +91,10 @@ std::string exporter_names(std::string_view last = " or ");
 std::string exporter_descriptions();
 
 // Loads the fit, writes request.output with the chosen format, returns what
-// to print (lines, warnings). Throws InputError (no file written) on bad input.
+// to print (lines, warnings). Throws InputError (no file written) on bad input,
+// and where the fit's record cannot support a term of it (SavedFit::
+// support_flags) unless request.accept_caution: then each caution is a
+// comment line at the file's top and a warning.
 ExportOutput run_export(const ExportRequest& request);
 // What export prints: its lines, one a line.
 std::string export_text(const ExportOutput& out);

@@ -23,6 +23,10 @@ const OptionTable<ExportCommandOptions>& export_option_table() {
            &R::boot_temp_c),
        row("--drop-unsupported", "Leave out terms the firmware cannot express, and say how much the instability rises",
            &R::drop_unsupported),
+       row("--accept-caution",
+           "Export even where the fit's record cannot support a term (too few temperature levels, a gap with no data, "
+           "too narrow a range); the cautions go into the file",
+           &R::accept_caution),
        row("--data",
            "The data the fit was made on, for what the firmware achieves and --drop-unsupported (default: the fit's own)",
            &R::data),
