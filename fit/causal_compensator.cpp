@@ -19,7 +19,10 @@ CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& 
 
 double CausalCompensator::bias_of(const AveragedSeries& windows) const {
   const DerivedSeries derived = derive(windows, DerivativeMode::causal, fit_.pipeline.derivative_span_s, fit_.pipeline.sensor_tau_s);
-  return model_values(design_matrix(derived, fit_.terms, fit_.parameters), fit_.coefficients).back();
+  const Eigen::MatrixXd x = settings_.hold_c ? design_matrix_held(derived, fit_.terms, fit_.parameters,
+                                                                  settings_.hold_c->first, settings_.hold_c->second)
+                                             : design_matrix(derived, fit_.terms, fit_.parameters);
+  return model_values(x, fit_.coefficients).back();
 }
 
 double CausalCompensator::update(double t, double temp, double temp2, double gyro, std::span<const double> extra,

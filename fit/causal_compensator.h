@@ -21,6 +21,8 @@
 // the same on any record and needs no look at the whole of it.
 
 #include <memory>
+#include <optional>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,6 +37,9 @@ struct CausalSettings {
   double sample_interval_s = 1.0;  // Δ
   bool bursts = false;             // every gap-free run one window
   double outlier_floor_dph = 0.0;  // s_floor
+  // The fit's temperature range (°C) the temperature terms are held within
+  // (fit/model/terms.h design_matrix_held), or none: evaluated anywhere.
+  std::optional<std::pair<double, double>> hold_c;
 };
 
 class CausalCompensator {

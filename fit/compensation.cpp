@@ -31,9 +31,16 @@ double instability_of(const std::vector<double>& v) {
 namespace {
 
 // B of every window, the compensated windows, the instability before and after.
-void window_models(Compensation& c, const SavedFit& fit) {
+void window_models(Compensation& c, const SavedFit& fit, OutsideRange outside) {
   const AveragedSeries& s = c.data.series;
-  c.window_model_dph = model_values(design_matrix(c.data.derived, fit.terms, fit.parameters),
+  c.fit_range_c = fit.temp_range_c;
+  c.outside = outside;
+  const bool hold = outside == OutsideRange::hold && fit.temp_range_c;
+  if (fit.temp_range_c)
+    for (double t : c.data.derived.temp_c) c.windows_outside += t < fit.temp_range_c->first || t > fit.temp_range_c->second;
+  c.window_model_dph = model_values(hold ? design_matrix_held(c.data.derived, fit.terms, fit.parameters,
+                                                              fit.temp_range_c->first, fit.temp_range_c->second)
+                                         : design_matrix(c.data.derived, fit.terms, fit.parameters),
                                     fit.coefficients);
   for (std::size_t p = 0; p < s.size(); ++p)
     c.window_compensated_dph.push_back(s.gyro_dph[p] - c.window_model_dph[p]);
@@ -45,8 +52,9 @@ void window_models(Compensation& c, const SavedFit& fit) {
 
 // The real-time compensator's record constants: the fit's (this record's for
 // fit files that lack them).
-CausalSettings causal_settings(const SavedFit& fit, const PreparedData& data) {
+CausalSettings causal_settings(const SavedFit& fit, const PreparedData& data, OutsideRange outside) {
   CausalSettings settings;
+  if (outside == OutsideRange::hold) settings.hold_c = fit.temp_range_c;
   settings.sample_interval_s = fit.sample_interval_s.value_or(data.averaging.sample_interval_s);
   settings.bursts = fit.bursts.value_or(data.averaging.bursts);
   settings.outlier_floor_dph = fit.outlier_floor_dph.value_or(data.outliers.floor_dph);
@@ -128,7 +136,8 @@ class RowSpill {
 }  // namespace
 
 Compensation compensate_streaming(const std::filesystem::path& csv, const SavedFit& fit,
-                                  const PipelineOptions& pipeline, const std::filesystem::path& output) {
+                                  const PipelineOptions& pipeline, const std::filesystem::path& output,
+                                  OutsideRange outside) {
   Compensation c;
   std::optional<RowSpill> spill;
   if (!output.empty()) spill.emplace(output);
@@ -136,7 +145,7 @@ Compensation compensate_streaming(const std::filesystem::path& csv, const SavedF
     if (spill) spill->write(rows, count);
   });
   check_columns(fit.terms, c.data, pipeline.columns);
-  window_models(c, fit);
+  window_models(c, fit, outside);
   if (!spill) return c;
 
   AtomicFile out(output);
@@ -145,7 +154,7 @@ Compensation compensate_streaming(const std::filesystem::path& csv, const SavedF
   std::string buffer(std::size_t{1} << 20, '\0');
   std::size_t used = 0;
   std::optional<CausalCompensator> causal;
-  if (pipeline.derivative == DerivativeMode::causal) causal.emplace(fit, causal_settings(fit, c.data));
+  if (pipeline.derivative == DerivativeMode::causal) causal.emplace(fit, causal_settings(fit, c.data, outside));
   const AveragedSeries& s = c.data.series;
   const std::vector<double>& glitches = c.data.outliers.times_s;  // increasing
   std::size_t p = 0, g = 0;
@@ -170,7 +179,8 @@ Compensation compensate_streaming(const std::filesystem::path& csv, const SavedF
   return c;
 }
 
-Compensation compensate(const Measurement& m, const SavedFit& fit, const PipelineOptions& pipeline) {
+Compensation compensate(const Measurement& m, const SavedFit& fit, const PipelineOptions& pipeline,
+                        OutsideRange outside) {
   Compensation c;
   std::vector<unsigned char> valid(m.size(), 1);
   c.data.file = m.file;
@@ -180,7 +190,7 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   fit::derive_into(c.data, pipeline);
   check_columns(fit.terms, c.data, pipeline.columns);
 
-  window_models(c, fit);
+  window_models(c, fit, outside);
   const AveragedSeries& s = c.data.series;
 
   c.time_s = m.time_s;
@@ -192,7 +202,7 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   if (pipeline.derivative == DerivativeMode::causal) {
     // The real-time compensator, sample by sample, with the fit's record
     // constants (this record's for fit files that lack them).
-    const CausalSettings settings = causal_settings(fit, c.data);
+    const CausalSettings settings = causal_settings(fit, c.data, outside);
     std::vector<std::string> names;
     std::vector<const std::vector<double>*> columns;
     for (const auto& [name, values] : m.extra) {
@@ -262,6 +272,14 @@ nlohmann::ordered_json compensation_json(const Compensation& c, const SavedFit& 
   j["ratio"] = c.ratio();
   j["windows"] = c.data.series.size();
   j["outliers_removed"] = c.data.outliers.removed;
+  if (c.fit_range_c) {
+    // Where the record leaves the range the fit was made on, and what the model did there.
+    j["fit_temp_range_c"] = {c.fit_range_c->first, c.fit_range_c->second};
+    j["windows_outside_range"] = c.windows_outside;
+    j["share_outside_range"] =
+        c.data.series.size() > 0 ? static_cast<double>(c.windows_outside) / static_cast<double>(c.data.series.size()) : 0.0;
+    j["outside_range"] = c.outside == OutsideRange::hold ? "held" : "extrapolated";
+  }
   if (!output.empty()) j["output"] = output;
   return j;
 }

@@ -19,6 +19,8 @@
 // compensated = gyro − B: the residual bias, centred near zero.
 
 #include <filesystem>
+#include <optional>
+#include <utility>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
@@ -27,8 +29,18 @@
 
 namespace gyrotherm::fit {
 
+// Outside the temperature range a fit was made on: hold the temperature terms
+// at the range's edge (what PX4 and ArduPilot do with TMIN/TMAX), or
+// evaluate the model anyway.
+enum class OutsideRange { hold, extrapolate };
+
 struct Compensation {
   PreparedData data;
+  // The fit's range, and the windows whose temperature (as the model reads
+  // it) lies outside it; what was done there.
+  std::optional<std::pair<double, double>> fit_range_c;
+  std::size_t windows_outside = 0;
+  OutsideRange outside = OutsideRange::hold;
   std::vector<double> window_model_dph;        // B at each window
   std::vector<double> window_compensated_dph;  // y − B at each window
   double before_dph = 0.0;
@@ -44,7 +56,7 @@ struct Compensation {
 double instability_of(const std::vector<double>& window_averages);
 
 Compensation compensate(const Measurement& measurement, const SavedFit& fit,
-                        const PipelineOptions& pipeline);
+                        const PipelineOptions& pipeline, OutsideRange outside = OutsideRange::hold);
 
 // A log too large to hold, one channel (fit/data/streaming.h): the CSV is
 // read once, the windows prepared in that pass while the parsed rows go to a
@@ -54,7 +66,8 @@ Compensation compensate(const Measurement& measurement, const SavedFit& fit,
 // result stay empty); the values are compensate()'s on the same windows.
 // Without an output, nothing is spilled.
 Compensation compensate_streaming(const std::filesystem::path& csv, const SavedFit& fit,
-                                  const PipelineOptions& pipeline, const std::filesystem::path& output);
+                                  const PipelineOptions& pipeline, const std::filesystem::path& output,
+                                  OutsideRange outside = OutsideRange::hold);
 
 // time_s, temp_c, gyro_dph, model_dph, compensated_dph, outlier (atomically).
 void write_compensated_csv(const std::filesystem::path& file, const Compensation& c);

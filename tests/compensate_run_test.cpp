@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
@@ -39,6 +41,55 @@ TEST(CompensateRun, TheFitsColumnsCanBeRenamedAndRewritten) {
   // One column per channel.
   expect_refused(dir, "compensate other.csv --fit fit.json --time-col 't (ms)' --time-unit ms --gyro-col rate,x",
                  "2 columns for the 1 channel");
+}
+
+// A fit on the warm-up applied to the cycle, which goes far beyond the
+// warm-up's range: the windows outside are counted and said, and the model is
+// held at the range's edge (offline and real time alike) unless
+// --extrapolate, as the firmwares hold their polynomial at TMIN/TMAX.
+TEST(CompensateRun, OutsideTheFittedRangeTheModelIsHeldAtTheEdgeAndSaysSo) {
+  ScratchDir dir;
+  simulate_shipped(dir, "warmup", "", "warm.csv");
+  simulate_shipped(dir, "cycle", "", "cycle.csv");
+  ASSERT_EQ(run_cli(dir, "fit warm.csv --model 'T + T^2' -o fit.json").exit_code, 0);
+  const nlohmann::json fit = nlohmann::json::parse(slurp(dir / "fit.json"));
+  const double hi = fit["data"]["temp_range_c"][1];
+  const auto& k = fit["coefficients"];
+  const double at_edge = k["1"].get<double>() + hi * (k["T"].get<double>() + hi * k["T^2"].get<double>());
+  // The model at the record's hottest row of a compensated CSV.
+  const auto hottest_model = [&](const std::string& file) {
+    std::ifstream in(dir / file);
+    double temp = -1e9, model = 0.0;
+    for (std::string line; std::getline(in, line);) {
+      if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+      double v[5];
+      if (std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4]) == 5 && v[1] > temp) {
+        temp = v[1];
+        model = v[3];
+      }
+    }
+    EXPECT_GT(temp, hi + 5.0);
+    return model;
+  };
+  for (const std::string mode : {"", " --causal"}) {
+    const auto held = run_cli(dir, "compensate cycle.csv --fit fit.json -o held.csv" + mode);
+    ASSERT_EQ(held.exit_code, 0) << held.err;
+    EXPECT_NE(held.out.find("lie outside the temperature range the fit was made on"), std::string::npos) << held.out;
+    EXPECT_NE(held.out.find("held at the range's edge"), std::string::npos) << held.out;
+    EXPECT_NEAR(hottest_model("held.csv"), at_edge, 1e-6 * std::abs(at_edge) + 1e-9) << mode;
+    const auto json = run_cli(dir, "compensate cycle.csv --fit fit.json --json" + mode);
+    const nlohmann::json j = nlohmann::json::parse(json.out);
+    EXPECT_EQ(j["outside_range"], "held");
+    EXPECT_GT(j["windows_outside_range"].get<int>(), 0);
+    EXPECT_GT(j["share_outside_range"].get<double>(), 0.1);
+    const auto extrapolated = run_cli(dir, "compensate cycle.csv --fit fit.json --extrapolate -o far.csv" + mode);
+    ASSERT_EQ(extrapolated.exit_code, 0) << extrapolated.err;
+    EXPECT_NE(extrapolated.out.find("extrapolated (--extrapolate)"), std::string::npos) << extrapolated.out;
+    EXPECT_GT(std::abs(hottest_model("far.csv") - at_edge), 1e-3 * std::abs(at_edge)) << mode;
+  }
+  // Within the range nothing is said.
+  const auto own = run_cli(dir, "compensate warm.csv --fit fit.json");
+  EXPECT_EQ(own.out.find("caution"), std::string::npos) << own.out;
 }
 
 }  // namespace

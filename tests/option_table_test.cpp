@@ -170,6 +170,7 @@ TEST(OptionTable, CompensateRows) {
                                    {"fit", "f.json", FIELD(request.fit_file)},
                                    {"output", "c.csv", FIELD(request.output)},
                                    {"causal", "true", FIELD(request.causal)},
+                                   {"extrapolate", "true", FIELD(request.extrapolate)},
                                    {"json", "true", FIELD(json)}};
   expect_rows(compensate_option_table(),
               lift(cases, column_cases(), [](const O& o) -> const auto& { return o.request.columns; }));

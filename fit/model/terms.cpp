@@ -143,6 +143,22 @@ Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<co
   return x;
 }
 
+Eigen::MatrixXd design_matrix_held(const DerivedSeries& derived, const std::vector<const Term*>& terms,
+                                   const std::vector<double>& parameters, double lo_c, double hi_c) {
+  Eigen::MatrixXd x = design_matrix(derived, terms, parameters);
+  if (std::all_of(derived.temp_c.begin(), derived.temp_c.end(), [&](double t) { return t >= lo_c && t <= hi_c; }))
+    return x;
+  DerivedSeries held = derived;
+  for (double& t : held.temp_c) t = std::clamp(t, lo_c, hi_c);
+  for (std::size_t j = 0; j < terms.size(); ++j) {
+    const effects::Family f = terms[j]->family;
+    if (f != effects::Family::temperature_power && f != effects::Family::temperature_state) continue;
+    terms[j]->compute(held, parameters[j],
+                      std::span<double>(x.col(static_cast<Eigen::Index>(j)).data(), static_cast<std::size_t>(x.rows())));
+  }
+  return x;
+}
+
 std::vector<double> default_parameters(const std::vector<const Term*>& terms) {
   std::vector<double> p(terms.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t j = 0; j < terms.size(); ++j)

@@ -66,6 +66,13 @@ inline std::string term_list() { return effects::names(); }
 Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<const Term*>& terms,
                               const std::vector<double>& parameters);
 
+// The same with the temperature held within [lo_c, hi_c] for the terms that
+// are a function of it (powers of T, a filtered temperature), as PX4 and
+// ArduPilot hold their polynomial at TMIN/TMAX; rates, gradients, time and
+// the log's columns see the record as it is.
+Eigen::MatrixXd design_matrix_held(const DerivedSeries& derived, const std::vector<const Term*>& terms,
+                                   const std::vector<double>& parameters, double lo_c, double hi_c);
+
 // Default parameters: the geometric mean of each parameter's bounds, NaN for
 // terms without one.
 std::vector<double> default_parameters(const std::vector<const Term*>& terms);

@@ -256,9 +256,24 @@ std::string c_header(const fit::SavedFit& fit, const fit::CausalSettings& settin
     throw InputError(fmt::format("--prefix '{}': expected a C identifier (letters, digits, _)", prefix));
   std::string terms;
   std::string coefficients;
+  // Outside the fitted range the temperature terms read the range's edge
+  // (fit/model/terms.h design_matrix_held), in a block whose T and prev_T
+  // are the held ones.
+  if (settings.hold_c)
+    terms += fmt::format(
+        "  const double T_held = T < {0} ? {0} : (T > {1} ? {1} : T);\n"
+        "  const double prev_T_held = prev_T < {0} ? {0} : (prev_T > {1} ? {1} : prev_T);\n"
+        "  (void)T_held; (void)prev_T_held;\n",
+        number(settings.hold_c->first), number(settings.hold_c->second));
   for (std::size_t j = 0; j < fit.terms.size(); ++j) {
     const fit::Term& t = *fit.terms[j];
-    terms += c_statement(t, j, fit.parameters[j]);
+    const bool held = settings.hold_c && (t.family == effects::Family::temperature_power ||
+                                          t.family == effects::Family::temperature_state);
+    if (held)
+      terms += "  {\n    const double T = T_held, prev_T = prev_T_held;\n    (void)T; (void)prev_T;\n" +
+               c_statement(t, j, fit.parameters[j]) + "  }\n";
+    else
+      terms += c_statement(t, j, fit.parameters[j]);
     terms += fmt::format("  B += {} * x[{}];\n", number(fit.coefficients.b[j]), j);
     coefficients += fmt::format(" *   {:<10} {:>24} {}{}\n", t.name, number(fit.coefficients.b[j]),
                                 t.coefficient_unit(),
@@ -269,8 +284,8 @@ std::string c_header(const fit::SavedFit& fit, const fit::CausalSettings& settin
   const double buffer = std::ceil(2.0 * fit.pipeline.outliers.window_s / settings.sample_interval_s) + 8.0;
   std::string range = "not saved in the fit";
   if (fit.temp_range_c)
-    range = fmt::format("{:.2f} to {:.2f} °C (the window temperatures it was fitted on; outside, the model "
-                        "extrapolates)",
+    range = fmt::format("{:.2f} to {:.2f} °C (the window temperatures it was fitted on; outside, its "
+                        "temperature terms read the range's edge, as compensate and the firmwares hold them)",
                         fit.temp_range_c->first, fit.temp_range_c->second);
   std::string out = fmt::format(
       "/*\n"
@@ -335,6 +350,7 @@ ExporterInfo c_exporter() {
             settings.sample_interval_s = *f.sample_interval_s;
             settings.bursts = *f.bursts;
             settings.outlier_floor_dph = f.outlier_floor_dph.value_or(0.0);
+            settings.hold_c = f.temp_range_c;  // held at the range's edge, as compensate holds it
             ExportOutput out;
             out.text = c_header(f, settings, r.prefix, export_header(r, f));
             out.lines.push_back(fmt::format(

@@ -1,5 +1,6 @@
 #include "studies/fit/compensate_run.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -35,8 +36,9 @@ CompensateRun compensate_record(const CompensateRequest& o, const RecordSource& 
     // A log too large to hold, one channel: never held, the output written as
     // it is computed (fit/compensation.h).
     streamed = run.fits.size() == 1 && source.streams(pipeline);
-    fit::Compensation c = streamed ? fit::compensate_streaming(source.name(), fit, pipeline, o.output)
-                                   : fit::compensate(source.read(pipeline.columns), fit, pipeline);
+    const fit::OutsideRange outside = o.extrapolate ? fit::OutsideRange::extrapolate : fit::OutsideRange::hold;
+    fit::Compensation c = streamed ? fit::compensate_streaming(source.name(), fit, pipeline, o.output, outside)
+                                   : fit::compensate(source.read(pipeline.columns), fit, pipeline, outside);
     run.channel_json.push_back(fit::compensation_json(c, fit, pipeline, source.name(), o.fit_file, o.output));
     return c;
   });
@@ -79,6 +81,17 @@ std::string compensate_text(const CompensateRun& run) {
                        fit::formula_text(fit.terms), run.channel_json[i]["derivative"].get<std::string>());
     out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
                        fit::averages_name(c.data, fit.pipeline), c.before_dph, c.after_dph, c.ratio());
+    if (c.windows_outside > 0 && c.fit_range_c) {
+      const auto [lo, hi] = std::minmax_element(c.data.derived.temp_c.begin(), c.data.derived.temp_c.end());
+      out += fmt::format(
+          "caution: {} of {} windows ({:.0f} %) lie outside the temperature range the fit was made on, {:.1f}..{:.1f} "
+          "°C (this record: {:.1f}..{:.1f} °C); {}\n",
+          c.windows_outside, c.data.series.size(), 100.0 * static_cast<double>(c.windows_outside) / static_cast<double>(c.data.series.size()),
+          c.fit_range_c->first, c.fit_range_c->second, *lo, *hi,
+          c.outside == fit::OutsideRange::hold
+              ? "there the model is held at the range's edge, as PX4 and ArduPilot hold it (--extrapolate evaluates it anyway)"
+              : "there the model is extrapolated (--extrapolate): nothing measured supports it");
+    }
   }
   if (!run.request.output.empty()) out += fmt::format("wrote {}\n", run.request.output);
   return out;

@@ -23,6 +23,9 @@ struct CompensateRequest {
   std::vector<fit::SavedFit> fits;
   std::string output;  // the compensated CSV, or ""
   bool causal = false;
+  // Evaluate the model outside the temperature range it was fitted on,
+  // rather than hold its temperature terms at the range's edge.
+  bool extrapolate = false;
   // Columns and units of the log where they differ from the fit's (set
   // fields only; ColumnMap::unset()): --gyro-col lists one column per channel.
   fit::ColumnMap columns = fit::ColumnMap::unset();
