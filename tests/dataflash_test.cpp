@@ -234,6 +234,21 @@ TEST(DataFlash, FormatsThatCannotBeRead) {
       .message(140, imu4(1, 2, 1.0f).bytes());
   fine.save(file);
   EXPECT_EQ(read_dataflash(file).gyros.at(1).samples, 3u);
+  // A FMT that contradicts itself for a message the reader does not need (a
+  // Copter 3.4 log's BAR3: 'QffcfI' adds up to 29 bytes, the FMT says 33): its
+  // messages are skipped by the FMT's length, and the log's description says so.
+  DataFlashWriter wild = copter4(2);
+  wild.fmt(199, "BAR3", "QffcfI", "TimeUS,Alt,Press,Temp,CRt,SMS", 33)
+      .message(199, std::string(30, '\x07'))
+      .message(140, imu4(1, 2, 1.0f).bytes());
+  wild.save(file);
+  const LogContents c = read_dataflash(file);
+  EXPECT_EQ(c.gyros.at(1).samples, 3u);
+  ASSERT_EQ(c.skipped_types.size(), 1u);
+  EXPECT_NE(c.describe().find("skipped (not read): FMT of type 199 'BAR3' (format 'QffcfI'): the format adds up to 29 "
+                              "bytes with the header, the FMT says 33"),
+            std::string::npos)
+      << c.describe();
 }
 
 TEST(DataFlash, AnInstanceTheFileDoesNotHold) {

@@ -220,6 +220,7 @@ std::string LogContents::describe() const {
   if (truncated)
     out += fmt::format("; the file ends inside the message at byte {} (a power cut?): read up to there",
                        truncated_at_byte);
+  for (const std::string& s : skipped_types) out += "; skipped (not read): " + s;
   return out;
 }
 

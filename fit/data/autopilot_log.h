@@ -69,6 +69,10 @@ struct LogContents {
   std::vector<LogGyro> gyros;           // by instance, lowest first
   bool truncated = false;               // the file ends inside a message (power cut): read up to there
   std::uint64_t truncated_at_byte = 0;  // where that message starts, when truncated
+  // Message types the reader does not need whose FMT contradicts itself (its
+  // format adds up to another length than it gives): skipped by the length
+  // the FMT gives, as pymavlink's DFReader does, each with why.
+  std::vector<std::string> skipped_types;
 
   // "ULog v1: sensor_gyro instance 0 (device 2621450): 6 samples, 12.5..17.5 s,
   // 40.03..40.36 °C; sensor_gyro instance 2 (...): ..., temperature NaN throughout"

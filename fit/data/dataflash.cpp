@@ -160,12 +160,18 @@ void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
     all_known = all_known && f != nullptr;
     if (f != nullptr) bytes += f->bytes;
   }
-  if (all_known && bytes != length)
-    in_.fail(at,
-             fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length));
+  const bool imu = name == "IMU" || name == "IMU2" || name == "IMU3";
+  if (all_known && bytes != length) {
+    const std::string why =
+        fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length);
+    // A message this reader needs must be read right; any other is skipped
+    // by the FMT's length, as pymavlink skips it, and said.
+    if (imu) in_.fail(at, why);
+    contents_.skipped_types.push_back(why + " (its messages skipped by the FMT's length)");
+  }
   MessageType& entry = types_[type];
   entry = MessageType{true, length, name, std::nullopt};
-  if (name == "IMU" || name == "IMU2" || name == "IMU3") entry.imu = imu_layout(at, name, format, labels);
+  if (imu) entry.imu = imu_layout(at, name, format, labels);
 }
 
 ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name, const std::string& format,
