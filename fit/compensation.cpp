@@ -1,6 +1,7 @@
 #include "fit/compensation.h"
 
 #include "fit/causal_compensator.h"
+#include "fit/data/plausibility.h"
 #include "fit/data/streaming.h"
 #include "fit/model/formula.h"
 
@@ -185,6 +186,9 @@ Compensation compensate(const Measurement& m, const SavedFit& fit, const Pipelin
   std::vector<unsigned char> valid(m.size(), 1);
   c.data.file = m.file;
   c.data.raw_samples = m.size();
+  // The same checks of the units as fit's (a log in K under temp_c, rad/s read as °/h).
+  c.data.units = m.units;
+  c.data.cautions = measurement_cautions(m);
   if (pipeline.remove_outliers) c.data.outliers = flag_outliers(m, pipeline.outliers, valid);
   c.data.series = average_windows(m, valid, pipeline.averaging, &c.data.averaging);
   fit::derive_into(c.data, pipeline);
@@ -272,6 +276,7 @@ nlohmann::ordered_json compensation_json(const Compensation& c, const SavedFit& 
   j["ratio"] = c.ratio();
   j["windows"] = c.data.series.size();
   j["outliers_removed"] = c.data.outliers.removed;
+  j["cautions"] = c.data.cautions;  // numbers that look like another unit (as fit's data.cautions)
   if (c.fit_range_c) {
     // Where the record leaves the range the fit was made on, and what the model did there.
     j["fit_temp_range_c"] = {c.fit_range_c->first, c.fit_range_c->second};

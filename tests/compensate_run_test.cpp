@@ -90,6 +90,18 @@ TEST(CompensateRun, OutsideTheFittedRangeTheModelIsHeldAtTheEdgeAndSaysSo) {
   // Within the range nothing is said.
   const auto own = run_cli(dir, "compensate warm.csv --fit fit.json");
   EXPECT_EQ(own.out.find("caution"), std::string::npos) << own.out;
+  // The same run with its temperature in kelvin under temp_c (no unit in the
+  // name): the units are checked as fit checks them, and every window is
+  // outside the fitted range.
+  ASSERT_EQ(run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^[0-9]/{$4=$4+273.15} {print}' warm.csv | tee kelvin.csv").exit_code, 0);
+  const auto kelvin = run_cli(dir, "compensate kelvin.csv --fit fit.json --json");
+  ASSERT_EQ(kelvin.exit_code, 0) << kelvin.err;
+  const nlohmann::json k_json = nlohmann::json::parse(kelvin.out);
+  ASSERT_EQ(k_json["cautions"].size(), 1u) << kelvin.out;
+  EXPECT_NE(k_json["cautions"][0].get<std::string>().find("°C read as K?"), std::string::npos);
+  EXPECT_DOUBLE_EQ(k_json["share_outside_range"].get<double>(), 1.0);
+  const auto k_text = run_cli(dir, "compensate kelvin.csv --fit fit.json");
+  EXPECT_NE(k_text.out.find("caution: every temperature is above 200 °C"), std::string::npos) << k_text.out;
 }
 
 }  // namespace
