@@ -143,3 +143,27 @@ def test_a_refused_export_leaves_no_file(cycle_csv, tmp_path):
         gyrotherm.export(r, format="px4", output=tmp_path / "x.params")
     assert list(tmp_path.iterdir()) == []
     assert r.file is None
+
+
+def test_compensate_holds_outside_the_fitted_range_unless_told(cycle_csv, tmp_path):
+    data = read_csv(cycle_csv)
+    cool = {k: v[data["temp_c"] < 30.0] for k, v in data.items()}  # fitted below 30 °C only
+    r = gyrotherm.fit(cool, model="T + T^2")
+    held = gyrotherm.compensate(data, r).as_dict()
+    far = gyrotherm.compensate(data, r, extrapolate=True).as_dict()
+    assert held["outside_range"] == "held" and far["outside_range"] == "extrapolated"
+    assert 0.2 < held["share_outside_range"] == far["share_outside_range"] < 0.8
+    assert held["instability_after_dph"] != far["instability_after_dph"]
+
+
+def test_export_refuses_a_two_plateau_fit_unless_the_caution_is_accepted(tmp_path):
+    t = np.arange(4 * 3600.0)
+    temp = np.where(t < 7200, 13.0, 47.5) + 0.4 * np.sin(2 * np.pi * t / 1800)
+    gyro = 2.0 + 0.05 * temp + 0.01 * np.sin(0.37 * t)
+    r = gyrotherm.fit({"time_s": t, "temp_c": temp, "gyro_dph": gyro}, model="T + T^2")
+    with pytest.raises(ValueError, match="cannot support these terms"):
+        gyrotherm.export(r, format="px4", output=tmp_path / "x.params")
+    assert not (tmp_path / "x.params").exists()
+    e = gyrotherm.export(r, format="px4", output=tmp_path / "x.params", accept_caution=True)
+    assert (tmp_path / "x.params").read_text().startswith("# CAUTION")
+    assert any(w.startswith("caution: ") for w in e.warnings)
