@@ -38,6 +38,18 @@ TEST(CompensateRun, TheFitsColumnsCanBeRenamedAndRewritten) {
   const auto a = nlohmann::json::parse(same.out), b = nlohmann::json::parse(renamed.out);
   EXPECT_NEAR(b["instability_after_dph"].get<double>(), a["instability_after_dph"].get<double>(),
               1e-9 * a["instability_after_dph"].get<double>());
+  // allan --fit takes the same column and unit options over the fit's.
+  const auto allan_same = run_cli(dir, "allan log.csv --fit fit.json --json");
+  const auto allan_renamed =
+      run_cli(dir, "allan other.csv --fit fit.json --time-col 't (ms)' --time-unit ms --gyro-col rate --json");
+  ASSERT_EQ(allan_renamed.exit_code, 0) << allan_renamed.err;
+  const auto as = nlohmann::json::parse(allan_same.out), ar = nlohmann::json::parse(allan_renamed.out);
+  ASSERT_EQ(ar["series"].size(), 2u);
+  EXPECT_EQ(ar["series"][1]["samples"], as["series"][1]["samples"]);
+  const auto adev_renamed = ar["series"][1]["adev_dph"].get<std::vector<double>>();
+  const auto adev_same = as["series"][1]["adev_dph"].get<std::vector<double>>();
+  ASSERT_EQ(adev_renamed.size(), adev_same.size());
+  for (std::size_t i = 0; i < adev_same.size(); ++i) EXPECT_NEAR(adev_renamed[i], adev_same[i], 1e-6 * adev_same[i]);
   // One column per channel.
   expect_refused(dir, "compensate other.csv --fit fit.json --time-col 't (ms)' --time-unit ms --gyro-col rate,x",
                  "2 columns for the 1 channel");

@@ -265,8 +265,9 @@ std::vector<AllanStudy> allan_record(const AllanRequest& r, const RecordSource& 
     // Every channel the fit holds, read with the fit's own columns and units.
     for (const fit::SavedFit& fit : r.fits.empty() ? fit::load_fits(r.fit_file) : r.fits) {
       fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
-      pipeline.columns = source.fit_columns(pipeline.columns);
+      pipeline.columns = source.fit_columns(pipeline.columns).with(r.fit_columns);
       try {
+        pipeline.columns.units.validate();
         studies.push_back(allan_study(source.read(pipeline.columns), &fit, r.options));
       } catch (const InputError& e) {
         throw InputError(fmt::format("{}{} with the fit {}: {}", source.name(),

@@ -74,6 +74,9 @@ struct AllanRequest {
   std::vector<fit::SavedFit> fits;  // a fit given in memory (the Python package's) in place of fit_file's
   AllanOptions options;
   fit::PipelineOptions pipeline;  // without a fit: the columns and units to read
+  // With a fit: the column and unit options given, over the fit's
+  // (ColumnMap::unset() fields keep the fit's), as compensate takes them.
+  fit::ColumnMap fit_columns = fit::ColumnMap::unset();
   std::string plot;               // a PNG, or ""
 };
 std::vector<AllanStudy> run_allan(const AllanRequest& request);
