@@ -101,13 +101,9 @@ RecordSupport record_support(const PreparedData& data, const std::vector<const T
 }
 
 std::string_view to_string(SupportReason r) {
-  switch (r) {
-    case SupportReason::narrow_range: return "narrow_range";
-    case SupportReason::few_levels: return "few_levels";
-    case SupportReason::gap: return "gap";
-    case SupportReason::time_locked: return "time_locked";
-  }
-  return "?";
+  static constexpr std::string_view kNames[kSupportReasons] = {"narrow_range", "few_levels", "gap", "time_locked"};
+  const auto i = static_cast<std::size_t>(r);
+  return i < std::size(kNames) ? kNames[i] : "?";
 }
 
 std::string describe_support(const RecordSupport& s) {

@@ -149,7 +149,7 @@ INSTANTIATE_TEST_SUITE_P(CycleAndRandom, Steps,
 // floor diagnose reports on these records (0.00175 °/h). The step test's null is drawn from the record's identified noise, so
 // the slow wander neither hides the step nor reads it as drift: it is located
 // within an hour in at least 9 of 10 records.
-TEST(DiagnoseBeyond, AStepUnderGaussMarkovNoiseIsLocatedInNineOfTen) {
+TEST(DiagnoseBeyond, AStepUnderGaussMarkovNoiseIsLocatedInEightOfTen) {
   ScratchDir dir;
   std::filesystem::copy_file(source_path("scenarios/rig_shield.toml"), dir / "rig_shield.toml");
   {
@@ -178,7 +178,12 @@ TEST(DiagnoseBeyond, AStepUnderGaussMarkovNoiseIsLocatedInNineOfTen) {
     located += found;
     if (!found) misses += fmt::format("seed {}: {}\n", seed, j["verdict"].get<std::string>());
   }
-  EXPECT_GE(located, 9) << misses;
+  // About 4.5 times the floor: results/diagnosis_power.md locates 4 x steps
+  // under Gauss-Markov noise in about 9 of 10 records over 100 seeds; on
+  // these 10 seeds 8 (at least 9 while the test also took the noise
+  // identified without any candidate as a test of its own, which passed on
+  // 10-13 % of clean 75 h records).
+  EXPECT_GE(located, 8) << misses;
 }
 
 TEST(DiagnoseBeyond, CleanRecordsReportNoStepInNineOfTen) {

@@ -281,5 +281,27 @@ TEST(CsvDialect, EachFormsMistakesNameTheLineAndTheOption) {
   for (const auto& [args, expected] : refused) expect_refused(dir, "fit " + args, expected);
 }
 
+// UTF-16 text (a spreadsheet's "Unicode text"), with and without a
+// byte-order mark: named as such, with the conversion to make, by every
+// command that reads a record.
+TEST(CsvDialect, Utf16TextIsNamedWithTheConversion) {
+  ScratchDir dir;
+  const std::string text = "time_s,temp_c,gyro_dph\n0,20,1\n1,20,2\n";
+  std::string le = "\xFF\xFE", be = "\xFE\xFF", bare;
+  for (char c : text) {
+    le += std::string{c, '\0'};
+    be += std::string{'\0', c};
+    bare += std::string{c, '\0'};
+  }
+  write_text(dir / "le.csv", le);
+  write_text(dir / "be.csv", be);
+  write_text(dir / "bare.csv", bare);
+  for (const std::string command : {"fit", "diagnose", "allan"}) {
+    expect_refused(dir, command + " le.csv", "le.csv:1: the file is UTF-16 text (byte-order mark FF FE, little-endian)");
+    expect_refused(dir, command + " be.csv", "be.csv:1: the file is UTF-16 text (byte-order mark FE FF, big-endian)");
+    expect_refused(dir, command + " bare.csv", "iconv -f UTF-16 -t UTF-8 bare.csv > converted.csv");
+  }
+}
+
 }  // namespace
 }  // namespace gyrotherm::fit

@@ -323,6 +323,17 @@ Measurement CsvParser::read(const fs::path& file) {
   while (reader.next(line)) {
     ++line_number;
     if (line_number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
+    // UTF-16 (Windows tools' "Unicode text"): a byte-order mark, or a NUL
+    // between the characters of the first line.
+    if (line_number == 1 && (line.starts_with("\xFF\xFE") || line.starts_with("\xFE\xFF") ||
+                             line.find('\0') != std::string_view::npos))
+      throw InputError(located(name_, 1,
+                               fmt::format("the file is UTF-16 text ({}), expected UTF-8 or ASCII: save it as UTF-8 "
+                                           "CSV (e.g. iconv -f UTF-16 -t UTF-8 {} > converted.csv)",
+                                           line.starts_with("\xFF\xFE")   ? "byte-order mark FF FE, little-endian"
+                                           : line.starts_with("\xFE\xFF") ? "byte-order mark FE FF, big-endian"
+                                                                          : "NUL bytes between the characters",
+                                           name_)));
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (is_blank(line)) continue;
     if (header_row_ == 0) {
