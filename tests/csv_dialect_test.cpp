@@ -281,6 +281,16 @@ TEST(CsvDialect, EachFormsMistakesNameTheLineAndTheOption) {
   for (const auto& [args, expected] : refused) expect_refused(dir, "fit " + args, expected);
 }
 
+// A name that differs from a column only in case or separators is offered.
+TEST(CsvDialect, ANameThatDiffersInCaseOrSeparatorsIsOffered) {
+  ScratchDir dir;
+  write_text(dir / "caps.csv", "Time S,Temp-C,GYRO_DPH\n0,20,1\n1,20,2\n");
+  expect_refused(dir, "fit caps.csv", "no column 'time_s' (did you mean 'Time S'?)");
+  expect_refused(dir, "fit caps.csv --time-col 'Time S'", "no column 'temp_c' (did you mean 'Temp-C'?)");
+  expect_refused(dir, "fit caps.csv --time-col 'Time S' --temp-col Temp-C", "did you mean 'GYRO_DPH'?");
+  expect_refused(dir, "fit caps.csv --time-col clock", "no column 'clock' (caps.csv has:");
+}
+
 // UTF-16 text (a spreadsheet's "Unicode text"), with and without a
 // byte-order mark: named as such, with the conversion to make, by every
 // command that reads a record.

@@ -2,6 +2,8 @@
 // roles, units and extra columns of the names, and each row's checks.
 #include "fit/data/column_reader.h"
 
+#include <cctype>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -107,8 +109,19 @@ void ColumnReader::resolve_columns(std::vector<std::string> names_given, std::si
     }
     if (it == names.end()) {
       if (optional && !explicit_temp2) continue;
-      fail_names(fmt::format("no column '{}' ({} has: {}); name the {} column with {}", name, holder, joined(names),
-                             kWhatOf[role], kOptionOf[role]));
+      // A column that differs only in case or separators ("Temp C" for
+      // temp_c): said first, as the likely one.
+      const auto folded = [](std::string_view v) {
+        std::string out;
+        for (const char c : v)
+          if (std::isalnum(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return out;
+      };
+      std::string near;
+      for (const std::string& n : names)
+        if (!n.empty() && folded(n) == folded(name)) near = fmt::format(" (did you mean '{}'?)", n);
+      fail_names(fmt::format("no column '{}'{} ({} has: {}); name the {} column with {}", name, near, holder,
+                             joined(names), kWhatOf[role], kOptionOf[role]));
     }
     const auto column = static_cast<std::size_t>(it - names.begin());
     if (const int other = role_of_column_[column]; other != kNoRole) {
