@@ -288,7 +288,7 @@ TEST(CsvDialect, ANameThatDiffersInCaseOrSeparatorsIsOffered) {
   expect_refused(dir, "fit caps.csv", "no column 'time_s' (did you mean 'Time S'?)");
   expect_refused(dir, "fit caps.csv --time-col 'Time S'", "no column 'temp_c' (did you mean 'Temp-C'?)");
   expect_refused(dir, "fit caps.csv --time-col 'Time S' --temp-col Temp-C", "did you mean 'GYRO_DPH'?");
-  expect_refused(dir, "fit caps.csv --time-col clock", "no column 'clock' (caps.csv has:");
+  expect_refused(dir, "fit caps.csv --time-col clock", "no column 'clock' (the header has:");
 }
 
 // UTF-16 text (a spreadsheet's "Unicode text"), with and without a
