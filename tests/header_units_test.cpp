@@ -162,6 +162,17 @@ TEST(HeaderUnits, NumbersThatLookLikeAnotherUnitAreCautioned) {
   ASSERT_GE(t["data"]["cautions"].size(), 1u);
   EXPECT_NE(t["data"]["cautions"][0].get<std::string>().find("spans 83 days"), std::string::npos)
       << t["data"]["cautions"];
+  // A smooth turn at up to 47 °/s (sample-to-sample changes small): the
+  // rates no gyro at rest reads are cautioned.
+  std::string turn = "time,temp,gyro\n";
+  for (const LogRow& r : synthetic_log())
+    turn += fmt::format("{},{:.6f},{:.6f}\n", r.t, r.temp_c, 47.0 * 3600.0 * std::sin(2.0 * M_PI * r.t / 600.0));
+  write_text(dir / "turn.csv", turn);
+  const nlohmann::json m = fit_json(dir, "turn.csv" + cols);
+  ASSERT_EQ(m["data"]["cautions"].size(), 1u) << m["data"]["cautions"];
+  EXPECT_NE(m["data"]["cautions"][0].get<std::string>().find("reads more than 10 °/s on"), std::string::npos)
+      << m["data"]["cautions"];
+  EXPECT_NE(m["data"]["cautions"][0].get<std::string>().find("up to 47 °/s"), std::string::npos);
   // Read right, nothing is cautioned, and the text says which units were used.
   const auto text = run_cli(dir, "fit rad.csv" + cols + " --gyro-unit rad/s --model T");
   EXPECT_EQ(text.out.find("caution: the gyro"), std::string::npos) << text.out;

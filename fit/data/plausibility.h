@@ -11,6 +11,9 @@
 //          (about 1e-4): numbers in rad/s or °/s read as °/h. Above 200 °/√h
 //          is noisier than any MEMS gyro (0.1–10): °/h read as °/s.
 //   time:  a record longer than 30 days: milliseconds or microseconds read as s.
+//   motion: |gyro| above 10 °/s on more than 1 % of the samples (no gyro at
+//          rest has such a bias): the vehicle turned, smoothly (a turn at a
+//          steady rate hardly changes from sample to sample).
 //   temperature: every sample below −100 °C or above 200 °C: °C read as K
 //          (−253 °C) or raw counts.
 
@@ -26,6 +29,8 @@ struct ReadSummary {
   double arw_deg_per_sqrt_h = 0;          // the gyro's white noise (above); 0 without two close samples
   double span_s = 0;                      // last − first sample time
   double temp_min_c = 0, temp_max_c = 0;  // of the temperature as read
+  double moving_share = 0;                // samples whose |gyro| exceeds a rest rate (10 °/s)
+  double largest_rate_dph = 0;            // the largest |gyro| read
 };
 
 // What the checks are judged on, gathered one sample at a time (s, °C, °/h),
@@ -38,7 +43,7 @@ class ReadProbe {
  private:
   ReadSummary read_;
   double first_time_ = 0.0, last_time_ = 0.0, last_gyro_ = 0.0, sum_ = 0.0;
-  std::size_t samples_ = 0, pairs_ = 0;
+  std::size_t samples_ = 0, pairs_ = 0, moving_ = 0;
 };
 
 // The cautions for a record read in `units` (empty when all looks right).
