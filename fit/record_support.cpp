@@ -67,9 +67,7 @@ RecordSupport record_support(const PreparedData& data, const std::vector<const T
   const double gap = s.gap_to_c - s.gap_from_c;
 
   for (std::size_t j = 0; j < terms.size(); ++j) {
-    const effects::Family family = terms[j]->family;
-    if (family != effects::Family::temperature_power && family != effects::Family::temperature_state)
-      continue;
+    if (!fit::reads_temperature_level(terms[j])) continue;
     std::vector<std::string> why;
     std::vector<SupportReason>& reasons = s.reasons[j];
     if (range < kNarrowRangeC) {

@@ -151,8 +151,7 @@ Eigen::MatrixXd design_matrix_held(const DerivedSeries& derived, const std::vect
   DerivedSeries held = derived;
   for (double& t : held.temp_c) t = std::clamp(t, lo_c, hi_c);
   for (std::size_t j = 0; j < terms.size(); ++j) {
-    const effects::Family f = terms[j]->family;
-    if (f != effects::Family::temperature_power && f != effects::Family::temperature_state) continue;
+    if (!reads_temperature_level(terms[j])) continue;
     terms[j]->compute(held, parameters[j],
                       std::span<double>(x.col(static_cast<Eigen::Index>(j)).data(), static_cast<std::size_t>(x.rows())));
   }

@@ -57,6 +57,12 @@ const Term* column_term(std::string_view column, bool rate);
 const Term* term_by_name(std::string_view name);
 inline bool is_column_term(const Term* t) { return !t->column.empty(); }
 inline bool is_step_term(const Term* t) { return t->family == effects::Family::step; }
+// A function of the temperature's level (a power of T, a filtered
+// temperature), not of its rate or gradient: what the record's range
+// supports (fit/record_support.h) and what is held at its edge.
+inline bool reads_temperature_level(const Term* t) {
+  return t->family == effects::Family::temperature_power || t->family == effects::Family::temperature_state;
+}
 // Whether a log column's name can be written as a term.
 bool is_column_name(std::string_view name);
 // "T, T^2, T^3, dT, ..."

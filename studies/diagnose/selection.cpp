@@ -373,7 +373,6 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
       double tests = 0.0;
       const std::vector<CandidateScore> more = score_all(others[m], r, grids, untried, options.draws, seed, &tests);
       family_tests = std::max(family_tests, tests);
-
       for (std::size_t i = 0; i < scores.size(); ++i) {
         scores[i].p_value = std::max(scores[i].p_value, more[i].p_value);
         scores[i].p_bootstrap = std::max(scores[i].p_bootstrap, more[i].p_bootstrap);

@@ -267,8 +267,7 @@ std::string c_header(const fit::SavedFit& fit, const fit::CausalSettings& settin
         number(settings.hold_c->first), number(settings.hold_c->second));
   for (std::size_t j = 0; j < fit.terms.size(); ++j) {
     const fit::Term& t = *fit.terms[j];
-    const bool held = settings.hold_c && (t.family == effects::Family::temperature_power ||
-                                          t.family == effects::Family::temperature_state);
+    const bool held = settings.hold_c && fit::reads_temperature_level(&t);
     if (held)
       terms += "  {\n    const double T = T_held, prev_T = prev_T_held;\n    (void)T; (void)prev_T;\n" +
                c_statement(t, j, fit.parameters[j]) + "  }\n";

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <map>
-#include <tuple>
 
 #include "sim/util/input_error.h"
 
@@ -51,24 +50,11 @@ AllanRequest allan_request(const AllanCommandOptions& o) {
     throw InputError(
         fmt::format("--ci {}: the confidence must be between 0 and 1 (e.g. 0.68 or 0.95)", options.confidence));
   if (request.fit_file.empty()) {
-    request.pipeline = o.data_options.resolved();
+    DataOptions data = o.data_options;
+    data.pipeline.columns = fit::ColumnMap{}.with(data.pipeline.columns);
+    request.pipeline = data.resolved();
   } else {
-    // With a fit, the fit's columns and units, but for those the options name
-    // (the ones that differ from the defaults: a log whose columns differ from
-    // the fit's). Giving a default's own name keeps the fit's.
-    const fit::ColumnMap& c = o.data_options.pipeline.columns;
-    const fit::ColumnMap d;
-    fit::ColumnMap& given = request.fit_columns;
-    for (auto [mine, theirs, dflt] : {std::tuple{&given.time, &c.time, &d.time}, {&given.temp, &c.temp, &d.temp},
-                                      {&given.gyro, &c.gyro, &d.gyro}, {&given.temp2, &c.temp2, &d.temp2},
-                                      {&given.units.time, &c.units.time, &d.units.time},
-                                      {&given.units.gyro, &c.units.gyro, &d.units.gyro},
-                                      {&given.units.temp, &c.units.temp, &d.units.temp}})
-      if (*theirs != *dflt) *mine = *theirs;
-    for (auto [mine, theirs, dflt] : {std::tuple{&given.units.gyro_scale, c.units.gyro_scale, d.units.gyro_scale},
-                                      {&given.units.temp_scale, c.units.temp_scale, d.units.temp_scale},
-                                      {&given.units.temp_offset, c.units.temp_offset, d.units.temp_offset}})
-      if (theirs != dflt) *mine = theirs;
+    request.fit_columns = o.data_options.pipeline.columns;  // laid over the fit's (compensate's rule)
   }
   return request;
 }

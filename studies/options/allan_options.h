@@ -13,13 +13,20 @@ struct AllanCommandOptions {
   AllanRequest request;  // data, --fit, --tau-max, --ci, --plot
   std::string taus = "octave";
   bool json = false;  // print the JSON rather than the text (the caller's choice)
-  DataOptions data_options;  // without --avg
+  // Without --avg. Its columns and units start unset (ColumnMap::unset()):
+  // those given are laid over the fit's with a fit, over the defaults without.
+  DataOptions data_options = [] {
+    DataOptions d;
+    d.pipeline.columns = fit::ColumnMap::unset();
+    return d;
+  }();
 };
 
 const OptionTable<AllanCommandOptions>& allan_option_table();
 
 // The request: --taus one of octave, decade, all; --tau-max ≥ 0; --ci in
-// (0, 1); the data options when there is no fit (with one, the fit's).
+// (0, 1); the data options when there is no fit (with one, the fit's, but
+// for the columns and units given).
 AllanRequest allan_request(const AllanCommandOptions& options);
 
 }  // namespace gyrotherm::studies
