@@ -183,6 +183,15 @@ TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
   old["data"].erase("temp_range_c");
   gyrotherm::testing::write_text(dir / "old.json", old.dump());
   expect_refused(dir, "export old.json --format ardupilot -o out.txt", "no data.temp_range_c");
+  // record.reasons written by hand: not an object, or a reason with no name.
+  nlohmann::json bad = nlohmann::json::parse(slurp(dir / "fit.json"));
+  bad["record"]["reasons"] = nlohmann::json::array();
+  gyrotherm::testing::write_text(dir / "bad.json", bad.dump());
+  expect_refused(dir, "export bad.json --format px4 -o out.txt", "bad.json: record.reasons: expected {term: [reason, ...]}");
+  bad["record"]["reasons"] = {{"T", {"cold"}}};
+  gyrotherm::testing::write_text(dir / "bad.json", bad.dump());
+  expect_refused(dir, "export bad.json --format px4 -o out.txt",
+                 "bad.json: record.reasons.T: expected a list of narrow_range, few_levels, gap, time_locked");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
 }
 
