@@ -220,7 +220,10 @@ std::string LogContents::describe() const {
   if (truncated)
     out += fmt::format("; the file ends inside the message at byte {} (a power cut?): read up to there",
                        truncated_at_byte);
-  for (const std::string& s : skipped_types) out += "; skipped (not read): " + s;
+  for (const SkippedType& s : skipped_types)
+    out += fmt::format("; skipped (not read): FMT of type {} '{}' (format '{}'): the format adds up to {} bytes with "
+                       "the header, the FMT says {} (its messages skipped by the FMT's length)",
+                       s.type, binary::printable(s.name), binary::printable(s.format), s.format_bytes, s.fmt_length);
   return out;
 }
 

@@ -71,8 +71,13 @@ struct LogContents {
   std::uint64_t truncated_at_byte = 0;  // where that message starts, when truncated
   // Message types the reader does not need whose FMT contradicts itself (its
   // format adds up to another length than it gives): skipped by the length
-  // the FMT gives, as pymavlink's DFReader does, each with why.
-  std::vector<std::string> skipped_types;
+  // the FMT gives, as pymavlink's DFReader does.
+  struct SkippedType {
+    int type = 0;
+    std::string name, format;
+    std::size_t format_bytes = 0, fmt_length = 0;  // with the 3-byte header
+  };
+  std::vector<SkippedType> skipped_types;
 
   // "ULog v1: sensor_gyro instance 0 (device 2621450): 6 samples, 12.5..17.5 s,
   // 40.03..40.36 °C; sensor_gyro instance 2 (...): ..., temperature NaN throughout"

@@ -162,12 +162,12 @@ void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
   }
   const bool imu = name == "IMU" || name == "IMU2" || name == "IMU3";
   if (all_known && bytes != length) {
-    const std::string why =
-        fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length);
     // A message this reader needs must be read right; any other is skipped
     // by the FMT's length, as pymavlink skips it, and said.
-    if (imu) in_.fail(at, why);
-    contents_.skipped_types.push_back(why + " (its messages skipped by the FMT's length)");
+    if (imu)
+      in_.fail(at,
+               fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length));
+    contents_.skipped_types.push_back({type, name, format, bytes, length});
   }
   MessageType& entry = types_[type];
   entry = MessageType{true, length, name, std::nullopt};
