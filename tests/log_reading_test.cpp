@@ -17,7 +17,7 @@
 #include <tuple>
 #include <vector>
 
-#include "autopilot_log_writer.h"
+#include "imu_logs.h"
 #include "cli_runner.h"
 #include "fit/data/measurement.h"
 #include "parameter_files.h"
@@ -25,45 +25,6 @@
 
 namespace gyrotherm::testing {
 namespace {
-
-// One sample of a three-axis gyro as a log holds it (32-bit floats, µs).
-struct ImuSample {
-  std::uint64_t time_us;
-  float temp_c, x, y, z;  // °C, rad/s
-};
-
-// PX4's sensor_gyro (v1.14 layout), instance 0 without a temperature and
-// instance 1 with the samples.
-void write_ulog(const std::filesystem::path& file, const std::vector<ImuSample>& samples) {
-  ULogWriter w;
-  w.flag_bits().format(
-      "sensor_gyro:uint64_t timestamp;uint64_t timestamp_sample;uint32_t device_id;float x;float y;float z;"
-      "float temperature;uint32_t error_count;uint8_t[3] clip_counter;uint8_t samples;uint8_t[4] _padding0;");
-  w.subscribe(0, 0, "sensor_gyro").subscribe(1, 1, "sensor_gyro");
-  for (const ImuSample& s : samples)
-    for (const std::uint16_t id : {std::uint16_t{0}, std::uint16_t{1}}) {
-      Packer p;
-      p.put(s.time_us).put(s.time_us).put<std::uint32_t>(id == 0 ? 2621450 : 2490378);
-      p.put(s.x).put(s.y).put(s.z).put(id == 0 ? std::nanf("") : s.temp_c).put<std::uint32_t>(0).zeros(3);
-      p.put<std::uint8_t>(1);
-      w.data(id, p);
-    }
-  w.save(file);
-}
-
-// ArduPilot Copter 4.x IMU messages of instance 0.
-void write_dataflash(const std::filesystem::path& file, const std::vector<ImuSample>& samples) {
-  DataFlashWriter w;
-  w.fmt(99, "IMU", "QBffffffIIfBBHH", "TimeUS,I,GyrX,GyrY,GyrZ,AccX,AccY,AccZ,EG,EA,T,GH,AH,GHz,AHz");
-  for (const ImuSample& s : samples) {
-    Packer p;
-    p.put(s.time_us).put<std::uint8_t>(0).put(s.x).put(s.y).put(s.z).put(0.0f).put(0.0f).put(-9.8f);
-    p.put<std::uint32_t>(0).put<std::uint32_t>(0).put(s.temp_c).put<std::uint8_t>(1).put<std::uint8_t>(1);
-    p.put<std::uint16_t>(400).put<std::uint16_t>(400);
-    w.message(99, p.bytes());
-  }
-  w.save(file);
-}
 
 // The samples as a CSV of the same numbers (time in s, rates in rad/s).
 void write_csv(const std::filesystem::path& file, const std::vector<ImuSample>& samples) {

@@ -161,9 +161,32 @@ void LogReader::take_sample(LogGyro& gyro, double time_s, const Field& temperatu
   if (sink_ && gyro.instance == instance_) sink_(time_s, temp_c, x.read(payload), y.read(payload), z.read(payload));
 }
 
+void LogReader::take_accel(int instance, double x, double y, double z) {
+  std::vector<LogAccel>& accels = contents_.accels;
+  auto a = std::find_if(accels.begin(), accels.end(), [&](const LogAccel& e) { return e.instance == instance; });
+  if (a == accels.end()) {
+    accels.push_back(LogAccel{});
+    a = accels.end() - 1;
+    a->instance = instance;
+  }
+  const double norm = std::sqrt(x * x + y * y + z * z);
+  if (!std::isfinite(norm)) return;
+  if (a->samples == 0) a->first[0] = x, a->first[1] = y, a->first[2] = z;
+  ++a->samples;
+  const double first = std::sqrt(a->first[0] * a->first[0] + a->first[1] * a->first[1] + a->first[2] * a->first[2]);
+  const double cosine = first > 0.0 && norm > 0.0 ? (x * a->first[0] + y * a->first[1] + z * a->first[2]) / (first * norm) : 1.0;
+  const double tilt = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+  const double magnitude_error = std::abs(norm - kStandardGravity);
+  a->largest_tilt_deg = std::max(a->largest_tilt_deg, tilt);
+  a->largest_magnitude_error = std::max(a->largest_magnitude_error, magnitude_error);
+  if (tilt > kAccelTiltLimitDeg || magnitude_error > kAccelMagnitudeLimit) ++a->moving;
+}
+
 LogContents LogReader::finish() {
   std::stable_sort(contents_.gyros.begin(), contents_.gyros.end(),
                    [](const LogGyro& a, const LogGyro& b) { return a.instance < b.instance; });
+  std::stable_sort(contents_.accels.begin(), contents_.accels.end(),
+                   [](const LogAccel& a, const LogAccel& b) { return a.instance < b.instance; });
   return std::move(contents_);
 }
 
@@ -199,6 +222,12 @@ std::string LogContents::instances() const {
     out += std::to_string(gyros[i].instance);
   }
   return out;
+}
+
+const LogAccel* LogContents::accel(int instance) const {
+  for (const LogAccel& a : accels)
+    if (a.instance == instance) return &a;
+  return nullptr;
 }
 
 std::string LogContents::describe() const {

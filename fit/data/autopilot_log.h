@@ -49,6 +49,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -64,9 +65,32 @@ struct LogGyro {
   double first_time_s = NAN, last_time_s = NAN, temp_min_c = NAN, temp_max_c = NAN;
 };
 
+// The accelerometer of an IMU instance (DataFlash IMU AccX, AccY, AccZ; ULog
+// sensor_accel x, y, z of that multi_id), m/s²: what tells a vehicle that
+// moves from a gyro at rest. A sample shows motion when its magnitude is more
+// than kAccelMagnitudeLimit from 1 g, or its direction more than
+// kAccelTiltLimitDeg from the instance's first sample's (a thermal test keeps
+// the gyro still; vibration and turns move both).
+inline constexpr double kStandardGravity = 9.80665;
+inline constexpr double kAccelMagnitudeLimit = 1.5;  // m/s²
+inline constexpr double kAccelTiltLimitDeg = 5.0;
+struct LogAccel {
+  int instance = 0;
+  std::size_t samples = 0, moving = 0;
+  double largest_tilt_deg = 0.0, largest_magnitude_error = 0.0;  // from the first sample's direction; from 1 g
+  double first[3] = {NAN, NAN, NAN};
+  double moving_share() const { return samples == 0 ? 0.0 : static_cast<double>(moving) / static_cast<double>(samples); }
+};
+
 struct LogContents {
   std::string format;                   // "ULog v1" / "DataFlash"
   std::vector<LogGyro> gyros;           // by instance, lowest first
+  std::vector<LogAccel> accels;         // by instance, lowest first (none when the log has no accelerometer)
+  // The autopilot's parameters as the log records them (ULog 'P' messages,
+  // DataFlash PARM), each name's first value: what was active when it was
+  // written (e.g. TC_G_ENABLE, INS_TCAL1_ENABLE).
+  std::map<std::string, double, std::less<>> parameters;
+  const LogAccel* accel(int instance) const;
   bool truncated = false;               // the file ends inside a message (power cut): read up to there
   std::uint64_t truncated_at_byte = 0;  // where that message starts, when truncated
   // Message types the reader does not need whose FMT contradicts itself (its

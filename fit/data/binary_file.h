@@ -112,6 +112,10 @@ class LogReader {
   // the gyro is the instance asked for.
   void take_sample(LogGyro& gyro, double time_s, const Field& temperature, const Field& x, const Field& y,
                    const Field& z, const std::uint8_t* payload);
+  // One accelerometer sample (m/s²) of `instance`, tallied.
+  void take_accel(int instance, double x, double y, double z);
+  // A parameter the log records; the first value of each name is kept.
+  void take_parameter(std::string name, double value) { contents_.parameters.emplace(std::move(name), value); }
   // The file ends inside the message starting at byte `at`.
   void truncate_at(std::uint64_t at) {
     contents_.truncated = true;

@@ -64,9 +64,15 @@ std::string text_field(const std::uint8_t* p, std::size_t bytes) {
 
 // Where an IMU message's fields are.
 struct ImuLayout {
-  Field time, instance, x, y, z, temperature;
+  Field time, instance, x, y, z, temperature, ax, ay, az;
   double time_units_per_s = 1e6;  // TimeUS; TimeMS (1e3) in older logs
   int fixed_instance = 0;         // IMU2 -> 1, IMU3 -> 2, IMU without I -> 0
+};
+
+// Where a PARM message's name (N, 16 chars) and value are.
+struct ParmLayout {
+  std::size_t name_offset = 0;
+  Field value;
 };
 
 struct MessageType {
@@ -74,7 +80,38 @@ struct MessageType {
   std::size_t length = 0;  // of the whole message, header included
   std::string name;
   std::optional<ImuLayout> imu;
+  std::optional<ParmLayout> parm;
 };
+
+std::vector<std::string> split_labels(const std::string& labels) {
+  std::vector<std::string> columns;
+  for (std::size_t begin = 0;;) {
+    const std::size_t comma = labels.find(',', begin);
+    columns.push_back(labels.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
+  }
+  return columns;
+}
+
+// PARM's Name and Value by label (TimeUS,Name,Value[,Default]); none when
+// the FMT does not have them as text of 16 and a number.
+std::optional<ParmLayout> parm_layout(const std::string& format, const std::string& labels) {
+  const std::vector<std::string> columns = split_labels(labels);
+  if (columns.size() != format.size()) return std::nullopt;
+  ParmLayout layout;
+  bool named = false;
+  std::size_t offset = 0;
+  for (std::size_t i = 0; i < format.size(); ++i) {
+    const FormatChar* f = format_char(format[i]);
+    if (f == nullptr) return std::nullopt;
+    if (columns[i] == "Name" && f->c == 'N') named = true, layout.name_offset = offset;
+    if (columns[i] == "Value" && f->kind) layout.value = Field{offset, *f->kind, f->scale, true};
+    offset += f->bytes;
+  }
+  if (!named || !layout.value.present) return std::nullopt;
+  return layout;
+}
 
 class DataFlashReader : binary::LogReader {
  public:
@@ -126,6 +163,8 @@ LogContents DataFlashReader::read() {
       on_fmt(at, payload);
     else if (known.imu)
       on_imu(at, *known.imu, known.name, payload);
+    else if (known.parm)
+      take_parameter(text_field(payload + known.parm->name_offset, 16), known.parm->value.read(payload));
     in_.advance(length);
   }
   return finish();
@@ -170,19 +209,14 @@ void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
     contents_.skipped_types.push_back({type, name, format, bytes, length});
   }
   MessageType& entry = types_[type];
-  entry = MessageType{true, length, name, std::nullopt};
+  entry = MessageType{true, length, name, std::nullopt, std::nullopt};
   if (imu) entry.imu = imu_layout(at, name, format, labels);
+  if (name == "PARM" && bytes == length) entry.parm = parm_layout(format, labels);
 }
 
 ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name, const std::string& format,
                                       const std::string& labels) const {
-  std::vector<std::string> columns;
-  for (std::size_t begin = 0;;) {
-    const std::size_t comma = labels.find(',', begin);
-    columns.push_back(labels.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
-    if (comma == std::string::npos) break;
-    begin = comma + 1;
-  }
+  const std::vector<std::string> columns = split_labels(labels);
   const std::string what =
       fmt::format("FMT of '{}' (format '{}', labels '{}')", name, printable(format), printable(labels));
   if (columns.size() != format.size())
@@ -204,6 +238,9 @@ ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name,
                   : label == "GyrY"                 ? &layout.y
                   : label == "GyrZ"                 ? &layout.z
                   : label == "T" || label == "Temp" ? &layout.temperature
+                  : label == "AccX"                 ? &layout.ax
+                  : label == "AccY"                 ? &layout.ay
+                  : label == "AccZ"                 ? &layout.az
                                                     : nullptr;
     if (slot != nullptr) {
       if (!f->kind)
@@ -236,6 +273,8 @@ void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const st
   }
   take_sample(contents_.gyros[gyro_of(instance, name)], layout.time.read(payload) / layout.time_units_per_s,
               layout.temperature, layout.x, layout.y, layout.z, payload);
+  if (layout.ax.present && layout.ay.present && layout.az.present)
+    take_accel(instance, layout.ax.read(payload), layout.ay.read(payload), layout.az.read(payload));
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ using binary::printable;
 constexpr std::size_t kHeaderBytes = 16;
 constexpr std::size_t kMessageHeaderBytes = 3;  // uint16 size, uint8 type
 constexpr std::string_view kGyroTopic = "sensor_gyro";
+constexpr std::string_view kAccelTopic = "sensor_accel";
 // Deeper nesting than any PX4 message (about 3 levels) means a broken file,
 // and bounds the recursion on one.
 constexpr int kMaxNesting = 32;
@@ -79,7 +80,9 @@ struct GyroLayout {
 };
 
 struct Subscription {
-  int gyro = -1;  // index into LogContents::gyros, -1 for another topic
+  int gyro = -1;   // index into LogContents::gyros, -1 for another topic
+  int accel = -1;  // sensor_accel's multi_id, -1 for another topic
+  GyroLayout accel_layout;  // sensor_accel's timestamp, x, y, z
 };
 
 class ULogReader : binary::LogReader {
@@ -95,6 +98,7 @@ class ULogReader : binary::LogReader {
   void on_subscription(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   void on_unsubscription(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   void on_data(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  void on_parameter(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   std::size_t size_of_type(const std::string& type, const std::string& within, int depth);
   std::size_t size_of_format(const std::string& name, int depth);
   GyroLayout gyro_layout(const std::string& name, std::uint64_t subscribed_at);
@@ -128,14 +132,15 @@ LogContents ULogReader::read() {
       truncate_at(at);
       break;
     }
-    // The types read; information, parameters, strings, sync, dropouts and
+    // The types read; information, default parameters, strings, sync, dropouts and
     // unknown types are passed over (the spec).
     using Handler = void (ULogReader::*)(std::uint64_t, const std::uint8_t*, std::size_t);
     static constexpr std::pair<char, Handler> kHandlers[] = {{'B', &ULogReader::on_flag_bits},
                                                              {'F', &ULogReader::on_format},
                                                              {'A', &ULogReader::on_subscription},
                                                              {'R', &ULogReader::on_unsubscription},
-                                                             {'D', &ULogReader::on_data}};
+                                                             {'D', &ULogReader::on_data},
+                                                             {'P', &ULogReader::on_parameter}};
     const char type = static_cast<char>(in_.data()[2]);
     for (const auto& [handled, handler] : kHandlers)
       if (type == handled) (this->*handler)(at, in_.data() + kMessageHeaderBytes, size);
@@ -308,6 +313,9 @@ void ULogReader::on_subscription(std::uint64_t at, const std::uint8_t* p, std::s
     const std::size_t gyro = gyro_of(multi_id, kGyroTopic);
     if (gyro == layouts_.size()) layouts_.push_back(gyro_layout(name, at));  // a new instance
     sub.gyro = static_cast<int>(gyro);
+  } else if (name == kAccelTopic) {
+    sub.accel = multi_id;
+    sub.accel_layout = gyro_layout(name, at);
   }
   subscriptions_[msg_id] = sub;
 }
@@ -319,6 +327,11 @@ void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t si
   if (sub == subscriptions_.end())
     in_.fail(at,
              fmt::format("a data message ('D') for msg_id {}, which no subscription ('A') before it defines", msg_id));
+  if (sub->second.accel >= 0) {
+    const GyroLayout& a = sub->second.accel_layout;
+    if (size - 2 >= a.needed_bytes) take_accel(sub->second.accel, a.x.read(p + 2), a.y.read(p + 2), a.z.read(p + 2));
+    return;
+  }
   if (sub->second.gyro < 0) return;
   const GyroLayout& layout = layouts_[static_cast<std::size_t>(sub->second.gyro)];
   LogGyro& gyro = contents_.gyros[static_cast<std::size_t>(sub->second.gyro)];
@@ -332,6 +345,24 @@ void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t si
     gyro.device_id = id >= 0.0 && id <= 4294967295.0 ? static_cast<std::uint32_t>(id) : 0;
   }
   take_sample(gyro, layout.timestamp.read(data) / 1e6, layout.temperature, layout.x, layout.y, layout.z, data);
+}
+
+// A parameter ('P'): key length (uint8), key "type name", the value (int32_t
+// or float; other types are passed over, as PX4 logs none for calibration).
+void ULogReader::on_parameter(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
+  if (size < 1 || size < 1u + p[0])
+    in_.fail(at, fmt::format("a parameter message ('P') of {} bytes cannot hold its key of {} bytes", size,
+                             size < 1 ? 0 : p[0]));
+  const std::string_view key(reinterpret_cast<const char*>(p + 1), p[0]);
+  const std::size_t space = key.find(' ');
+  if (space == std::string_view::npos) return;
+  const std::string_view type = key.substr(0, space);
+  const std::uint8_t* value = p + 1 + p[0];
+  const std::size_t bytes = size - 1 - p[0];
+  if (type == "float" && bytes >= 4)
+    take_parameter(std::string(key.substr(space + 1)), binary::load_number(Kind::f32, value));
+  else if (type == "int32_t" && bytes >= 4)
+    take_parameter(std::string(key.substr(space + 1)), binary::load_number(Kind::i32, value));
 }
 
 }  // namespace

@@ -1,0 +1,69 @@
+#pragma once
+// The calibration `gyrotherm check` applies to a second log (docs/contracts.md,
+// "check"): a parameter file as the firmware loads it, or a fit file.
+//
+//   PX4 .params   QGroundControl's "vehicle component name value type" lines
+//                 (tab- or space-separated; what `export --format px4` and
+//                 PX4's Tools/process_sensor_caldata.py write), '#' comments;
+//   ArduPilot     "NAME,VALUE" (Mission Planner, `export --format ardupilot`)
+//   .parm         or "NAME VALUE" (MAVProxy, Tools/scripts/tempcal_IMU.py),
+//                 '#' comments, also after a value;
+//   fit file      `gyrotherm fit -o` (a JSON object).
+//
+// The format is told by the text: a JSON object is a fit file; PX4's lines
+// have five fields; ArduPilot's two. Which firmware the parameters are for is
+// told by their names (TC_G*: PX4; INS_TCAL*/INS4_TCAL*/INS5_TCAL*: ArduPilot).
+// Bad input — a line of neither form, a value that is not a finite number, a
+// name given twice with two values, a file with no gyro thermal parameters —
+// throws InputError naming the file and line.
+
+#include <array>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fit/fit_file.h"
+
+namespace gyrotherm::studies {
+
+enum class ParameterFormat { px4, ardupilot, fit };
+// "px4", "ardupilot", "fit"
+std::string_view parameter_format_name(ParameterFormat format);
+
+struct ParameterFile {
+  std::string file;
+  ParameterFormat format = ParameterFormat::fit;
+  std::map<std::string, double, std::less<>> values;  // PX4 / ArduPilot, by name
+  std::vector<fit::SavedFit> fits;                     // a fit file's channels
+  std::optional<double> value(std::string_view name) const;
+};
+
+ParameterFile read_parameter_file(const std::string& file);
+
+// One gyro's thermal calibration from a PX4 or ArduPilot parameter file.
+struct GyroCalibration {
+  ParameterFormat format = ParameterFormat::px4;
+  int instance = 0;    // PX4: n of TC_G{n}_; ArduPilot: the IMU instance (INS_TCAL1_ is 0)
+  std::string prefix;  // "TC_G0_", "INS_TCAL1_", "INS4_TCAL_"
+  std::optional<double> enable;  // TC_G_ENABLE / INS_TCAL{n}_ENABLE as the file sets it
+  double tmin_c = 0.0, tmax_c = 0.0;
+  float tref_c = 0.0f;                   // PX4's TREF; ArduPilot's fixed 35 °C
+  std::optional<long long> device_id;    // PX4's TC_G{n}_ID; ArduPilot's INS_GYR{,2,3}_ID when the file has it
+  std::array<bool, 3> axes{};            // X, Y, Z given
+  std::array<std::array<float, 4>, 3> px4_x{};  // X0..X3 per axis (rad/s)
+  std::array<std::array<float, 3>, 3> ap_g{};   // GYR1..3 per axis (×1e6 rad/s)
+};
+
+// The gyro calibrations the file holds, lowest instance first (none for a
+// fit file). A calibration missing one of its range or coefficient
+// parameters is an InputError naming it.
+std::vector<GyroCalibration> gyro_calibrations(const ParameterFile& file);
+
+// ArduPilot's parameter holding the device id of IMU `instance` (0-based):
+// INS_GYR_ID, INS_GYR2_ID, INS_GYR3_ID, INS4_GYR_ID, INS5_GYR_ID.
+std::string ardupilot_gyro_id_name(int instance);
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,139 @@
+// `gyrotherm check`'s renderers: the JSON (the numbers and enums of
+// CheckResult) and the text, the only place its sentences are composed.
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "studies/check/check_run.h"
+
+namespace gyrotherm::studies {
+
+namespace {
+
+std::string rule_text(const CheckResult& r) {
+  switch (r.format) {
+    case ParameterFormat::px4:
+      return "PX4's rule: offsets recomputed once a second, re-applied after a change of more than 1 °C, the "
+             "temperature held within TMIN..TMAX";
+    case ParameterFormat::ardupilot:
+      return fmt::format("ArduPilot's rule: every sample, the temperature held within TMIN..TMAX, gyro offsets taken "
+                         "at boot (the log's first {:g} s, at {:.1f} °C)",
+                         r.request.boot_s, r.boot_c);
+    case ParameterFormat::fit:
+      return "the fit's model as `compensate` applies it, held at the fitted range's edge";
+  }
+  return "";
+}
+
+std::string finding_text(const CheckFinding& f, const CheckResult& r) {
+  switch (f.issue) {
+    case CheckIssue::calibration_span_minimum:
+      return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C), under the {:g} °C ArduPilot requires "
+                         "for a temperature calibration: its curve is a guess beyond a few degrees",
+                         f.value, r.tmin_c, r.tmax_c, f.limit);
+    case CheckIssue::calibration_span_advice:
+      return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C); ArduPilot advises {:g} °C or more, so "
+                         "a flight outside it runs on the edge's value",
+                         f.value, r.tmin_c, r.tmax_c, f.limit);
+    case CheckIssue::log_span_minimum:
+      return fmt::format("this log spans {:.1f} °C only: it checks the calibration there, not its curve", f.value);
+    case CheckIssue::temperature_quantised:
+      return "the log's temperature is in whole degrees (as some Bosch parts report it): a calibration from it, or "
+             "PX4's 1 °C hysteresis on it, corrects in steps";
+    case CheckIssue::moving:
+      return fmt::format("the vehicle moved: {:.1f} % of the samples show it ({}; a thermal check needs the gyro at "
+                         "rest), so the rates include the motion",
+                         100.0 * f.value, f.name == "gyro" ? "rates above 10 °/s" : "the accelerometer's magnitude or direction changing");
+    case CheckIssue::already_enabled:
+      return fmt::format("the log was written with {} = {:g}: its rates are already corrected, and applying the "
+                         "calibration again corrects twice",
+                         f.name, f.value);
+    case CheckIssue::device_mismatch:
+      return fmt::format("the calibration is for device id {:.0f}, which is no gyro of this log ({}): the firmware "
+                         "would not apply it",
+                         f.value, f.name);
+    case CheckIssue::outside_range:
+      return fmt::format("{:.1f} % of the samples lie outside the calibrated {:.1f}..{:.1f} °C, where the correction "
+                         "is held at the edge",
+                         100.0 * f.value, r.tmin_c, r.tmax_c);
+    case CheckIssue::residual_over_limit:
+      return fmt::format("axis {}: the residual {:.4g} °/h exceeds the limit {:.4g} °/h", f.name, f.value, f.limit);
+  }
+  return "";
+}
+
+}  // namespace
+
+nlohmann::ordered_json check_json(const CheckResult& r) {
+  nlohmann::ordered_json axes = nlohmann::ordered_json::array();
+  for (const AxisCheck& x : r.axes) {
+    nlohmann::ordered_json bins = nlohmann::ordered_json::array();
+    for (const TemperatureBin& b : x.bins)
+      bins.push_back({{"low_c", b.low_c}, {"high_c", b.high_c}, {"samples", b.samples}, {"mean_dph", b.mean_dph}});
+    axes.push_back({{"axis", x.axis},
+                    {"before_dph", x.before_dph},
+                    {"after_dph", x.after_dph},
+                    {"ratio", x.after_dph > 0.0 ? x.before_dph / x.after_dph : 0.0},
+                    {"offset_dph", x.offset_dph},
+                    {"residual_dph", x.residual_dph},
+                    {"residual_at_c", x.residual_at_c},
+                    {"outside_share", x.outside_share},
+                    {"bins", bins}});
+  }
+  nlohmann::ordered_json findings = nlohmann::ordered_json::array();
+  for (const CheckFinding& f : r.findings)
+    findings.push_back({{"issue", check_issue_name(f.issue)}, {"value", f.value}, {"limit", f.limit}, {"name", f.name}});
+  nlohmann::ordered_json out = {{"log", r.request.log},
+                                {"log_format", r.log_format},
+                                {"imu", r.log_instance >= 0 ? nlohmann::ordered_json(r.log_instance) : nullptr},
+                                {"device_id", r.log_device_id},
+                                {"parameters", r.request.parameters},
+                                {"format", parameter_format_name(r.format)},
+                                {"calibration", r.calibration},
+                                {"temp_range_c", {r.tmin_c, r.tmax_c}},
+                                {"boot_c", r.format == ParameterFormat::ardupilot ? nlohmann::ordered_json(r.boot_c) : nullptr},
+                                {"samples", r.samples},
+                                {"span_s", r.span_s},
+                                {"log_temp_range_c", {r.log_temp_min_c, r.log_temp_max_c}},
+                                {"window_s", r.window_s},
+                                {"bin_c", r.bin_c},
+                                {"axes", axes},
+                                {"findings", findings},
+                                {"max_residual_dph", r.limit_dph ? nlohmann::ordered_json(*r.limit_dph) : nullptr},
+                                {"passed", r.passed ? nlohmann::ordered_json(*r.passed) : nullptr}};
+  return out;
+}
+
+std::string check_text(const CheckResult& r) {
+  std::string out = fmt::format("check {} ({}{}) with {} ({} {}, {:.1f}..{:.1f} °C)\n", r.request.log, r.log_format,
+                                r.log_instance >= 0 ? fmt::format(", gyro instance {}, device {}", r.log_instance, r.log_device_id) : "",
+                                r.request.parameters, parameter_format_name(r.format), r.calibration, r.tmin_c, r.tmax_c);
+  out += "  applied by " + rule_text(r) + "\n";
+  out += fmt::format("  log: {} samples over {:.0f} s, {:.1f}..{:.1f} °C; instability = std of {:g} s means\n",
+                     r.samples, r.span_s, r.log_temp_min_c, r.log_temp_max_c, r.window_s);
+  out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11} {:>22} {:>9}\n", "axis", "raw °/h", "comp. °/h", "ratio",
+                     "offset °/h", "residual °/h (at °C)", "outside");
+  for (const AxisCheck& x : r.axes)
+    out += fmt::format("  {:<8} {:>12.5g} {:>12.5g} {:>6.2f}x {:>11.4g} {:>13.4g} ({:>5.1f}) {:>8.1f}%\n", x.axis,
+                       x.before_dph, x.after_dph, x.after_dph > 0.0 ? x.before_dph / x.after_dph : 0.0, x.offset_dph,
+                       x.residual_dph, x.residual_at_c, 100.0 * x.outside_share);
+  if (!r.axes.empty() && !r.axes.front().bins.empty()) {
+    out += fmt::format("  residual against temperature (mean compensated − offset, °/h, {:g} °C bins):\n", r.bin_c);
+    for (std::size_t b = 0; b < r.axes.front().bins.size(); ++b) {
+      const TemperatureBin& bin = r.axes.front().bins[b];
+      out += fmt::format("    {:6.1f}..{:<6.1f}", bin.low_c, bin.high_c);
+      for (const AxisCheck& x : r.axes)
+        for (const TemperatureBin& other : x.bins)
+          if (other.low_c == bin.low_c) out += fmt::format(" {}={:<10.4g}", x.axis, other.mean_dph - x.offset_dph);
+      out += "\n";
+    }
+  }
+  for (const CheckFinding& f : r.findings) out += "finding: " + finding_text(f, r) + "\n";
+  if (r.passed)
+    out += fmt::format("verdict: {} (every axis's residual against temperature within {:.4g} °/h)\n",
+                       *r.passed ? "PASS" : "FAIL", *r.limit_dph);
+  return out;
+}
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,360 @@
+#include "studies/check/check_run.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <nlohmann/json.hpp>
+
+#include "fit/channels.h"
+#include "fit/compensation.h"
+#include "fit/data/autopilot_log.h"
+#include "fit/data/units.h"
+#include "sim/util/input_error.h"
+#include "studies/export/firmware.h"
+#include "studies/export/firmware_outcome.h"
+#include "studies/fit/compensate_run.h"
+
+namespace gyrotherm::studies {
+
+namespace {
+
+constexpr double kSpanMinimumC = 10.0;  // ArduPilot's minimum span for a temperature calibration
+constexpr double kSpanAdviceC = 25.0;   // and its advice
+constexpr double kRestRateDph = 10.0 * 3600.0;  // 10 °/s: beyond any gyro bias, a vehicle turning
+constexpr double kMovingShare = 0.01;   // more than 1 % of the samples moving is a finding
+constexpr std::size_t kBinSamples = 10; // a temperature bin needs this many samples to be shown
+constexpr int kMaxBins = 20;
+
+// The log as applied: one time and temperature, and per axis the rate and
+// what the calibration subtracts (°/h).
+struct Applied {
+  std::vector<double> time_s, temp_c;
+  std::vector<std::string> axis;
+  std::vector<std::vector<double>> raw_dph, subtracted_dph;
+  fit::LogContents contents;  // an autopilot log's; empty for a CSV
+  double moving_share = 0.0;  // of the gyro samples beyond the rest rate on any axis
+};
+
+constexpr char kAxisNames[3] = {'X', 'Y', 'Z'};
+
+// The log's gyro to check and the calibration for it, as the firmware pairs
+// them: PX4 by device id, ArduPilot by instance; --imu overrides the log's side.
+std::pair<int, std::size_t> pair_gyro(const CheckRequest& o, const fit::LogContents& contents,
+                                      const std::vector<GyroCalibration>& cals) {
+  for (std::size_t c = 0; c < cals.size(); ++c)
+    for (const fit::LogGyro& g : contents.gyros) {
+      const bool same = cals[c].format == ParameterFormat::px4
+                            ? cals[c].device_id && g.device_id != 0 && *cals[c].device_id == static_cast<long long>(g.device_id)
+                            : cals[c].instance == g.instance;
+      if (same && (!o.columns.imu || *o.columns.imu == g.instance)) return {g.instance, c};
+    }
+  const int instance = o.columns.imu.value_or(contents.default_instance());
+  for (std::size_t c = 0; c < cals.size(); ++c)
+    if (cals[c].format == ParameterFormat::ardupilot && cals[c].instance == instance) return {instance, c};
+  return {instance, 0};
+}
+
+void read_autopilot(const CheckRequest& o, const std::string& format, const std::vector<GyroCalibration>& cals,
+                    Applied* a, CheckResult* r, std::size_t* cal) {
+  const auto reader = format == "ulog" ? &fit::read_ulog : &fit::read_dataflash;
+  a->contents = reader(o.log, -1, {});
+  const auto [instance, chosen] = pair_gyro(o, a->contents, cals);
+  if (instance < 0)
+    throw InputError(fmt::format("{}: no gyro has 2 samples with a temperature; the file holds: {}", o.log,
+                                 a->contents.describe()));
+  *cal = chosen;
+  a->raw_dph.assign(3, {});
+  std::size_t moving = 0;
+  const fit::LogContents read = reader(o.log, instance, [&](double t, double temp, double x, double y, double z) {
+    if (!std::isfinite(temp)) return;
+    a->time_s.push_back(t);
+    a->temp_c.push_back(temp);
+    const double rates[3] = {x / kRadPerSecPerDegPerHour, y / kRadPerSecPerDegPerHour, z / kRadPerSecPerDegPerHour};
+    for (int k = 0; k < 3; ++k) a->raw_dph[k].push_back(rates[k]);
+    if (std::max({std::abs(rates[0]), std::abs(rates[1]), std::abs(rates[2])}) > kRestRateDph) ++moving;
+  });
+  r->log_format = read.format;
+  r->log_instance = instance;
+  for (const fit::LogGyro& g : read.gyros)
+    if (g.instance == instance) r->log_device_id = g.device_id;
+  a->moving_share = a->time_s.empty() ? 0.0 : static_cast<double>(moving) / static_cast<double>(a->time_s.size());
+  for (int k = 0; k < 3; ++k) a->axis.push_back(std::string(1, kAxisNames[k]));
+}
+
+void read_csv(const CheckRequest& o, Applied* a, CheckResult* r) {
+  fit::ColumnMap columns = fit::ColumnMap().with(o.columns);
+  columns.imu.reset();
+  if (o.columns.gyro.empty()) columns.gyro = "gyro_x,gyro_y,gyro_z";
+  const std::vector<std::string> gyros = fit::parse_channels(columns.gyro);
+  if (gyros.size() > 3)
+    throw InputError(fmt::format("--gyro-col {}: {} columns; a calibration corrects the X, Y and Z axes, name up "
+                                 "to three, in that order",
+                                 columns.gyro, gyros.size()));
+  std::size_t moving = 0;
+  for (std::size_t k = 0; k < gyros.size(); ++k) {
+    fit::ColumnMap one = columns;
+    one.gyro = gyros[k];
+    const fit::Measurement m = fit::read_measurement_csv(o.log, one);
+    if (k == 0) a->time_s = m.time_s, a->temp_c = m.temp_c;
+    a->raw_dph.push_back(m.gyro_dph);
+    a->axis.push_back(std::string(1, kAxisNames[k]));
+    for (const double g : m.gyro_dph) moving += std::abs(g) > kRestRateDph ? 1 : 0;
+  }
+  a->moving_share = a->time_s.empty() ? 0.0 : static_cast<double>(moving) / static_cast<double>(a->time_s.size());
+  r->log_format = "CSV";
+}
+
+// Mean raw rate and temperature over the boot calibration (the first boot_s).
+std::pair<double, double> boot_means(const Applied& a, std::size_t axis, double boot_s) {
+  double rate = 0.0, temp = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < a.time_s.size() && (n == 0 || a.time_s[i] - a.time_s.front() < boot_s); ++i, ++n) {
+    rate += a.raw_dph[axis][i];
+    temp += a.temp_c[i];
+  }
+  return {rate / static_cast<double>(n), temp / static_cast<double>(n)};
+}
+
+Applied apply_firmware(const CheckRequest& o, const ParameterFile& p, CheckResult* r) {
+  const std::vector<GyroCalibration> cals = gyro_calibrations(p);
+  if (cals.empty())
+    throw InputError(fmt::format("{}: no gyro calibration set (only the enable switch?); expected {} parameters",
+                                 p.file, p.format == ParameterFormat::px4 ? "TC_G{n}_X{k}_{axis}" : "INS_TCAL{n}_GYR{k}_{axis}"));
+  Applied a;
+  std::size_t cal = 0;
+  if (const std::string format = fit::autopilot_log_format(o.log); !format.empty()) {
+    read_autopilot(o, format, cals, &a, r, &cal);
+  } else {
+    read_csv(o, &a, r);
+    if (o.columns.imu)
+      for (std::size_t c = 0; c < cals.size(); ++c)
+        if (cals[c].instance == *o.columns.imu) cal = c;
+  }
+  const GyroCalibration& c = cals[cal];
+  r->calibration = c.prefix;
+  r->tmin_c = c.tmin_c;
+  r->tmax_c = c.tmax_c;
+  a.subtracted_dph.resize(a.raw_dph.size());
+  for (std::size_t k = 0; k < a.raw_dph.size(); ++k) {
+    if (!c.axes[k]) {
+      a.subtracted_dph[k].assign(a.time_s.size(), 0.0);
+      continue;
+    }
+    if (c.format == ParameterFormat::px4) {
+      a.subtracted_dph[k] = px4_applied_dph(a.time_s, a.temp_c, c.px4_x[k], c.tref_c, static_cast<float>(c.tmin_c),
+                                            static_cast<float>(c.tmax_c));
+    } else {
+      const auto [bias, boot_c] = boot_means(a, k, o.boot_s);
+      r->boot_c = boot_c;
+      a.subtracted_dph[k] = ardupilot_applied_dph(a.temp_c, c.ap_g[k], static_cast<float>(c.tmin_c),
+                                                  static_cast<float>(c.tmax_c), static_cast<float>(boot_c), bias);
+    }
+  }
+  return a;
+}
+
+Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r) {
+  CompensateRequest request;
+  request.data = o.log;
+  request.fit_file = p.file;
+  request.fits = p.fits;
+  request.columns = o.columns;
+  const CompensateRun run = run_compensate(request);
+  Applied a;
+  r->calibration = p.file;
+  r->log_format = fit::autopilot_log_format(o.log).empty() ? "CSV" : "";
+  if (r->log_format.empty()) a.contents = fit::autopilot_log_format(o.log) == "ulog" ? fit::read_ulog(o.log) : fit::read_dataflash(o.log);
+  if (r->log_format.empty()) r->log_format = a.contents.format;
+  bool first = true;
+  for (std::size_t k = 0; k < run.channels.size(); ++k) {
+    const fit::Compensation& c = run.channels[k];
+    const bool full = !c.time_s.empty();
+    if (first) {
+      a.time_s = full ? c.time_s : c.data.series.time_s;
+      a.temp_c = full ? c.temp_c : c.data.series.temp_c;
+      if (c.fit_range_c) r->tmin_c = c.fit_range_c->first, r->tmax_c = c.fit_range_c->second;
+      first = false;
+    }
+    a.axis.push_back(run.fits[k].channel);
+    a.raw_dph.push_back(full ? c.gyro_dph : c.data.series.gyro_dph);
+    a.subtracted_dph.push_back(full ? c.model_dph : c.window_model_dph);
+    std::size_t moving = 0;
+    for (const double g : a.raw_dph.back()) moving += std::abs(g) > kRestRateDph ? 1 : 0;
+    a.moving_share = std::max(a.moving_share, static_cast<double>(moving) / static_cast<double>(a.raw_dph.back().size()));
+  }
+  return a;
+}
+
+// Means of consecutive windows of `w` seconds from the first sample (windows with 2 samples or more).
+std::vector<double> window_means(const std::vector<double>& t, const std::vector<double>& v, double w) {
+  std::vector<double> out;
+  double sum = 0.0, current = -1.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double index = std::floor((t[i] - t.front()) / w);
+    if (index != current) {
+      if (n >= 2) out.push_back(sum / static_cast<double>(n));
+      sum = 0.0, n = 0, current = index;
+    }
+    sum += v[i], ++n;
+  }
+  if (n >= 2) out.push_back(sum / static_cast<double>(n));
+  return out;
+}
+
+AxisCheck judge_axis(const Applied& a, std::size_t k, const CheckResult& r) {
+  AxisCheck x;
+  x.axis = a.axis[k];
+  std::vector<double> comp(a.time_s.size());
+  for (std::size_t i = 0; i < comp.size(); ++i) comp[i] = a.raw_dph[k][i] - a.subtracted_dph[k][i];
+  x.before_dph = fit::instability_of(window_means(a.time_s, a.raw_dph[k], r.window_s));
+  x.after_dph = fit::instability_of(window_means(a.time_s, comp, r.window_s));
+  x.offset_dph = std::accumulate(comp.begin(), comp.end(), 0.0) / static_cast<double>(comp.size());
+  const double low = std::floor(r.log_temp_min_c);
+  const auto bins = static_cast<std::size_t>(std::floor((r.log_temp_max_c - low) / r.bin_c)) + 1;
+  std::vector<double> sum(bins, 0.0);
+  std::vector<std::size_t> count(bins, 0);
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < comp.size(); ++i) {
+    const auto b = std::min(bins - 1, static_cast<std::size_t>(std::floor((a.temp_c[i] - low) / r.bin_c)));
+    sum[b] += comp[i], ++count[b];
+    outside += a.temp_c[i] < r.tmin_c || a.temp_c[i] > r.tmax_c ? 1 : 0;
+  }
+  for (std::size_t b = 0; b < bins; ++b) {
+    if (count[b] < kBinSamples) continue;
+    const TemperatureBin bin{low + static_cast<double>(b) * r.bin_c, low + static_cast<double>(b + 1) * r.bin_c, count[b],
+                             sum[b] / static_cast<double>(count[b])};
+    if (std::abs(bin.mean_dph - x.offset_dph) >= x.residual_dph) {
+      x.residual_dph = std::abs(bin.mean_dph - x.offset_dph);
+      x.residual_at_c = 0.5 * (bin.low_c + bin.high_c);
+    }
+    x.bins.push_back(bin);
+  }
+  x.outside_share = static_cast<double>(outside) / static_cast<double>(comp.size());
+  return x;
+}
+
+std::string ardupilot_enable_name(int instance) { return ardupilot_prefix(instance + 1) + "ENABLE"; }
+
+void add_log_findings(const Applied& a, CheckResult* r) {
+  const fit::LogContents& log = a.contents;
+  if (r->format == ParameterFormat::px4) {
+    if (const auto on = log.parameters.find("TC_G_ENABLE"); on != log.parameters.end() && on->second == 1.0)
+      r->findings.push_back({CheckIssue::already_enabled, on->second, 0.0, on->first});
+  } else if (r->format == ParameterFormat::ardupilot && r->log_instance >= 0 && r->log_instance < 5) {
+    if (const auto on = log.parameters.find(ardupilot_enable_name(r->log_instance));
+        on != log.parameters.end() && on->second == 1.0)
+      r->findings.push_back({CheckIssue::already_enabled, on->second, 0.0, on->first});
+  }
+  double accel_share = 0.0;
+  if (const fit::LogAccel* acc = log.accel(r->log_instance)) accel_share = acc->moving_share();
+  if (a.moving_share > kMovingShare || accel_share > kMovingShare)
+    r->findings.push_back({CheckIssue::moving, std::max(a.moving_share, accel_share), kMovingShare,
+                           a.moving_share >= accel_share ? "gyro" : "accelerometer"});
+}
+
+void add_device_finding(const ParameterFile& p, const Applied& a, CheckResult* r) {
+  if (p.format == ParameterFormat::fit || r->log_instance < 0) return;
+  const std::vector<GyroCalibration> cals = gyro_calibrations(p);
+  const auto cal = std::find_if(cals.begin(), cals.end(), [&](const GyroCalibration& c) { return c.prefix == r->calibration; });
+  if (cal == cals.end() || !cal->device_id || *cal->device_id == 0) return;
+  std::string ids;
+  bool any = false, match = false;
+  if (p.format == ParameterFormat::px4) {
+    for (const fit::LogGyro& g : a.contents.gyros) {
+      if (g.device_id == 0) continue;
+      any = true;
+      match = match || static_cast<long long>(g.device_id) == *cal->device_id;
+      ids += fmt::format("{}{} (instance {})", ids.empty() ? "" : ", ", g.device_id, g.instance);
+    }
+  } else {
+    const std::string name = ardupilot_gyro_id_name(cal->instance);
+    if (const auto id = a.contents.parameters.find(name); id != a.contents.parameters.end()) {
+      any = true;
+      match = static_cast<long long>(id->second) == *cal->device_id;
+      ids = fmt::format("{} {}", name, static_cast<long long>(id->second));
+    }
+  }
+  if (any && !match) r->findings.push_back({CheckIssue::device_mismatch, static_cast<double>(*cal->device_id), 0.0, ids});
+}
+
+void add_findings(const ParameterFile& p, const Applied& a, CheckResult* r) {
+  const double span = r->tmax_c - r->tmin_c;
+  if (span < kSpanMinimumC)
+    r->findings.push_back({CheckIssue::calibration_span_minimum, span, kSpanMinimumC, r->calibration});
+  else if (span < kSpanAdviceC)
+    r->findings.push_back({CheckIssue::calibration_span_advice, span, kSpanAdviceC, r->calibration});
+  if (r->log_temp_max_c - r->log_temp_min_c < kSpanMinimumC)
+    r->findings.push_back({CheckIssue::log_span_minimum, r->log_temp_max_c - r->log_temp_min_c, kSpanMinimumC, ""});
+  const auto whole = static_cast<std::size_t>(std::count_if(a.temp_c.begin(), a.temp_c.end(), [](double t) {
+    return std::abs(t - std::round(t)) < 1e-6;
+  }));
+  if (r->log_temp_max_c > r->log_temp_min_c && static_cast<double>(whole) >= 0.99 * static_cast<double>(a.temp_c.size()))
+    r->findings.push_back({CheckIssue::temperature_quantised, 1.0, 0.0, ""});
+  add_log_findings(a, r);
+  add_device_finding(p, a, r);
+  double outside = 0.0;
+  for (const AxisCheck& x : r->axes) outside = std::max(outside, x.outside_share);
+  if (outside > 0.0) r->findings.push_back({CheckIssue::outside_range, outside, 0.0, ""});
+  if (r->limit_dph) {
+    r->passed = true;
+    for (const AxisCheck& x : r->axes)
+      if (x.residual_dph > *r->limit_dph) {
+        r->passed = false;
+        r->findings.push_back({CheckIssue::residual_over_limit, x.residual_dph, *r->limit_dph, x.axis});
+      }
+  }
+}
+
+void check_request(const CheckRequest& o) {
+  if (!(o.avg_s > 0.0)) throw InputError(fmt::format("--avg {}: expected a window of more than 0 s", o.avg_s));
+  if (!(o.boot_s > 0.0)) throw InputError(fmt::format("--boot {}: expected more than 0 s", o.boot_s));
+  if (o.max_residual && !(*o.max_residual > 0.0 && std::isfinite(*o.max_residual)))
+    throw InputError(fmt::format("--max-residual {}: expected a limit of more than 0", *o.max_residual));
+  if (o.columns.imu && *o.columns.imu < 0) throw InputError(fmt::format("--imu {}: expected an instance of 0 or more", *o.columns.imu));
+}
+
+}  // namespace
+
+std::string_view check_issue_name(CheckIssue issue) {
+  switch (issue) {
+    case CheckIssue::calibration_span_minimum: return "calibration_span_minimum";
+    case CheckIssue::calibration_span_advice: return "calibration_span_advice";
+    case CheckIssue::log_span_minimum: return "log_span_minimum";
+    case CheckIssue::temperature_quantised: return "temperature_quantised";
+    case CheckIssue::moving: return "moving";
+    case CheckIssue::already_enabled: return "already_enabled";
+    case CheckIssue::device_mismatch: return "device_mismatch";
+    case CheckIssue::outside_range: return "outside_range";
+    case CheckIssue::residual_over_limit: return "residual_over_limit";
+  }
+  return "";
+}
+
+CheckResult run_check(const CheckRequest& o) {
+  check_request(o);
+  CheckResult r;
+  r.request = o;
+  if (o.max_residual) r.limit_dph = fit::find_unit(fit::Quantity::gyro, o.residual_unit, "--residual-unit").to_base(*o.max_residual);
+  const ParameterFile p = read_parameter_file(o.parameters);
+  r.format = p.format;
+  const Applied a = p.format == ParameterFormat::fit ? apply_fit(o, p, &r) : apply_firmware(o, p, &r);
+  if (a.time_s.size() < 2)
+    throw InputError(fmt::format("{}: {} sample{} with a temperature; a check needs 2 or more", o.log, a.time_s.size(),
+                                 a.time_s.size() == 1 ? "" : "s"));
+  r.samples = a.time_s.size();
+  r.span_s = a.time_s.back() - a.time_s.front();
+  const auto [lo, hi] = std::minmax_element(a.temp_c.begin(), a.temp_c.end());
+  r.log_temp_min_c = *lo;
+  r.log_temp_max_c = *hi;
+  r.window_s = std::min(o.avg_s, r.span_s / 10.0);
+  r.bin_c = std::max(1.0, (r.log_temp_max_c - r.log_temp_min_c) / kMaxBins);
+  for (std::size_t k = 0; k < a.axis.size(); ++k) r.axes.push_back(judge_axis(a, k, r));
+  add_findings(p, a, &r);
+  return r;
+}
+
+}  // namespace gyrotherm::studies

@@ -1,0 +1,283 @@
+// `gyrotherm check` (studies/check/check_run.h): a calibration exported from a
+// fit on one simulated run, checked on a second run of the same gyro, equal
+// to the firmware's rule written here from the firmware sources
+// (parameter_files.h); --max-residual passes a right model and fails a wrong
+// one; each failure mode triggered by a log made for it and not by a clean
+// one; bad parameter files refused.
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cli_runner.h"
+#include "imu_logs.h"
+#include "parameter_files.h"
+
+namespace gyrotherm::testing {
+namespace {
+
+// The gyro's bias per axis (°/h), a quadratic in temperature.
+double bias_dph(int axis, double temp_c) {
+  const double d = temp_c - 30.0;
+  return (axis == 0 ? 100.0 : axis == 1 ? -60.0 : 20.0) + (2.0 - axis) * d + 0.1 * d * d * (axis == 1 ? -1.0 : 1.0);
+}
+
+struct Thermal {
+  double from_c = 10.0, to_c = 60.0;
+  unsigned seed = 1;
+  bool whole_degrees = false;
+  double turn_share = 0.0;  // the share of samples (from the middle) with a tilted accelerometer
+  double spin_dps = 0.0;    // a rotation about Z on those samples
+};
+
+// 2 h at 1 Hz, the temperature ramping from_c → to_c, white noise 30 °/h.
+std::vector<ImuSample> run_samples(const Thermal& run) {
+  std::mt19937_64 rng(run.seed);
+  std::normal_distribution<double> noise(0.0, 30.0);
+  std::vector<ImuSample> out;
+  const int n = 7200;
+  for (int k = 0; k < n; ++k) {
+    double temp = run.from_c + (run.to_c - run.from_c) * k / (n - 1);
+    if (run.whole_degrees) temp = std::round(temp);
+    double rate[3];
+    for (int a = 0; a < 3; ++a) rate[a] = (bias_dph(a, temp) + noise(rng)) * kDphToRadS;
+    ImuSample s{static_cast<std::uint64_t>(k) * 1000000 + 2000000, static_cast<float>(temp), static_cast<float>(rate[0]),
+                static_cast<float>(rate[1]), static_cast<float>(rate[2])};
+    if (std::abs(k - n / 2) < run.turn_share * n / 2) {
+      s.ax = 0.5f * 9.80665f;
+      s.az = -0.866f * 9.80665f;
+      s.z += static_cast<float>(run.spin_dps * 3.14159265358979 / 180.0);
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+nlohmann::json check_json(const ScratchDir& dir, const std::string& args, int exit_code = 0) {
+  const CliResult r = run_cli(dir, "check " + args + " --json");
+  EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
+  return r.out.empty() ? nlohmann::json() : nlohmann::json::parse(r.out);
+}
+
+std::vector<std::string> issues_of(const nlohmann::json& j) {
+  std::vector<std::string> out;
+  for (const auto& f : j["findings"]) out.push_back(f["issue"]);
+  return out;
+}
+
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+// Windows of w s from the first sample, std of their means (as check computes its instability).
+double instability(const std::vector<double>& t, const std::vector<double>& v, double w) {
+  std::vector<double> means;
+  double sum = 0.0;
+  int n = 0, current = 0;
+  for (std::size_t i = 0; i <= t.size(); ++i) {
+    const int index = i < t.size() ? static_cast<int>(std::floor((t[i] - t[0]) / w)) : -1;
+    if (index != current) {
+      if (n >= 2) means.push_back(sum / n);
+      sum = 0.0, n = 0, current = index;
+    }
+    if (i < t.size()) sum += v[i], ++n;
+  }
+  double mean = 0.0, ss = 0.0;
+  for (const double m : means) mean += m / static_cast<double>(means.size());
+  for (const double m : means) ss += (m - mean) * (m - mean);
+  return std::sqrt(ss / static_cast<double>(means.size() - 1));
+}
+
+// The second run as the tests read it back: times, temperatures and rates (°/h) as logged (floats).
+struct Logged {
+  std::vector<double> t, temp;
+  std::vector<std::vector<double>> rate{3};
+};
+Logged logged(const std::vector<ImuSample>& samples) {
+  Logged l;
+  for (const ImuSample& s : samples) {
+    l.t.push_back(static_cast<double>(s.time_us) / 1e6);
+    l.temp.push_back(s.temp_c);
+    for (const auto& [a, v] : {std::pair{0, s.x}, {1, s.y}, {2, s.z}}) l.rate[a].push_back(static_cast<double>(v) / kDphToRadS);
+  }
+  return l;
+}
+
+TEST(CliCheck, Px4ParametersOnASecondUlogAreAppliedAsPx4AppliesThem) {
+  ScratchDir dir;
+  write_ulog(dir / "run1.ulg", run_samples({10.0, 60.0, 1}));
+  const std::vector<ImuSample> second = run_samples({58.0, 15.0, 2});
+  write_ulog(dir / "run2.ulg", second);
+  ASSERT_EQ(run_cli(dir, "fit run1.ulg --model 'T + T^2' -o fit.json").exit_code, 0);
+  const auto exported = run_cli(dir, fmt::format("export fit.json --format px4 --device-id {} -o cal.params", kUlogDeviceId));
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const nlohmann::json j = check_json(dir, "run2.ulg --params cal.params --max-residual 15");
+  EXPECT_EQ(j["format"], "px4");
+  EXPECT_EQ(j["calibration"], "TC_G0_");
+  EXPECT_EQ(j["imu"], 1);  // paired by the device id, as PX4 pairs them
+  EXPECT_EQ(j["passed"], true);
+  EXPECT_TRUE(issues_of(j).empty()) << j["findings"].dump();
+  const std::map<std::string, float> p = read_qgc(slurp(dir / "cal.params"));
+  const Logged l = logged(second);
+  const double w = j["window_s"];
+  ASSERT_EQ(w, 100.0);
+  for (int a = 0; a < 3; ++a) {
+    // PX4's rule from the firmware (parameter_files.h), on the same samples.
+    fit::Measurement m;
+    m.time_s = l.t, m.temp_c = l.temp, m.gyro_dph = l.rate[a];
+    const std::vector<double> applied = px4_as_applied(m, p, a);
+    std::vector<double> comp(l.t.size());
+    for (std::size_t i = 0; i < comp.size(); ++i) comp[i] = l.rate[a][i] - applied[i];
+    const nlohmann::json& x = j["axes"][a];
+    EXPECT_NEAR(x["before_dph"].get<double>(), instability(l.t, l.rate[a], w), 1e-9 * instability(l.t, l.rate[a], w));
+    EXPECT_NEAR(x["after_dph"].get<double>(), instability(l.t, comp, w), 1e-6 * instability(l.t, comp, w)) << a;
+    // The compensation takes out the quadratic: what is left is near the noise of a 100 s mean, 30/√100 °/h.
+    EXPECT_LT(x["after_dph"].get<double>(), 1.5 * 3.0) << a;
+    EXPECT_GT(x["before_dph"].get<double>(), 4.0 * x["after_dph"].get<double>()) << a;
+    EXPECT_LT(x["residual_dph"].get<double>(), 15.0) << a;
+  }
+}
+
+TEST(CliCheck, MaxResidualFailsAModelThatMissesTheCurve) {
+  ScratchDir dir;
+  write_ulog(dir / "run1.ulg", run_samples({10.0, 60.0, 3}));
+  write_ulog(dir / "run2.ulg", run_samples({58.0, 15.0, 4}));
+  ASSERT_EQ(run_cli(dir, "fit run1.ulg --model T -o line.json").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, fmt::format("export line.json --format px4 --device-id {} -o line.params", kUlogDeviceId)).exit_code, 0);
+  // The quadratic's 0.1 °/h/°C² leaves tens of °/h about the line: exit 1, named per axis.
+  const nlohmann::json j = check_json(dir, "run2.ulg --params line.params --max-residual 15", 1);
+  EXPECT_EQ(j["passed"], false);
+  EXPECT_GT(j["axes"][0]["residual_dph"].get<double>(), 30.0);
+  EXPECT_TRUE(has(issues_of(j), "residual_over_limit"));
+  // The limit in another unit: 15 °/h = 0.0041667 °/s.
+  EXPECT_EQ(check_json(dir, "run2.ulg --params line.params --max-residual 0.0041667 --residual-unit dps", 1)["passed"], false);
+  const CliResult text = run_cli(dir, "check run2.ulg --params line.params --max-residual 15");
+  EXPECT_EQ(text.exit_code, 1);
+  EXPECT_NE(text.out.find("verdict: FAIL"), std::string::npos) << text.out;
+  // Without a limit, no verdict and exit 0.
+  EXPECT_TRUE(check_json(dir, "run2.ulg --params line.params")["passed"].is_null());
+}
+
+TEST(CliCheck, ArduPilotParametersOnASecondDataFlashLogWithBootOffsets) {
+  ScratchDir dir;
+  write_dataflash(dir / "run1.bin", run_samples({10.0, 60.0, 5}));
+  const std::vector<ImuSample> second = run_samples({20.0, 50.0, 6});
+  write_dataflash(dir / "run2.bin", second);
+  ASSERT_EQ(run_cli(dir, "fit run1.bin --model 'T + T^2' -o fit.json").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "export fit.json --format ardupilot -o cal.parm").exit_code, 0);
+  const nlohmann::json j = check_json(dir, "run2.bin --params cal.parm --max-residual 15");
+  EXPECT_EQ(j["format"], "ardupilot");
+  EXPECT_EQ(j["calibration"], "INS_TCAL1_");
+  EXPECT_EQ(j["passed"], true);
+  const std::map<std::string, float> p = read_ap(slurp(dir / "cal.parm"));
+  const Logged l = logged(second);
+  // Boot: the first 10 s, their mean rate the offsets, their mean temperature CALTEMP.
+  std::size_t boot = 0;
+  double boot_temp = 0.0;
+  while (l.t[boot] - l.t[0] < 10.0) boot_temp += l.temp[boot++];
+  boot_temp /= static_cast<double>(boot);
+  EXPECT_NEAR(j["boot_c"].get<double>(), boot_temp, 1e-9);
+  for (int a = 0; a < 3; ++a) {
+    double offset = 0.0;
+    for (std::size_t i = 0; i < boot; ++i) offset += l.rate[a][i] / static_cast<double>(boot);
+    std::vector<double> comp(l.t.size());
+    for (std::size_t i = 0; i < comp.size(); ++i)
+      comp[i] = l.rate[a][i] - offset -
+                ardupilot_subtracted(p, "XYZ"[a], static_cast<float>(l.temp[i]), static_cast<float>(boot_temp)) / kDphToRadS;
+    EXPECT_NEAR(j["axes"][a]["after_dph"].get<double>(), instability(l.t, comp, 100.0), 1e-5 * instability(l.t, comp, 100.0));
+    // The boot offsets take out the constant up to the noise of a 10 s mean (30/√10 °/h).
+    double left = 0.0;
+    for (const double c : comp) left += c / static_cast<double>(comp.size());
+    EXPECT_NEAR(j["axes"][a]["offset_dph"].get<double>(), left, 1e-4) << a;
+    EXPECT_LT(std::abs(left), 4.0 * 30.0 / std::sqrt(10.0)) << a;
+  }
+}
+
+TEST(CliCheck, EachFailureModeIsFoundOnALogMadeForItAndNotOnACleanOne) {
+  ScratchDir dir;
+  // A hand-written ArduPilot calibration as its tempcal_IMU.py writes it ("NAME VALUE"), 28..34 °C.
+  write_text(dir / "narrow.parm",
+             "INS_TCAL1_ENABLE 1\nINS_TCAL1_TMIN 28.0\nINS_TCAL1_TMAX 34.0\n"
+             "INS_TCAL1_GYR1_X 10.0\nINS_TCAL1_GYR2_X 0.0\nINS_TCAL1_GYR3_X 0.0\n");
+  write_text(dir / "mid.parm",
+             "# a calibration over 15 °C\nINS_TCAL1_TMIN,20\nINS_TCAL1_TMAX,35\nINS_TCAL1_GYR1_X,10\n"
+             "INS_TCAL1_GYR2_X,0\nINS_TCAL1_GYR3_X,0\nINS_GYR_ID,2753028\n");
+  write_dataflash(dir / "clean.bin", run_samples({20.0, 50.0, 7}));
+  const nlohmann::json clean = check_json(dir, "clean.bin --params narrow.parm");
+  EXPECT_EQ(issues_of(clean), (std::vector<std::string>{"calibration_span_minimum", "outside_range"}));
+  EXPECT_TRUE(has(issues_of(check_json(dir, "clean.bin --params mid.parm")), "calibration_span_advice"));
+  write_dataflash(dir / "enabled.bin", run_samples({20.0, 50.0, 7}), {{"INS_TCAL1_ENABLE", 1.0f}, {"INS_GYR_ID", 2753029.0f}});
+  const std::vector<std::string> enabled = issues_of(check_json(dir, "enabled.bin --params mid.parm"));
+  EXPECT_TRUE(has(enabled, "already_enabled"));
+  EXPECT_TRUE(has(enabled, "device_mismatch"));
+  write_dataflash(dir / "flat.bin", run_samples({30.0, 33.0, 8}));
+  EXPECT_TRUE(has(issues_of(check_json(dir, "flat.bin --params narrow.parm")), "log_span_minimum"));
+  Thermal quantised{20.0, 50.0, 9};
+  quantised.whole_degrees = true;
+  write_dataflash(dir / "whole.bin", run_samples(quantised));
+  EXPECT_TRUE(has(issues_of(check_json(dir, "whole.bin --params narrow.parm")), "temperature_quantised"));
+  Thermal tilted{20.0, 50.0, 10};
+  tilted.turn_share = 0.1;
+  write_dataflash(dir / "tilted.bin", run_samples(tilted));
+  const nlohmann::json tilt = check_json(dir, "tilted.bin --params narrow.parm");
+  ASSERT_TRUE(has(issues_of(tilt), "moving"));
+  for (const auto& f : tilt["findings"]) {
+    if (f["issue"] == "moving") EXPECT_EQ(f["name"], "accelerometer");
+  }
+  Thermal spun{20.0, 50.0, 11};
+  spun.turn_share = 0.05;
+  spun.spin_dps = 30.0;
+  write_ulog(dir / "spun.ulg", run_samples(spun), {{"TC_G_ENABLE", 1.0f}});
+  write_text(dir / "other.params",
+             "# Onboard parameters for Vehicle 1\n1\t1\tTC_G0_ID\t12345\t6\n1\t1\tTC_G0_TMIN\t10\t9\n1\t1\tTC_G0_TMAX\t60\t9\n"
+             "1\t1\tTC_G0_TREF\t35\t9\n1\t1\tTC_G0_X0_2\t0\t9\n1\t1\tTC_G0_X1_2\t0\t9\n1\t1\tTC_G0_X2_2\t0\t9\n"
+             "1\t1\tTC_G0_X3_2\t0\t9\n");
+  const nlohmann::json px4 = check_json(dir, "spun.ulg --params other.params");
+  const std::vector<std::string> found = issues_of(px4);
+  EXPECT_TRUE(has(found, "moving"));
+  EXPECT_TRUE(has(found, "already_enabled"));
+  EXPECT_TRUE(has(found, "device_mismatch"));
+  EXPECT_EQ(px4["axes"].size(), 3u);
+  EXPECT_EQ(px4["axes"][0]["after_dph"], px4["axes"][0]["before_dph"]);  // no X parameters: X left as it is
+}
+
+TEST(CliCheck, AFitFileIsCheckedAsCompensateAppliesIt) {
+  ScratchDir dir;
+  write_ulog(dir / "run1.ulg", run_samples({10.0, 60.0, 12}));
+  write_ulog(dir / "run2.ulg", run_samples({58.0, 15.0, 13}));
+  ASSERT_EQ(run_cli(dir, "fit run1.ulg --model 'T + T^2' -o fit.json").exit_code, 0);
+  const nlohmann::json j = check_json(dir, "run2.ulg --params fit.json --max-residual 15");
+  EXPECT_EQ(j["format"], "fit");
+  ASSERT_EQ(j["axes"].size(), 3u);
+  EXPECT_EQ(j["axes"][2]["axis"], "gyro_z");
+  EXPECT_EQ(j["passed"], true);
+  for (int a = 0; a < 3; ++a) EXPECT_LT(j["axes"][a]["after_dph"].get<double>(), 1.5 * 3.0) << a;
+  // The model's constant is the bias: nothing is left but noise.
+  EXPECT_LT(std::abs(j["axes"][0]["offset_dph"].get<double>()), 3.0);
+}
+
+TEST(CliCheck, BadParameterFilesAreRefusedNamingTheLine) {
+  ScratchDir dir;
+  write_ulog(dir / "run.ulg", run_samples({20.0, 50.0, 14}));
+  write_text(dir / "words.parm", "INS_TCAL1_TMIN 20\nthis is not a parameter\n");
+  expect_refused(dir, "check run.ulg --params words.parm", "words.parm:2: expected a parameter line");
+  write_text(dir / "twice.parm", "INS_TCAL1_TMIN 20\nINS_TCAL1_TMIN 21\n");
+  expect_refused(dir, "check run.ulg --params twice.parm", "twice.parm:2: INS_TCAL1_TMIN given again");
+  write_text(dir / "none.parm", "ATC_RAT_RLL_P 0.1\n");
+  expect_refused(dir, "check run.ulg --params none.parm", "it holds no gyro thermal parameters");
+  write_text(dir / "nan.parm", "INS_TCAL1_TMIN nan\n");
+  expect_refused(dir, "check run.ulg --params nan.parm", "nan.parm:1: INS_TCAL1_TMIN: 'nan' is not a finite number");
+  write_text(dir / "part.parm", "INS_TCAL1_TMIN 20\nINS_TCAL1_GYR1_X 1\n");
+  expect_refused(dir, "check run.ulg --params part.parm", "INS_TCAL1_TMAX is missing");
+  expect_refused(dir, "check run.ulg --params absent.parm", "absent.parm: cannot open");
+  write_text(dir / "ok.parm", "INS_TCAL1_TMIN 20\nINS_TCAL1_TMAX 50\nINS_TCAL1_GYR1_X 1\nINS_TCAL1_GYR2_X 0\nINS_TCAL1_GYR3_X 0\n");
+  expect_refused(dir, "check run.ulg --params ok.parm --max-residual -1", "--max-residual -1");
+  expect_refused(dir, "check run.ulg --params ok.parm --max-residual 1 --residual-unit furlongs", "--residual-unit");
+}
+
+}  // namespace
+}  // namespace gyrotherm::testing
