@@ -288,6 +288,22 @@ class ExportResult(_Report):
         self.warnings = list(warnings)
 
 
+class CheckResult(_Report):
+    """A calibration checked on another log (``check``): per axis the instability raw and
+    compensated, the residual against temperature and the share outside TMIN..TMAX
+    (``as_dict()['axes']``), the failure modes found (``findings``), and ``passed``: with
+    max_residual whether every axis is within it, else None."""
+
+    @property
+    def passed(self):
+        return self._dict["passed"]
+
+    @property
+    def findings(self):
+        """The issues found (``calibration_span_minimum``, ``moving``, ``already_enabled``, …)."""
+        return [f["issue"] for f in self._dict["findings"]]
+
+
 class PlanResult(_Report):
     """A designed thermal test (``plan``): the profile, its duration and the predicted standard
     errors; the files in ``out``."""
@@ -381,6 +397,21 @@ def export(fit, format, output, data=None, **options):
             fit.file = None
         raise
     return ExportResult(out["json"], out["text"], list(out["warnings"]))
+
+
+def check(log, params, **options):
+    """Applies a calibration to another log as the firmware applies it and judges it: log a PX4
+    ULog, an ArduPilot DataFlash log or a measurement CSV (a path); params a PX4 .params, an
+    ArduPilot .parm or a fit file (a path, or a FitResult that was saved). Options as
+    ``gyrotherm check``: max_residual (with residual_unit, default dph), avg, boot, imu and the
+    column and unit options for a CSV. A failed limit is ``passed == False``, not an error."""
+    if isinstance(params, FitResult):
+        if params.file is None:
+            raise InputError("check: save the fit first (FitResult.save), the check names the file it applies")
+        params = params.file
+    pairs = _keywords(dict(log=os.fspath(log), params=os.fspath(params), **options))
+    out = _g.check(pairs)
+    return CheckResult(out["json"], out["text"])
 
 
 def plan(**options):

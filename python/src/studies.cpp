@@ -13,10 +13,12 @@
 #include "python/src/bindings.h"
 #include "python/src/keywords.h"
 #include "studies/allan/allan_study.h"
+#include "studies/check/check_run.h"
 #include "studies/diagnose/diagnose_run.h"
 #include "studies/export/exporter.h"
 #include "studies/fit/compensate_run.h"
 #include "studies/options/allan_options.h"
+#include "studies/options/check_options.h"
 #include "studies/options/compensate_options.h"
 #include "studies/options/diagnose_options.h"
 #include "studies/options/export_options.h"
@@ -124,6 +126,12 @@ py::dict compensate(const Keywords& keywords, const py::object& columns, const p
   return out;
 }
 
+py::dict check(const Keywords& keywords) {
+  const studies::CheckRequest request = studies::check_request(read_keywords(studies::check_option_table(), keywords));
+  const studies::CheckResult result = released(nullptr, [&](const fit::Table*) { return studies::run_check(request); });
+  return report(studies::check_json(result).dump() + "\n", studies::check_text(result));
+}
+
 py::dict export_fit(const Keywords& keywords, const py::object& columns) {
   studies::ExportRequest request = studies::export_request(read_keywords(studies::export_option_table(), keywords));
   const std::unique_ptr<TableHold> table = table_or_none(columns);
@@ -157,6 +165,7 @@ void add_studies(py::module_& m) {
   m.def("allan", &allan, py::arg("options"), py::arg("columns"), py::arg("fit"));
   m.def("compensate", &compensate, py::arg("options"), py::arg("columns"), py::arg("fit"));
   m.def("export", &export_fit, py::arg("options"), py::arg("columns"));
+  m.def("check", &check, py::arg("options"));
   m.def("plan", &plan, py::arg("options"));
   m.def("option_table", &option_rows, py::arg("command"));
 }

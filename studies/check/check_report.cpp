@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "studies/check/check_run.h"
@@ -50,6 +52,10 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
                          "calibration again corrects twice",
                          f.name, f.value);
     case CheckIssue::device_mismatch:
+      if (f.value == 0.0)
+        return fmt::format("the calibration gives no device id ({} is 0 or absent): PX4 applies a set only to the gyro "
+                           "whose device id it names (export --device-id, the gyro's CAL_GYRO{{n}}_ID)",
+                           f.name);
       return fmt::format("the calibration is for device id {:.0f}, which is no gyro of this log ({}): the firmware "
                          "would not apply it",
                          f.value, f.name);
@@ -74,7 +80,7 @@ nlohmann::ordered_json check_json(const CheckResult& r) {
     axes.push_back({{"axis", x.axis},
                     {"before_dph", x.before_dph},
                     {"after_dph", x.after_dph},
-                    {"ratio", x.after_dph > 0.0 ? x.before_dph / x.after_dph : 0.0},
+                    {"ratio", x.before_dph / x.after_dph},
                     {"offset_dph", x.offset_dph},
                     {"residual_dph", x.residual_dph},
                     {"residual_at_c", x.residual_at_c},
@@ -114,10 +120,14 @@ std::string check_text(const CheckResult& r) {
                      r.samples, r.span_s, r.log_temp_min_c, r.log_temp_max_c, r.window_s);
   out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11} {:>22} {:>9}\n", "axis", "raw °/h", "comp. °/h", "ratio",
                      "offset °/h", "residual °/h (at °C)", "outside");
+  const auto number = [](double v, const char* spec) { return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : "n/a"; };
   for (const AxisCheck& x : r.axes)
-    out += fmt::format("  {:<8} {:>12.5g} {:>12.5g} {:>6.2f}x {:>11.4g} {:>13.4g} ({:>5.1f}) {:>8.1f}%\n", x.axis,
-                       x.before_dph, x.after_dph, x.after_dph > 0.0 ? x.before_dph / x.after_dph : 0.0, x.offset_dph,
-                       x.residual_dph, x.residual_at_c, 100.0 * x.outside_share);
+    out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11.4g} {:>13.4g} ({:>5.1f}) {:>8.1f}%\n", x.axis,
+                       number(x.before_dph, "{:.5g}"), number(x.after_dph, "{:.5g}"),
+                       number(x.before_dph / x.after_dph, "{:.2f}x"), x.offset_dph, x.residual_dph, x.residual_at_c,
+                       100.0 * x.outside_share);
+  if (!r.axes.empty() && !std::isfinite(r.axes.front().before_dph))
+    out += fmt::format("  (n/a: fewer than 3 windows of {:g} s in this log; --avg sets the window)\n", r.window_s);
   if (!r.axes.empty() && !r.axes.front().bins.empty()) {
     out += fmt::format("  residual against temperature (mean compensated − offset, °/h, {:g} °C bins):\n", r.bin_c);
     for (std::size_t b = 0; b < r.axes.front().bins.size(); ++b) {

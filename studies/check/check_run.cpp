@@ -210,8 +210,13 @@ AxisCheck judge_axis(const Applied& a, std::size_t k, const CheckResult& r) {
   x.axis = a.axis[k];
   std::vector<double> comp(a.time_s.size());
   for (std::size_t i = 0; i < comp.size(); ++i) comp[i] = a.raw_dph[k][i] - a.subtracted_dph[k][i];
-  x.before_dph = fit::instability_of(window_means(a.time_s, a.raw_dph[k], r.window_s));
-  x.after_dph = fit::instability_of(window_means(a.time_s, comp, r.window_s));
+  // Fewer than 3 windows give no instability (NaN: null in the JSON).
+  const auto instability = [&](const std::vector<double>& v) {
+    const std::vector<double> means = window_means(a.time_s, v, r.window_s);
+    return means.size() < 3 ? NAN : fit::instability_of(means);
+  };
+  x.before_dph = instability(a.raw_dph[k]);
+  x.after_dph = instability(comp);
   x.offset_dph = std::accumulate(comp.begin(), comp.end(), 0.0) / static_cast<double>(comp.size());
   const double low = std::floor(r.log_temp_min_c);
   const auto bins = static_cast<std::size_t>(std::floor((r.log_temp_max_c - low) / r.bin_c)) + 1;
@@ -260,7 +265,13 @@ void add_device_finding(const ParameterFile& p, const Applied& a, CheckResult* r
   if (p.format == ParameterFormat::fit || r->log_instance < 0) return;
   const std::vector<GyroCalibration> cals = gyro_calibrations(p);
   const auto cal = std::find_if(cals.begin(), cals.end(), [&](const GyroCalibration& c) { return c.prefix == r->calibration; });
-  if (cal == cals.end() || !cal->device_id || *cal->device_id == 0) return;
+  if (cal == cals.end()) return;
+  // PX4 pairs a set with the gyro whose device id is TC_G{n}_ID: 0 or none pairs with no gyro.
+  if (p.format == ParameterFormat::px4 && (!cal->device_id || *cal->device_id == 0)) {
+    r->findings.push_back({CheckIssue::device_mismatch, 0.0, 0.0, cal->prefix + "ID"});
+    return;
+  }
+  if (!cal->device_id || *cal->device_id == 0) return;
   std::string ids;
   bool any = false, match = false;
   if (p.format == ParameterFormat::px4) {
@@ -350,7 +361,11 @@ CheckResult run_check(const CheckRequest& o) {
   const auto [lo, hi] = std::minmax_element(a.temp_c.begin(), a.temp_c.end());
   r.log_temp_min_c = *lo;
   r.log_temp_max_c = *hi;
-  r.window_s = std::min(o.avg_s, r.span_s / 10.0);
+  // The window: --avg, or a tenth of a shorter log, but long enough for 2 samples.
+  std::vector<double> steps(a.time_s.size() - 1);
+  for (std::size_t i = 0; i + 1 < a.time_s.size(); ++i) steps[i] = a.time_s[i + 1] - a.time_s[i];
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  r.window_s = std::max(std::min(o.avg_s, r.span_s / 10.0), 2.0 * steps[steps.size() / 2]);
   r.bin_c = std::max(1.0, (r.log_temp_max_c - r.log_temp_min_c) / kMaxBins);
   for (std::size_t k = 0; k < a.axis.size(); ++k) r.axes.push_back(judge_axis(a, k, r));
   add_findings(p, a, &r);
