@@ -50,10 +50,15 @@ int main() {
       "sensor_gyro:uint64_t timestamp;uint64_t timestamp_sample;uint32_t device_id;float x;float y;float z;"
       "float temperature;uint32_t error_count;uint8_t[3] clip_counter;uint8_t samples;uint8_t[4] _padding0;");
   current.format("vehicle_status:uint64_t timestamp;uint8_t arming_state;uint8_t[7] _padding0;");
+  current.format("sensor_accel:uint64_t timestamp;uint32_t device_id;float x;float y;float z;float temperature;");
+  current.parameter("TC_G_ENABLE", 0.0f);
   current.subscribe(1, 0, "sensor_gyro").subscribe(0, 1, "sensor_gyro").subscribe(0, 2, "vehicle_status");
+  current.subscribe(0, 4, "sensor_accel");
   for (int k = 0; k < 4; ++k) {
     current.data(1, gyro_current(0, k)).data(0, gyro_current(1, k));
     current.data(2, Packer().put<std::uint64_t>(1'000'000 + 4000 * static_cast<std::uint64_t>(k)).put<std::uint8_t>(2));
+    current.data(4, Packer().put<std::uint64_t>(1'000'000 + 4000 * static_cast<std::uint64_t>(k)).put<std::uint32_t>(1).put(0.1f).put(
+                        0.2f * static_cast<float>(k)).put(-9.8f).put(35.0f));
     if (k == 1) current.logging("armed", 1'004'000).sync().dropout(5);
   }
   current.save(ulog / "current.ulg");
