@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <tuple>
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -284,6 +286,20 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     units.temp_scale = number(need(u, "temp_scale", "a number"), "pipeline.columns.units.temp_scale");
     units.temp_offset = number(need(u, "temp_offset", "a number"), "pipeline.columns.units.temp_offset");
     units.set_from_fit(file.string());
+    // Where each unit came from when fitting: only a typed one (an option) is
+    // given; one its record's header or the default gave yields to the header
+    // of the record it is applied to. (Fit files without "from": all given.)
+    if (u.contains("from") && u["from"].is_object()) {
+      const nlohmann::json& from = u["from"];
+      for (auto [key, text, weak] : {std::tuple{"time", &units.time_from, &units.time_weak},
+                                     {"gyro", &units.gyro_from, &units.gyro_weak},
+                                     {"temp", &units.temp_from, &units.temp_weak}}) {
+        if (!from.contains(key) || !from[key].is_string()) continue;
+        const std::string origin = from[key].get<std::string>();
+        *weak = !origin.starts_with("--");
+        *text += fmt::format(" ({} when fitting)", origin.empty() ? "default" : origin);
+      }
+    }
     try {
       units.validate();
     } catch (const InputError& e) {

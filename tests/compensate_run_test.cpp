@@ -29,9 +29,16 @@ TEST(CompensateRun, TheFitsColumnsCanBeRenamedAndRewritten) {
   ASSERT_EQ(same.exit_code, 0) << same.err;
   // Without the names the reader says which option names them.
   expect_refused(dir, "compensate other.csv --fit fit.json", "name the time column with --time-col");
-  // The header's ms contradicts the fit's s: said, and settled by the option.
-  expect_refused(dir, "compensate other.csv --fit fit.json --time-col 't (ms)' --gyro-col rate",
-                 "the fit file fit.json gives s");
+  // The fit's s came from its record's default, not from an option: this
+  // record's header (ms) wins, as --time-unit ms would say.
+  const auto by_header = run_cli(dir, "compensate other.csv --fit fit.json --time-col 't (ms)' --gyro-col rate --json");
+  ASSERT_EQ(by_header.exit_code, 0) << by_header.err;
+  EXPECT_EQ(nlohmann::json::parse(by_header.out)["instability_after_dph"],
+            nlohmann::json::parse(same.out)["instability_after_dph"]);
+  // A unit typed when fitting carries over as given: then the header's ms contradicts it.
+  ASSERT_EQ(run_cli(dir, "fit log.csv --time-unit s -o typed.json").exit_code, 0);
+  expect_refused(dir, "compensate other.csv --fit typed.json --time-col 't (ms)' --gyro-col rate",
+                 "the fit file typed.json (--time-unit when fitting) gives s");
   const auto renamed =
       run_cli(dir, "compensate other.csv --fit fit.json --time-col 't (ms)' --time-unit ms --gyro-col rate --json");
   ASSERT_EQ(renamed.exit_code, 0) << renamed.err;

@@ -53,9 +53,9 @@ ColumnMap ColumnMap::with(const ColumnMap& given) const {
                               {&c.units.gyro, &given.units.gyro}, {&c.units.temp, &given.units.temp}})
     if (!theirs->empty()) *mine = *theirs;
   // A unit given anew comes from the option, not from where this map had it.
-  if (!given.units.time.empty()) c.units.time_from.clear();
-  if (!given.units.gyro.empty()) c.units.gyro_from.clear();
-  if (!given.units.temp.empty()) c.units.temp_from.clear();
+  if (!given.units.time.empty()) c.units.time_from.clear(), c.units.time_weak = false;
+  if (!given.units.gyro.empty()) c.units.gyro_from.clear(), c.units.gyro_weak = false;
+  if (!given.units.temp.empty()) c.units.temp_from.clear(), c.units.temp_weak = false;
   for (auto [mine, theirs] : {std::pair{&c.units.gyro_scale, given.units.gyro_scale},
                               {&c.units.temp_scale, given.units.temp_scale},
                               {&c.units.temp_offset, given.units.temp_offset}, {&c.csv.rate_hz, given.csv.rate_hz}})

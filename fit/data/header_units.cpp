@@ -119,17 +119,18 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
     std::string_view option, what, scale_options;
     bool scaled;
     bool given;  // by an option (or a fit file), not by the header
+    bool weak;   // from a fit file whose record's header or default gave it: this header wins
   };
   const bool temp_scaled = r.temp_scale != 1.0 || r.temp_offset != 0.0;
   std::vector<Column> columns = {
-      {Quantity::time, &r.time, &r.time_from, time_column, "--time-unit", "time", "", false, !r.time.empty()},
+      {Quantity::time, &r.time, &r.time_from, time_column, "--time-unit", "time", "", false, !r.time.empty(), r.time_weak},
       {Quantity::gyro, &r.gyro, &r.gyro_from, gyro_column, "--gyro-unit", "gyro", "--gyro-scale",
-       r.gyro_scale != 1.0, !r.gyro.empty()},
+       r.gyro_scale != 1.0, !r.gyro.empty(), r.gyro_weak},
       {Quantity::temperature, &r.temp, &r.temp_from, temp_column, "--temp-unit", "temperature",
-       "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty()}};
+       "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty(), r.temp_weak}};
   if (!temp2_column.empty())
     columns.push_back({Quantity::temperature, &r.temp, &r.temp_from, temp2_column, "--temp-unit",
-                       "temperature", "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty()});
+                       "temperature", "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty(), r.temp_weak});
   for (const Column& c : columns) {
     const HeaderUnit h = unit_in_header(c.quantity, c.name);
     if (h.raw_counts && !c.scaled)
@@ -137,6 +138,11 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
           "column '{}' holds raw counts ({}): give {} to turn them into {}, with the unit they "
           "give",
           c.name, h.said, c.scale_options.empty() ? c.option : c.scale_options, c.what));
+    if (c.given && c.weak && h.unit != nullptr) {  // the record's own header wins over a fit's untyped unit
+      *c.unit = std::string(h.unit->name);
+      *c.from = fmt::format("header '{}'", c.name);
+      continue;
+    }
     if (c.given) {
       const Unit& u = find_unit(c.quantity, *c.unit, c.option);
       if (c.from->empty()) *c.from = std::string(c.option);

@@ -61,6 +61,11 @@ inline constexpr const char* kFitInMemory = "fit (in memory)";
 struct Units {
   std::string time, gyro, temp;
   std::string time_from, gyro_from, temp_from;
+  // A unit a saved fit brings that its own record's header (or the default)
+  // gave, not an option: a record whose header states another unit is read
+  // in that (the header wins); one that states none is read in the fit's.
+  // Units typed as options when fitting carry over as given.
+  bool time_weak = false, gyro_weak = false, temp_weak = false;
   // How the file's text was read, when not plain comma-separated with decimal
   // points ("semicolon-separated, decimal comma"; CsvDialect::describe).
   std::string layout;
