@@ -121,6 +121,26 @@ TEST(CompensateRun, OutsideTheFittedRangeTheModelIsHeldAtTheEdgeAndSaysSo) {
   EXPECT_DOUBLE_EQ(k_json["share_outside_range"].get<double>(), 1.0);
   const auto k_text = run_cli(dir, "compensate kelvin.csv --fit fit.json");
   EXPECT_NE(k_text.out.find("caution: every temperature is above 200 °C"), std::string::npos) << k_text.out;
+  // Every other command that reads that record says the same: diagnose
+  // (text and JSON), export --data (stderr and JSON warnings), check.
+  // T and T² are collinear at 300 K: the refusal says what looks wrong.
+  expect_refused(dir, "fit kelvin.csv", "caution (how the record was read): every temperature is above 200 °C");
+  expect_refused(dir, "diagnose kelvin.csv", "caution (how the record was read): every temperature is above 200 °C");
+  const auto diagnosed = run_cli(dir, "diagnose kelvin.csv --model T --json");
+  ASSERT_EQ(diagnosed.exit_code, 0) << diagnosed.err;
+  const nlohmann::json d_json = nlohmann::json::parse(diagnosed.out);
+  ASSERT_EQ(d_json["cautions"].size(), 1u) << d_json["cautions"];
+  EXPECT_NE(d_json["cautions"][0].get<std::string>().find("°C read as K?"), std::string::npos);
+  EXPECT_NE(d_json["units"].get<std::string>().find("temperature C"), std::string::npos) << d_json["units"];
+  const auto exported = run_cli(dir, "export fit.json --format px4 --data kelvin.csv --json -o k.params");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  EXPECT_NE(exported.err.find("caution: kelvin.csv: every temperature is above 200 °C"), std::string::npos) << exported.err;
+  EXPECT_NE(nlohmann::json::parse(exported.out)["warnings"].dump().find("°C read as K?"), std::string::npos);
+  const auto checked = run_cli(dir, "check kelvin.csv --params k.params --gyro-col gyro_dph --json");
+  ASSERT_EQ(checked.exit_code, 0) << checked.err;
+  const nlohmann::json c_json = nlohmann::json::parse(checked.out);
+  ASSERT_EQ(c_json["cautions"].size(), 1u) << checked.out;
+  EXPECT_NE(c_json["cautions"][0].get<std::string>().find("°C read as K?"), std::string::npos);
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fit/data/measurement.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
 
@@ -54,5 +55,20 @@ std::string units_text(const Units& units, const std::vector<std::string>& cauti
 
 // The summary and cautions of a whole measurement (allan reads one directly).
 std::vector<std::string> measurement_cautions(const Measurement& m);
+
+// Runs `work`; an InputError it throws on a record with cautions is thrown
+// again with them (a fit that fails on numbers read in the wrong unit — a
+// temperature in K makes T and T² collinear — says what looks wrong).
+template <class Work>
+auto with_cautions(const std::vector<std::string>& cautions, Work&& work) {
+  try {
+    return work();
+  } catch (const InputError& e) {
+    if (cautions.empty()) throw;
+    std::string why = e.what();
+    for (const std::string& c : cautions) why += "\n  caution (how the record was read): " + c;
+    throw InputError(why);
+  }
+}
 
 }  // namespace gyrotherm::fit

@@ -11,6 +11,7 @@
 #include "fit/channels.h"
 #include "fit/compensation.h"
 #include "fit/data/autopilot_log.h"
+#include "fit/data/plausibility.h"
 #include "fit/data/units.h"
 #include "sim/util/input_error.h"
 #include "studies/export/firmware.h"
@@ -98,6 +99,8 @@ void read_csv(const CheckRequest& o, Applied* a, CheckResult* r) {
     fit::ColumnMap one = columns;
     one.gyro = gyros[k];
     const fit::Measurement m = fit::read_measurement_csv(o.log, one);
+    for (const std::string& c : fit::measurement_cautions(m))
+      if (std::find(r->cautions.begin(), r->cautions.end(), c) == r->cautions.end()) r->cautions.push_back(c);
     if (k == 0) a->time_s = m.time_s, a->temp_c = m.temp_c;
     a->raw_dph.push_back(m.gyro_dph);
     a->axis.push_back(std::string(1, kAxisNames[k]));
@@ -179,6 +182,8 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
       first = false;
     }
     a.axis.push_back(run.fits[k].channel);
+    for (const std::string& caution : c.data.cautions)
+      if (std::find(r->cautions.begin(), r->cautions.end(), caution) == r->cautions.end()) r->cautions.push_back(caution);
     a.raw_dph.push_back(full ? c.gyro_dph : c.data.series.gyro_dph);
     a.subtracted_dph.push_back(full ? c.model_dph : c.window_model_dph);
     std::size_t moving = 0;

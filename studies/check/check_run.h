@@ -99,6 +99,7 @@ struct CheckResult {
   double bin_c = 0.0;
   std::vector<AxisCheck> axes;
   std::vector<CheckFinding> findings;
+  std::vector<std::string> cautions;  // the log's units checked as fit checks them (a CSV's; a fit file's channels)
   std::optional<double> limit_dph;  // --max-residual in °/h
   // With a limit: whether every axis's residual is within it.
   std::optional<bool> passed;

@@ -146,8 +146,10 @@ DiagnoseRun diagnose_record(const DiagnoseRequest& request, const RecordSource& 
           within = std::min(0.95, within + 0.1);
         };
         report(fmt::format("{}: {} windows read", channel, c.data.series.size()), 0.25);
-        c.report = diagnose_record(c.data, c.pipeline.columns, request.base_terms, request.terms, engine,
-                                   request.settings, with_stages);
+        c.report = fit::with_cautions(c.data.cautions, [&] {
+          return diagnose_record(c.data, c.pipeline.columns, request.base_terms, request.terms, engine,
+                                 request.settings, with_stages);
+        });
         ++channel_index;
         report(fmt::format("{}: done", channel), 0.0);
         if (channels.size() > 1) c.report.channel = channel;
@@ -177,9 +179,16 @@ DiagnoseRun run_diagnose(const DiagnoseRequest& request, const fit::Table& table
 }
 
 nlohmann::ordered_json diagnose_json(const DiagnoseRun& run) {
-  if (run.channels.size() == 1) return diagnosis_json(run.channels.front().report);
+  // The report and, as fit's data.units and data.cautions, how the record was read.
+  const auto one = [](const ChannelDiagnosis& c) {
+    nlohmann::ordered_json j = diagnosis_json(c.report);
+    j["units"] = c.data.units.used();
+    j["cautions"] = c.data.cautions;
+    return j;
+  };
+  if (run.channels.size() == 1) return one(run.channels.front());
   std::vector<std::pair<std::string, nlohmann::ordered_json>> list;
-  for (const ChannelDiagnosis& c : run.channels) list.emplace_back(c.channel, diagnosis_json(c.report));
+  for (const ChannelDiagnosis& c : run.channels) list.emplace_back(c.channel, one(c));
   return fit::channels_json(list);
 }
 

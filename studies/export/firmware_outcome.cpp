@@ -1,5 +1,7 @@
 #include "studies/export/firmware_outcome.h"
 
+#include "fit/data/plausibility.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -101,6 +103,11 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
     o.data = data.name;
     const fit::PipelineOptions pipeline = fit::reading_columns_of(a.fit->pipeline, a.fit->terms);
     const fit::Measurement m = data.read(pipeline.columns);
+    // The record's units checked as fit checks them, each caution once.
+    for (const std::string& c : fit::measurement_cautions(m))
+      if (const std::string w = fmt::format("caution: {}: {}", data.name, c);
+          std::find(o.warnings.begin(), o.warnings.end(), w) == o.warnings.end())
+        o.warnings.push_back(w);
     AxisOutcome out;
     out.axis = "XYZ"[i];
     out.channel = a.channel;
