@@ -187,8 +187,8 @@ TEST(CsvDialect, TheDelimiterComesFromTheHeaderUnlessGiven) {
   EXPECT_EQ(d.describe(d.delimiter_for("a,b")), "semicolon-separated");
   d.decimal_comma = true;
   EXPECT_EQ(d.describe(';'), "semicolon-separated, decimal comma");
-  d.delimiter = "comma";
-  expect_input_error([&] { d.delimiter_for("a;b"); }, {"--decimal-comma", "--delimiter semicolon or tab"});
+  d.delimiter = "comma";  // decimal commas in quotes between comma delimiters (RFC 4180)
+  EXPECT_EQ(d.delimiter_for("a;b"), ',');
   d.delimiter = "pipe";
   expect_input_error([&] { d.validate(); }, {"--delimiter 'pipe'", "comma, semicolon, tab or auto"});
   d.delimiter = "auto";
@@ -210,6 +210,13 @@ TEST(CsvDialect, ARecordWrittenInEachFormGivesThePlainFit) {
       {"excel.csv", "time_s;temp_c;gyro_dph", "--decimal-comma",
        [](const testing::LogRow& r) {
          std::string s = fmt::format("{:.17g};{:.17g};{:.17g}", r.t, r.temp_c, r.gyro_dph);
+         for (char& c : s)
+           if (c == '.') c = ',';
+         return s;
+       }},
+      {"quoted_commas.csv", "time_s,temp_c,gyro_dph", "--decimal-comma",
+       [](const testing::LogRow& r) {
+         std::string s = fmt::format("\"{:.17g}\",\"{:.17g}\",\"{:.17g}\"", r.t, r.temp_c, r.gyro_dph);
          for (char& c : s)
            if (c == '.') c = ',';
          return s;
@@ -261,6 +268,7 @@ TEST(CsvDialect, EachFormsMistakesNameTheLineAndTheOption) {
   const std::vector<std::pair<std::string, std::string>> files = {
       {"comma.csv", "time_s;temp_c;gyro_dph\n0;20,5;1\n1;20,6;2\n"},
       {"open.csv", "time_s,temp_c,gyro_dph\n0,\"20.5,1\n1,20.6,2\n"},
+      {"unquoted.csv", "time_s,temp_c,gyro_dph\n0,20,5,1\n1,\"20,6\",2\n"},
       {"mixed.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:00Z,20,1\n2026-11-26T00:00:01Z,20,1\n1.5,20,1\n"},
       {"back.csv", "t,temp_c,gyro_dph\n2026-11-26T00:00:01Z,20,1\n2026-11-26T01:00:00+01:00,20,1\n"},
       {"timed.csv", "time_s,temp_c,gyro_dph\n0,20,1\n1,20,1\n"},
@@ -268,7 +276,9 @@ TEST(CsvDialect, EachFormsMistakesNameTheLineAndTheOption) {
   for (const auto& [name, text] : files) write_text(dir / name, text);
   const std::vector<std::pair<std::string, std::string>> refused = {
       {"comma.csv", "comma.csv:2: column temp_c: '20,5' is not a number (a decimal comma? give --decimal-comma)"},
-      {"comma.csv --decimal-comma --delimiter comma", "--delimiter semicolon or tab"},
+      {"unquoted.csv --decimal-comma",
+       "unquoted.csv:2: the row has 4 fields, the header (line 1) has 3 (with --decimal-comma in a comma-separated "
+       "file, a number with a decimal comma must be in quotes"},
       {"comma.csv --delimiter pipe", "--delimiter 'pipe'"},
       {"open.csv", "open.csv:2: field 2 opens a quote that the line does not close"},
       {"mixed.csv --time-col t", "mixed.csv:4: column t: '1.5' is not an ISO 8601 timestamp"},

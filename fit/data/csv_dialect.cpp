@@ -217,9 +217,8 @@ char CsvDialect::delimiter_for(std::string_view header) const {
           (d.character == '\t' && delimiter == "\\t"))
         chosen = d.character;
   }
-  if (decimal_comma && chosen == ',')
-    throw InputError("--decimal-comma: the columns are separated by commas too; a file with decimal commas "
-                     "separates them by semicolons or tabs (give --delimiter semicolon or tab)");
+  // Decimal commas in a comma-separated file: each such number in RFC 4180
+  // quotes ("20,5"), which the rows' reader requires there.
   return chosen;
 }
 

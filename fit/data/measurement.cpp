@@ -285,12 +285,18 @@ bool CsvParser::parse_row_fast(std::string_view line, std::size_t line_number, M
 }
 
 void CsvParser::parse_row(std::string_view line, std::size_t line_number, Measurement& m) {
-  if (rows_ > 0 && parse_row_fast(line, line_number, m)) return;
+  // Decimal commas between comma delimiters: only quoted fields tell them
+  // apart, so every row goes through the quote-aware split.
+  const bool commas_twice = csv_.decimal_comma && delimiter_ == ',';
+  if (rows_ > 0 && !commas_twice && parse_row_fast(line, line_number, m)) return;
   if (const std::string bad = split_fields(line, delimiter_, fields_); !bad.empty()) fail(line_number, bad);
   const std::size_t fields = fields_.size();
   if (fields != role_of_column_.size())
-    fail(line_number, fmt::format("the row has {} field{}, the header (line {}) has {}", fields,
-                                  fields == 1 ? "" : "s", header_row_, role_of_column_.size()));
+    fail(line_number, fmt::format("the row has {} field{}, the header (line {}) has {}{}", fields,
+                                  fields == 1 ? "" : "s", header_row_, role_of_column_.size(),
+                                  commas_twice ? " (with --decimal-comma in a comma-separated file, a number with a "
+                                                 "decimal comma must be in quotes: \"20,5\")"
+                                               : ""));
   read_row(line_number, m, [&](std::size_t column, double& value) {
     return role_of_column_[column] == kTime ? read_time(fields_[column], m, value)
                                             : parse_csv_number(fields_[column], csv_.decimal_comma, value);
