@@ -344,9 +344,9 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
                                        "time_locked",
                                        file.string(), term));
       }
-      if (!limits) continue;
       const nlohmann::json* why = record.contains("flags") && record["flags"].contains(term) ? &record["flags"][term] : nullptr;
-      s.support_flags.emplace_back(term, why && why->is_string() ? why->get<std::string>() : list.dump());
+      (limits ? s.support_flags : s.meaning_flags)
+          .emplace_back(term, why && why->is_string() ? why->get<std::string>() : list.dump());
     }
   }
   return s;

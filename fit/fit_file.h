@@ -55,6 +55,9 @@ struct SavedFit {
   // (fit/record_support.h: too few temperature levels, too narrow a range, a
   // gap with no data; not temperature locked to time, a caution of meaning).
   std::vector<std::pair<std::string, std::string>> support_flags;
+  // Per term a caution of meaning only (temperature locked to time: the
+  // number may be a drift's), which an export carries but does not stop on.
+  std::vector<std::pair<std::string, std::string>> meaning_flags;
   // Of that data, for the real-time compensator (fit/causal_compensator.h):
   // the sample interval, the burst mode and the glitch rule's floor.
   std::optional<double> sample_interval_s, outlier_floor_dph;

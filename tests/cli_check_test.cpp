@@ -115,6 +115,12 @@ TEST(CliCheck, Px4ParametersOnASecondUlogAreAppliedAsPx4AppliesThem) {
   ASSERT_EQ(run_cli(dir, "fit run1.ulg --model 'T + T^2' -o fit.json").exit_code, 0);
   const auto exported = run_cli(dir, fmt::format("export fit.json --format px4 --device-id {} -o cal.params", kUlogDeviceId));
   ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  // The run's temperature follows time (one ramp): a caution of meaning, carried into the file and said, not refused.
+  EXPECT_NE(slurp(dir / "cal.params").find("# CAUTION: on the record the fit was made on, what these numbers mean is "
+                                           "uncertain:\n#   gyro_x: T: temperature follows time"),
+            std::string::npos)
+      << slurp(dir / "cal.params");
+  EXPECT_NE(exported.err.find("caution: gyro_x: T: temperature follows time"), std::string::npos) << exported.err;
   const nlohmann::json j = check_json(dir, "run2.ulg --params cal.params --max-residual 15");
   EXPECT_EQ(j["format"], "px4");
   EXPECT_EQ(j["calibration"], "TC_G0_");

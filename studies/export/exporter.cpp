@@ -125,15 +125,22 @@ ExportOutput run_export(const ExportRequest& request) {
         request.fit_file, list));
   }
   ExportOutput out = exporter.write(request, fits);
-  if (!cautions.empty()) {
-    std::string top = fmt::format("{} CAUTION (exported with --accept-caution): the record the fit was made on cannot "
-                                  "support:\n", exporter.comment);
-    for (const std::string& c : cautions) {
-      top += fmt::format("{}   {}\n", exporter.comment, c);
-      out.warnings.push_back("caution: " + c);
-    }
-    out.text = top + out.text;
-  }
+  // Cautions of meaning (temperature locked to time) travel too, without stopping the export.
+  std::vector<std::string> meaning;
+  for (const fit::SavedFit& f : fits)
+    for (const auto& [term, why] : f.meaning_flags) meaning.push_back(fmt::format("{}: {}: {}", channel_name(f), term, why));
+  std::string top;
+  if (!cautions.empty())
+    top += fmt::format("{} CAUTION (exported with --accept-caution): the record the fit was made on cannot support:\n",
+                       exporter.comment);
+  for (const std::string& c : cautions) top += fmt::format("{}   {}\n", exporter.comment, c);
+  if (!meaning.empty())
+    top += fmt::format("{} CAUTION: on the record the fit was made on, what these numbers mean is uncertain:\n",
+                       exporter.comment);
+  for (const std::string& c : meaning) top += fmt::format("{}   {}\n", exporter.comment, c);
+  for (const auto* list : {&cautions, &meaning})
+    for (const std::string& c : *list) out.warnings.push_back("caution: " + c);
+  out.text = top + out.text;
   write_file_atomically(request.output, out.text);
   return out;
 }
