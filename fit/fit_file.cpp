@@ -297,7 +297,7 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
         if (!from.contains(key) || !from[key].is_string()) continue;
         const std::string origin = from[key].get<std::string>();
         *weak = !origin.starts_with("--");
-        *text += fmt::format(" ({} when fitting)", origin.empty() ? "default" : origin);
+        *text += fmt::format(", {} when fitting", origin.empty() ? "default" : origin);
       }
     }
     try {

@@ -38,7 +38,7 @@ TEST(CompensateRun, TheFitsColumnsCanBeRenamedAndRewritten) {
   // A unit typed when fitting carries over as given: then the header's ms contradicts it.
   ASSERT_EQ(run_cli(dir, "fit log.csv --time-unit s -o typed.json").exit_code, 0);
   expect_refused(dir, "compensate other.csv --fit typed.json --time-col 't (ms)' --gyro-col rate",
-                 "the fit file typed.json (--time-unit when fitting) gives s");
+                 "the fit file typed.json, --time-unit when fitting gives s");
   const auto renamed =
       run_cli(dir, "compensate other.csv --fit fit.json --time-col 't (ms)' --time-unit ms --gyro-col rate --json");
   ASSERT_EQ(renamed.exit_code, 0) << renamed.err;

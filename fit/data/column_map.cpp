@@ -83,7 +83,7 @@ void Units::set_from_fit(const std::string& file) {
       file == kFitInMemory ? std::string(kFromFitInMemory) : std::string(kFromFitFile) + file;
 }
 
-bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyro_from == kFromFitInMemory; }
+bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyro_from.starts_with(kFromFitInMemory); }
 
 void Units::validate() const {
   time_unit();

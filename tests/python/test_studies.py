@@ -87,8 +87,11 @@ def test_allan_with_an_unsaved_fit_and_arrays(cycle_csv, cycle_fit_file):
 
 
 def test_a_fit_in_memory_is_named_so(cycle_csv):
-    a = gyrotherm.allan(read_csv(cycle_csv), fit=gyrotherm.fit(cycle_csv))  # its units are the fit's
-    assert "time s (the fit given in memory)" in a.summary() and "the fit file" not in a.summary()
+    # A unit typed when fitting carries over, named as the fit in memory's; one
+    # its record's header gave yields to the arrays' own names (time_s: s).
+    a = gyrotherm.allan(read_csv(cycle_csv), fit=gyrotherm.fit(cycle_csv, time_unit="s"))
+    assert "time s (the fit given in memory, --time-unit when fitting)" in a.summary()
+    assert "gyro dph (header 'gyro_dph')" in a.summary() and "the fit file" not in a.summary()
 
 
 def test_compensate_is_the_clis(cycle_csv, cycle_fit_file, tmp_path):
