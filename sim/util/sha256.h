@@ -13,5 +13,8 @@ namespace gyrotherm {
 std::string sha256_hex(std::string_view bytes);
 // Digest of a file's contents; throws InputError if it cannot be read.
 std::string sha256_file_hex(const std::filesystem::path& file);
+// Base64 (RFC 4648, with padding) of a byte string, by libcrypto's
+// EVP_EncodeBlock: a figure embedded in a self-contained HTML page.
+std::string base64(std::string_view bytes);
 
 }  // namespace gyrotherm

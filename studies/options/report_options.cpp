@@ -1,0 +1,49 @@
+#include "studies/options/report_options.h"
+
+#include "sim/util/input_error.h"
+#include "studies/options/pipeline_options.h"
+
+namespace gyrotherm::studies {
+namespace {
+
+using O = ReportCommandOptions;
+using R = ReportRequest;
+
+std::vector<OptionRow<O>> report_rows() {
+  const auto row = [](const char* names, std::string help, auto field, bool required = false) {
+    return nested_row(names, std::move(help), &O::request, field, required);
+  };
+  std::vector<OptionRow<O>> rows = {
+      row("data", "The log: a measurement CSV, a PX4 ULog or an ArduPilot DataFlash log", &R::data, true),
+      row("--fit", "A fit saved by 'gyrotherm fit -o' (default: fit here with --model and the data options)",
+          &R::fit_file),
+      row("--params", "A calibration (PX4 .params, ArduPilot .parm or a fit file) to check on this log, as 'check'",
+          &R::params),
+      row("--max-residual", "With --params: PASS/FAIL against this residual against temperature, °/h",
+          &R::max_residual_dph),
+      row("-o,--output", "The HTML page to write; its JSON twin goes beside it (.json)", &R::output, true)};
+  append_rows(rows, model_option_rows("Append terms to the model fitted here"),
+              [](O& o) -> auto& { return o.request.model; });
+  append_rows(rows, data_option_rows(), [](O& o) -> auto& { return o.request.data_options; });
+  return rows;
+}
+
+}  // namespace
+
+const OptionTable<ReportCommandOptions>& report_option_table() {
+  static const OptionTable<O> table{"report", report_rows()};
+  return table;
+}
+
+ReportRequest report_request(const ReportCommandOptions& options) {
+  const ReportRequest& r = options.request;
+  if (!r.fit_file.empty() && (r.model.model != ModelOptions().model || !r.model.add.empty()))
+    throw InputError("report: --fit brings its own model; give --model (and --add) only without --fit");
+  if (r.max_residual_dph && r.params.empty())
+    throw InputError("report: --max-residual judges the check of a calibration: give it with --params");
+  if (r.output.size() < 6 || r.output.substr(r.output.size() - 5) != ".html")
+    throw InputError("report -o " + r.output + ": the page is HTML; name it FILE.html (its JSON twin is FILE.json)");
+  return r;
+}
+
+}  // namespace gyrotherm::studies

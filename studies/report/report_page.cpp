@@ -1,0 +1,256 @@
+#include "studies/report/report_page.h"
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "sim/util/sha256.h"
+
+#ifndef GYROTHERM_VERSION
+#define GYROTHERM_VERSION "unknown"
+#endif
+
+namespace gyrotherm::studies {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::string escape(std::string_view s) {
+  std::string out;
+  for (const char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// A JSON pointer's element of the twin ("/channels/0/fit/coefficients/T").
+const Json* at(const Json& twin, const std::string& pointer) {
+  const Json::json_pointer p(pointer);
+  return twin.contains(p) ? &twin.at(p) : nullptr;
+}
+
+// The number the cell shows, as the twin holds it (6 significant digits).
+std::string number_text(const Json* v) {
+  if (v == nullptr || !v->is_number()) return "—";
+  return fmt::format("{:.6g}", v->get<double>());
+}
+
+// A table cell with the twin's number at `pointer`, naming it.
+std::string cell(const Json& twin, const std::string& pointer) {
+  return fmt::format("<td class=\"n\" data-json=\"{}\">{}</td>", escape(pointer), number_text(at(twin, pointer)));
+}
+
+std::string text_of(const Json* v) { return v != nullptr && v->is_string() ? escape(v->get<std::string>()) : "—"; }
+
+// The element of a per-channel JSON (a fit file, diagnose --json): the whole
+// for one channel, else channels[k].
+Json channel_part(const Json& all, std::size_t k) {
+  if (all.contains("channels") && all["channels"].is_array() && k < all["channels"].size()) return all["channels"][k];
+  return all;
+}
+
+Json log_summary(const ReportRequest& o, const CompensateRun& compensated) {
+  const fit::Compensation& c = compensated.channels.front();
+  const std::vector<double>& t = c.data.series.time_s;
+  const std::vector<double>& temp = c.data.series.temp_c;
+  double heat = 0.0, cool = 0.0;
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const double rate = (temp[i] - temp[i - 1]) / (t[i] - t[i - 1]) * 60.0;
+    heat = std::max(heat, rate);
+    cool = std::min(cool, rate);
+  }
+  const auto [lo, hi] = std::minmax_element(temp.begin(), temp.end());
+  Json j{{"file", o.data},
+         {"sha256", sha256_file_hex(o.data)},
+         {"units", c.data.units.used()},
+         {"samples", c.time_s.empty() ? c.data.series.samples.size() : c.time_s.size()},
+         {"windows", t.size()},
+         {"duration_h", t.empty() ? 0.0 : (t.back() - t.front()) / 3600.0},
+         {"temp_range_c", {*lo, *hi}},
+         {"span_c", *hi - *lo},
+         {"heating_c_per_min", heat},
+         {"cooling_c_per_min", cool},
+         {"cautions", c.data.cautions}};
+  return j;
+}
+
+}  // namespace
+
+Json report_twin(const ReportRequest& o, const std::vector<fit::SavedFit>& fits, const Json& fit_json,
+                 const CompensateRun& compensated, const std::vector<AllanStudy>& allan, const Json& diagnosis,
+                 const std::optional<CheckResult>& check) {
+  Json j;
+  j["tool"] = "gyrotherm " GYROTHERM_VERSION;
+  j["created"] = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now()));
+  j["fit"] = o.fit_file.empty() ? Json("made by report: " + fit::formula_text(fits.front().terms)) : Json(o.fit_file);
+  j["log"] = log_summary(o, compensated);
+  j["channels"] = Json::array();
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    // A one-channel fit names no channel: its gyro column does.
+    const std::string name = fits[k].channel.empty() ? fits[k].pipeline.columns.gyro : fits[k].channel;
+    Json c{{"channel", name}, {"model", fit::formula_text(fits[k].terms)}};
+    c["fit"] = channel_part(fit_json, k);
+    c["compensate"] = compensated.channel_json[k];
+    c["allan"] = allan_json(allan[k]);
+    c["diagnosis"] = channel_part(diagnosis, k);
+    j["channels"].push_back(std::move(c));
+  }
+  j["check"] = check ? check_json(*check) : Json();
+  j["max_residual_dph"] = o.max_residual_dph ? Json(*o.max_residual_dph) : Json();
+  j["passed"] = check && check->passed ? Json(*check->passed) : Json();
+  return j;
+}
+
+namespace {
+
+constexpr const char* kStyle = R"(
+body { font-family: sans-serif; max-width: 1100px; margin: 1.5em auto; color: #222; line-height: 1.35; }
+h1 { font-size: 1.5em; margin-bottom: 0.2em; } h2 { border-bottom: 2px solid #ccc; margin-top: 1.6em; }
+table { border-collapse: collapse; margin: 0.6em 0; } td, th { border: 1px solid #ccc; padding: 0.2em 0.6em; }
+th { background: #f2f2f2; text-align: left; } td.n { text-align: right; font-variant-numeric: tabular-nums; }
+figure { margin: 0.8em 0; } figure img { width: 100%; border: 1px solid #ddd; }
+figcaption { font-size: 0.9em; color: #555; } .caution { color: #8a4b00; } .pass { color: #1a7f37; font-weight: bold; }
+.fail { color: #b42318; font-weight: bold; } code { background: #f5f5f5; padding: 0 0.2em; }
+@media print { @page { size: A4; margin: 14mm; } body { max-width: none; margin: 0; font-size: 10pt; }
+  section, figure, table { page-break-inside: avoid; } }
+)";
+
+std::string figure(const std::string& data_uri, const std::string& alt, const std::string& caption) {
+  if (data_uri.empty()) return "";
+  return fmt::format("<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>\n", data_uri,
+                     escape(alt), caption);
+}
+
+std::string header_html(const Json& twin, const std::string& temperature) {
+  std::string h = "<h1>Gyro thermal calibration report</h1>\n<table>\n";
+  h += fmt::format("<tr><th>log</th><td>{}</td></tr>\n", text_of(at(twin, "/log/file")));
+  h += fmt::format("<tr><th>SHA-256</th><td><code>{}</code></td></tr>\n", text_of(at(twin, "/log/sha256")));
+  h += fmt::format("<tr><th>read as</th><td>{}</td></tr>\n", text_of(at(twin, "/log/units")));
+  h += fmt::format("<tr><th>model</th><td>{}</td></tr>\n", text_of(at(twin, "/fit")));
+  h += fmt::format("<tr><th>tool, date</th><td>{}, {}</td></tr>\n</table>\n", text_of(at(twin, "/tool")),
+                   text_of(at(twin, "/created")));
+  h += "<table><tr><th>samples</th><th>windows</th><th>duration (h)</th><th>lowest (°C)</th><th>highest (°C)</th>"
+       "<th>span (°C)</th><th>fastest heating (°C/min)</th><th>fastest cooling (°C/min)</th></tr>\n<tr>";
+  for (const char* p : {"/log/samples", "/log/windows", "/log/duration_h", "/log/temp_range_c/0", "/log/temp_range_c/1",
+                        "/log/span_c", "/log/heating_c_per_min", "/log/cooling_c_per_min"})
+    h += cell(twin, p);
+  h += "</tr></table>\n";
+  if (const Json* cautions = at(twin, "/log/cautions"); cautions != nullptr)
+    for (const Json& c : *cautions) h += fmt::format("<p class=\"caution\">caution: {}</p>\n", escape(c.get<std::string>()));
+  h += figure(temperature, "gyro temperature against time",
+              "The test's temperature: look for the span, the levels held and the rates of the legs (heating red, "
+              "cooling blue); a model is only as good as the temperatures it saw.");
+  return h;
+}
+
+std::string coefficients_html(const Json& twin, std::size_t k) {
+  const std::string base = fmt::format("/channels/{}/fit", k);
+  std::string h = "<table><tr><th>term</th><th>coefficient</th><th>95 % interval, low</th><th>high</th></tr>\n";
+  if (const Json* coefficients = at(twin, base + "/coefficients"); coefficients != nullptr)
+    for (const auto& [term, value] : coefficients->items()) {
+      std::string key;  // the term as a JSON pointer token (RFC 6901: ~ and / escaped)
+      for (const char c : term) key += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+      h += fmt::format("<tr><td>{}</td>{}{}{}</tr>\n", escape(term), cell(twin, base + "/coefficients/" + key),
+                       cell(twin, base + "/intervals_95/" + key + "/0"), cell(twin, base + "/intervals_95/" + key + "/1"));
+    }
+  h += "</table>\n<table><tr><th>instability before (°/h)</th><th>after (°/h)</th><th>ratio</th></tr><tr>";
+  for (const char* f : {"/instability_before_dph", "/instability_after_dph", "/ratio"}) h += cell(twin, base + f);
+  h += "</tr></table>\n";
+  if (const Json* flags = at(twin, base + "/record/flags"); flags != nullptr && flags->is_object())
+    for (const auto& [term, why] : flags->items())
+      h += fmt::format("<p class=\"caution\">caution, {}: {}</p>\n", escape(term), escape(why.is_string() ? why.get<std::string>() : why.dump()));
+  return h;
+}
+
+std::string allan_html(const Json& twin, std::size_t k) {
+  const std::string base = fmt::format("/channels/{}/allan/series", k);
+  std::string h = "<table><tr><th>series</th><th>ARW (°/√h)</th><th>bias instability (°/h)</th><th>RRW (°/h/√h)</th></tr>\n";
+  const Json* series = at(twin, base);
+  for (std::size_t s = 0; series != nullptr && s < series->size(); ++s) {
+    const std::string p = fmt::format("{}/{}/coefficients", base, s);
+    h += fmt::format("<tr><td>{}</td>", text_of(at(twin, fmt::format("{}/{}/name", base, s))));
+    for (const char* c : {"/arw_dpsh", "/bias_instability_dph", "/rrw_dph_per_sqrt_h"}) {
+      const Json* shown = at(twin, p + c + "/shown");
+      h += shown != nullptr && shown->get<bool>() ? cell(twin, p + c + "/value")
+                                                  : fmt::format("<td class=\"n\">&lt; {}</td>", number_text(at(twin, p + c + "/upper_bound")));
+    }
+    h += "</tr>\n";
+  }
+  return h + "</table>\n";
+}
+
+std::string diagnosis_html(const Json& twin, std::size_t k) {
+  const std::string base = fmt::format("/channels/{}/diagnosis", k);
+  std::string h = "<h3>Diagnosis</h3>\n<table><tr><th>model ÷ noise floor</th>" + cell(twin, base + "/ratio_to_floor") +
+                  "</tr></table>\n";
+  h += fmt::format("<p><b>verdict:</b> {}</p>\n", text_of(at(twin, base + "/verdict")));
+  if (const Json* next = at(twin, base + "/next_command"); next != nullptr && next->is_string() && !next->get<std::string>().empty())
+    h += fmt::format("<p>next: <code>{}</code></p>\n", escape(next->get<std::string>()));
+  return h;
+}
+
+std::string check_html(const Json& twin) {
+  const Json* check = at(twin, "/check");
+  if (check == nullptr || check->is_null()) return "";
+  std::string h = fmt::format("<section><h2>Calibration check: {}</h2>\n<p>{} ({}), applied as the firmware applies it.</p>\n",
+                              text_of(at(twin, "/check/parameters")), text_of(at(twin, "/check/calibration")),
+                              text_of(at(twin, "/check/format")));
+  h += "<table><tr><th>axis</th><th>raw (°/h)</th><th>compensated (°/h)</th><th>residual against temperature (°/h)</th>"
+       "<th>share outside TMIN..TMAX</th></tr>\n";
+  for (std::size_t a = 0; a < (*check)["axes"].size(); ++a) {
+    const std::string p = fmt::format("/check/axes/{}", a);
+    h += fmt::format("<tr><td>{}</td>{}{}{}{}</tr>\n", text_of(at(twin, p + "/axis")), cell(twin, p + "/before_dph"),
+                     cell(twin, p + "/after_dph"), cell(twin, p + "/residual_dph"), cell(twin, p + "/outside_share"));
+  }
+  h += "</table>\n";
+  for (const Json& f : (*check)["findings"]) h += fmt::format("<p class=\"caution\">finding: {}</p>\n", escape(f["issue"].get<std::string>()));
+  if (const Json* passed = at(twin, "/passed"); passed != nullptr && passed->is_boolean())
+    h += fmt::format("<p class=\"{}\">{}: every axis's residual against temperature within <span data-json=\"/max_residual_dph\">{}</span> °/h</p>\n",
+                     passed->get<bool>() ? "pass" : "fail", passed->get<bool>() ? "PASS" : "FAIL",
+                     number_text(at(twin, "/max_residual_dph")));
+  return h + "</section>\n";
+}
+
+}  // namespace
+
+std::string report_html(const ReportContent& content) {
+  const Json& twin = content.twin;
+  std::string h = fmt::format("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>gyrotherm report: {}</title>\n<style>{}</style></head><body>\n",
+                              text_of(at(twin, "/log/file")), kStyle);
+  h += "<section>\n" + header_html(twin, content.temperature) + "</section>\n";
+  for (std::size_t k = 0; k < content.channels.size(); ++k) {
+    const ChannelFigures& f = content.channels[k];
+    const std::string channel = text_of(at(twin, fmt::format("/channels/{}/channel", k)));
+    h += fmt::format("<section><h2>Channel {}: B = b0 + {}</h2>\n", channel, text_of(at(twin, fmt::format("/channels/{}/model", k))));
+    h += coefficients_html(twin, k);
+    h += figure(f.bias, "bias against temperature, " + channel,
+                "Each window's mean output against its temperature: where heating and cooling legs part, the bias "
+                "depends on more than the temperature (hysteresis, a rate or a lag); the model's points should run "
+                "through the cloud over the whole fitted range (dashed).");
+    h += figure(f.time, "output against time, " + channel,
+                "Uncompensated and compensated window means: what is left after the model should look like noise, "
+                "with no trace of the temperature (right axis).");
+    h += figure(f.allan, "Allan deviation, " + channel,
+                "Allan deviation raw and compensated (real-time compensation): the compensation should lower the "
+                "long τ and leave the short τ (white noise) as it was.");
+    h += allan_html(twin, k);
+    h += diagnosis_html(twin, k);
+    h += "</section>\n";
+  }
+  h += check_html(twin);
+  h += "<p style=\"font-size:0.85em;color:#666\">Every number on this page is in the JSON twin beside it, at the JSON "
+       "pointer its cell names (data-json).</p>\n</body></html>\n";
+  return h;
+}
+
+}  // namespace gyrotherm::studies

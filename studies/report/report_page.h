@@ -1,0 +1,39 @@
+#pragma once
+// The report's JSON twin (every number the page shows) and the page itself,
+// rendered from the twin: each table cell carries the JSON pointer of its
+// number (data-json), so the page and the twin cannot disagree.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fit/fit_file.h"
+#include "studies/allan/allan_study.h"
+#include "studies/check/check_run.h"
+#include "studies/fit/compensate_run.h"
+#include "studies/report/report.h"
+
+namespace gyrotherm::studies {
+
+// One channel's figures, as data: URIs (PNG, base64).
+struct ChannelFigures {
+  std::string bias, time, allan;
+};
+
+struct ReportContent {
+  nlohmann::ordered_json twin;
+  std::string temperature;                // the record's temperature figure
+  std::vector<ChannelFigures> channels;   // in the twin's channel order
+};
+
+nlohmann::ordered_json report_twin(const ReportRequest& request, const std::vector<fit::SavedFit>& fits,
+                                   const nlohmann::ordered_json& fit_json, const CompensateRun& compensated,
+                                   const std::vector<AllanStudy>& allan, const nlohmann::ordered_json& diagnosis,
+                                   const std::optional<CheckResult>& check);
+
+// The self-contained HTML page (inline CSS with a print stylesheet, no scripts).
+std::string report_html(const ReportContent& content);
+
+}  // namespace gyrotherm::studies
