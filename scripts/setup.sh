@@ -32,6 +32,7 @@ test_packages=(
   python3-numpy python3-pandas       # its arrays and DataFrames
   python3-pytest python3-matplotlib  # its tests and plotting helpers
   jupyter-nbconvert python3-ipykernel  # the example notebook, executed by the tests
+  chromium-headless-shell            # the report page loaded, shot and printed in a real browser
 )
 case "${1:-}" in
   "") ;;

@@ -232,7 +232,9 @@ TEST(CliCheck, EachFailureModeIsFoundOnALogMadeForItAndNotOnACleanOne) {
   const nlohmann::json tilt = check_json(dir, "tilted.bin --params narrow.parm");
   ASSERT_TRUE(has(issues_of(tilt), "moving"));
   for (const auto& f : tilt["findings"]) {
-    if (f["issue"] == "moving") EXPECT_EQ(f["name"], "accelerometer");
+    if (f["issue"] == "moving") {
+      EXPECT_EQ(f["name"], "accelerometer");
+    }
   }
   Thermal spun{20.0, 50.0, 11};
   spun.turn_share = 0.05;

@@ -28,13 +28,14 @@ raises :class:`InputError` (a ``ValueError``) with the command line's message.
 from ._gyrotherm import InputError, SolverError
 from ._api import (
     Record, FitResult, Diagnosis, AllanResult, Compensation, ExportResult, PlanResult, CheckResult,
-    simulate, fit, diagnose, allan, compensate, export, check, plan, effects, engines, options,
+    ReportResult, simulate, fit, diagnose, allan, compensate, export, check, report, plan, effects, engines, options,
 )
 from . import plotting
 
 __all__ = [
     "InputError", "SolverError",
     "Record", "FitResult", "Diagnosis", "AllanResult", "Compensation", "ExportResult", "PlanResult",
-    "CheckResult", "simulate", "fit", "diagnose", "allan", "compensate", "export", "check", "plan", "effects", "engines",
+    "CheckResult", "ReportResult", "simulate", "fit", "diagnose", "allan", "compensate", "export", "check",
+    "report", "plan", "effects", "engines",
     "options", "plotting",
 ]

@@ -304,6 +304,24 @@ class CheckResult(_Report):
         return [f["issue"] for f in self._dict["findings"]]
 
 
+class ReportResult:
+    """The report page (``report``): ``html_file`` and ``twin_file`` written, ``twin`` the JSON
+    twin as Python objects (every number on the page); shown inline in Jupyter."""
+
+    def __init__(self, out):
+        self.html = out["html"]
+        self.html_file = out["html_file"]
+        self.twin_file = out["twin_file"]
+        self.twin = json.loads(out["twin"])
+        self._text = out["text"]
+
+    def _repr_html_(self):
+        return self.html
+
+    def __repr__(self):
+        return f"<gyrotherm.ReportResult> {self._text.strip()}"
+
+
 class PlanResult(_Report):
     """A designed thermal test (``plan``): the profile, its duration and the predicted standard
     errors; the files in ``out``."""
@@ -412,6 +430,21 @@ def check(log, params, **options):
     pairs = _keywords(dict(log=os.fspath(log), params=os.fspath(params), **options))
     out = _g.check(pairs)
     return CheckResult(out["json"], out["text"])
+
+
+def report(data, output, fit=None, params=None, **options):
+    """Writes one self-contained HTML page (output, FILE.html) and its JSON twin (FILE.json) for a
+    log (a path): the fit (a saved fit file or FitResult, else one made here with model= and the
+    data options), compensation, Allan deviation, diagnosis and, with params (a PX4 .params,
+    ArduPilot .parm or fit file), its check on this log (max_residual in °/h for PASS/FAIL)."""
+    fit_file = None
+    if fit is not None:
+        fit_file = fit.file if isinstance(fit, FitResult) else os.fspath(fit)
+        if fit_file is None:
+            raise InputError("report: save the fit first (FitResult.save), the report names the file it shows")
+    pairs = _keywords(dict(data=os.fspath(data), output=os.fspath(output), fit=fit_file,
+                           params=None if params is None else os.fspath(params), **options))
+    return ReportResult(_g.report(pairs))
 
 
 def plan(**options):

@@ -5,6 +5,7 @@
 #include "sim/util/input_error.h"
 #include "studies/options/allan_options.h"
 #include "studies/options/check_options.h"
+#include "studies/options/report_options.h"
 #include "studies/options/compensate_options.h"
 #include "studies/options/diagnose_options.h"
 #include "studies/options/export_options.h"
@@ -31,9 +32,10 @@ py::list option_rows(const std::string& command) {
   else if (command == "simulate") rows = studies::list_options(studies::simulate_option_table());
   else if (command == "plan") rows = studies::list_options(studies::plan_option_table());
   else if (command == "check") rows = studies::list_options(studies::check_option_table());
+  else if (command == "report") rows = studies::list_options(studies::report_option_table());
   else
     throw InputError(fmt::format("options('{}'): expected one of fit, diagnose, allan, compensate, export, "
-                                 "simulate, plan, check", command));
+                                 "simulate, plan, check, report", command));
   py::list out;
   for (const studies::OptionInfo& r : rows) {
     if (r.keyword == "json") continue;  // every result has to_json()

@@ -19,6 +19,7 @@
 #include "studies/fit/compensate_run.h"
 #include "studies/options/allan_options.h"
 #include "studies/options/check_options.h"
+#include "studies/options/report_options.h"
 #include "studies/options/compensate_options.h"
 #include "studies/options/diagnose_options.h"
 #include "studies/options/export_options.h"
@@ -132,6 +133,18 @@ py::dict check(const Keywords& keywords) {
   return report(studies::check_json(result).dump() + "\n", studies::check_text(result));
 }
 
+py::dict report_page(const Keywords& keywords) {
+  const studies::ReportRequest request = studies::report_request(read_keywords(studies::report_option_table(), keywords));
+  const studies::ReportRun run = released(nullptr, [&](const fit::Table*) { return studies::run_report(request); });
+  py::dict out;
+  out["html"] = run.html;
+  out["twin"] = run.twin;
+  out["html_file"] = run.html_file;
+  out["twin_file"] = run.twin_file;
+  out["text"] = run.text;
+  return out;
+}
+
 py::dict export_fit(const Keywords& keywords, const py::object& columns) {
   studies::ExportRequest request = studies::export_request(read_keywords(studies::export_option_table(), keywords));
   const std::unique_ptr<TableHold> table = table_or_none(columns);
@@ -166,6 +179,7 @@ void add_studies(py::module_& m) {
   m.def("compensate", &compensate, py::arg("options"), py::arg("columns"), py::arg("fit"));
   m.def("export", &export_fit, py::arg("options"), py::arg("columns"));
   m.def("check", &check, py::arg("options"));
+  m.def("report", &report_page, py::arg("options"));
   m.def("plan", &plan, py::arg("options"));
   m.def("option_table", &option_rows, py::arg("command"));
 }

@@ -1,0 +1,109 @@
+// `gyrotherm report` (studies/report/report.h): the page's every number is
+// its JSON twin's at the pointer its cell names; the twin's fit and diagnosis
+// are `fit --json` and `diagnose --json` on the same input; the page is self-
+// contained (no URL leaves it); a log the tool refuses leaves neither file.
+// (The page in a real browser: tests/python/test_report_browser.py.)
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <regex>
+#include <string>
+
+#include "cli_runner.h"
+#include "imu_logs.h"
+
+namespace gyrotherm::testing {
+namespace {
+
+using Json = nlohmann::json;
+
+// Each <td … data-json="POINTER">TEXT</td> of the page against the twin.
+void expect_cells_match(const std::string& html, const Json& twin) {
+  const std::regex cell(R"re(data-json="([^"]+)">([^<]*)<)re");
+  std::size_t n = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), cell); it != std::sregex_iterator(); ++it, ++n) {
+    const std::string pointer = (*it)[1], text = (*it)[2];
+    const Json::json_pointer p(pointer);
+    if (!twin.contains(p) || !twin.at(p).is_number()) {
+      EXPECT_EQ(text, "—") << pointer;
+      continue;
+    }
+    EXPECT_EQ(text, fmt::format("{:.6g}", twin.at(p).get<double>())) << pointer;
+  }
+  EXPECT_GT(n, 20u);
+}
+
+TEST(CliReport, ThePageIsItsTwinAndTheTwinIsTheCommandsJson) {
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", " --hidden grad=0.02", "grad.csv");
+  ASSERT_EQ(run_cli(dir, "fit grad.csv -o fit.json").exit_code, 0);
+  const CliResult r = run_cli(dir, "report grad.csv --fit fit.json -o report.html");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("diagnosing"), std::string::npos) << r.err;  // progress on stderr
+  const std::string html = slurp(dir / "report.html");
+  const Json twin = Json::parse(slurp(dir / "report.json"));
+  expect_cells_match(html, twin);
+  // The twin holds the commands' own JSON.
+  const Json fit = Json::parse(slurp(dir / "fit.json"));
+  EXPECT_EQ(twin["channels"][0]["fit"]["coefficients"], fit["coefficients"]);
+  const Json diagnosis = Json::parse(run_cli(dir, "diagnose grad.csv --json").out);
+  EXPECT_EQ(twin["channels"][0]["diagnosis"]["verdict"], diagnosis["verdict"]);
+  EXPECT_EQ(twin["channels"][0]["diagnosis"]["missing_effects"][0]["term"], "grad");
+  EXPECT_NE(html.find(diagnosis["verdict"].get<std::string>().substr(0, 40)), std::string::npos);
+  const Json compensated = Json::parse(run_cli(dir, "compensate grad.csv --fit fit.json --json").out);
+  EXPECT_EQ(twin["channels"][0]["compensate"]["instability_after_dph"], compensated["instability_after_dph"]);
+  EXPECT_EQ(twin["log"]["sha256"].get<std::string>().size(), 64u);
+  // Self-contained: four figures embedded, nothing fetched.
+  std::size_t images = 0;
+  for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
+       at = html.find("src=\"data:image/png;base64,", at + 1))
+    ++images;
+  EXPECT_EQ(images, 4u);
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_NE(html.find("@media print"), std::string::npos);
+}
+
+TEST(CliReport, ARoundTripOnAUlogWithACheckAndAFitMadeHere) {
+  ScratchDir dir;
+  std::vector<ImuSample> samples;
+  for (int k = 0; k < 7200; ++k) {
+    const double temp = 15.0 + 40.0 * k / 7199.0, d = temp - 30.0;
+    const double rate = (100.0 + 2.0 * d + 0.1 * d * d + 20.0 * std::sin(0.37 * k)) * 3.14159265358979 / 648000.0;
+    samples.push_back({static_cast<std::uint64_t>(k) * 1000000 + 1000000, static_cast<float>(temp),
+                       static_cast<float>(rate), static_cast<float>(-rate), static_cast<float>(0.5 * rate)});
+  }
+  write_ulog(dir / "run.ulg", samples);
+  ASSERT_EQ(run_cli(dir, "fit run.ulg --model 'T + T^2' -o fit.json").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, fmt::format("export fit.json --format px4 --device-id {} -o cal.params", kUlogDeviceId)).exit_code, 0);
+  const CliResult r = run_cli(dir, "report run.ulg --model 'T + T^2' --params cal.params --max-residual 20 -o r.html");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json twin = Json::parse(slurp(dir / "r.json"));
+  ASSERT_EQ(twin["channels"].size(), 3u);
+  EXPECT_EQ(twin["channels"][2]["channel"], "gyro_z");
+  EXPECT_EQ(twin["check"]["format"], "px4");
+  EXPECT_EQ(twin["passed"], true);
+  const std::string html = slurp(dir / "r.html");
+  expect_cells_match(html, twin);
+  EXPECT_NE(html.find("PASS"), std::string::npos);
+}
+
+TEST(CliReport, ARefusedLogOrRequestLeavesNothing) {
+  ScratchDir dir;
+  write_text(dir / "short.csv", "time_s,temp_c,gyro_dph\n0,20,1\n1,20,1\n2,20,1\n");
+  expect_refused(dir, "report short.csv -o r.html", "short.csv");
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));
+  expect_refused(dir, "report short.csv -o r.pdf", "name it FILE.html");
+  expect_refused(dir, "report short.csv --max-residual 3 -o r.html", "give it with --params");
+  write_text(dir / "fit.json", "{}");
+  expect_refused(dir, "report short.csv --fit fit.json --model T -o r.html", "--fit brings its own model");
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
+}
+
+}  // namespace
+}  // namespace gyrotherm::testing
