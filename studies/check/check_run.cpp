@@ -222,6 +222,9 @@ AxisCheck judge_axis(const Applied& a, std::size_t k, const CheckResult& r) {
   };
   x.before_dph = instability(a.raw_dph[k]);
   x.after_dph = instability(comp);
+  x.window_time_s = window_means(a.time_s, a.time_s, r.window_s);
+  x.window_raw_dph = window_means(a.time_s, a.raw_dph[k], r.window_s);
+  x.window_compensated_dph = window_means(a.time_s, comp, r.window_s);
   x.offset_dph = std::accumulate(comp.begin(), comp.end(), 0.0) / static_cast<double>(comp.size());
   const double low = std::floor(r.log_temp_min_c);
   const auto bins = static_cast<std::size_t>(std::floor((r.log_temp_max_c - low) / r.bin_c)) + 1;

@@ -82,6 +82,9 @@ struct AxisCheck {
   double residual_at_c = 0.0; // the centre of that bin
   std::vector<TemperatureBin> bins;
   double outside_share = 0.0;  // samples outside TMIN..TMAX
+  // The window means (the instability's windows) of the time and of the rate
+  // raw and as the calibration leaves it: for a figure (report).
+  std::vector<double> window_time_s, window_raw_dph, window_compensated_dph;
 };
 
 struct CheckResult {

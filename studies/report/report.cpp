@@ -71,7 +71,7 @@ std::vector<double> legs(const std::vector<double>& time_s, const std::vector<do
 // The figures of one channel, from its compensation's windows.
 // `stem`: the figures' path without the suffix, made safe for a file name.
 ChannelFigures channel_figures(const fit::Compensation& c, const std::string& channel, const fs::path& stem,
-                               const std::string& allan_png) {
+                               const std::string& allan_png, const AxisCheck* firmware) {
   const fit::PreparedData& d = c.data;
   const std::vector<double>& t = d.series.time_s;
   std::vector<double> hours(t.size());
@@ -111,14 +111,22 @@ ChannelFigures channel_figures(const fit::Compensation& c, const std::string& ch
     };
     const std::vector<double> raw = centred(d.series.gyro_dph), comp = centred(c.window_compensated_dph);
     fig.data("w", {"h", "raw", "comp", "temp"}, {hours, raw, comp, d.series.temp_c});
+    // As the firmware applies the calibration checked (--params), on its own windows.
+    std::string firmware_plot;
+    if (firmware != nullptr && firmware->window_time_s.size() > 1) {
+      std::vector<double> fh(firmware->window_time_s.size());
+      for (std::size_t i = 0; i < fh.size(); ++i) fh[i] = firmware->window_time_s[i] / 3600.0;
+      fig.data("fw", {"h", "comp"}, {fh, centred(firmware->window_compensated_dph)});
+      firmware_plot = ", $fw using 1:2 with lines lw 1.5 lc rgb '#2ca02c' title 'as the firmware applies the checked calibration'";
+    }
     fig.commands(fmt::format(
         "set title 'Uncompensated and compensated against time, {} (window means, each about its mean)'\n"
         "set xlabel 'time (h)'\nset ylabel 'gyro output − its mean (°/h)'\nset y2label 'gyro temperature (°C)'\n"
         "set ytics nomirror\nset y2tics\nset key top left\n"
         "plot $w using 1:2 with lines lw 1.5 lc rgb '#444444' title 'uncompensated', "
         "$w using 1:3 with lines lw 1.5 lc rgb '#d62728' title 'compensated (output − model)', "
-        "$w using 1:4 axes x1y2 with lines dt 2 lc rgb '#ff7f0e' title 'temperature (right axis)'",
-        channel));
+        "$w using 1:4 axes x1y2 with lines dt 2 lc rgb '#ff7f0e' title 'temperature (right axis)'{}",
+        channel, firmware_plot));
     fig.render();
   }
   f.bias = png_data(bias_png);
@@ -218,8 +226,9 @@ ReportRun run_report(const ReportRequest& o) {
   for (std::size_t k = 0; k < fits.size(); ++k) {
     const std::string png = allan[k].plot;
     const std::string name = fits[k].channel.empty() ? fits[k].pipeline.columns.gyro : fits[k].channel;
-    content.channels.push_back(
-        channel_figures(compensated.channels[k], name, scratch.dir / fit::channel_file_names({name}).front(), png));
+    const AxisCheck* firmware = check && k < check->axes.size() ? &check->axes[k] : nullptr;
+    content.channels.push_back(channel_figures(compensated.channels[k], name,
+                                               scratch.dir / fit::channel_file_names({name}).front(), png, firmware));
   }
   ReportRun run;
   run.html = report_html(content);

@@ -239,7 +239,8 @@ std::string report_html(const ReportContent& content) {
                 "through the cloud over the whole fitted range (dashed).");
     h += figure(f.time, "output against time, " + channel,
                 "Uncompensated and compensated window means: what is left after the model should look like noise, "
-                "with no trace of the temperature (right axis).");
+                "with no trace of the temperature (right axis); with a checked calibration (green), what the "
+                "firmware's rule leaves of it.");
     h += figure(f.allan, "Allan deviation, " + channel,
                 "Allan deviation raw and compensated (real-time compensation): the compensation should lower the "
                 "long τ and leave the short τ (white noise) as it was.");
