@@ -92,6 +92,25 @@ TEST(CliReport, ARoundTripOnAUlogWithACheckAndAFitMadeHere) {
   EXPECT_NE(html.find("PASS"), std::string::npos);
 }
 
+TEST(CliReport, TheRealThreeAxisPanLogHasAPagePerAxis) {
+  const std::string pan = source_path("../shared/data/real/pan_tvac/TVCtest3_7_20.csv");
+  if (!std::filesystem::exists(pan)) GTEST_SKIP() << "no PAN thermal-vacuum log";
+  ScratchDir dir;
+  const CliResult r = run_cli(dir, "report " + pan + " --time-col 'time (ms)' --gyro-col 'gyrox rad/s,gyroy rad/s,gyroz rad/s' "
+                                   "--gyro-scale 0.5 --temp-col temp --temp-scale 0.00390625 --temp-offset -231 "
+                                   "--model 'T + T^2' -o pan.html");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json twin = Json::parse(slurp(dir / "pan.json"));
+  ASSERT_EQ(twin["channels"].size(), 3u);
+  EXPECT_EQ(twin["log"]["windows"], 25);  // one window per 5 s burst
+  // It only cools: each channel's page says temperature follows time.
+  for (const Json& c : twin["channels"]) EXPECT_TRUE(c["fit"]["record"]["flags"].contains("T")) << c["channel"];
+  const std::string html = slurp(dir / "pan.html");
+  expect_cells_match(html, twin);
+  EXPECT_NE(html.find("temperature follows time"), std::string::npos);
+  EXPECT_LT(html.size(), 2u << 20);
+}
+
 TEST(CliReport, ARefusedLogOrRequestLeavesNothing) {
   ScratchDir dir;
   write_text(dir / "short.csv", "time_s,temp_c,gyro_dph\n0,20,1\n1,20,1\n2,20,1\n");

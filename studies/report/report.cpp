@@ -162,7 +162,7 @@ std::pair<std::vector<fit::SavedFit>, Json> fits_of(const ReportRequest& o) {
   f.data_options = o.data_options;
   const FitRun run = run_fit(fit_request(f));
   const nlohmann::json parsed = nlohmann::json::parse(run.json);
-  return {fit::load_fits_json(parsed, "fit (made by report)"), Json::parse(run.json)};
+  return {fit::load_fits_json(parsed, fit::kFitInMemory), Json::parse(run.json)};
 }
 
 // diagnose on the log with the fit's model, columns and rules.
@@ -193,7 +193,7 @@ ReportRun run_report(const ReportRequest& o) {
   step("compensating", 0.25);
   CompensateRequest cr;
   cr.data = o.data;
-  cr.fit_file = o.fit_file.empty() ? "fit (made by report)" : o.fit_file;
+  cr.fit_file = o.fit_file.empty() ? std::string(fit::kFitInMemory) : o.fit_file;
   cr.fits = fits;
   const CompensateRun compensated = run_compensate(cr);
   step("Allan deviation", 0.4);
