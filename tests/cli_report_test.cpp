@@ -90,6 +90,18 @@ TEST(CliReport, ARoundTripOnAUlogWithACheckAndAFitMadeHere) {
   const std::string html = slurp(dir / "r.html");
   expect_cells_match(html, twin);
   EXPECT_NE(html.find("PASS"), std::string::npos);
+  ASSERT_EQ(twin["limits"].size(), 1u);
+  EXPECT_EQ(twin["limits"][0]["name"], "residual");
+  // The user's limits, each judged: the 40 °C span passes 25 and fails 50.
+  ASSERT_EQ(run_cli(dir, "report run.ulg --model 'T + T^2' --limits span=25,ratio=2 -o ok.html").exit_code, 0);
+  const Json ok = Json::parse(slurp(dir / "ok.json"));
+  EXPECT_EQ(ok["passed"], true);
+  EXPECT_NEAR(ok["limits"][0]["value"].get<double>(), 40.0 - 80.0 * 49.5 / 7199.0, 0.01);  // of the 100 s window means
+  ASSERT_EQ(run_cli(dir, "report run.ulg --model 'T + T^2' --limits span=50 -o no.html").exit_code, 0);
+  const Json no = Json::parse(slurp(dir / "no.json"));
+  EXPECT_EQ(no["passed"], false);
+  EXPECT_NE(slurp(dir / "no.html").find("class=\"fail\">FAIL"), std::string::npos);
+  expect_cells_match(slurp(dir / "no.html"), no);
 }
 
 TEST(CliReport, TheRealThreeAxisPanLogHasAPagePerAxis) {
@@ -119,6 +131,10 @@ TEST(CliReport, ARefusedLogOrRequestLeavesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir / "r.json"));
   expect_refused(dir, "report short.csv -o r.pdf", "name it FILE.html");
   expect_refused(dir, "report short.csv --max-residual 3 -o r.html", "give it with --params");
+  expect_refused(dir, "report short.csv --limits residual=3 -o r.html", "give it with --params");
+  expect_refused(dir, "report short.csv --limits speed=3 -o r.html", "--limits 'speed=3': expected NAME=VALUE");
+  expect_refused(dir, "report short.csv --limits span=-1 -o r.html", "--limits 'span=-1'");
+  expect_refused(dir, "report short.csv --limits span=1,span=2 -o r.html", "span given twice");
   write_text(dir / "fit.json", "{}");
   expect_refused(dir, "report short.csv --fit fit.json --model T -o r.html", "--fit brings its own model");
   EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));

@@ -2,6 +2,9 @@
 
 #include "sim/util/input_error.h"
 #include "studies/options/pipeline_options.h"
+#include "studies/report/report_page.h"
+
+#include <algorithm>
 
 namespace gyrotherm::studies {
 namespace {
@@ -21,6 +24,9 @@ std::vector<OptionRow<O>> report_rows() {
           &R::params),
       row("--max-residual", "With --params: PASS/FAIL against this residual against temperature, °/h",
           &R::max_residual_dph),
+      row("--limits",
+          "Acceptance limits judged on the page: residual=°/h (with --params), span=°C (at least), ratio=x (at least)",
+          &R::limits),
       row("-o,--output", "The HTML page to write; its JSON twin goes beside it (.json)", &R::output, true)};
   append_rows(rows, model_option_rows("Append terms to the model fitted here"),
               [](O& o) -> auto& { return o.request.model; });
@@ -39,8 +45,10 @@ ReportRequest report_request(const ReportCommandOptions& options) {
   const ReportRequest& r = options.request;
   if (!r.fit_file.empty() && (r.model.model != ModelOptions().model || !r.model.add.empty()))
     throw InputError("report: --fit brings its own model; give --model (and --add) only without --fit");
-  if (r.max_residual_dph && r.params.empty())
-    throw InputError("report: --max-residual judges the check of a calibration: give it with --params");
+  const std::vector<ReportLimit> limits = parse_limits(r.limits, r.max_residual_dph);  // refused here, before any work
+  if (r.params.empty() && std::any_of(limits.begin(), limits.end(), [](const ReportLimit& l) { return l.name == "residual"; }))
+    throw InputError("report: a residual limit (--max-residual, --limits residual=) judges the check of a calibration: "
+                     "give it with --params");
   if (r.output.size() < 6 || r.output.substr(r.output.size() - 5) != ".html")
     throw InputError("report -o " + r.output + ": the page is HTML; name it FILE.html (its JSON twin is FILE.json)");
   return r;

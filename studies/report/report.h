@@ -27,6 +27,11 @@ struct ReportRequest {
   DataOptions data_options;  // columns, units, --avg … (without --fit; with it, the fit's own)
   std::string params;        // --params: a calibration to check on this log (check), or ""
   std::optional<double> max_residual_dph;  // --max-residual: PASS/FAIL of the check's residual
+  // --limits NAME=VALUE,…: the user's acceptance limits, each judged on the
+  // page: residual (°/h, the check's; needs --params, as --max-residual),
+  // span (°C, the log's temperature span at least), ratio (every channel's
+  // instability ratio at least).
+  std::string limits;
   std::string output;        // the HTML page; the JSON twin is OUTPUT with .json
   // Progress on stderr (step, share done); empty: none.
   std::function<void(const std::string& step, double fraction)> progress;

@@ -4,9 +4,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 
+#include "sim/util/input_error.h"
 #include "sim/util/sha256.h"
 
 #ifndef GYROTHERM_VERSION
@@ -86,6 +88,52 @@ Json log_summary(const ReportRequest& o, const CompensateRun& compensated) {
 
 }  // namespace
 
+std::vector<ReportLimit> parse_limits(const std::string& text, std::optional<double> max_residual_dph) {
+  std::vector<ReportLimit> out;
+  if (max_residual_dph) out.push_back({"residual", *max_residual_dph});
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, comma - begin);
+    begin = comma + 1;
+    const std::size_t eq = item.find('=');
+    const std::string name = item.substr(0, eq);
+    double value = 0.0;
+    const char* end = item.data() + item.size();
+    const bool number = eq != std::string::npos && std::from_chars(item.data() + eq + 1, end, value).ptr == end;
+    if (!number || (name != "residual" && name != "span" && name != "ratio") || !(value > 0.0) || !std::isfinite(value))
+      throw InputError(fmt::format("--limits '{}': expected NAME=VALUE items, NAME residual (°/h), span (°C) or ratio, "
+                                   "VALUE a number above 0",
+                                   item));
+    if (std::any_of(out.begin(), out.end(), [&](const ReportLimit& l) { return l.name == name; }))
+      throw InputError(fmt::format("--limits: {} given twice (or with --max-residual)", name));
+    out.push_back({name, value});
+  }
+  return out;
+}
+
+Json judged_limits(const std::vector<ReportLimit>& limits, const Json& twin) {
+  Json out = Json::array();
+  for (const ReportLimit& l : limits) {
+    double value = 0.0;
+    bool passed = true;
+    if (l.name == "span") {
+      value = twin["log"]["span_c"].get<double>();
+      passed = value >= l.value;
+    } else if (l.name == "ratio") {
+      value = INFINITY;
+      for (const Json& c : twin["channels"]) value = std::min(value, c["compensate"]["ratio"].get<double>());
+      passed = value >= l.value;
+    } else {  // residual: the check's worst axis
+      value = 0.0;
+      for (const Json& a : twin["check"]["axes"]) value = std::max(value, a["residual_dph"].get<double>());
+      passed = value <= l.value;
+    }
+    out.push_back({{"name", l.name}, {"limit", l.value}, {"value", value}, {"passed", passed}});
+  }
+  return out;
+}
+
 Json report_twin(const ReportRequest& o, const std::vector<fit::SavedFit>& fits, const Json& fit_json,
                  const CompensateRun& compensated, const std::vector<AllanStudy>& allan, const Json& diagnosis,
                  const std::optional<CheckResult>& check) {
@@ -107,7 +155,10 @@ Json report_twin(const ReportRequest& o, const std::vector<fit::SavedFit>& fits,
   }
   j["check"] = check ? check_json(*check) : Json();
   j["max_residual_dph"] = o.max_residual_dph ? Json(*o.max_residual_dph) : Json();
-  j["passed"] = check && check->passed ? Json(*check->passed) : Json();
+  j["limits"] = judged_limits(parse_limits(o.limits, o.max_residual_dph), j);
+  bool passed = !j["limits"].empty();
+  for (const Json& l : j["limits"]) passed = passed && l["passed"].get<bool>();
+  j["passed"] = !j["limits"].empty() ? Json(passed) : Json();
   return j;
 }
 
@@ -214,11 +265,25 @@ std::string check_html(const Json& twin) {
   }
   h += "</table>\n";
   for (const Json& f : (*check)["findings"]) h += fmt::format("<p class=\"caution\">finding: {}</p>\n", escape(f["issue"].get<std::string>()));
-  if (const Json* passed = at(twin, "/passed"); passed != nullptr && passed->is_boolean())
-    h += fmt::format("<p class=\"{}\">{}: every axis's residual against temperature within <span data-json=\"/max_residual_dph\">{}</span> °/h</p>\n",
-                     passed->get<bool>() ? "pass" : "fail", passed->get<bool>() ? "PASS" : "FAIL",
-                     number_text(at(twin, "/max_residual_dph")));
   return h + "</section>\n";
+}
+
+std::string limits_html(const Json& twin) {
+  const Json* limits = at(twin, "/limits");
+  if (limits == nullptr || limits->empty()) return "";
+  std::string h = "<section><h2>Acceptance</h2>\n<table><tr><th>limit</th><th>required</th><th>found</th><th></th></tr>\n";
+  for (std::size_t i = 0; i < limits->size(); ++i) {
+    const std::string p = fmt::format("/limits/{}", i);
+    const std::string name = (*limits)[i]["name"].get<std::string>();
+    const bool ok = (*limits)[i]["passed"].get<bool>();
+    const char* what = name == "span" ? "temperature span, °C, at least"
+                       : name == "ratio" ? "instability ratio of every channel, at least"
+                                         : "residual against temperature of every axis (check), °/h, at most";
+    h += fmt::format("<tr><td>{}</td>{}{}<td class=\"{}\">{}</td></tr>\n", what, cell(twin, p + "/limit"), cell(twin, p + "/value"),
+                     ok ? "pass" : "fail", ok ? "PASS" : "FAIL");
+  }
+  const bool passed = twin["passed"].get<bool>();
+  return h + fmt::format("</table>\n<p class=\"{}\">{}</p></section>\n", passed ? "pass" : "fail", passed ? "PASS" : "FAIL");
 }
 
 }  // namespace
@@ -249,6 +314,7 @@ std::string report_html(const ReportContent& content) {
     h += "</section>\n";
   }
   h += check_html(twin);
+  h += limits_html(twin);
   h += "<p style=\"font-size:0.85em;color:#666\">Every number on this page is in the JSON twin beside it, at the JSON "
        "pointer its cell names (data-json).</p>\n</body></html>\n";
   return h;

@@ -28,6 +28,16 @@ struct ReportContent {
   std::vector<ChannelFigures> channels;   // in the twin's channel order
 };
 
+// A user's acceptance limit (--limits NAME=VALUE, --max-residual as residual).
+struct ReportLimit {
+  std::string name;  // residual, span, ratio
+  double value = 0.0;
+};
+// Throws InputError for an unknown name, a value that is no number above 0, a name twice.
+std::vector<ReportLimit> parse_limits(const std::string& text, std::optional<double> max_residual_dph);
+// Each limit judged on the twin's numbers: [{name, limit, value, passed}].
+nlohmann::ordered_json judged_limits(const std::vector<ReportLimit>& limits, const nlohmann::ordered_json& twin);
+
 nlohmann::ordered_json report_twin(const ReportRequest& request, const std::vector<fit::SavedFit>& fits,
                                    const nlohmann::ordered_json& fit_json, const CompensateRun& compensated,
                                    const std::vector<AllanStudy>& allan, const nlohmann::ordered_json& diagnosis,
