@@ -37,6 +37,9 @@ studies='IntervalsCover|NineOfTen|EightOfTen|UnbiasedAndCovered|UniformPValues|P
 studies+='|ReachesTheFloor/t|ReachesTheFloor/warmup|ReachesTheFloor/hyst|ReachesTheFloor/T_3|ReachesTheFloor/T_dT|ReachesTheFloor/d2T'
 studies+='|NotPassedOffAsDrift/cycle_7200_up|NotPassedOffAsDrift/cycle_25200_down|TemperatureFourth.WorksEndToEnd|TemperatureFifth.WorksEndToEnd'
 studies+='|CExport.EveryTermAtOnce|NamedFirstOrGroupedNeverTheLagAlone|AnotherGyroAxisIsNoCauseUnlessNamed|DriftOnAMonotoneWarmUpCannotBeToldFromTemperature'
+# report's round trip runs fit, compensate, allan, diagnose and check five
+# times over (its first case and its refusals run here).
+studies+='|ARoundTripOnAUlogWithACheckAndAFitMadeHere'
 # The program's tests in one process per core (GoogleTest's sharding) rather
 # than ctest's process per test: 600 starts of the sanitized program cost
 # 0.2 s each (270 s against 326 s for the whole run on 2 cores). The normal

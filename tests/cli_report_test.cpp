@@ -78,6 +78,13 @@ TEST(CliReport, ARoundTripOnAUlogWithACheckAndAFitMadeHere) {
                        static_cast<float>(rate), static_cast<float>(-rate), static_cast<float>(0.5 * rate)});
   }
   write_ulog(dir / "run.ulg", samples);
+  write_dataflash(dir / "run.bin", samples);
+  // The DataFlash log of the same samples gives the same page's numbers (the date aside).
+  ASSERT_EQ(run_cli(dir, "report run.bin --model 'T + T^2' -o bin.html").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "report run.ulg --model 'T + T^2' -o ulg.html").exit_code, 0);
+  Json bin = Json::parse(slurp(dir / "bin.json")), ulg = Json::parse(slurp(dir / "ulg.json"));
+  EXPECT_EQ(bin["channels"][1]["fit"]["coefficients"], ulg["channels"][1]["fit"]["coefficients"]);
+  EXPECT_EQ(bin["channels"][1]["allan"]["series"][1]["adev_dph"], ulg["channels"][1]["allan"]["series"][1]["adev_dph"]);
   ASSERT_EQ(run_cli(dir, "fit run.ulg --model 'T + T^2' -o fit.json").exit_code, 0);
   ASSERT_EQ(run_cli(dir, fmt::format("export fit.json --format px4 --device-id {} -o cal.params", kUlogDeviceId)).exit_code, 0);
   const CliResult r = run_cli(dir, "report run.ulg --model 'T + T^2' --params cal.params --max-residual 20 -o r.html");
