@@ -247,6 +247,8 @@ std::string diagnosis_html(const Json& twin, std::size_t k) {
   h += fmt::format("<p><b>verdict:</b> {}</p>\n", text_of(at(twin, base + "/verdict")));
   if (const Json* next = at(twin, base + "/next_command"); next != nullptr && next->is_string() && !next->get<std::string>().empty())
     h += fmt::format("<p>next: <code>{}</code></p>\n", escape(next->get<std::string>()));
+  if (const Json* plan = at(twin, base + "/plan_command"); plan != nullptr && plan->is_string() && !plan->get<std::string>().empty())
+    h += fmt::format("<p>a test that would tell what this record cannot: <code>{}</code></p>\n", escape(plan->get<std::string>()));
   return h;
 }
 
