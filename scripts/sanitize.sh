@@ -40,6 +40,9 @@ studies+='|CExport.EveryTermAtOnce|NamedFirstOrGroupedNeverTheLagAlone|AnotherGy
 # report's round trip runs fit, compensate, allan, diagnose and check five
 # times over (its first case and its refusals run here).
 studies+='|ARoundTripOnAUlogWithACheckAndAFitMadeHere'
+# check's and the unit checks' round trips fit and export before they check
+# (seconds each here); the failure modes and refusals run sanitized.
+studies+='|CliCheck.Px4Parameters|CliCheck.MaxResidual|CliCheck.ArduPilotParameters|CliCheck.AFitFile|EveryCommandThatReadsTheRecordChecksItsUnits'
 # The program's tests in one process per core (GoogleTest's sharding) rather
 # than ctest's process per test: 600 starts of the sanitized program cost
 # 0.2 s each (270 s against 326 s for the whole run on 2 cores). The normal

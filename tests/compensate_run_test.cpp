@@ -121,8 +121,17 @@ TEST(CompensateRun, OutsideTheFittedRangeTheModelIsHeldAtTheEdgeAndSaysSo) {
   EXPECT_DOUBLE_EQ(k_json["share_outside_range"].get<double>(), 1.0);
   const auto k_text = run_cli(dir, "compensate kelvin.csv --fit fit.json");
   EXPECT_NE(k_text.out.find("caution: every temperature is above 200 °C"), std::string::npos) << k_text.out;
-  // Every other command that reads that record says the same: diagnose
-  // (text and JSON), export --data (stderr and JSON warnings), check.
+}
+
+
+// Every other command that reads a record with its temperature in kelvin
+// under temp_c says what compensate says: diagnose (text and JSON), export
+// --data (stderr and JSON warnings), check; a fit refused on it lists why.
+TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
+  ScratchDir dir;
+  simulate_shipped(dir, "warmup", "", "warm.csv");
+  ASSERT_EQ(run_cli(dir, "fit warm.csv --model 'T + T^2' -o fit.json").exit_code, 0);
+  ASSERT_EQ(run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^[0-9]/{$4=$4+273.15} {print}' warm.csv | tee kelvin.csv").exit_code, 0);
   // T and T² are collinear at 300 K: the refusal says what looks wrong.
   expect_refused(dir, "fit kelvin.csv", "caution (how the record was read): every temperature is above 200 °C");
   expect_refused(dir, "diagnose kelvin.csv", "caution (how the record was read): every temperature is above 200 °C");
