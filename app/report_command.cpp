@@ -13,9 +13,8 @@ void add_report_command(CLI::App& app, Run* run) {
   add_table_command<studies::ReportCommandOptions>(app, run, "report", "One self-contained HTML page (and its JSON twin) to share a calibration",
       studies::report_option_table(), [](const auto& o) {
     studies::ReportRequest request = studies::report_request(o);
-    request.progress = step_progress();
-    const studies::ReportRun r = studies::run_report(request);
-    fmt::print("{}", r.text);
+    request.progress = step_progress();  // each study in turn, on stderr
+    fmt::print("{}", studies::run_report(request).text);  // the files written
     return 0;
   });
 }

@@ -107,14 +107,28 @@ Logged logged(const std::vector<ImuSample>& samples) {
   return l;
 }
 
+// Two runs of the gyro as `write` logs them (run1.EXT, run2.EXT), the first
+// fitted with `model` and exported with `export_args`; returns the second
+// run's samples and the export's output in *exported.
+template <class Write>
+std::vector<ImuSample> fitted_and_exported(const ScratchDir& dir, Write write, const std::string& ext, Thermal first,
+                                           Thermal second, const std::string& model, const std::string& export_args,
+                                           CliResult* exported) {
+  write(dir / ("run1." + ext), run_samples(first), LoggedParameters{});
+  const std::vector<ImuSample> samples = run_samples(second);
+  write(dir / ("run2." + ext), samples, LoggedParameters{});
+  EXPECT_EQ(run_cli(dir, fmt::format("fit run1.{} --model '{}' -o fit.json", ext, model)).exit_code, 0);
+  *exported = run_cli(dir, "export fit.json " + export_args);
+  EXPECT_EQ(exported->exit_code, 0) << exported->err;
+  return samples;
+}
+
 TEST(CliCheck, Px4ParametersOnASecondUlogAreAppliedAsPx4AppliesThem) {
   ScratchDir dir;
-  write_ulog(dir / "run1.ulg", run_samples({10.0, 60.0, 1}));
-  const std::vector<ImuSample> second = run_samples({58.0, 15.0, 2});
-  write_ulog(dir / "run2.ulg", second);
-  ASSERT_EQ(run_cli(dir, "fit run1.ulg --model 'T + T^2' -o fit.json").exit_code, 0);
-  const auto exported = run_cli(dir, fmt::format("export fit.json --format px4 --device-id {} -o cal.params", kUlogDeviceId));
-  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  CliResult exported;
+  const std::vector<ImuSample> second =
+      fitted_and_exported(dir, write_ulog, "ulg", {10.0, 60.0, 1}, {58.0, 15.0, 2}, "T + T^2",
+                          fmt::format("--format px4 --device-id {} -o cal.params", kUlogDeviceId), &exported);
   // The run's temperature follows time (one ramp): a caution of meaning, carried into the file and said, not refused.
   EXPECT_NE(slurp(dir / "cal.params").find("# CAUTION: on the record the fit was made on, what these numbers mean is "
                                            "uncertain:\n#   gyro_x: T: temperature follows time"),
@@ -150,10 +164,9 @@ TEST(CliCheck, Px4ParametersOnASecondUlogAreAppliedAsPx4AppliesThem) {
 
 TEST(CliCheck, MaxResidualFailsAModelThatMissesTheCurve) {
   ScratchDir dir;
-  write_ulog(dir / "run1.ulg", run_samples({10.0, 60.0, 3}));
-  write_ulog(dir / "run2.ulg", run_samples({58.0, 15.0, 4}));
-  ASSERT_EQ(run_cli(dir, "fit run1.ulg --model T -o line.json").exit_code, 0);
-  ASSERT_EQ(run_cli(dir, fmt::format("export line.json --format px4 --device-id {} -o line.params", kUlogDeviceId)).exit_code, 0);
+  CliResult exported;
+  fitted_and_exported(dir, write_ulog, "ulg", {10.0, 60.0, 3}, {58.0, 15.0, 4}, "T",
+                      fmt::format("--format px4 --device-id {} -o line.params", kUlogDeviceId), &exported);
   // The quadratic's 0.1 °/h/°C² leaves tens of °/h about the line: exit 1, named per axis.
   const nlohmann::json j = check_json(dir, "run2.ulg --params line.params --max-residual 15", 1);
   EXPECT_EQ(j["passed"], false);
@@ -170,11 +183,9 @@ TEST(CliCheck, MaxResidualFailsAModelThatMissesTheCurve) {
 
 TEST(CliCheck, ArduPilotParametersOnASecondDataFlashLogWithBootOffsets) {
   ScratchDir dir;
-  write_dataflash(dir / "run1.bin", run_samples({10.0, 60.0, 5}));
-  const std::vector<ImuSample> second = run_samples({20.0, 50.0, 6});
-  write_dataflash(dir / "run2.bin", second);
-  ASSERT_EQ(run_cli(dir, "fit run1.bin --model 'T + T^2' -o fit.json").exit_code, 0);
-  ASSERT_EQ(run_cli(dir, "export fit.json --format ardupilot -o cal.parm").exit_code, 0);
+  CliResult exported;
+  const std::vector<ImuSample> second = fitted_and_exported(dir, write_dataflash, "bin", {10.0, 60.0, 5}, {20.0, 50.0, 6},
+                                                            "T + T^2", "--format ardupilot -o cal.parm", &exported);
   const nlohmann::json j = check_json(dir, "run2.bin --params cal.parm --max-residual 15");
   EXPECT_EQ(j["format"], "ardupilot");
   EXPECT_EQ(j["calibration"], "INS_TCAL1_");

@@ -147,12 +147,8 @@ std::string ardupilot_gyro_id_name(int instance) {
 }
 
 std::string_view parameter_format_name(ParameterFormat format) {
-  switch (format) {
-    case ParameterFormat::px4: return "px4";
-    case ParameterFormat::ardupilot: return "ardupilot";
-    case ParameterFormat::fit: return "fit";
-  }
-  return "fit";
+  static constexpr std::string_view kNames[] = {"px4", "ardupilot", "fit"};  // in the enum's order
+  return kNames[static_cast<std::size_t>(format)];
 }
 
 std::optional<double> ParameterFile::value(std::string_view name) const {

@@ -14,30 +14,25 @@ namespace gyrotherm::studies {
 namespace {
 
 std::string rule_text(const CheckResult& r) {
-  switch (r.format) {
-    case ParameterFormat::px4:
-      return "PX4's rule: offsets recomputed once a second, re-applied after a change of more than 1 °C, the "
-             "temperature held within TMIN..TMAX";
-    case ParameterFormat::ardupilot:
-      return fmt::format("ArduPilot's rule: every sample, the temperature held within TMIN..TMAX, gyro offsets taken "
-                         "at boot (the log's first {:g} s, at {:.1f} °C)",
-                         r.request.boot_s, r.boot_c);
-    case ParameterFormat::fit:
-      return "the fit's model as `compensate` applies it, held at the fitted range's edge";
-  }
-  return "";
+  if (r.format == ParameterFormat::fit) return "the fit's model as `compensate` applies it, held at the fitted range's edge";
+  if (r.format == ParameterFormat::px4)
+    return "PX4's rule: offsets recomputed once a second, re-applied after a change of more than 1 °C, the temperature "
+           "held within TMIN..TMAX";
+  return fmt::format("ArduPilot's rule: every sample, the temperature held within TMIN..TMAX, gyro offsets taken at boot "
+                     "(the log's first {:g} s, at {:.1f} °C)",
+                     r.request.boot_s, r.boot_c);
 }
 
 std::string finding_text(const CheckFinding& f, const CheckResult& r) {
   switch (f.issue) {
     case CheckIssue::calibration_span_minimum:
-      return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C), under the {:g} °C ArduPilot requires "
-                         "for a temperature calibration: its curve is a guess beyond a few degrees",
-                         f.value, r.tmin_c, r.tmax_c, f.limit);
-    case CheckIssue::calibration_span_advice:
-      return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C); ArduPilot advises {:g} °C or more, so "
-                         "a flight outside it runs on the edge's value",
-                         f.value, r.tmin_c, r.tmax_c, f.limit);
+    case CheckIssue::calibration_span_advice: {
+      const bool minimum = f.issue == CheckIssue::calibration_span_minimum;
+      return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C), under the {:g} °C {}", f.value, r.tmin_c,
+                         r.tmax_c, f.limit,
+                         minimum ? "ArduPilot requires for a temperature calibration: its curve is a guess beyond a few degrees"
+                                 : "ArduPilot advises: a flight outside it runs on the edge's value");
+    }
     case CheckIssue::log_span_minimum:
       return fmt::format("this log spans {:.1f} °C only: it checks the calibration there, not its curve", f.value);
     case CheckIssue::temperature_quantised:

@@ -36,11 +36,6 @@ std::vector<OptionRow<O>> report_rows() {
 
 }  // namespace
 
-const OptionTable<ReportCommandOptions>& report_option_table() {
-  static const OptionTable<O> table{"report", report_rows()};
-  return table;
-}
-
 ReportRequest report_request(const ReportCommandOptions& options) {
   const ReportRequest& r = options.request;
   if (!r.fit_file.empty() && (r.model.model != ModelOptions().model || !r.model.add.empty()))
@@ -52,6 +47,11 @@ ReportRequest report_request(const ReportCommandOptions& options) {
   if (r.output.size() < 6 || r.output.substr(r.output.size() - 5) != ".html")
     throw InputError("report -o " + r.output + ": the page is HTML; name it FILE.html (its JSON twin is FILE.json)");
   return r;
+}
+
+const OptionTable<ReportCommandOptions>& report_option_table() {
+  static const OptionTable<O> table{"report", report_rows()};
+  return table;
 }
 
 }  // namespace gyrotherm::studies

@@ -292,8 +292,10 @@ std::string limits_html(const Json& twin) {
 
 std::string report_html(const ReportContent& content) {
   const Json& twin = content.twin;
+  std::string style = kStyle;  // one line in the page
+  std::replace(style.begin(), style.end(), '\n', ' ');
   std::string h = fmt::format("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>gyrotherm report: {}</title>\n<style>{}</style></head><body>\n",
-                              text_of(at(twin, "/log/file")), kStyle);
+                              text_of(at(twin, "/log/file")), style);
   h += "<section>\n" + header_html(twin, content.temperature) + "</section>\n";
   for (std::size_t k = 0; k < content.channels.size(); ++k) {
     const ChannelFigures& f = content.channels[k];
