@@ -4,10 +4,9 @@
 
 #include <fmt/format.h>
 
-#include <tuple>
-
 #include <cmath>
 #include <fstream>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "fit/model/formula.h"

@@ -106,6 +106,35 @@ TEST(Ulog, CurrentLayoutGivesTheValuesWrittenForEachInstance) {
             "sensor_gyro instance 2 (device 3211274): 4 samples, 2.000..2.750 s, 32.00..33.50 °C");
 }
 
+// The parameters and the accelerometer `check` reads: 'P' messages (float,
+// int32_t) by name, sensor_accel of a multi_id; a sensor_accel format
+// without the fields x, y, z is not read, and not refused (the gyros do not need it).
+TEST(Ulog, ParametersAndTheAccelerometerAreKeptAndAnOddAccelFormatIsPassedOver) {
+  ScratchDir dir;
+  ULogWriter w = current_log();
+  w.parameter("TC_G_ENABLE", 1.0f);
+  w.format("sensor_accel:uint64_t timestamp;float x;float y;float z;");
+  w.subscribe(1, 9, "sensor_accel");
+  for (int k = 0; k < 3; ++k)
+    w.data(9, Packer().put(time_us(0, k)).put(0.0f).put(k == 2 ? 9.0f : 0.0f).put(-9.80665f));  // the last one tilted
+  w.save(dir / "accel.ulg");
+  const LogContents c = read_ulog(dir / "accel.ulg");
+  EXPECT_EQ(c.parameters.at("TC_G_ENABLE"), 1.0);
+  EXPECT_EQ(c.parameters.at("IMU_GYRO_RATEMAX"), 400.0);
+  ASSERT_NE(c.accel(1), nullptr);
+  EXPECT_EQ(c.accel(1)->samples, 3u);
+  EXPECT_EQ(c.accel(1)->moving, 1u);
+  EXPECT_NEAR(c.accel(1)->largest_tilt_deg, 42.54, 0.01);  // atan(9 / 9.80665)
+  ULogWriter odd = current_log();
+  odd.format("sensor_accel:uint64_t timestamp;float[3] xyz;");
+  odd.subscribe(1, 9, "sensor_accel");
+  odd.data(9, Packer().put(time_us(0, 0)).put(0.0f).put(0.0f).put(-9.8f));
+  odd.save(dir / "odd.ulg");
+  const LogContents o = read_ulog(dir / "odd.ulg");
+  EXPECT_EQ(o.accel(1), nullptr);
+  EXPECT_EQ(o.gyros.size(), 3u);
+}
+
 TEST(Ulog, ASinkWithoutAnInstanceTakesTheDefault) {
   ScratchDir dir;
   const auto file = dir / "current.ulg";

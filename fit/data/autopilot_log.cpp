@@ -262,6 +262,8 @@ int LogContents::default_instance() const {
   return -1;
 }
 
+AutopilotReader autopilot_log_reader(std::string_view format) { return format == "ulog" ? read_ulog : read_dataflash; }
+
 std::string autopilot_log_format(const std::filesystem::path& file) {
   std::FILE* f = std::fopen(file.c_str(), "rb");
   if (f == nullptr) return "";

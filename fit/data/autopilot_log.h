@@ -51,6 +51,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gyrotherm::fit {
@@ -125,6 +126,11 @@ using GyroSampleSink = std::function<void(double time_s, double temp_c, double x
 // format, a corrupt message, or an `instance` not held (listing those held).
 LogContents read_ulog(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
 LogContents read_dataflash(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
+
+// The reader of a format autopilot_log_format names: read_ulog for "ulog",
+// read_dataflash for "dataflash".
+using AutopilotReader = LogContents (*)(const std::filesystem::path& file, int instance, const GyroSampleSink& sink);
+AutopilotReader autopilot_log_reader(std::string_view format);
 
 // Which format a file is by its first bytes: "ulog", "dataflash" or ""
 // (anything else, e.g. a CSV, and a file that cannot be opened: its reader

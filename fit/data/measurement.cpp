@@ -180,8 +180,7 @@ std::string CsvParser::read_time(std::string_view field, Measurement& m, double&
 }
 
 void CsvParser::read_log(const fs::path& file, const std::string& format, Measurement& m) {
-  const bool ulog = format == "ulog";
-  const auto read = ulog ? read_ulog : read_dataflash;
+  const AutopilotReader read = autopilot_log_reader(format);
   const LogContents contents = read(file, -1, {});
   if (map_.imu && *map_.imu < 0)
     throw InputError(fmt::format("{}: --imu {}: a gyro instance is a number from 0 (the log holds {})", name_,

@@ -13,10 +13,6 @@ constexpr double kQuietestArw = 2e-5;  // °/√h
 constexpr double kNoisiestArw = 200.0;
 constexpr double kLongestSpanS = 30.0 * 86400.0;
 constexpr double kColdestC = -100.0, kHottestC = 200.0;
-// A gyro at rest reads its bias: a few °/s at most for an uncalibrated MEMS
-// part. Beyond 10 °/s on more than 1 % of the samples, it turned.
-constexpr double kRestDph = 10.0 * 3600.0;
-constexpr double kMovingShare = 0.01;
 
 }  // namespace
 
@@ -30,7 +26,7 @@ void ReadProbe::add(double time_s, double temp_c, double gyro_dph) {
     ++pairs_;
   }
   read_.span_s = time_s - first_time_;
-  moving_ += std::abs(gyro_dph) > kRestDph;
+  moving_ += std::abs(gyro_dph) > kRestRateDph;
   read_.largest_rate_dph = std::max(read_.largest_rate_dph, std::abs(gyro_dph));
   read_.temp_min_c = std::min(read_.temp_min_c, temp_c);
   read_.temp_max_c = std::max(read_.temp_max_c, temp_c);
@@ -66,7 +62,7 @@ std::vector<std::string> unit_cautions(const Units& u, const ReadSummary& r) {
     out.push_back(fmt::format(
         "the gyro reads more than {:g} °/s on {:.0f} % of the samples (up to {:.3g} °/s, {}): no gyro at rest "
         "has such a bias, so {}; a thermal test holds the gyro still",
-        kRestDph / 3600.0, 100.0 * r.moving_share, r.largest_rate_dph / 3600.0, gyro_read,
+        kRestRateDph / 3600.0, 100.0 * r.moving_share, r.largest_rate_dph / 3600.0, gyro_read,
         log_format ? "the vehicle turned, and a rotation is read as bias"
                    : "it turned (a rotation is read as bias), or its numbers are in a smaller unit than that "
                      "(°/h read as °/s?)"));

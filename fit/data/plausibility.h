@@ -26,6 +26,11 @@
 
 namespace gyrotherm::fit {
 
+// A gyro at rest reads its bias: a few °/s at most for an uncalibrated MEMS
+// part. Beyond kRestRateDph on more than kMovingShare of the samples, it turned.
+inline constexpr double kRestRateDph = 10.0 * 3600.0;
+inline constexpr double kMovingShare = 0.01;
+
 struct ReadSummary {
   double arw_deg_per_sqrt_h = 0;          // the gyro's white noise (above); 0 without two close samples
   double span_s = 0;                      // last − first sample time

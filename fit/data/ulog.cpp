@@ -101,7 +101,10 @@ class ULogReader : binary::LogReader {
   void on_parameter(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   std::size_t size_of_type(const std::string& type, const std::string& within, int depth);
   std::size_t size_of_format(const std::string& name, int depth);
-  GyroLayout gyro_layout(const std::string& name, std::uint64_t subscribed_at);
+  // `required`: a format without the fields (or with one not a number) is an
+  // error; else (sensor_accel, read only for a motion check) the fields it
+  // lacks are left not present.
+  GyroLayout gyro_layout(const std::string& name, std::uint64_t subscribed_at, bool required = true);
 
   std::map<std::string, FormatDef, std::less<>> formats_;
   std::unordered_map<std::string, std::size_t> format_bytes_;  // sizes worked out so far
@@ -262,7 +265,7 @@ std::size_t ULogReader::size_of_format(const std::string& name, int depth) {
   return bytes;
 }
 
-GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscribed_at) {
+GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscribed_at, bool required) {
   const FormatDef& def = formats_.find(name)->second;
   GyroLayout layout;
   std::size_t offset = 0;
@@ -277,6 +280,7 @@ GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscr
     for (const auto& [wanted_name, slot] : wanted) {
       if (field.name != wanted_name) continue;
       const BasicType* basic = basic_type(field.type);
+      if ((basic == nullptr || field.array) && !required) continue;
       if (basic == nullptr || field.array)
         in_.fail(def.at_byte, fmt::format("format '{}': field '{}' is a '{}{}', expected a number", name, field.name,
                                           printable(field.type), field.array ? fmt::format("[{}]", field.count) : ""));
@@ -286,7 +290,7 @@ GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscr
     offset += bytes;
   }
   for (const auto& [wanted_name, slot] : wanted)
-    if (!slot->present && wanted_name != "temperature" && wanted_name != "device_id") {
+    if (required && !slot->present && wanted_name != "temperature" && wanted_name != "device_id") {
       std::string fields;
       for (const FieldDef& field : def.fields) fields += (fields.empty() ? "" : ", ") + field.name;
       in_.fail(subscribed_at, fmt::format("the subscribed format '{}' has no field '{}' (it has {}; expected "
@@ -314,8 +318,9 @@ void ULogReader::on_subscription(std::uint64_t at, const std::uint8_t* p, std::s
     if (gyro == layouts_.size()) layouts_.push_back(gyro_layout(name, at));  // a new instance
     sub.gyro = static_cast<int>(gyro);
   } else if (name == kAccelTopic) {
-    sub.accel = multi_id;
-    sub.accel_layout = gyro_layout(name, at);
+    sub.accel_layout = gyro_layout(name, at, /*required=*/false);
+    const GyroLayout& a = sub.accel_layout;
+    if (a.x.present && a.y.present && a.z.present) sub.accel = multi_id;  // else not read: a topic the gyros do not need
   }
   subscriptions_[msg_id] = sub;
 }

@@ -24,8 +24,6 @@ namespace {
 
 constexpr double kSpanMinimumC = 10.0;  // ArduPilot's minimum span for a temperature calibration
 constexpr double kSpanAdviceC = 25.0;   // and its advice
-constexpr double kRestRateDph = 10.0 * 3600.0;  // 10 °/s: beyond any gyro bias, a vehicle turning
-constexpr double kMovingShare = 0.01;   // more than 1 % of the samples moving is a finding
 constexpr std::size_t kBinSamples = 10; // a temperature bin needs this many samples to be shown
 constexpr int kMaxBins = 20;
 
@@ -36,7 +34,6 @@ struct Applied {
   std::vector<std::string> axis;
   std::vector<std::vector<double>> raw_dph, subtracted_dph;
   fit::LogContents contents;  // an autopilot log's; empty for a CSV
-  double moving_share = 0.0;  // of the gyro samples beyond the rest rate on any axis
 };
 
 constexpr char kAxisNames[3] = {'X', 'Y', 'Z'};
@@ -60,7 +57,7 @@ std::pair<int, std::size_t> pair_gyro(const CheckRequest& o, const fit::LogConte
 
 void read_autopilot(const CheckRequest& o, const std::string& format, const std::vector<GyroCalibration>& cals,
                     Applied* a, CheckResult* r, std::size_t* cal) {
-  const auto reader = format == "ulog" ? &fit::read_ulog : &fit::read_dataflash;
+  const fit::AutopilotReader reader = fit::autopilot_log_reader(format);
   a->contents = reader(o.log, -1, {});
   const auto [instance, chosen] = pair_gyro(o, a->contents, cals);
   if (instance < 0)
@@ -68,20 +65,16 @@ void read_autopilot(const CheckRequest& o, const std::string& format, const std:
                                  a->contents.describe()));
   *cal = chosen;
   a->raw_dph.assign(3, {});
-  std::size_t moving = 0;
   const fit::LogContents read = reader(o.log, instance, [&](double t, double temp, double x, double y, double z) {
     if (!std::isfinite(temp)) return;
     a->time_s.push_back(t);
     a->temp_c.push_back(temp);
-    const double rates[3] = {x / kRadPerSecPerDegPerHour, y / kRadPerSecPerDegPerHour, z / kRadPerSecPerDegPerHour};
-    for (int k = 0; k < 3; ++k) a->raw_dph[k].push_back(rates[k]);
-    if (std::max({std::abs(rates[0]), std::abs(rates[1]), std::abs(rates[2])}) > kRestRateDph) ++moving;
+    for (const auto& [k, rate] : {std::pair{0, x}, {1, y}, {2, z}}) a->raw_dph[k].push_back(rate / kRadPerSecPerDegPerHour);
   });
   r->log_format = read.format;
   r->log_instance = instance;
   for (const fit::LogGyro& g : read.gyros)
     if (g.instance == instance) r->log_device_id = g.device_id;
-  a->moving_share = a->time_s.empty() ? 0.0 : static_cast<double>(moving) / static_cast<double>(a->time_s.size());
   for (int k = 0; k < 3; ++k) a->axis.push_back(std::string(1, kAxisNames[k]));
 }
 
@@ -94,7 +87,6 @@ void read_csv(const CheckRequest& o, Applied* a, CheckResult* r) {
     throw InputError(fmt::format("--gyro-col {}: {} columns; a calibration corrects the X, Y and Z axes, name up "
                                  "to three, in that order",
                                  columns.gyro, gyros.size()));
-  std::size_t moving = 0;
   for (std::size_t k = 0; k < gyros.size(); ++k) {
     fit::ColumnMap one = columns;
     one.gyro = gyros[k];
@@ -104,9 +96,7 @@ void read_csv(const CheckRequest& o, Applied* a, CheckResult* r) {
     if (k == 0) a->time_s = m.time_s, a->temp_c = m.temp_c;
     a->raw_dph.push_back(m.gyro_dph);
     a->axis.push_back(std::string(1, kAxisNames[k]));
-    for (const double g : m.gyro_dph) moving += std::abs(g) > kRestRateDph ? 1 : 0;
   }
-  a->moving_share = a->time_s.empty() ? 0.0 : static_cast<double>(moving) / static_cast<double>(a->time_s.size());
   r->log_format = "CSV";
 }
 
@@ -168,9 +158,11 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
   const CompensateRun run = run_compensate(request);
   Applied a;
   r->calibration = p.file;
-  r->log_format = fit::autopilot_log_format(o.log).empty() ? "CSV" : "";
-  if (r->log_format.empty()) a.contents = fit::autopilot_log_format(o.log) == "ulog" ? fit::read_ulog(o.log) : fit::read_dataflash(o.log);
-  if (r->log_format.empty()) r->log_format = a.contents.format;
+  r->log_format = "CSV";
+  if (const std::string format = fit::autopilot_log_format(o.log); !format.empty()) {
+    a.contents = fit::autopilot_log_reader(format)(o.log, -1, {});
+    r->log_format = a.contents.format;
+  }
   bool first = true;
   for (std::size_t k = 0; k < run.channels.size(); ++k) {
     const fit::Compensation& c = run.channels[k];
@@ -186,11 +178,17 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
       if (std::find(r->cautions.begin(), r->cautions.end(), caution) == r->cautions.end()) r->cautions.push_back(caution);
     a.raw_dph.push_back(full ? c.gyro_dph : c.data.series.gyro_dph);
     a.subtracted_dph.push_back(full ? c.model_dph : c.window_model_dph);
-    std::size_t moving = 0;
-    for (const double g : a.raw_dph.back()) moving += std::abs(g) > kRestRateDph ? 1 : 0;
-    a.moving_share = std::max(a.moving_share, static_cast<double>(moving) / static_cast<double>(a.raw_dph.back().size()));
   }
   return a;
+}
+
+// The share of the samples whose rate on any axis is beyond a gyro at rest's.
+double moving_share(const Applied& a) {
+  std::size_t moving = 0;
+  for (std::size_t i = 0; i < a.time_s.size(); ++i)
+    moving += std::any_of(a.raw_dph.begin(), a.raw_dph.end(),
+                          [&](const std::vector<double>& axis) { return std::abs(axis[i]) > fit::kRestRateDph; });
+  return a.time_s.empty() ? 0.0 : static_cast<double>(moving) / static_cast<double>(a.time_s.size());
 }
 
 // Means of consecutive windows of `w` seconds from the first sample (windows with 2 samples or more).
@@ -264,9 +262,10 @@ void add_log_findings(const Applied& a, CheckResult* r) {
   }
   double accel_share = 0.0;
   if (const fit::LogAccel* acc = log.accel(r->log_instance)) accel_share = acc->moving_share();
-  if (a.moving_share > kMovingShare || accel_share > kMovingShare)
-    r->findings.push_back({CheckIssue::moving, std::max(a.moving_share, accel_share), kMovingShare,
-                           a.moving_share >= accel_share ? "gyro" : "accelerometer"});
+  const double gyro_share = moving_share(a);
+  if (gyro_share > fit::kMovingShare || accel_share > fit::kMovingShare)
+    r->findings.push_back({CheckIssue::moving, std::max(gyro_share, accel_share), fit::kMovingShare,
+                           gyro_share >= accel_share ? "gyro" : "accelerometer"});
 }
 
 void add_device_finding(const ParameterFile& p, const Applied& a, CheckResult* r) {
