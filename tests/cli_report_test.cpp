@@ -56,6 +56,11 @@ TEST(CliReport, ThePageIsItsTwinAndTheTwinIsTheCommandsJson) {
   const Json compensated = Json::parse(run_cli(dir, "compensate grad.csv --fit fit.json --json").out);
   EXPECT_EQ(twin["channels"][0]["compensate"]["instability_after_dph"], compensated["instability_after_dph"]);
   EXPECT_EQ(twin["log"]["sha256"].get<std::string>().size(), 64u);
+  // Read in one pass (as a log too large to hold is), the page counts the same samples.
+  const CliResult streamed = run_shell(dir, std::string("GYROTHERM_STREAM_ABOVE_MB=0 '") + GYROTHERM_CLI +
+                                                "' report grad.csv --fit fit.json -o streamed.html");
+  ASSERT_EQ(streamed.exit_code, 0) << streamed.err;
+  EXPECT_EQ(Json::parse(slurp(dir / "streamed.json"))["log"]["samples"], twin["log"]["samples"]);
   // Self-contained: four figures embedded, nothing fetched.
   std::size_t images = 0;
   for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;

@@ -21,6 +21,7 @@
 #include "studies/allan/allan_study.h"
 #include "studies/check/check_run.h"
 #include "studies/diagnose/diagnose_run.h"
+#include "studies/export/exporter.h"
 #include "studies/fit/compensate_run.h"
 #include "studies/fit/fit_run.h"
 #include "studies/options/fit_options.h"
@@ -165,15 +166,20 @@ std::pair<std::vector<fit::SavedFit>, Json> fits_of(const ReportRequest& o) {
   return {fit::load_fits_json(parsed, fit::kFitInMemory), Json::parse(run.json)};
 }
 
+// The fits' gyro columns as one comma list (diagnose's and check's channels).
+std::string gyro_columns(const std::vector<fit::SavedFit>& fits) {
+  std::string gyros;
+  for (const fit::SavedFit& f : fits) gyros += (gyros.empty() ? "" : ",") + f.pipeline.columns.gyro;
+  return gyros;
+}
+
 // diagnose on the log with the fit's model, columns and rules.
 Json diagnosis_of(const ReportRequest& o, const std::vector<fit::SavedFit>& fits) {
   DiagnoseRequest d;
   d.data = o.data;
   d.base_terms = d.terms = fits.front().terms;
   d.pipeline = fits.front().pipeline;
-  std::string gyros;
-  for (const fit::SavedFit& f : fits) gyros += (gyros.empty() ? "" : ",") + f.pipeline.columns.gyro;
-  d.pipeline.columns.gyro = gyros;
+  d.pipeline.columns.gyro = gyro_columns(fits);
   return diagnose_json(run_diagnose(d));
 }
 
@@ -184,7 +190,6 @@ std::string report_twin_file(const std::string& output) {
 }
 
 ReportRun run_report(const ReportRequest& o) {
-  if (o.output.empty()) throw InputError("report: -o FILE.html is required");
   const auto step = [&](const std::string& what, double share) {
     if (o.progress) o.progress(what, share);
   };
@@ -215,8 +220,7 @@ ReportRun run_report(const ReportRequest& o) {
     q.max_residual = o.max_residual_dph;
     // The log read as the fit read it: its columns, the channels as X, Y, Z.
     q.columns = fits.front().pipeline.columns;
-    q.columns.gyro.clear();
-    for (const fit::SavedFit& f : fits) q.columns.gyro += (q.columns.gyro.empty() ? "" : ",") + f.pipeline.columns.gyro;
+    q.columns.gyro = gyro_columns(fits);
     check = run_check(q);
   }
   step("figures", 0.85);
@@ -225,7 +229,7 @@ ReportRun run_report(const ReportRequest& o) {
   content.temperature = temperature_figure(compensated.channels.front(), scratch.dir);
   for (std::size_t k = 0; k < fits.size(); ++k) {
     const std::string png = allan[k].plot;
-    const std::string name = fits[k].channel.empty() ? fits[k].pipeline.columns.gyro : fits[k].channel;
+    const std::string name = channel_name(fits[k]);
     const AxisCheck* firmware = check && k < check->axes.size() ? &check->axes[k] : nullptr;
     content.channels.push_back(channel_figures(compensated.channels[k], name,
                                                scratch.dir / fit::channel_file_names({name}).front(), png, firmware));

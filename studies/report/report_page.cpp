@@ -10,6 +10,7 @@
 
 #include "sim/util/input_error.h"
 #include "sim/util/sha256.h"
+#include "studies/export/exporter.h"
 
 #ifndef GYROTHERM_VERSION
 #define GYROTHERM_VERSION "unknown"
@@ -75,7 +76,7 @@ Json log_summary(const ReportRequest& o, const CompensateRun& compensated) {
   Json j{{"file", o.data},
          {"sha256", sha256_file_hex(o.data)},
          {"units", c.data.units.used()},
-         {"samples", c.time_s.empty() ? c.data.series.samples.size() : c.time_s.size()},
+         {"samples", c.data.raw_samples},
          {"windows", t.size()},
          {"duration_h", t.empty() ? 0.0 : (t.back() - t.front()) / 3600.0},
          {"temp_range_c", {*lo, *hi}},
@@ -144,9 +145,7 @@ Json report_twin(const ReportRequest& o, const std::vector<fit::SavedFit>& fits,
   j["log"] = log_summary(o, compensated);
   j["channels"] = Json::array();
   for (std::size_t k = 0; k < fits.size(); ++k) {
-    // A one-channel fit names no channel: its gyro column does.
-    const std::string name = fits[k].channel.empty() ? fits[k].pipeline.columns.gyro : fits[k].channel;
-    Json c{{"channel", name}, {"model", fit::formula_text(fits[k].terms)}};
+    Json c{{"channel", channel_name(fits[k])}, {"model", fit::formula_text(fits[k].terms)}};
     c["fit"] = channel_part(fit_json, k);
     c["compensate"] = compensated.channel_json[k];
     c["allan"] = allan_json(allan[k]);
