@@ -34,6 +34,7 @@ struct Applied {
   std::vector<std::string> axis;
   std::vector<std::vector<double>> raw_dph, subtracted_dph;
   fit::LogContents contents;  // an autopilot log's; empty for a CSV
+  std::optional<GyroCalibration> calibration;  // the firmware set applied (none for a fit file)
 };
 
 constexpr char kAxisNames[3] = {'X', 'Y', 'Z'};
@@ -126,7 +127,7 @@ Applied apply_firmware(const CheckRequest& o, const ParameterFile& p, CheckResul
       for (std::size_t c = 0; c < cals.size(); ++c)
         if (cals[c].instance == *o.columns.imu) cal = c;
   }
-  const GyroCalibration& c = cals[cal];
+  const GyroCalibration& c = *(a.calibration = cals[cal]);
   r->calibration = c.prefix;
   r->tmin_c = c.tmin_c;
   r->tmax_c = c.tmax_c;
@@ -268,20 +269,18 @@ void add_log_findings(const Applied& a, CheckResult* r) {
                            gyro_share >= accel_share ? "gyro" : "accelerometer"});
 }
 
-void add_device_finding(const ParameterFile& p, const Applied& a, CheckResult* r) {
-  if (p.format == ParameterFormat::fit || r->log_instance < 0) return;
-  const std::vector<GyroCalibration> cals = gyro_calibrations(p);
-  const auto cal = std::find_if(cals.begin(), cals.end(), [&](const GyroCalibration& c) { return c.prefix == r->calibration; });
-  if (cal == cals.end()) return;
+void add_device_finding(const Applied& a, CheckResult* r) {
+  const std::optional<GyroCalibration>& cal = a.calibration;
+  if (!cal || r->log_instance < 0) return;
   // PX4 pairs a set with the gyro whose device id is TC_G{n}_ID: 0 or none pairs with no gyro.
-  if (p.format == ParameterFormat::px4 && (!cal->device_id || *cal->device_id == 0)) {
+  if (cal->format == ParameterFormat::px4 && (!cal->device_id || *cal->device_id == 0)) {
     r->findings.push_back({CheckIssue::device_mismatch, 0.0, 0.0, cal->prefix + "ID"});
     return;
   }
   if (!cal->device_id || *cal->device_id == 0) return;
   std::string ids;
   bool any = false, match = false;
-  if (p.format == ParameterFormat::px4) {
+  if (cal->format == ParameterFormat::px4) {
     for (const fit::LogGyro& g : a.contents.gyros) {
       if (g.device_id == 0) continue;
       any = true;
@@ -299,7 +298,7 @@ void add_device_finding(const ParameterFile& p, const Applied& a, CheckResult* r
   if (any && !match) r->findings.push_back({CheckIssue::device_mismatch, static_cast<double>(*cal->device_id), 0.0, ids});
 }
 
-void add_findings(const ParameterFile& p, const Applied& a, CheckResult* r) {
+void add_findings(const Applied& a, CheckResult* r) {
   const double span = r->tmax_c - r->tmin_c;
   if (span < kSpanMinimumC)
     r->findings.push_back({CheckIssue::calibration_span_minimum, span, kSpanMinimumC, r->calibration});
@@ -313,7 +312,7 @@ void add_findings(const ParameterFile& p, const Applied& a, CheckResult* r) {
   if (r->log_temp_max_c > r->log_temp_min_c && static_cast<double>(whole) >= 0.99 * static_cast<double>(a.temp_c.size()))
     r->findings.push_back({CheckIssue::temperature_quantised, 1.0, 0.0, ""});
   add_log_findings(a, r);
-  add_device_finding(p, a, r);
+  add_device_finding(a, r);
   double outside = 0.0;
   for (const AxisCheck& x : r->axes) outside = std::max(outside, x.outside_share);
   if (outside > 0.0) r->findings.push_back({CheckIssue::outside_range, outside, 0.0, ""});
@@ -375,7 +374,7 @@ CheckResult run_check(const CheckRequest& o) {
   r.window_s = std::max(std::min(o.avg_s, r.span_s / 10.0), 2.0 * steps[steps.size() / 2]);
   r.bin_c = std::max(1.0, (r.log_temp_max_c - r.log_temp_min_c) / kMaxBins);
   for (std::size_t k = 0; k < a.axis.size(); ++k) r.axes.push_back(judge_axis(a, k, r));
-  add_findings(p, a, &r);
+  add_findings(a, &r);
   return r;
 }
 
