@@ -296,6 +296,9 @@ TEST(CliCheck, BadParameterFilesAreRefusedNamingTheLine) {
   write_text(dir / "ok.parm", "INS_TCAL1_TMIN 20\nINS_TCAL1_TMAX 50\nINS_TCAL1_GYR1_X 1\nINS_TCAL1_GYR2_X 0\nINS_TCAL1_GYR3_X 0\n");
   expect_refused(dir, "check run.ulg --params ok.parm --max-residual -1", "--max-residual -1");
   expect_refused(dir, "check run.ulg --params ok.parm --max-residual 1 --residual-unit furlongs", "--residual-unit");
+  expect_refused(dir, "check run.ulg --params ok.parm --avg 0", "--avg 0: expected a window of more than 0 s");
+  expect_refused(dir, "check run.ulg --params ok.parm --boot -1", "--boot -1: expected more than 0 s");
+  expect_refused(dir, "check run.ulg --params ok.parm --imu -1", "--imu -1: expected an instance of 0 or more");
 }
 
 }  // namespace
