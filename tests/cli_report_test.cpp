@@ -31,7 +31,8 @@ void expect_cells_match(const std::string& html, const Json& twin) {
       EXPECT_EQ(text, "—") << pointer;
       continue;
     }
-    EXPECT_EQ(text, fmt::format("{:.6g}", twin.at(p).get<double>())) << pointer;
+    EXPECT_EQ(text, twin.at(p).is_number_integer() ? twin.at(p).dump() : fmt::format("{:.6g}", twin.at(p).get<double>()))
+        << pointer;
   }
   EXPECT_GT(n, 20u);
 }
@@ -56,6 +57,23 @@ TEST(CliReport, ThePageIsItsTwinAndTheTwinIsTheCommandsJson) {
   const Json compensated = Json::parse(run_cli(dir, "compensate grad.csv --fit fit.json --json").out);
   EXPECT_EQ(twin["channels"][0]["compensate"]["instability_after_dph"], compensated["instability_after_dph"]);
   EXPECT_EQ(twin["log"]["sha256"].get<std::string>().size(), 64u);
+  EXPECT_EQ(twin["log"]["sensors"]["format"], "text table");
+  // The fit is this record's: the model's band (its coverage over seeds:
+  // tests/model_band_test.cpp), with the dof its t took.
+  const Json& band = twin["channels"][0]["band"];
+  EXPECT_TRUE(band["missing"].is_null());
+  EXPECT_GT(band["half_width_dph"][0].get<double>(), 0.0);
+  EXPECT_GE(band["half_width_dph"][1].get<double>(), band["half_width_dph"][0].get<double>());
+  EXPECT_GE(band["dof"].get<double>(), 1.0);
+  // dT is no power of T: the firmwares cannot store this model, and the page says which term.
+  EXPECT_EQ(twin["channels"][0]["firmware"]["expressible"], false);
+  EXPECT_EQ(twin["channels"][0]["firmware"]["not_expressible"][0], "dT");
+  EXPECT_NE(html.find("this model's dT cannot be stored"), std::string::npos);
+  // A fit from another record brings no band of this one's.
+  simulate_shipped(dir, "cycle", " --seed 7", "other.csv");
+  ASSERT_EQ(run_cli(dir, "report other.csv --fit fit.json -o other.html").exit_code, 0);
+  EXPECT_EQ(Json::parse(slurp(dir / "other.json"))["channels"][0]["band"]["missing"], "other_record");
+  EXPECT_NE(slurp(dir / "other.html").find("the fit was made on another record"), std::string::npos);
   // Read in one pass (as a log too large to hold is), the page counts the same samples.
   const CliResult streamed = run_shell(dir, std::string("GYROTHERM_STREAM_ABOVE_MB=0 '") + GYROTHERM_CLI +
                                                 "' report grad.csv --fit fit.json -o streamed.html");
@@ -96,6 +114,30 @@ TEST(CliReport, ARoundTripOnAUlogWithACheckAndAFitMadeHere) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json twin = Json::parse(slurp(dir / "r.json"));
   ASSERT_EQ(twin["channels"].size(), 3u);
+  // The header names the log's gyro by its device id.
+  EXPECT_EQ(twin["log"]["sensors"]["format"], "ULog v1");
+  ASSERT_EQ(twin["log"]["sensors"]["gyros"].size(), 2u);  // instance 0 has no temperature: 1 is read
+  EXPECT_EQ(twin["log"]["sensors"]["gyros"][0]["read"], false);
+  EXPECT_EQ(twin["log"]["sensors"]["gyros"][1]["device_id"], kUlogDeviceId);
+  EXPECT_EQ(twin["log"]["sensors"]["gyros"][1]["read"], true);
+  // The model in the firmware's units is what export wrote, each inside its interval.
+  const std::string params = slurp(dir / "cal.params");
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const Json& px4 = twin["channels"][axis]["firmware"]["px4"];
+    for (int k = 0; k < 4; ++k) {
+      const std::smatch m = [&] {
+        std::smatch found;
+        const std::regex line(fmt::format(R"(TC_G0_X{}_{}\t([-+0-9.eE]+))", k, axis));
+        std::regex_search(params, found, line);
+        return found;
+      }();
+      ASSERT_FALSE(m.empty()) << k << " " << axis;
+      const double exported = std::stod(m[1]), value = px4["values"][k].get<double>();
+      EXPECT_NEAR(value, exported, 1e-6 * std::abs(exported) + 1e-12) << "X" << k << " axis " << axis;
+      EXPECT_LE(px4["intervals_95"][k][0].get<double>(), value);
+      EXPECT_GE(px4["intervals_95"][k][1].get<double>(), value);
+    }
+  }
   EXPECT_EQ(twin["channels"][2]["channel"], "gyro_z");
   EXPECT_EQ(twin["check"]["format"], "px4");
   EXPECT_EQ(twin["passed"], true);
@@ -133,6 +175,29 @@ TEST(CliReport, TheRealThreeAxisPanLogHasAPagePerAxis) {
   expect_cells_match(html, twin);
   EXPECT_NE(html.find("temperature follows time"), std::string::npos);
   EXPECT_LT(html.size(), 2u << 20);
+}
+
+// The paper's random profile (75 h: holds, fast ramps, the chamber switched
+// off): the page, its twin and its size as for the cycle.
+TEST(CliReport, TheRandomProfileHasItsPage) {
+  ScratchDir dir;
+  simulate_shipped(dir, "random", "", "random.csv");
+  const CliResult r = run_cli(dir, "report random.csv --model 'T + T^2 + dT' -o random.html");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = slurp(dir / "random.html");
+  const Json twin = Json::parse(slurp(dir / "random.json"));
+  expect_cells_match(html, twin);
+  EXPECT_GT(twin["log"]["duration_h"].get<double>(), 70.0);
+  EXPECT_GT(twin["log"]["span_c"].get<double>(), 60.0);
+  EXPECT_TRUE(twin["channels"][0]["band"]["missing"].is_null());
+  std::size_t images = 0;
+  for (std::size_t at = html.find("src=\"data:image/png;base64,"); at != std::string::npos;
+       at = html.find("src=\"data:image/png;base64,", at + 1))
+    ++images;
+  EXPECT_EQ(images, 4u);
+  EXPECT_LT(html.size(), 2u << 20);
+  const Json fit = Json::parse(run_cli(dir, "fit random.csv --model 'T + T^2 + dT' --json").out);
+  EXPECT_EQ(twin["channels"][0]["fit"]["coefficients"], fit["coefficients"]);
 }
 
 TEST(CliReport, ARefusedLogOrRequestLeavesNothing) {

@@ -222,25 +222,21 @@ std::string NoiseModel::description() const {
   return out;
 }
 
-namespace {
-
-NoiseSandwich one_sandwich(const NoiseModel& model, const WindowGrid& grid,
-                           const Eigen::MatrixXd& centred) {
+SandwichParts::SandwichParts(const NoiseModel& model, const WindowGrid& grid, const Eigen::MatrixXd& centred) {
   const Eigen::Index l = centred.rows(), m = centred.cols();
   const Eigen::MatrixXd G_inv =
       (centred.transpose() * centred).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
   const Eigen::MatrixXd P = centred * G_inv;  // β̂ = Pᵀ y
-  // Each component's part of Cov(β̂), and Gauss–Markov's change with ln τ.
-  std::array<Eigen::MatrixXd, kNoiseKinds> part;
-  NoiseSandwich out;
-  out.covariance = Eigen::MatrixXd::Zero(m, m);
+  // Each component's part of Cov(β̂) per unit amplitude, and Gauss–Markov's change with ln τ.
+  covariance = Eigen::MatrixXd::Zero(m, m);
   for (int k = 0; k < kNoiseKinds; ++k) {
     const double v = model.amplitude[static_cast<std::size_t>(k)];
-    if (!(v > 0.0)) { part[static_cast<std::size_t>(k)] = Eigen::MatrixXd::Zero(m, m); continue; }
-    part[static_cast<std::size_t>(k)] = v * P.transpose() * model.apply(grid, P, k);
-    out.covariance += part[static_cast<std::size_t>(k)];
+    amplitude[static_cast<std::size_t>(k)] = v;
+    unit_part[static_cast<std::size_t>(k)] =
+        v > 0.0 ? Eigen::MatrixXd(P.transpose() * model.apply(grid, P, k)) : Eigen::MatrixXd::Zero(m, m);
+    covariance += v * unit_part[static_cast<std::size_t>(k)];
   }
-  Eigen::MatrixXd d_tau = Eigen::MatrixXd::Zero(m, m);
+  d_tau = Eigen::MatrixXd::Zero(m, m);
   if (model.amplitude[kGaussMarkov] > 0.0) {
     NoiseModel up = model, down = model;
     up.gm_tau_s *= std::exp(0.05);
@@ -248,41 +244,51 @@ NoiseSandwich one_sandwich(const NoiseModel& model, const WindowGrid& grid,
     d_tau = model.amplitude[kGaussMarkov] *
             P.transpose() * (up.apply(grid, P, kGaussMarkov) - down.apply(grid, P, kGaussMarkov)) / 0.1;
   }
-  const double max_dof = static_cast<double>(std::max<Eigen::Index>(1, l - m - 1));
-  for (Eigen::Index j = 0; j < m; ++j) {
-    Eigen::Matrix<double, 5, 1> grad;
-    // ∂V_jj/∂θ: per unit amplitude, and per unit of ln τ.
-    auto unit = [&](int k) {
-      const double v = model.amplitude[static_cast<std::size_t>(k)];
-      return v > 0.0 ? part[static_cast<std::size_t>(k)](j, j) / v : 0.0;
-    };
-    grad << unit(kWhite), unit(kFlicker), unit(kGaussMarkov), d_tau(j, j), unit(kRandomWalk);
-    const double var = grad.transpose() * model.covariance * grad;
-    const double vjj = out.covariance(j, j);
-    const double dof = var > 0.0 ? 2.0 * vjj * vjj / var : max_dof;
-    out.dof.push_back(std::isfinite(dof) ? std::clamp(dof, 1.0, max_dof) : 1.0);  // unknown: the widest
-  }
+  amplitude_covariance = model.covariance;
+  max_dof = static_cast<double>(std::max<Eigen::Index>(1, l - m - 1));
+}
+
+double SandwichParts::variance(const Eigen::VectorXd& w) const { return w.dot(covariance * w); }
+
+double SandwichParts::dof(const Eigen::VectorXd& w) const {
+  // ∂Var/∂θ: per unit amplitude, and per unit of ln τ.
+  Eigen::Matrix<double, 5, 1> grad;
+  const auto unit = [&](int k) {
+    return amplitude[static_cast<std::size_t>(k)] > 0.0 ? w.dot(unit_part[static_cast<std::size_t>(k)] * w) : 0.0;
+  };
+  grad << unit(kWhite), unit(kFlicker), unit(kGaussMarkov), w.dot(d_tau * w), unit(kRandomWalk);
+  const double var = grad.transpose() * amplitude_covariance * grad;
+  const double v = variance(w);
+  const double dof = var > 0.0 ? 2.0 * v * v / var : max_dof;
+  return std::isfinite(dof) ? std::clamp(dof, 1.0, max_dof) : 1.0;  // unknown: the widest
+}
+
+std::vector<SandwichParts> sandwich_parts(const NoiseModel& model, const WindowGrid& grid,
+                                          const Eigen::MatrixXd& centred) {
+  std::vector<SandwichParts> out{SandwichParts(model, grid, centred)};
+  for (const NoiseModel& alternative : model.alternatives) out.emplace_back(alternative, grid, centred);
   return out;
 }
 
-}  // namespace
-
 NoiseSandwich noise_sandwich(const NoiseModel& model, const WindowGrid& grid,
                              const Eigen::MatrixXd& centred) {
-  NoiseSandwich out = one_sandwich(model, grid, centred);
-  if (model.alternatives.empty()) return out;
   // Each coefficient takes the widest variance among the plausible models
   // (with that model's dof): the record cannot tell which one holds, and an
   // interval too narrow misleads where one too wide only costs precision.
   // The matrix is rescaled to those diagonals.
+  const std::vector<SandwichParts> parts = sandwich_parts(model, grid, centred);
+  const Eigen::Index m = centred.cols();
+  NoiseSandwich out{parts.front().covariance, {}};
   Eigen::VectorXd widest = out.covariance.diagonal();
-  for (const NoiseModel& alternative : model.alternatives) {
-    const NoiseSandwich other = one_sandwich(alternative, grid, centred);
-    for (Eigen::Index j = 0; j < widest.size(); ++j)
-      if (other.covariance(j, j) > widest[j]) {
-        widest[j] = other.covariance(j, j);
-        out.dof[static_cast<std::size_t>(j)] = other.dof[static_cast<std::size_t>(j)];
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(m, j);
+    std::size_t chosen = 0;
+    for (std::size_t a = 1; a < parts.size(); ++a)
+      if (parts[a].covariance(j, j) > widest[j]) {
+        widest[j] = parts[a].covariance(j, j);
+        chosen = a;
       }
+    out.dof.push_back(parts[chosen].dof(e));
   }
   const Eigen::VectorXd d =
       (widest.array() / out.covariance.diagonal().array().max(1e-300)).sqrt().matrix();

@@ -155,6 +155,24 @@ struct NoiseSandwich {
 NoiseSandwich noise_sandwich(const NoiseModel& model, const WindowGrid& grid,
                              const Eigen::MatrixXd& centred);
 
+// The same covariance under one model, kept in its parts so that any linear
+// combination wᵀβ̂ has its variance and its own Satterthwaite dof (a band's
+// point, a re-expanded coefficient: fit/model_band.h).
+struct SandwichParts {
+  SandwichParts(const NoiseModel& model, const WindowGrid& grid, const Eigen::MatrixXd& centred);
+  Eigen::MatrixXd covariance;
+  std::array<Eigen::MatrixXd, kNoiseKinds> unit_part;  // per unit amplitude
+  Eigen::MatrixXd d_tau;                               // ∂/∂ln τ_c of the Gauss–Markov part
+  std::array<double, kNoiseKinds> amplitude{};
+  Eigen::Matrix<double, 5, 5> amplitude_covariance = Eigen::Matrix<double, 5, 5>::Zero();
+  double max_dof = 1.0;  // l − m − 1
+  double variance(const Eigen::VectorXd& w) const;
+  double dof(const Eigen::VectorXd& w) const;  // clamped to [1, max_dof]
+};
+// The model's parts first, then each alternative's.
+std::vector<SandwichParts> sandwich_parts(const NoiseModel& model, const WindowGrid& grid,
+                                          const Eigen::MatrixXd& centred);
+
 // A model with the windows it was identified on: what a LinearProblem carries.
 struct NoiseContext {
   NoiseModel model;

@@ -90,8 +90,7 @@ std::array<float, 4> px4_coefficients(const AxisModel& axis, float tref) {
 std::array<float, 3> ardupilot_coefficients(const AxisModel& axis) {
   std::array<float, 3> g{};
   if (!axis.present) return g;
-  constexpr double kReference = 35.0;  // TEMP_REFERENCE in AP_InertialSensor_tempcal.cpp
-  const std::array<double, 4> a = reexpand(axis.model, kReference);
+  const std::array<double, 4> a = reexpand(axis.model, kArduPilotReferenceC);
   for (std::size_t k = 1; k < 4; ++k) g[k - 1] = static_cast<float>(a[k] * kRadPerSecPerDegPerHour * 1e6);
   return g;
 }

@@ -69,6 +69,9 @@ CubicModel cubic_of(const fit::SavedFit& fit, bool drop_unsupported, const std::
 // a[k] with B(t_ref + d) = Σ a[k]·d^k, exactly.
 std::array<double, 4> reexpand(const CubicModel& model, double t_ref_c);
 
+// ArduPilot's fixed reference temperature (TEMP_REFERENCE in AP_InertialSensor_tempcal.cpp).
+inline constexpr double kArduPilotReferenceC = 35.0;
+
 inline constexpr double kRadPerSecPerDegPerHour = 3.14159265358979323846 / (180.0 * 3600.0);
 
 // One autopilot axis: a model and its fitted range, or none (not compensated).

@@ -25,6 +25,7 @@
 #include "studies/fit/compensate_run.h"
 #include "studies/fit/fit_run.h"
 #include "studies/options/fit_options.h"
+#include "studies/report/report_evidence.h"
 #include "studies/report/report_page.h"
 
 namespace gyrotherm::studies {
@@ -72,7 +73,7 @@ std::vector<double> legs(const std::vector<double>& time_s, const std::vector<do
 // The figures of one channel, from its compensation's windows.
 // `stem`: the figures' path without the suffix, made safe for a file name.
 ChannelFigures channel_figures(const fit::Compensation& c, const std::string& channel, const fs::path& stem,
-                               const std::string& allan_png, const AxisCheck* firmware) {
+                               const std::string& allan_png, const AxisCheck* firmware, const ChannelBand& band) {
   const fit::PreparedData& d = c.data;
   const std::vector<double>& t = d.series.time_s;
   std::vector<double> hours(t.size());
@@ -82,8 +83,10 @@ ChannelFigures channel_figures(const fit::Compensation& c, const std::string& ch
   const fs::path bias_png = stem.string() + "_bias.png";
   {
     GnuplotFigure fig(bias_png, 1100, 700);
-    fig.data("w", {"temp", "gyro", "model", "leg"},
-             {d.series.temp_c, d.series.gyro_dph, c.window_model_dph, leg});
+    const bool banded = band.band.half_width_dph.size() == c.window_model_dph.size();
+    fig.data("w", {"temp", "gyro", "model", "leg", "half"},
+             {d.series.temp_c, d.series.gyro_dph, c.window_model_dph, leg,
+              banded ? band.band.half_width_dph : std::vector<double>(leg.size(), NAN)});
     std::string range;
     if (c.fit_range_c)
       range = fmt::format("set arrow from {0},graph 0 to {0},graph 1 nohead dt 2 lc rgb '#555555'\n"
@@ -91,13 +94,14 @@ ChannelFigures channel_figures(const fit::Compensation& c, const std::string& ch
                           "set label 'fitted range' at {0},graph 0.97 offset 0.5,0 tc rgb '#555555'\n",
                           c.fit_range_c->first, c.fit_range_c->second);
     fig.commands(fmt::format(
-        "set title 'Bias against temperature, {}: window means (heating red, cooling blue), the model (black)'\n"
+        "set title 'Bias against temperature, {}: window means (heating red, cooling blue), the model (black){}'\n"
         "set xlabel 'gyro temperature (°C)'\nset ylabel 'gyro output, window mean (°/h)'\nset key bottom right\n{}"
-        "plot $w using 1:($4>0?$2:NaN) with points pt 7 ps 0.6 lc rgb '#d62728' title 'heating', "
+        "plot {}$w using 1:($4>0?$2:NaN) with points pt 7 ps 0.6 lc rgb '#d62728' title 'heating', "
         "$w using 1:($4<0?$2:NaN) with points pt 7 ps 0.6 lc rgb '#1f77b4' title 'cooling', "
         "$w using 1:($4==0?$2:NaN) with points pt 7 ps 0.6 lc rgb '#999999' title 'holding', "
         "$w using 1:3 with points pt 1 ps 0.5 lc rgb '#000000' title 'model at each window'",
-        channel, range));
+        channel, banded ? " with its 95 % band (grey)" : "", range,
+        banded ? "$w using 1:3:($3-$5):($3+$5) with yerrorbars pt 0 lw 2 lc rgb '#cccccc' title '95 % band of the model', " : ""));
     fig.render();
   }
   const fs::path time_png = stem.string() + "_time.png";
@@ -201,6 +205,12 @@ ReportRun run_report(const ReportRequest& o) {
   cr.fit_file = o.fit_file.empty() ? std::string(fit::kFitInMemory) : o.fit_file;
   cr.fits = fits;
   const CompensateRun compensated = run_compensate(cr);
+  std::vector<ChannelBand> bands;
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    std::error_code ec;  // the fit's own record: a band (its covariance belongs to it)
+    const bool same = o.fit_file.empty() || fs::equivalent(fits[k].data_file, o.data, ec);
+    bands.push_back(channel_band(fits[k], compensated.channels[k], same));
+  }
   step("Allan deviation", 0.4);
   Scratch scratch;
   AllanRequest ar;
@@ -225,14 +235,15 @@ ReportRun run_report(const ReportRequest& o) {
   }
   step("figures", 0.85);
   ReportContent content;
-  content.twin = report_twin(o, fits, fit_json, compensated, allan, diagnosis, check);
+  content.twin = report_twin(o, fits, fit_json, compensated, allan, diagnosis, check, bands);
   content.temperature = temperature_figure(compensated.channels.front(), scratch.dir);
   for (std::size_t k = 0; k < fits.size(); ++k) {
     const std::string png = allan[k].plot;
     const std::string name = channel_name(fits[k]);
     const AxisCheck* firmware = check && k < check->axes.size() ? &check->axes[k] : nullptr;
     content.channels.push_back(channel_figures(compensated.channels[k], name,
-                                               scratch.dir / fit::channel_file_names({name}).front(), png, firmware));
+                                               scratch.dir / fit::channel_file_names({name}).front(), png, firmware,
+                                               bands[k]));
   }
   ReportRun run;
   run.html = report_html(content);

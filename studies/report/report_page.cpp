@@ -45,6 +45,8 @@ const Json* at(const Json& twin, const std::string& pointer) {
 // The number the cell shows, as the twin holds it (6 significant digits).
 std::string number_text(const Json* v) {
   if (v == nullptr || !v->is_number()) return "—";
+  if (v->is_number_unsigned()) return fmt::format("{}", v->get<std::uint64_t>());  // counts, ids
+  if (v->is_number_integer()) return fmt::format("{}", v->get<std::int64_t>());
   return fmt::format("{:.6g}", v->get<double>());
 }
 
@@ -137,16 +139,19 @@ Json judged_limits(const std::vector<ReportLimit>& limits, const Json& twin) {
 
 Json report_twin(const ReportRequest& o, const std::vector<fit::SavedFit>& fits, const Json& fit_json,
                  const CompensateRun& compensated, const std::vector<AllanStudy>& allan, const Json& diagnosis,
-                 const std::optional<CheckResult>& check) {
+                 const std::optional<CheckResult>& check, const std::vector<ChannelBand>& bands) {
   Json j;
   j["tool"] = "gyrotherm " GYROTHERM_VERSION;
   j["created"] = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", std::chrono::floor<std::chrono::seconds>(std::chrono::system_clock::now()));
   j["fit"] = o.fit_file.empty() ? Json("made by report: " + fit::formula_text(fits.front().terms)) : Json(o.fit_file);
   j["log"] = log_summary(o, compensated);
+  j["log"]["sensors"] = sensors_json(o.data, fits.front());
   j["channels"] = Json::array();
   for (std::size_t k = 0; k < fits.size(); ++k) {
     Json c{{"channel", channel_name(fits[k])}, {"model", fit::formula_text(fits[k].terms)}};
     c["fit"] = channel_part(fit_json, k);
+    c["band"] = band_json(bands[k]);
+    c["firmware"] = firmware_json(fits[k], export_tref(fits, k), bands[k]);
     c["compensate"] = compensated.channel_json[k];
     c["allan"] = allan_json(allan[k]);
     c["diagnosis"] = channel_part(diagnosis, k);
@@ -181,10 +186,27 @@ std::string figure(const std::string& data_uri, const std::string& alt, const st
                      escape(alt), caption);
 }
 
+// An autopilot log's gyros: instance, device id, samples, temperatures, which one was read.
+std::string sensors_html(const Json& twin) {
+  const Json* gyros = at(twin, "/log/sensors/gyros");
+  if (gyros == nullptr || gyros->empty()) return "";
+  std::string h = "<table><tr><th>gyro instance</th><th>message</th><th>device id</th><th>samples</th>"
+                  "<th>lowest (°C)</th><th>highest (°C)</th><th></th></tr>\n";
+  for (std::size_t i = 0; i < gyros->size(); ++i) {
+    const std::string p = fmt::format("/log/sensors/gyros/{}", i);
+    h += fmt::format("<tr>{}<td>{}</td>{}{}{}{}<td>{}</td></tr>\n", cell(twin, p + "/instance"),
+                     text_of(at(twin, p + "/message")), cell(twin, p + "/device_id"), cell(twin, p + "/samples"),
+                     cell(twin, p + "/temp_range_c/0"), cell(twin, p + "/temp_range_c/1"),
+                     (*gyros)[i]["read"].get<bool>() ? "the one read" : "");
+  }
+  return h + "</table>\n";
+}
+
 std::string header_html(const Json& twin, const std::string& temperature) {
   std::string h = "<h1>Gyro thermal calibration report</h1>\n<table>\n";
   h += fmt::format("<tr><th>log</th><td>{}</td></tr>\n", text_of(at(twin, "/log/file")));
   h += fmt::format("<tr><th>SHA-256</th><td><code>{}</code></td></tr>\n", text_of(at(twin, "/log/sha256")));
+  h += fmt::format("<tr><th>format</th><td>{}</td></tr>\n", text_of(at(twin, "/log/sensors/format")));
   h += fmt::format("<tr><th>read as</th><td>{}</td></tr>\n", text_of(at(twin, "/log/units")));
   h += fmt::format("<tr><th>model</th><td>{}</td></tr>\n", text_of(at(twin, "/fit")));
   h += fmt::format("<tr><th>tool, date</th><td>{}, {}</td></tr>\n</table>\n", text_of(at(twin, "/tool")),
@@ -195,6 +217,7 @@ std::string header_html(const Json& twin, const std::string& temperature) {
                         "/log/span_c", "/log/heating_c_per_min", "/log/cooling_c_per_min"})
     h += cell(twin, p);
   h += "</tr></table>\n";
+  h += sensors_html(twin);
   if (const Json* cautions = at(twin, "/log/cautions"); cautions != nullptr)
     for (const Json& c : *cautions) h += fmt::format("<p class=\"caution\">caution: {}</p>\n", escape(c.get<std::string>()));
   h += figure(temperature, "gyro temperature against time",
@@ -220,6 +243,48 @@ std::string coefficients_html(const Json& twin, std::size_t k) {
     for (const auto& [term, why] : flags->items())
       h += fmt::format("<p class=\"caution\">caution, {}: {}</p>\n", escape(term), escape(why.is_string() ? why.get<std::string>() : why.dump()));
   return h;
+}
+
+// The model's band, or why it has none.
+std::string band_html(const Json& twin, std::size_t k) {
+  const std::string base = fmt::format("/channels/{}/band", k);
+  if (at(twin, base + "/half_width_dph") != nullptr)
+    return "<table><tr><th>95 % band of the model, narrowest (°/h)</th><th>widest (°/h)</th><th>t's dof</th></tr><tr>" +
+           cell(twin, base + "/half_width_dph/0") + cell(twin, base + "/half_width_dph/1") + cell(twin, base + "/dof") +
+           "</tr></table>\n";
+  const Json* missing = at(twin, base + "/missing");
+  const std::string why = missing != nullptr && missing->is_string() ? missing->get<std::string>() : "";
+  return fmt::format("<p class=\"caution\">No band for the model: {}.</p>\n",
+                     why == "other_record" ? "the fit was made on another record, whose noise its uncertainty belongs to"
+                                           : "this record has too few windows to identify its noise");
+}
+
+// The model as PX4 and ArduPilot store it, with intervals.
+std::string firmware_html(const Json& twin, std::size_t k) {
+  const std::string base = fmt::format("/channels/{}/firmware", k);
+  const Json* expressible = at(twin, base + "/expressible");
+  if (expressible == nullptr || !expressible->get<bool>()) {
+    std::string terms;
+    if (const Json* others = at(twin, base + "/not_expressible"); others != nullptr)
+      for (const Json& t : *others) terms += (terms.empty() ? "" : ", ") + t.get<std::string>();
+    return fmt::format("<p>The firmwares store a cubic in temperature; this model's {} cannot be stored "
+                       "(<code>export --format c</code> writes the whole model).</p>\n", escape(terms));
+  }
+  static constexpr const char* kPower[] = {"", "/°C", "/°C²", "/°C³"};
+  std::string h = "<table><tr><th>as the firmware stores it</th><th>value</th><th>95 % interval, low</th><th>high</th></tr>\n";
+  for (int n = 0; n <= 3; ++n) {
+    const std::string p = fmt::format("{}/px4/", base);
+    h += fmt::format("<tr><td>PX4 TC_G*_X{}_axis (rad/s{}) about TREF {} °C</td>{}{}{}</tr>\n", n, kPower[n],
+                     number_text(at(twin, p + "tref_c")), cell(twin, fmt::format("{}values/{}", p, n)),
+                     cell(twin, fmt::format("{}intervals_95/{}/0", p, n)), cell(twin, fmt::format("{}intervals_95/{}/1", p, n)));
+  }
+  for (int n = 1; n <= 3; ++n) {
+    const std::string p = fmt::format("{}/ardupilot/", base);
+    h += fmt::format("<tr><td>ArduPilot INS_TCAL*_GYR{}_axis (10⁻⁶ rad/s{}) about 35 °C</td>{}{}{}</tr>\n", n, kPower[n],
+                     cell(twin, fmt::format("{}values/{}", p, n - 1)), cell(twin, fmt::format("{}intervals_95/{}/0", p, n - 1)),
+                     cell(twin, fmt::format("{}intervals_95/{}/1", p, n - 1)));
+  }
+  return h + "</table>\n";
 }
 
 std::string allan_html(const Json& twin, std::size_t k) {
@@ -301,10 +366,13 @@ std::string report_html(const ReportContent& content) {
     const std::string channel = text_of(at(twin, fmt::format("/channels/{}/channel", k)));
     h += fmt::format("<section><h2>Channel {}: B = b0 + {}</h2>\n", channel, text_of(at(twin, fmt::format("/channels/{}/model", k))));
     h += coefficients_html(twin, k);
+    h += firmware_html(twin, k);
+    h += band_html(twin, k);
     h += figure(f.bias, "bias against temperature, " + channel,
                 "Each window's mean output against its temperature: where heating and cooling legs part, the bias "
                 "depends on more than the temperature (hysteresis, a rate or a lag); the model's points should run "
-                "through the cloud over the whole fitted range (dashed).");
+                "through the cloud over the whole fitted range (dashed), the grey bars their 95 % band: where the "
+                "band is wide the record pins the model down poorly.");
     h += figure(f.time, "output against time, " + channel,
                 "Uncompensated and compensated window means: what is left after the model should look like noise, "
                 "with no trace of the temperature (right axis); with a checked calibration (green), what the "

@@ -14,6 +14,7 @@
 #include "studies/check/check_run.h"
 #include "studies/fit/compensate_run.h"
 #include "studies/report/report.h"
+#include "studies/report/report_evidence.h"
 
 namespace gyrotherm::studies {
 
@@ -41,7 +42,7 @@ nlohmann::ordered_json judged_limits(const std::vector<ReportLimit>& limits, con
 nlohmann::ordered_json report_twin(const ReportRequest& request, const std::vector<fit::SavedFit>& fits,
                                    const nlohmann::ordered_json& fit_json, const CompensateRun& compensated,
                                    const std::vector<AllanStudy>& allan, const nlohmann::ordered_json& diagnosis,
-                                   const std::optional<CheckResult>& check);
+                                   const std::optional<CheckResult>& check, const std::vector<ChannelBand>& bands);
 
 // The self-contained HTML page (inline CSS with a print stylesheet, no scripts).
 std::string report_html(const ReportContent& content);
