@@ -231,6 +231,13 @@ TEST(CliCheck, EachFailureModeIsFoundOnALogMadeForItAndNotOnACleanOne) {
   const std::vector<std::string> enabled = issues_of(check_json(dir, "enabled.bin --params mid.parm"));
   EXPECT_TRUE(has(enabled, "already_enabled"));
   EXPECT_TRUE(has(enabled, "device_mismatch"));
+  for (const auto& f : check_json(dir, "enabled.bin --params mid.parm")["findings"])
+    if (f["issue"] == "device_mismatch") {  // the log's id as data, and as the words
+      ASSERT_EQ(f["devices"].size(), 1u);
+      EXPECT_EQ(f["devices"][0]["device_id"], 2753029);
+      EXPECT_EQ(f["devices"][0]["parameter"], "INS_GYR_ID");
+      EXPECT_EQ(f["name"], "INS_GYR_ID 2753029");
+    }
   write_dataflash(dir / "flat.bin", run_samples({30.0, 33.0, 8}));
   EXPECT_TRUE(has(issues_of(check_json(dir, "flat.bin --params narrow.parm")), "log_span_minimum"));
   Thermal quantised{20.0, 50.0, 9};
@@ -260,6 +267,14 @@ TEST(CliCheck, EachFailureModeIsFoundOnALogMadeForItAndNotOnACleanOne) {
   EXPECT_TRUE(has(found, "moving"));
   EXPECT_TRUE(has(found, "already_enabled"));
   EXPECT_TRUE(has(found, "device_mismatch"));
+  for (const auto& f : px4["findings"])
+    if (f["issue"] == "device_mismatch") {  // both of the log's gyros, each with its instance
+      EXPECT_EQ(f["value"], 12345);
+      ASSERT_EQ(f["devices"].size(), 2u);
+      EXPECT_EQ(f["devices"][1]["device_id"], kUlogDeviceId);
+      EXPECT_EQ(f["devices"][1]["instance"], 1);
+      EXPECT_NE(f["name"].get<std::string>().find(std::to_string(kUlogDeviceId) + " (instance 1)"), std::string::npos);
+    }
   EXPECT_EQ(px4["axes"].size(), 3u);
   EXPECT_EQ(px4["axes"][0]["after_dph"], px4["axes"][0]["before_dph"]);  // no X parameters: X left as it is
 }

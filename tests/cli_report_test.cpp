@@ -54,6 +54,12 @@ TEST(CliReport, ThePageIsItsTwinAndTheTwinIsTheCommandsJson) {
   EXPECT_EQ(twin["channels"][0]["diagnosis"]["verdict"], diagnosis["verdict"]);
   EXPECT_EQ(twin["channels"][0]["diagnosis"]["missing_effects"][0]["term"], "grad");
   EXPECT_NE(html.find(diagnosis["verdict"].get<std::string>().substr(0, 40)), std::string::npos);
+  // What the record cannot tell apart, from diagnose's groups.
+  const Json& groups = diagnosis["confounded"];
+  ASSERT_FALSE(groups.empty());
+  EXPECT_NE(html.find("cannot tell apart (terms that explain the same part of the bias here): " +
+                      groups[0][0].get<std::string>() + " / " + groups[0][1].get<std::string>()),
+            std::string::npos);
   const Json compensated = Json::parse(run_cli(dir, "compensate grad.csv --fit fit.json --json").out);
   EXPECT_EQ(twin["channels"][0]["compensate"]["instability_after_dph"], compensated["instability_after_dph"]);
   EXPECT_EQ(twin["log"]["sha256"].get<std::string>().size(), 64u);

@@ -180,8 +180,8 @@ std::string CsvParser::read_time(std::string_view field, Measurement& m, double&
 }
 
 void CsvParser::read_log(const fs::path& file, const std::string& format, Measurement& m) {
-  const AutopilotReader read = autopilot_log_reader(format);
-  const LogContents contents = read(file, -1, {});
+  const AutopilotReader reader = autopilot_log_reader(format);
+  const LogContents contents = reader(file, -1, {});
   if (map_.imu && *map_.imu < 0)
     throw InputError(fmt::format("{}: --imu {}: a gyro instance is a number from 0 (the log holds {})", name_,
                                  *map_.imu, contents.instances()));
@@ -230,7 +230,7 @@ void CsvParser::read_log(const fs::path& file, const std::string& format, Measur
   use_units(u);
   m.units = units_;
   std::size_t sample = 0, without_temperature = 0;
-  read(file, instance, [&](double t, double temp, double x, double y, double z) {
+  reader(file, instance, [&](double t, double temp, double x, double y, double z) {
     ++sample;
     if (!std::isfinite(temp)) {
       ++without_temperature;

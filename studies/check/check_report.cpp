@@ -13,6 +13,15 @@ namespace gyrotherm::studies {
 
 namespace {
 
+// "2490378 (instance 1), 2621450 (instance 0)" or "INS_GYR1_ID 2490378".
+std::string devices_text(const std::vector<LogDevice>& devices) {
+  std::string out;
+  for (const LogDevice& d : devices)
+    out += (out.empty() ? "" : ", ") + (d.parameter.empty() ? fmt::format("{} (instance {})", d.device_id, d.instance)
+                                                           : fmt::format("{} {}", d.parameter, d.device_id));
+  return out;
+}
+
 std::string rule_text(const CheckResult& r) {
   if (r.format == ParameterFormat::fit) return "the fit's model as `compensate` applies it, held at the fitted range's edge";
   if (r.format == ParameterFormat::px4)
@@ -53,7 +62,7 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
                            f.name);
       return fmt::format("the calibration is for device id {:.0f}, which is no gyro of this log ({}): the firmware "
                          "would not apply it",
-                         f.value, f.name);
+                         f.value, devices_text(f.devices));
     case CheckIssue::outside_range:
       return fmt::format("{:.1f} % of the samples lie outside the calibrated {:.1f}..{:.1f} °C, where the correction "
                          "is held at the edge",
@@ -83,8 +92,15 @@ nlohmann::ordered_json check_json(const CheckResult& r) {
                     {"bins", bins}});
   }
   nlohmann::ordered_json findings = nlohmann::ordered_json::array();
-  for (const CheckFinding& f : r.findings)
-    findings.push_back({{"issue", check_issue_name(f.issue)}, {"value", f.value}, {"limit", f.limit}, {"name", f.name}});
+  for (const CheckFinding& f : r.findings) {
+    nlohmann::ordered_json devices = nlohmann::ordered_json::array();
+    for (const LogDevice& d : f.devices)
+      devices.push_back({{"device_id", d.device_id},
+                         {"instance", d.instance >= 0 ? nlohmann::ordered_json(d.instance) : nlohmann::ordered_json()},
+                         {"parameter", d.parameter.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(d.parameter)}});
+    findings.push_back({{"issue", check_issue_name(f.issue)}, {"value", f.value}, {"limit", f.limit},
+                        {"name", f.devices.empty() ? f.name : devices_text(f.devices)}, {"devices", devices}});
+  }
   nlohmann::ordered_json out = {{"log", r.request.log},
                                 {"log_format", r.log_format},
                                 {"imu", r.log_instance >= 0 ? nlohmann::ordered_json(r.log_instance) : nullptr},

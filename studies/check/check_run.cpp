@@ -278,24 +278,19 @@ void add_device_finding(const Applied& a, CheckResult* r) {
     return;
   }
   if (!cal->device_id || *cal->device_id == 0) return;
-  std::string ids;
-  bool any = false, match = false;
+  std::vector<LogDevice> devices;
   if (cal->format == ParameterFormat::px4) {
-    for (const fit::LogGyro& g : a.contents.gyros) {
-      if (g.device_id == 0) continue;
-      any = true;
-      match = match || static_cast<long long>(g.device_id) == *cal->device_id;
-      ids += fmt::format("{}{} (instance {})", ids.empty() ? "" : ", ", g.device_id, g.instance);
-    }
+    for (const fit::LogGyro& g : a.contents.gyros)
+      if (g.device_id != 0) devices.push_back({static_cast<long long>(g.device_id), g.instance, ""});
   } else {
     const std::string name = ardupilot_gyro_id_name(cal->instance);
-    if (const auto id = a.contents.parameters.find(name); id != a.contents.parameters.end()) {
-      any = true;
-      match = static_cast<long long>(id->second) == *cal->device_id;
-      ids = fmt::format("{} {}", name, static_cast<long long>(id->second));
-    }
+    if (const auto id = a.contents.parameters.find(name); id != a.contents.parameters.end())
+      devices.push_back({static_cast<long long>(id->second), -1, name});
   }
-  if (any && !match) r->findings.push_back({CheckIssue::device_mismatch, static_cast<double>(*cal->device_id), 0.0, ids});
+  const bool match = std::any_of(devices.begin(), devices.end(),
+                                 [&](const LogDevice& d) { return d.device_id == *cal->device_id; });
+  if (!devices.empty() && !match)
+    r->findings.push_back({CheckIssue::device_mismatch, static_cast<double>(*cal->device_id), 0.0, "", devices});
 }
 
 void add_findings(const Applied& a, CheckResult* r) {

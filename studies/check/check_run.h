@@ -60,11 +60,20 @@ enum class CheckIssue {
 // "calibration_span_minimum", …
 std::string_view check_issue_name(CheckIssue issue);
 
+// A gyro of the log by its device id: a ULog sensor_gyro instance, or the
+// DataFlash parameter that records it (instance −1 there).
+struct LogDevice {
+  long long device_id = 0;
+  int instance = -1;
+  std::string parameter;  // ArduPilot: INS_GYR{n}_ID; PX4: ""
+};
+
 struct CheckFinding {
   CheckIssue issue = CheckIssue::moving;
   double value = 0.0;  // span °C; step °C; moving share; enable value; device id; share outside; residual °/h
   double limit = 0.0;  // the threshold it is judged against (0 where none)
-  std::string name;    // the parameter, the axis, or the log's device ids
+  std::string name;    // the parameter, the axis or the sensor ("gyro", "accelerometer")
+  std::vector<LogDevice> devices;  // device_mismatch: the log's gyros it was compared with
 };
 
 // Mean compensated rate of the samples in one temperature bin.

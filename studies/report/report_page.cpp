@@ -309,6 +309,16 @@ std::string diagnosis_html(const Json& twin, std::size_t k) {
   std::string h = "<h3>Diagnosis</h3>\n<table><tr><th>model ÷ noise floor</th>" + cell(twin, base + "/ratio_to_floor") +
                   "</tr></table>\n";
   h += fmt::format("<p><b>verdict:</b> {}</p>\n", text_of(at(twin, base + "/verdict")));
+  if (const Json* groups = at(twin, base + "/confounded"); groups != nullptr && groups->is_array() && !groups->empty()) {
+    std::string told;  // the groups of terms this record cannot tell apart
+    for (const Json& g : *groups) {
+      std::string one;
+      for (const Json& t : g) one += (one.empty() ? "" : " / ") + t.get<std::string>();
+      told += (told.empty() ? "" : "; ") + one;
+    }
+    h += fmt::format("<p>what this record cannot tell apart (terms that explain the same part of the bias here): {}</p>\n",
+                     escape(told));
+  }
   if (const Json* next = at(twin, base + "/next_command"); next != nullptr && next->is_string() && !next->get<std::string>().empty())
     h += fmt::format("<p>next: <code>{}</code></p>\n", escape(next->get<std::string>()));
   if (const Json* plan = at(twin, base + "/plan_command"); plan != nullptr && plan->is_string() && !plan->get<std::string>().empty())
