@@ -137,8 +137,9 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
 // The noise models a test must hold under, since the record cannot tell
 // which of them it is: the model identified, the other structures it
 // supports about as well (alternatives), and the model with each slow
-// component (flicker, Gauss–Markov, random walk) raised to its 95 % upper
-// value, the others held (an absent Gauss–Markov process at the correlation
+// component (flicker, Gauss–Markov, random walk) raised to the upper end of
+// its two-sided 95 % interval (a one-sided 97.5 % bound; for a component not
+// pinned down, its 95 % likelihood bound), the others held (an absent Gauss–Markov process at the correlation
 // time its bound was found at, √(Δ·span)). A test whose p-value is the
 // largest under all of them does not mistake noise the record could not pin
 // down for an effect (diagnose, studies/diagnose/selection.cpp).
