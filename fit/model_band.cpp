@@ -49,7 +49,9 @@ std::optional<CoefficientCovariance> coefficient_covariance(const PreparedData& 
       a(0, j + 1) = -mean[j] / problem.scale()[j];
       a(j + 1, j + 1) = 1.0 / problem.scale()[j];
     }
-    return CoefficientCovariance{sandwich_parts(noise->model, noise->grid, x), a};
+    std::vector<SandwichParts> parts = sandwich_parts(noise->model, noise->grid, x);
+    for (SandwichParts& part : parts) part.max_dof += 1.0;  // l − m − 1 with the ones column counted once
+    return CoefficientCovariance{std::move(parts), a};
   } catch (const InputError&) {  // a design that cannot be fitted here (FitError), or collinear terms
     return std::nullopt;
   }

@@ -13,7 +13,7 @@
 // fit's under intervals=model. The fitted parameters of
 // nonlinear terms (a lag's τ) are held at their values: their own
 // uncertainty is not in it (the fit's coefficient intervals, linearised, do
-// carry it), which the report says.
+// carry it); docs/contracts.md says so.
 
 #include <optional>
 #include <vector>

@@ -290,8 +290,9 @@ NoiseSandwich noise_sandwich(const NoiseModel& model, const WindowGrid& grid,
       }
     out.dof.push_back(parts[chosen].dof(e));
   }
+  if (parts.size() == 1) return out;  // one model: its covariance as it is
   const Eigen::VectorXd d =
-      (widest.array() / out.covariance.diagonal().array().max(1e-300)).sqrt().matrix();
+      (widest.array().max(0.0) / out.covariance.diagonal().array().max(1e-300)).sqrt().matrix();
   out.covariance = d.asDiagonal() * out.covariance * d.asDiagonal();
   return out;
 }

@@ -208,7 +208,12 @@ ReportRun run_report(const ReportRequest& o) {
   std::vector<ChannelBand> bands;
   for (std::size_t k = 0; k < fits.size(); ++k) {
     std::error_code ec;  // the fit's own record: a band (its covariance belongs to it)
-    const bool same = o.fit_file.empty() || fs::equivalent(fits[k].data_file, o.data, ec);
+    // The same file by path, and the same windows by content (a path can
+    // name another log than the one fitted): the instability before the fit.
+    const double before = compensated.channels[k].before_dph;
+    const bool same = o.fit_file.empty() ||
+                      (fs::equivalent(fits[k].data_file, o.data, ec) && fits[k].instability_before_dph &&
+                       std::abs(*fits[k].instability_before_dph - before) <= 1e-9 * std::abs(before));
     bands.push_back(channel_band(fits[k], compensated.channels[k], same));
   }
   step("Allan deviation", 0.4);

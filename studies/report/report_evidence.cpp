@@ -57,6 +57,7 @@ Json coefficient_block(const fit::SavedFit& fit, const ChannelBand& band, double
 std::string band_missing_name(BandMissing why) {
   switch (why) {
     case BandMissing::other_record: return "other_record";
+    case BandMissing::engine_not_ols: return "engine_not_ols";
     case BandMissing::noise_not_identified: return "noise_not_identified";
     case BandMissing::none: break;
   }
@@ -67,6 +68,10 @@ ChannelBand channel_band(const fit::SavedFit& fit, const fit::Compensation& c, b
   ChannelBand band;
   if (!same_record) {
     band.missing = BandMissing::other_record;
+    return band;
+  }
+  if (fit.engine != "ols") {  // the least-squares covariance is ols's; another engine's estimate is not its centre
+    band.missing = BandMissing::engine_not_ols;
     return band;
   }
   band.covariance = fit::coefficient_covariance(c.data, fit.terms, fit.parameters);
@@ -110,7 +115,8 @@ double export_tref(const std::vector<fit::SavedFit>& fits, std::size_t k) {
 
 Json firmware_json(const fit::SavedFit& fit, double tref_c, const ChannelBand& band) {
   const std::vector<std::string> others = not_expressible(fit);
-  if (!others.empty() || !std::isfinite(tref_c)) return {{"expressible", false}, {"not_expressible", others}};
+  if (!others.empty() || !std::isfinite(tref_c))
+    return {{"expressible", false}, {"not_expressible", others}, {"no_range", others.empty()}};
   AxisModel axis;
   axis.present = true;
   axis.model = cubic_of(fit, false, "");

@@ -17,7 +17,7 @@
 namespace gyrotherm::studies {
 
 // Why a channel has no band (the twin's band.missing).
-enum class BandMissing { none, other_record, noise_not_identified };
+enum class BandMissing { none, other_record, engine_not_ols, noise_not_identified };
 std::string band_missing_name(BandMissing why);
 
 struct ChannelBand {

@@ -255,8 +255,9 @@ std::string band_html(const Json& twin, std::size_t k) {
   const Json* missing = at(twin, base + "/missing");
   const std::string why = missing != nullptr && missing->is_string() ? missing->get<std::string>() : "";
   return fmt::format("<p class=\"caution\">No band for the model: {}.</p>\n",
-                     why == "other_record" ? "the fit was made on another record, whose noise its uncertainty belongs to"
-                                           : "this record has too few windows to identify its noise");
+                     why == "other_record"     ? "the fit was made on another record, whose noise its uncertainty belongs to"
+                     : why == "engine_not_ols" ? "the fit's engine is not ols, and the band is the least-squares covariance's"
+                                               : "this record has too few windows to identify its noise");
 }
 
 // The model as PX4 and ArduPilot store it, with intervals.
@@ -267,6 +268,9 @@ std::string firmware_html(const Json& twin, std::size_t k) {
     std::string terms;
     if (const Json* others = at(twin, base + "/not_expressible"); others != nullptr)
       for (const Json& t : *others) terms += (terms.empty() ? "" : ", ") + t.get<std::string>();
+    if (terms.empty())
+      return "<p>The fit file holds no fitted temperature range (written by an earlier gyrotherm): the firmwares' "
+             "TMIN/TMAX/TREF cannot be set; fit again.</p>\n";
     return fmt::format("<p>The firmwares store a cubic in temperature; this model's {} cannot be stored "
                        "(<code>export --format c</code> writes the whole model).</p>\n", escape(terms));
   }
