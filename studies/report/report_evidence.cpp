@@ -15,13 +15,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-// Whether every term is a power of T the firmwares store (T … T^3).
-std::vector<std::string> not_expressible(const fit::SavedFit& fit) {
-  std::vector<std::string> out;
-  for (const fit::Term* t : fit.terms)
-    if (t->temperature_power < 1 || t->temperature_power > kCubic) out.emplace_back(t->name);
-  return out;
-}
+// The terms the firmwares cannot store (no power of T up to the third): what
+// export's cubic_of leaves out when asked to drop them.
+std::vector<std::string> not_expressible(const fit::SavedFit& fit) { return cubic_of(fit, true, "").dropped; }
 
 // The weights on θ = (b0, b_1..b_m) of the re-expanded coefficient a_k about
 // r (B(r + d) = Σ a_k d^k): a_k = Σ_n C(n, k)·r^(n−k)·c_n, c_n the sum of the
