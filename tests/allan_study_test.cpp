@@ -451,17 +451,31 @@ TEST(CliAllan, CompensationLowersTheBiasInstabilityAndKeepsTheAngleRandomWalk) {
   ASSERT_TRUE(comp["arw_dpsh"]["shown"].get<bool>());
   EXPECT_NEAR(comp["arw_dpsh"]["value"].get<double>(), 3.3e-4, 0.4e-4);
   EXPECT_NEAR(comp["arw_dpsh"]["value"].get<double>(), raw["arw_dpsh"]["value"].get<double>(), 0.02e-4);
-  // The curve's flat part lies above the flicker alone (white noise and what
-  // the real-time model leaves add to it at 2048 s: about twice B, docs/noise.md);
-  // the residual's noise model (REML) separates the white and holds B.
+  // The curve's flat part lies above the flicker alone (white noise still
+  // adds to it at 2048 s: σ/0.664 there is about twice B, docs/noise.md); the
+  // residual's noise model (REML) identifies the flicker and separates the
+  // white, so the one figure given is the model's floor, and it holds B.
   const double flicker_b = 3e-4 / kFlickerFloor;
-  ASSERT_TRUE(comp["bias_instability_dph"]["shown"].get<bool>()) << comp["bias_instability_dph"]["note"];
-  EXPECT_GT(comp["bias_instability_dph"]["hi"].get<double>(), flicker_b);
+  const Json& b = comp["bias_instability_dph"];
+  ASSERT_TRUE(b["shown"].get<bool>()) << b["note"];
+  EXPECT_EQ(b["method"], "noise_model");
+  EXPECT_EQ(j["series"][1]["bias_instability_support"], "flicker");
+  EXPECT_LE(b["lo"].get<double>(), flicker_b);
+  EXPECT_GE(b["hi"].get<double>(), flicker_b);
+  EXPECT_LT(b["value"].get<double>(), 1.5 * flicker_b);  // the flat part's σ/0.664 reads 2.1 × B here
   const Json& reml = j["series"][1]["noise_model"]["components"]["bias_instability"];
   ASSERT_TRUE(reml["identified"].get<bool>());
-  EXPECT_LE(reml["interval_95"][0].get<double>(), flicker_b);
-  EXPECT_GE(reml["interval_95"][1].get<double>(), flicker_b);
-  EXPECT_EQ(comp["bias_instability_dph"]["tau_range_s"].size(), 2u);
+  EXPECT_DOUBLE_EQ(reml["value"].get<double>(), b["value"].get<double>());
+  EXPECT_EQ(b["tau_range_s"].size(), 2u);
+  EXPECT_EQ(raw["bias_instability_dph"]["method"], "curve_flat");
+  EXPECT_EQ(j["series"][0]["bias_instability_support"], "no_flat_part");
+  // One bias-instability figure per series in the text: the noise model's
+  // line leaves it to the table.
+  const auto text = run_cli(dir, "allan c.csv --fit fit.json");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::size_t model_line = text.out.find("noise model of compensated (REML)");
+  ASSERT_NE(model_line, std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("bias_instability", model_line), std::string::npos) << text.out;
   // The thermal drift the fit removes sits in the raw output's long τ: there
   // the raw curve rises far above the compensated one, and hides the flicker
   // floor (raw gives a bound on B, not a value, so no ratio).
@@ -502,6 +516,68 @@ TEST(CliAllan, BadInputExitsTwoAndSaysWhy) {
   EXPECT_EQ(other.exit_code, 2);
   EXPECT_NE(other.err.find("temp2_c"), std::string::npos) << other.err;
   EXPECT_NE(other.err.find("grad.json"), std::string::npos) << other.err;
+}
+
+// The gate on a flat part (series_noise.h): a flat reading the series'
+// noise model does not support becomes its 95 % bound; one it supports by
+// a Gauss–Markov process stays; with flicker identified B is the model's
+// floor; a plateau stays whatever the model.
+TEST(AllanStudy, AFlatPartIsBiasInstabilityOnlyWhereTheNoiseSupportsIt) {
+  AllanCurve curve;
+  curve.confidence = 0.683;
+  curve.rows.push_back(AllanRow{});
+  curve.rows.back().tau_s = 2048.0;
+  curve.rows.back().edf = 16.0;
+  curve.rows.back().adev_dph = 0.001;
+  NoiseCoefficient flat;
+  flat.shown = true;
+  flat.method = CoefficientMethod::curve_flat;
+  flat.value = 0.001 / kFlickerFloor;
+  flat.lo = 0.8 * flat.value;
+  flat.hi = 1.3 * flat.value;
+  flat.tau_read_s = flat.tau_from_s = flat.tau_to_s = 2048.0;
+  fit::NoiseModel white;
+  white.amplitude[fit::kWhite] = 1.0;
+  white.present[fit::kWhite] = white.identified[fit::kWhite] = true;
+
+  NoiseCoefficient b = flat;
+  EXPECT_EQ(settle_bias_instability(b, curve, white), BiasSupport::not_in_model);
+  EXPECT_FALSE(b.shown);
+  // The flat σ's 95 % upper value at 16 edf: σ·√(16/χ²₁₆(0.025)) = σ·√(16/6.908) = 1.522 σ.
+  EXPECT_NEAR(b.upper_bound, 1.522 * flat.value, 0.002 * flat.value);
+  b = flat;
+  EXPECT_EQ(settle_bias_instability(b, curve, std::nullopt), BiasSupport::no_model);
+  EXPECT_FALSE(b.shown);
+
+  fit::NoiseModel gm = white;
+  gm.amplitude[fit::kGaussMarkov] = 1e-6;
+  gm.gm_tau_s = 1000.0;
+  gm.present[fit::kGaussMarkov] = gm.identified[fit::kGaussMarkov] = true;
+  b = flat;
+  EXPECT_EQ(settle_bias_instability(b, curve, gm), BiasSupport::gauss_markov);
+  EXPECT_TRUE(b.shown);
+  EXPECT_DOUBLE_EQ(b.value, flat.value);
+
+  fit::NoiseModel flicker = white;
+  flicker.amplitude[fit::kFlicker] = 4e-8;
+  flicker.flicker_tau_s = {100.0, 1000.0, 10000.0};
+  flicker.flicker_floor_per_s = 2.0;
+  flicker.covariance(1, 1) = std::pow(0.2 * 4e-8, 2);  // s² known to 20 %: ln B to 10 %
+  flicker.present[fit::kFlicker] = flicker.identified[fit::kFlicker] = true;
+  b = flat;
+  EXPECT_EQ(settle_bias_instability(b, curve, flicker), BiasSupport::flicker);
+  ASSERT_TRUE(b.shown);
+  EXPECT_EQ(b.method, CoefficientMethod::noise_model);
+  EXPECT_NEAR(b.value, 2.0 * 2e-4, 1e-12);
+  EXPECT_NEAR(b.hi / b.value, std::exp(1.0 * 0.1), 0.002);  // the curve's 68.3 % confidence: z ≈ 1
+
+  b = flat;
+  b.plateau = true;
+  EXPECT_EQ(settle_bias_instability(b, curve, white), BiasSupport::plateau);
+  EXPECT_TRUE(b.shown);
+  NoiseCoefficient none;
+  EXPECT_EQ(settle_bias_instability(none, curve, flicker), BiasSupport::no_flat_part);
+  EXPECT_FALSE(none.shown);
 }
 
 }  // namespace

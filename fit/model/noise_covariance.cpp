@@ -207,9 +207,10 @@ double NoiseModel::allan_variance(double tau_s) const {
   return avar;
 }
 
-std::string NoiseModel::description() const {
+std::string NoiseModel::description(std::string_view skip) const {
   std::string out = alternatives.empty() ? std::string() : "best of several the record supports alike: ";
   for (const NoiseParameter& p : parameters()) {
+    if (p.name == skip) continue;
     if (!out.empty() && out.back() != ' ') out += "; ";
     if (p.name == "gauss_markov_tau") {
       out += fmt::format("tau {:.3g} s [{:.3g}, {:.3g}]", p.value, p.lower, p.upper);

@@ -46,6 +46,7 @@
 #include <array>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gyrotherm::fit {
@@ -92,7 +93,8 @@ struct NoiseModel {
 
   std::vector<NoiseParameter> parameters() const;
   // "white N = 3.1e-04 °/√h [2.8e-04, 3.4e-04]; flicker B = …; no random walk (K < …)"
-  std::string description() const;
+  // `skip`: a component left out (one a report states elsewhere), or "".
+  std::string description(std::string_view skip = {}) const;
   // The model's Allan variance ((°/h)²) at τ (s): q_w/τ + s²Σg(τ/τ_i) +
   // σ²g(τ/τ_c) + q_r τ/3, g the exponential kernel's (above).
   double allan_variance(double tau_s) const;

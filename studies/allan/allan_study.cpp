@@ -21,7 +21,7 @@ namespace gyrotherm::studies {
 namespace {
 
 nlohmann::ordered_json coefficient_json(const NoiseCoefficient& k) {
-  nlohmann::ordered_json j{{"shown", k.shown}};
+  nlohmann::ordered_json j{{"shown", k.shown}, {"method", coefficient_method_name(k.method)}};
   if (k.shown) {
     j["value"] = k.value;
     j["lo"] = k.lo;
@@ -51,6 +51,7 @@ AllanSeries allan_series(std::span<const double> time_s, std::span<const double>
     options.model_avar = [model = *s.noise](double tau) { return model.allan_variance(tau); };
   s.curve = allan_curve(time_s, rate_dph, options, std::move(name));
   s.coefficients = read_noise_coefficients(s.curve);
+  s.bias_support = settle_bias_instability(s.coefficients.bias_instability_dph, s.curve, s.noise);
   return s;
 }
 
@@ -126,6 +127,7 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
                           {"rrw_dph_per_sqrt_h", coefficient_json(s.coefficients.rrw_dph_per_sqrt_h)},
                           {"quantization_arcsec", coefficient_json(s.coefficients.quantization_arcsec)}};
     js["coefficient_fit_chi2_per_dof"] = s.coefficients.fit_chi2_per_dof;
+    js["bias_instability_support"] = bias_support_name(s.bias_support);
     if (s.noise) {
       js["noise_model"] = fit::noise_model_json(*s.noise);
       js["noise_model"]["method"] = "REML on the series (intercept only): white + flicker + rate random walk, a "
@@ -189,9 +191,12 @@ std::string allan_text(const AllanStudy& study) {
                        s.curve.name, k.bias_instability_dph.note, s.curve.name, k.rrw_dph_per_sqrt_h.note);
     if (k.quantization_arcsec.shown) out += fmt::format("  {}: quantisation: {}\n", s.curve.name, k.quantization_arcsec.note);
   }
-  out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664)\n";
+  out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664, or the "
+         "noise model's flicker floor)\n";
+  // Bias instability is in the table above, once.
   for (const AllanSeries& s : study.series)
-    if (s.noise) out += fmt::format("noise model of {} (REML): {}\n", s.curve.name, s.noise->description());
+    if (s.noise)
+      out += fmt::format("noise model of {} (REML): {}\n", s.curve.name, s.noise->description("bias_instability"));
   if (const auto ratio = study.bias_instability_ratio())
     out += fmt::format("bias instability raw / compensated: {:.3g}\n", *ratio);
   return out;
@@ -233,13 +238,15 @@ void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study)
     line(k.arw_dpsh, fmt::format("{:.8g}/sqrt(x/3600.0)", k.arw_dpsh.value),
          fmt::format("ARW {:.3g} °/√h [{:.3g}, {:.3g}]", k.arw_dpsh.value, k.arw_dpsh.lo, k.arw_dpsh.hi));
     line(k.bias_instability_dph, fmt::format("{:.8g}+0*x", kFlickerFloor * k.bias_instability_dph.value),
-         fmt::format("bias instability {:.3g} °/h [{:.3g}, {:.3g}]", k.bias_instability_dph.value,
-                     k.bias_instability_dph.lo, k.bias_instability_dph.hi));
+         fmt::format("bias instability {:.3g} °/h [{:.3g}, {:.3g}] ({})", k.bias_instability_dph.value,
+                     k.bias_instability_dph.lo, k.bias_instability_dph.hi,
+                     k.bias_instability_dph.method == CoefficientMethod::noise_model ? "the noise model floor"
+                                                                                    : "the flat part"));
     line(k.rrw_dph_per_sqrt_h, fmt::format("{:.8g}*sqrt(x/3600.0/3.0)", k.rrw_dph_per_sqrt_h.value),
          fmt::format("RRW {:.3g} °/h/√h [{:.3g}, {:.3g}]", k.rrw_dph_per_sqrt_h.value, k.rrw_dph_per_sqrt_h.lo,
                      k.rrw_dph_per_sqrt_h.hi));
     if (!k.bias_instability_dph.shown && k.bias_instability_dph.upper_bound > 0.0) {
-      labels += fmt::format("set label '{}: bias instability < {:.3g} °/h (a bound: no flat part shows)' at graph "
+      labels += fmt::format("set label '{}: bias instability < {:.3g} °/h (a bound)' at graph "
                             "0.02, graph {:.3f} tc rgb '{}'\n",
                             s.curve.name, k.bias_instability_dph.upper_bound, label_y, colour);
       label_y -= 0.04;

@@ -29,6 +29,7 @@ struct AllanSeries {
   AllanCurve curve;
   NoiseCoefficients coefficients;
   std::optional<fit::NoiseModel> noise;  // the series' noise model (series_noise.h), if identified
+  BiasSupport bias_support = BiasSupport::no_flat_part;  // what makes its bias instability a value or a bound
 };
 
 // The Allan curve and coefficients of one series, its noise model identified
@@ -55,7 +56,8 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
 // samples, runs, gaps, taus_s, adev_dph, lo_dph, hi_dph, edf, noise_type,
 // noise_type_from ("acf", "model" or "slope"), terms, gap_terms, coefficients
 // (arw_dpsh, bias_instability_dph, rrw_dph_per_sqrt_h, quantization_arcsec,
-// each {shown, value, lo, hi, tau_range_s, tau_read_s, upper_bound, note}),
+// each {shown, method, value, lo, hi, tau_range_s, tau_read_s, upper_bound,
+// note}), bias_instability_support (series_noise.h),
 // coefficient_fit_chi2_per_dof and noise_model (fit's noise_model object);
 // bias_instability_ratio.
 nlohmann::ordered_json allan_json(const AllanStudy& study);

@@ -225,6 +225,7 @@ double chi2_bound(double edf, double p) { return edf / boost::math::quantile(boo
 
 NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
   NoiseCoefficient k;
+  k.method = CoefficientMethod::curve_flat;
   // Rows with at least kMinClusters clusters (terms ≥ (clusters − 2)·m).
   std::vector<std::size_t> usable;
   for (std::size_t i = 0; i < c.rows.size(); ++i)
@@ -278,11 +279,15 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
       k.value = level / kFlickerFloor;
       k.lo = level * std::sqrt(chi2_bound(read.edf, 0.5 + 0.5 * c.confidence)) / kFlickerFloor;
       k.hi = level * std::sqrt(chi2_bound(read.edf, 0.5 - 0.5 * c.confidence)) / kFlickerFloor;
-      const bool hump = from > 0 && to + 1 < c.rows.size() && c.rows[from - 1].adev_dph < level &&
-                        c.rows[to + 1].adev_dph < level;
+      // A plateau: past the flat part the curve falls below it beyond its
+      // interval, as a correlated (Gauss–Markov) bias does past its
+      // correlation time and a flicker floor does not.
+      bool hump = false;
+      for (std::size_t i = to + 1; i < c.rows.size(); ++i) hump = hump || c.rows[i].hi_dph < level;
+      k.plateau = hump;
       k.note = fmt::format("the flat part of the curve, {} (local slope within ±0.2{}), σ/0.664{}",
                            tau_span_text(k.tau_from_s, k.tau_to_s), from == to ? ", at this τ alone" : "",
-                           hump ? "; the curve falls on both sides: a plateau of a correlated (Gauss–Markov) bias" : "");
+                           hump ? "; the curve falls past it: a plateau of a correlated (Gauss–Markov) bias" : "");
       return k;
     }
   }
@@ -299,6 +304,15 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
 }
 
 }  // namespace
+
+const char* coefficient_method_name(CoefficientMethod m) {
+  switch (m) {
+    case CoefficientMethod::curve_fit: return "curve_fit";
+    case CoefficientMethod::curve_flat: return "curve_flat";
+    case CoefficientMethod::noise_model: return "noise_model";
+  }
+  return "curve_fit";
+}
 
 NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {
   NoiseCoefficients k;

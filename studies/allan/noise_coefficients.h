@@ -40,12 +40,20 @@
 
 namespace gyrotherm::studies {
 
+// How a coefficient was read: the weighted fit of the standard terms to the
+// curve, the curve's flat part, or the series' identified noise model
+// (series_noise.h). Bias instability may come from any of the last two.
+enum class CoefficientMethod { curve_fit, curve_flat, noise_model };
+const char* coefficient_method_name(CoefficientMethod m);  // "curve_fit", "curve_flat", "noise_model"
+
 struct NoiseCoefficient {
   bool shown = false;
+  CoefficientMethod method = CoefficientMethod::curve_fit;
   double value = 0.0, lo = 0.0, hi = 0.0;   // in the coefficient's unit, at the curve's confidence
   double upper_bound = 0.0;                 // 95 % bound when not shown (0: none)
   double tau_from_s = 0.0, tau_to_s = 0.0;  // the τ range where the term shows
   double tau_read_s = 0.0;                  // where it weighs most (B: where it was read)
+  bool plateau = false;                     // B: the curve falls past its flat part beyond its interval (a plateau)
   std::string note;                         // how it was read, or why it is not shown
 };
 

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/normal.hpp>
+#include <fmt/format.h>
+
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
@@ -41,6 +45,95 @@ std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> tim
   } catch (const FitError&) {
     return std::nullopt;
   }
+}
+
+const char* bias_support_name(BiasSupport s) {
+  switch (s) {
+    case BiasSupport::plateau: return "plateau";
+    case BiasSupport::gauss_markov: return "gauss_markov";
+    case BiasSupport::flicker: return "flicker";
+    case BiasSupport::not_in_model: return "not_in_model";
+    case BiasSupport::no_model: return "no_model";
+    case BiasSupport::no_flat_part: return "no_flat_part";
+  }
+  return "no_flat_part";
+}
+
+namespace {
+
+// The model's flicker floor B (°/h) and the τ range where flicker makes at
+// least half of the model's Allan variance (else the τ where its share is
+// largest), over the curve's rows.
+void read_from_model(NoiseCoefficient& b, const AllanCurve& curve, const fit::NoiseModel& m) {
+  fit::NoiseModel flicker_only;
+  flicker_only.amplitude[fit::kFlicker] = m.amplitude[fit::kFlicker];
+  flicker_only.flicker_tau_s = m.flicker_tau_s;
+  double best_share = -1.0, best_tau = 0.0, from = 0.0, to = 0.0;
+  for (const AllanRow& r : curve.rows) {
+    const double total = m.allan_variance(r.tau_s);
+    const double share = total > 0.0 ? flicker_only.allan_variance(r.tau_s) / total : 0.0;
+    if (share > best_share) {
+      best_share = share;
+      best_tau = r.tau_s;
+    }
+    if (share >= 0.5) {
+      if (from == 0.0) from = r.tau_s;
+      to = r.tau_s;
+    }
+  }
+  const double amplitude = m.amplitude[fit::kFlicker];
+  const double value = m.flicker_floor_per_s * std::sqrt(amplitude);
+  // ln B = ½ ln s²: its sd from the REML covariance of s².
+  const double sd = 0.5 * std::sqrt(std::max(0.0, m.covariance(1, 1))) / amplitude;
+  const double z = boost::math::quantile(boost::math::normal(), 0.5 + 0.5 * curve.confidence);
+  b.shown = true;
+  b.method = CoefficientMethod::noise_model;
+  b.value = value;
+  b.lo = value * std::exp(-z * sd);
+  b.hi = value * std::exp(z * sd);
+  b.upper_bound = 0.0;
+  b.tau_from_s = from > 0.0 ? from : best_tau;
+  b.tau_to_s = from > 0.0 ? to : best_tau;
+  b.tau_read_s = best_tau;
+  b.note = fmt::format("the series' noise model (REML): its flicker floor, separated from the white noise (slow "
+                       "error a compensation leaves counts in it); flicker makes most of the Allan variance at "
+                       "τ = {:.3g}–{:.3g} s",
+                       b.tau_from_s, b.tau_to_s);
+}
+
+}  // namespace
+
+BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve,
+                                    const std::optional<fit::NoiseModel>& noise) {
+  if (!b.shown) return BiasSupport::no_flat_part;
+  if (b.plateau) return BiasSupport::plateau;
+  if (noise && noise->identified[fit::kGaussMarkov] && noise->amplitude[fit::kGaussMarkov] > 0.0) {
+    b.note += fmt::format("; the series' noise model has a Gauss–Markov process of correlation time {:.3g} s",
+                          noise->gm_tau_s);
+    return BiasSupport::gauss_markov;
+  }
+  if (noise && noise->identified[fit::kFlicker] && noise->amplitude[fit::kFlicker] > 0.0 &&
+      noise->flicker_floor_per_s > 0.0) {
+    read_from_model(b, curve, *noise);
+    return BiasSupport::flicker;
+  }
+  const BiasSupport why = noise ? BiasSupport::not_in_model : BiasSupport::no_model;
+  // The flat part's 95 % upper value, at the τ it was read.
+  double edf = 0.0;
+  for (const AllanRow& r : curve.rows)
+    if (r.tau_s == b.tau_read_s) edf = r.edf;
+  const double level = b.value * kFlickerFloor;
+  const double upper = edf > 0.0 ? level * std::sqrt(edf / boost::math::quantile(boost::math::chi_squared(edf), 0.025))
+                                 : b.hi * kFlickerFloor;
+  b.shown = false;
+  b.upper_bound = upper / kFlickerFloor;
+  b.note = fmt::format("a bound only: the curve flattens at τ = {:.3g}–{:.3g} s, but {}; the flat part is what "
+                       "the fit's model leaves on a compensated series, or noise no model names; B ≤ {:.3g} °/h",
+                       b.tau_from_s, b.tau_to_s,
+                       noise ? "the series' noise model finds no flicker or Gauss–Markov process there"
+                             : "the series is too short for a noise model to say what it is",
+                       b.upper_bound);
+  return why;
 }
 
 }  // namespace gyrotherm::studies

@@ -9,6 +9,7 @@
 #include <span>
 
 #include "fit/model/noise_model.h"
+#include "studies/allan/noise_coefficients.h"
 
 namespace gyrotherm::studies {
 
@@ -16,5 +17,36 @@ namespace gyrotherm::studies {
 // identification finds nothing it can trust.
 std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> time_s,
                                                      std::span<const double> rate_dph, double tau0_s);
+
+// The series' one bias-instability figure, from the curve's reading `b`
+// (read_noise_coefficients) and the series' noise model: a flat part of the
+// curve is only called bias instability where something says it is noise
+// and not what a fit's model leaves (a compensated series) or a drift on
+// its way up. Where the curve has a flat part and
+//   * it is a plateau (past it the curve falls below it beyond its
+//     interval, as a Gauss–Markov bias does and a flicker floor does not), or the noise model
+//     identifies a Gauss–Markov process: the curve's reading stands
+//     (curve_flat), as IEEE 952 reads a correlated bias;
+//   * else the noise model identifies flicker: B is the model's flicker
+//     floor (method noise_model; REML separates the white noise, which still
+//     adds to the curve at the flat part's τ), its interval at the curve's
+//     confidence;
+//   * else: a bound (the flat part's 95 % upper value), not a value.
+// Without a flat part the curve's bound stands. (The series' model alone is
+// no gate: on windows of n/512 samples it reads a Gauss–Markov process of
+// τ_c ≈ 4 windows as white noise and flicker, so a plateau needs the curve.)
+// Returns what supports the figure.
+enum class BiasSupport {
+  plateau,          // the curve falls past its flat part
+  gauss_markov,     // the noise model identifies a Gauss–Markov process
+  flicker,          // the noise model identifies flicker (B from the model)
+  not_in_model,     // a flat part the model does not support: a bound
+  no_model,         // a flat part, no noise model (too few windows): a bound
+  no_flat_part,     // the curve has none: its bound
+};
+// "plateau", "gauss_markov", "flicker", "not_in_model", "no_model", "no_flat_part"
+const char* bias_support_name(BiasSupport s);
+BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve,
+                                    const std::optional<fit::NoiseModel>& noise);
 
 }  // namespace gyrotherm::studies

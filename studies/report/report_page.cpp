@@ -7,6 +7,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "sim/util/input_error.h"
 #include "sim/util/sha256.h"
@@ -293,7 +294,8 @@ std::string firmware_html(const Json& twin, std::size_t k) {
 
 std::string allan_html(const Json& twin, std::size_t k) {
   const std::string base = fmt::format("/channels/{}/allan/series", k);
-  std::string h = "<table><tr><th>series</th><th>ARW (°/√h)</th><th>bias instability (°/h)</th><th>RRW (°/h/√h)</th></tr>\n";
+  std::string h = "<table><tr><th>series</th><th>ARW (°/√h)</th><th>bias instability (°/h)</th><th>RRW (°/h/√h)</th>"
+                  "<th>bias instability read from</th></tr>\n";
   const Json* series = at(twin, base);
   for (std::size_t s = 0; series != nullptr && s < series->size(); ++s) {
     const std::string p = fmt::format("{}/{}/coefficients", base, s);
@@ -303,7 +305,24 @@ std::string allan_html(const Json& twin, std::size_t k) {
       h += shown != nullptr && shown->get<bool>() ? cell(twin, p + c + "/value")
                                                   : fmt::format("<td class=\"n\">&lt; {}</td>", number_text(at(twin, p + c + "/upper_bound")));
     }
-    h += "</tr>\n";
+    // The method, and what makes the figure a value or a bound (allan's support).
+    static const std::map<std::string, std::string> kWords = {
+        {"curve_flat", "the curve's flat part"},
+        {"noise_model", "the noise model's flicker floor"},
+        {"curve_fit", "the curve fit"},
+        {"plateau", "a plateau (the curve falls past it)"},
+        {"gauss_markov", "a Gauss–Markov process in the noise model"},
+        {"flicker", "flicker in the noise model"},
+        {"not_in_model", "a bound: the noise model names no slow noise there"},
+        {"no_model", "a bound: too short for a noise model"},
+        {"no_flat_part", "a bound: no flat part"}};
+    const auto words = [&](const std::string& pointer) {
+      const std::string key = text_of(at(twin, pointer));
+      const auto it = kWords.find(key);
+      return it == kWords.end() ? key : it->second;
+    };
+    h += fmt::format("<td>{}; {}</td></tr>\n", words(p + "/bias_instability_dph/method"),
+                     words(fmt::format("{}/{}/bias_instability_support", base, s)));
   }
   return h + "</table>\n";
 }
