@@ -306,12 +306,8 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
 }  // namespace
 
 const char* coefficient_method_name(CoefficientMethod m) {
-  switch (m) {
-    case CoefficientMethod::curve_fit: return "curve_fit";
-    case CoefficientMethod::curve_flat: return "curve_flat";
-    case CoefficientMethod::noise_model: return "noise_model";
-  }
-  return "curve_fit";
+  static constexpr const char* kNames[] = {"curve_fit", "curve_flat", "noise_model"};  // in the enum's order
+  return kNames[static_cast<int>(m)];
 }
 
 NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {

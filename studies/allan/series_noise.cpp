@@ -48,15 +48,9 @@ std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> tim
 }
 
 const char* bias_support_name(BiasSupport s) {
-  switch (s) {
-    case BiasSupport::plateau: return "plateau";
-    case BiasSupport::gauss_markov: return "gauss_markov";
-    case BiasSupport::flicker: return "flicker";
-    case BiasSupport::not_in_model: return "not_in_model";
-    case BiasSupport::no_model: return "no_model";
-    case BiasSupport::no_flat_part: return "no_flat_part";
-  }
-  return "no_flat_part";
+  static constexpr const char* kNames[] = {"plateau",      "gauss_markov", "flicker",
+                                           "not_in_model", "no_model",     "no_flat_part"};  // in the enum's order
+  return kNames[static_cast<int>(s)];
 }
 
 namespace {
