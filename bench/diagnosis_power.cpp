@@ -18,8 +18,10 @@
 //     cell's noise), its regressor at its default parameter: found when it
 //     (or a group holding it) is the first candidate and passed the test;
 //   * nothing: a false alarm when anything passes the test.
-// Usage: diagnosis_power OUT.md [SEEDS] [PART] — PART "steps", "effects",
-// "clean" or "all" (default); each row's seeds are 1..SEEDS.
+// Usage: diagnosis_power OUT.md [SEEDS] [PART] [SCENARIO] [CELLS] — PART
+// "steps", "effects", "clean" or "all" (default); each row's seeds are
+// 1..SEEDS; CELLS a comma list of the noise cells to run (0-3, default all),
+// so that cells run side by side (scripts/diagnosis_power.sh joins them).
 
 #include <fmt/format.h>
 
@@ -161,13 +163,16 @@ int main(int argc, char** argv) {
   const int seeds = argc > 2 ? std::atoi(argv[2]) : 100;
   const std::string part = argc > 3 ? argv[3] : "all";
   const std::string scenario = argc > 4 ? argv[4] : "cycle";
+  const std::string only = argc > 5 ? fmt::format(",{},", argv[5]) : std::string();
   const auto started = std::chrono::steady_clock::now();
   const std::vector<Base> base = bases(scenario);
   const fit::WindowGrid grid = fit::window_grid(base.front().data);
   const std::vector<const fit::Term*> model = fit::parse_formula("T + T^2 + dT");
   const double span = base.front().data.series.time_s.back() - base.front().data.series.start_time_s;
   std::string md;
+  int index = -1;
   for (const Cell& cell : cells(grid)) {
+    if (++index; !only.empty() && only.find(fmt::format(",{},", index)) == std::string::npos) continue;
     // A trial: base k's record with a fresh draw of the cell's noise.
     const auto record = [&](int seed, std::uint64_t stream) {
       const Base& b = base[static_cast<std::size_t>(seed) % kBases];

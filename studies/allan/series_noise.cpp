@@ -100,14 +100,15 @@ void read_from_model(NoiseCoefficient& b, const AllanCurve& curve, const fit::No
 BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve,
                                     const std::optional<fit::NoiseModel>& noise) {
   if (!b.shown) return BiasSupport::no_flat_part;
-  if (b.plateau) return BiasSupport::plateau;
+  const bool has_flicker = noise && noise->identified[fit::kFlicker] && noise->amplitude[fit::kFlicker] > 0.0 &&
+                           noise->flicker_floor_per_s > 0.0;
+  if (b.plateau && has_flicker) return BiasSupport::plateau;
   if (noise && noise->identified[fit::kGaussMarkov] && noise->amplitude[fit::kGaussMarkov] > 0.0) {
     b.note += fmt::format("; the series' noise model has a Gauss–Markov process of correlation time {:.3g} s",
                           noise->gm_tau_s);
     return BiasSupport::gauss_markov;
   }
-  if (noise && noise->identified[fit::kFlicker] && noise->amplitude[fit::kFlicker] > 0.0 &&
-      noise->flicker_floor_per_s > 0.0) {
+  if (has_flicker) {
     read_from_model(b, curve, *noise);
     return BiasSupport::flicker;
   }

@@ -21,16 +21,21 @@
 // (a parametric bootstrap from the identified noise: whitened, its draws are
 // independent N(0, 1)), shared by every candidate, so the calibration does not
 // multiply with their number: p₁ of each draw's maximum over the grid is
-// Beta(1, n) when the grid amounts to n independent tests, so
-// n̂ = B / Σ_b −ln(1 − p₁(max_b)) (maximum likelihood, at least 1), and
+// Beta(1, n) when the grid amounts to n independent tests; n̂ is the rate of
+// −ln(1 − p₁(max_b)) in the draws' lower tail (maximum likelihood, censored
+// at the twentieth smallest part, at least 10 draws, n̂ ≥ 1: for correlated
+// columns, a step's positions under white noise, the effective number grows
+// as p falls, and from all draws n̂ came out too small), and
 //
 //     p = 1 − (1 − p₁(G))^n̂     (Šidák over n̂ tests),
 //
 // which, unlike the share of draws at least G, is not capped at 1/(B + 1):
 // a loud effect gets the small p it deserves. The share of draws is kept as a
 // check (p_bootstrap). Both hold exactly when the identified noise is the
-// record's; how far they hold under noise identified from the record itself
-// is measured in results/diagnosis_power.md.
+// record's and the grid's columns independent; for a step under white noise
+// the tail's p is as near the draws' share as 300 null records show
+// (tests/likelihood_test_test.cpp); how far they hold under noise identified
+// from the record itself is measured in results/diagnosis_power.md.
 //
 // The family: candidates are strongly correlated (a drift in time, a
 // warm-up, a slow lag and a step late in the record remove much the same
@@ -39,7 +44,8 @@
 // α), the same draws give every candidate's p on each draw and so the
 // draw's smallest p_j/w_j, Q_b; as for a grid, −ln(1 − Q_b) is
 // exponential with rate W_eff, the family's effective number of tests
-// (W_eff ≤ W = Σ w_j, equal when the candidates are independent), and a
+// (W_eff ≤ W = Σ w_j, equal when the candidates are independent; read from
+// the draws' lower tail as n̂ is), and a
 // candidate passes when p_j ≤ w_j·(1 − (1 − α)^{1/W_eff}) (Westfall & Young's
 // min-p adjustment, in Šidák's form).
 //
