@@ -143,6 +143,20 @@ TEST(CliReport, ARoundTripOnAUlogWithACheckAndAFitMadeHere) {
       EXPECT_LE(px4["intervals_95"][k][0].get<double>(), value);
       EXPECT_GE(px4["intervals_95"][k][1].get<double>(), value);
     }
+    // The top power's coefficient does not move with the reference: ArduPilot's
+    // T² (about 35 °C, ×10⁶) is PX4's (about TREF), value and half width; the
+    // cubic is zero and exact.
+    const Json& ap = twin["channels"][axis]["firmware"]["ardupilot"];
+    const auto half = [](const Json& block, int k) {
+      return 0.5 * (block["intervals_95"][k][1].get<double>() - block["intervals_95"][k][0].get<double>());
+    };
+    const double x2 = px4["values"][2].get<double>();
+    EXPECT_NEAR(ap["values"][1].get<double>(), 1e6 * x2, 1e-6 * std::abs(1e6 * x2)) << "axis " << axis;
+    EXPECT_GT(half(px4, 2), 0.0);
+    EXPECT_NEAR(half(ap, 1), 1e6 * half(px4, 2), 1e-9 * 1e6 * half(px4, 2)) << "axis " << axis;
+    EXPECT_EQ(px4["values"][3].get<double>(), 0.0);
+    EXPECT_EQ(half(px4, 3), 0.0);
+    EXPECT_EQ(half(ap, 2), 0.0);
   }
   EXPECT_EQ(twin["channels"][2]["channel"], "gyro_z");
   EXPECT_EQ(twin["check"]["format"], "px4");
