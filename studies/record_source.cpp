@@ -3,7 +3,11 @@
 #include <filesystem>
 #include <system_error>
 
+#include <fmt/format.h>
+
+#include "fit/channels.h"
 #include "fit/data/streaming.h"
+#include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 
@@ -40,6 +44,18 @@ std::uintmax_t RecordSource::bytes() const {
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(name_, error);
   return error ? 0 : size;
+}
+
+std::vector<std::string> gyro_per_channel(const std::string& gyro_option, std::size_t channels,
+                                          const std::string& fit_file) {
+  if (gyro_option.empty()) return std::vector<std::string>(channels);
+  std::vector<std::string> gyros = fit::parse_channels(gyro_option);
+  if (gyros.size() != channels)
+    throw InputError(fmt::format("--gyro-col {}: {} column{} for the {} channel{} of {}; name one column per channel, in "
+                                 "the fit's order",
+                                 gyro_option, gyros.size(), gyros.size() == 1 ? "" : "s", channels,
+                                 channels == 1 ? "" : "s", fit_file));
+  return gyros;
 }
 
 }  // namespace gyrotherm::studies

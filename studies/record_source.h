@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "fit/data/prepare.h"
 #include "fit/data/table.h"
@@ -49,5 +50,13 @@ class RecordSource {
   std::string name_;
   const fit::Table* table_ = nullptr;
 };
+
+// The gyro column given for each of a fit file's `channels`: --gyro-col's
+// comma list, one per channel in the fit's order, or "" for each when none
+// was given (each channel then reads its own). Throws InputError naming the
+// option and the fit when the counts differ (a single column would be read
+// under every channel's fit).
+std::vector<std::string> gyro_per_channel(const std::string& gyro_option, std::size_t channels,
+                                          const std::string& fit_file);
 
 }  // namespace gyrotherm::studies

@@ -122,6 +122,37 @@ TEST(LikelihoodTest, ALoudStepHasAPFarBelowTheDrawsResolution) {
   EXPECT_DOUBLE_EQ(t.score(s).p_bootstrap, 1.0 / 200.0);
 }
 
+// The family's effective number of tests from the same draws: two copies of
+// one candidate are one test, two independent candidates two.
+TEST(LikelihoodTest, TheFamilyCountsCorrelatedCandidatesOnce) {
+  const int l = 300;
+  const fit::WindowGrid g = grid_of(l);
+  fit::NoiseModel m;
+  m.amplitude[fit::kWhite] = 0.1;
+  const fit::NoiseWhitener w(m, g);
+  Rng rng = make_rng(9, 99);
+  boost::random::normal_distribution<double> normal;
+  Eigen::MatrixXd a(l, 1), b(l, 1);
+  for (int i = 0; i < l; ++i) {
+    a(i, 0) = normal(rng);
+    b(i, 0) = normal(rng);
+  }
+  const Eigen::VectorXd y = m.draw(g, [&] { return normal(rng); });
+  LikelihoodTest same(w, Eigen::MatrixXd(l, 0), y);
+  same.add(a);
+  same.add(a);
+  same.calibrate(400, 1);
+  LikelihoodTest apart(w, Eigen::MatrixXd(l, 0), y);
+  apart.add(a);
+  apart.add(b);
+  apart.calibrate(400, 1);
+  // The tail's estimate spreads about 1/√20 (22 %).
+  EXPECT_GE(same.family_tests(), 1.0);  // at least the heaviest weight
+  EXPECT_LE(same.family_tests(), 1.5);
+  EXPECT_GE(apart.family_tests(), 1.4);
+  EXPECT_LE(apart.family_tests(), 2.0);  // at most the sum of the weights
+}
+
 TEST(LikelihoodTest, SingleColumnTailIsBeta) {
   // ν = 3: g ~ Beta(1/2, 1), P(g ≥ x) = 1 − √x.
   EXPECT_NEAR(LikelihoodTest::single_p(0.25, 3.0), 0.5, 1e-12);

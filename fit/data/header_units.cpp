@@ -131,6 +131,7 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
   if (!temp2_column.empty())
     columns.push_back({Quantity::temperature, &r.temp, &r.temp_from, temp2_column, "--temp-unit",
                        "temperature", "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty(), r.temp_weak});
+  std::vector<const std::string*> header_set;  // units a header set in this loop
   for (const Column& c : columns) {
     const HeaderUnit h = unit_in_header(c.quantity, c.name);
     if (h.raw_counts && !c.scaled)
@@ -139,8 +140,18 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
           "give",
           c.name, h.said, c.scale_options.empty() ? c.option : c.scale_options, c.what));
     if (c.given && c.weak && h.unit != nullptr) {  // the record's own header wins over a fit's untyped unit
+      if (std::find(header_set.begin(), header_set.end(), c.unit) != header_set.end()) {
+        // The other temperature column's header said it first (and is named as its source).
+        if (*c.unit != h.unit->name)
+          throw InputError(fmt::format(
+              "the temperature columns state different units ({}: {}; '{}': {}); they are read "
+              "with one --temp-unit",
+              *c.from, *c.unit, c.name, h.unit->name));
+        continue;
+      }
       *c.unit = std::string(h.unit->name);
       *c.from = fmt::format("header '{}'", c.name);
+      header_set.push_back(c.unit);
       continue;
     }
     if (c.given) {

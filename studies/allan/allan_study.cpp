@@ -59,7 +59,8 @@ std::optional<double> AllanStudy::bias_instability_ratio() const {
   if (series.size() < 2) return std::nullopt;
   const auto& a = series.front().coefficients.bias_instability_dph;
   const auto& b = series.back().coefficients.bias_instability_dph;
-  if (!a.shown || !b.shown || b.value <= 0.0) return std::nullopt;
+  // The same reading on both sides (σ/0.664 holds white noise the model's floor does not).
+  if (!a.shown || !b.shown || b.value <= 0.0 || a.method != b.method) return std::nullopt;
   return a.value / b.value;
 }
 
@@ -270,9 +271,14 @@ std::vector<AllanStudy> allan_record(const AllanRequest& r, const RecordSource& 
   std::vector<AllanStudy> studies;
   if (!r.fit_file.empty()) {
     // Every channel the fit holds, read with the fit's own columns and units.
-    for (const fit::SavedFit& fit : r.fits.empty() ? fit::load_fits(r.fit_file) : r.fits) {
+    const std::vector<fit::SavedFit> fits = r.fits.empty() ? fit::load_fits(r.fit_file) : r.fits;
+    const std::vector<std::string> gyros = gyro_per_channel(r.fit_columns.gyro, fits.size(), r.fit_file);
+    for (std::size_t k = 0; k < fits.size(); ++k) {
+      const fit::SavedFit& fit = fits[k];
       fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
-      pipeline.columns = source.fit_columns(pipeline.columns).with(r.fit_columns);
+      fit::ColumnMap given = r.fit_columns;
+      given.gyro = gyros[k];
+      pipeline.columns = source.fit_columns(pipeline.columns).with(given);
       try {
         pipeline.columns.units.validate();
         studies.push_back(allan_study(source.read(pipeline.columns), &fit, r.options));

@@ -90,9 +90,9 @@ void read_from_model(NoiseCoefficient& b, const AllanCurve& curve, const fit::No
   b.tau_to_s = from > 0.0 ? to : best_tau;
   b.tau_read_s = best_tau;
   b.note = fmt::format("the series' noise model (REML): its flicker floor, separated from the white noise (slow "
-                       "error a compensation leaves counts in it); flicker makes most of the Allan variance at "
+                       "error a compensation leaves counts in it); flicker {} of the Allan variance at "
                        "τ = {:.3g}–{:.3g} s",
-                       b.tau_from_s, b.tau_to_s);
+                       from > 0.0 ? "makes most" : "weighs most, if not half,", b.tau_from_s, b.tau_to_s);
 }
 
 }  // namespace
@@ -102,8 +102,13 @@ BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve
   if (!b.shown) return BiasSupport::no_flat_part;
   const bool has_flicker = noise && noise->identified[fit::kFlicker] && noise->amplitude[fit::kFlicker] > 0.0 &&
                            noise->flicker_floor_per_s > 0.0;
-  if (b.plateau && has_flicker) return BiasSupport::plateau;
-  if (noise && noise->identified[fit::kGaussMarkov] && noise->amplitude[fit::kGaussMarkov] > 0.0) {
+  // The model accounts for the flat part's level: its Allan deviation there
+  // reaches the reading's interval (a leftover hump of a compensation lies
+  // above what the noise gives).
+  const double lo_at_read = b.lo * kFlickerFloor;
+  const bool accounted = noise && std::sqrt(noise->allan_variance(b.tau_read_s)) >= lo_at_read;
+  if (b.plateau && has_flicker && accounted) return BiasSupport::plateau;
+  if (noise && noise->identified[fit::kGaussMarkov] && noise->amplitude[fit::kGaussMarkov] > 0.0 && accounted) {
     b.note += fmt::format("; the series' noise model has a Gauss–Markov process of correlation time {:.3g} s",
                           noise->gm_tau_s);
     return BiasSupport::gauss_markov;

@@ -21,25 +21,28 @@ std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> tim
 // The series' one bias-instability figure, from the curve's reading `b`
 // (read_noise_coefficients) and the series' noise model: a flat part of the
 // curve is only called bias instability where the noise model finds slow
-// noise there, not what a fit's model leaves (a compensated series) or a
-// drift on its way up. Where the curve has a flat part and the noise model
-//   * identifies a Gauss–Markov process, or identifies flicker and the flat
-//     part is a plateau (past it the curve falls below it beyond its
+// noise that accounts for it (the model's Allan deviation at the reading's
+// τ reaches its interval), not what a fit's model leaves on a compensated
+// series (a leftover cycle's hump lies above the noise) or a drift on its
+// way up. Where the curve has a flat part and the noise model
+//   * accounts for it with a Gauss–Markov process, or with flicker while the
+//     flat part is a plateau (past it the curve falls below it beyond its
 //     interval, as a Gauss–Markov bias does and a flicker floor does not):
 //     the curve's reading stands (curve_flat), as IEEE 952 reads a
 //     correlated bias (the series' model, on windows of n/512 samples, often
 //     reads a Gauss–Markov process of a few windows' correlation time as
-//     white noise and flicker);
-//   * identifies flicker, no plateau: B is the model's flicker floor
-//     (method noise_model; REML separates the white noise, which still adds
-//     to the curve at the flat part's τ), its interval at the curve's
-//     confidence;
+//     white noise and flicker: the curve reads its plateau better);
+//   * identifies flicker otherwise: B is the model's flicker floor (method
+//     noise_model; REML separates the white noise, which still adds to the
+//     curve at the flat part's τ), its interval at the curve's confidence;
 //   * identifies neither: a bound (the flat part's 95 % upper value).
-// Without a flat part the curve's bound stands. Returns what supports the
-// figure.
+// Without a flat part the curve's bound stands: the model's own bound on B
+// holds only if its structure does (it reads a Gauss–Markov plateau as
+// flicker below it), the curve's whatever the noise. Returns what supports
+// the figure.
 enum class BiasSupport {
-  plateau,          // the curve falls past its flat part, the model has flicker
-  gauss_markov,     // the noise model identifies a Gauss–Markov process
+  plateau,          // the curve falls past its flat part, the model's flicker accounts for it
+  gauss_markov,     // the noise model's Gauss–Markov process accounts for it
   flicker,          // the noise model identifies flicker (B from the model)
   not_in_model,     // a flat part the model does not support: a bound
   no_model,         // a flat part, no noise model (too few windows): a bound

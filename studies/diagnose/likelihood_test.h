@@ -22,10 +22,12 @@
 // independent N(0, 1)), shared by every candidate, so the calibration does not
 // multiply with their number: p₁ of each draw's maximum over the grid is
 // Beta(1, n) when the grid amounts to n independent tests; n̂ is the rate of
-// −ln(1 − p₁(max_b)) in the draws' lower tail (maximum likelihood, censored
-// at the twentieth smallest part, at least 10 draws, n̂ ≥ 1: for correlated
-// columns, a step's positions under white noise, the effective number grows
-// as p falls, and from all draws n̂ came out too small), and
+// −ln(1 − p₁(max_b)) in the draws' lower tail (the maximum-likelihood rate of
+// an exponential censored at the k-th smallest draw, k = B/20 and at least
+// 10; n̂ ≥ 1; its spread about 1/√k, 22 % at B = 400, and about k/(k − 1)
+// high, the conservative side: for correlated columns, a step's positions
+// under white noise, the effective number grows as p falls, and from all
+// draws n̂ came out too small), and
 //
 //     p = 1 − (1 − p₁(G))^n̂     (Šidák over n̂ tests),
 //

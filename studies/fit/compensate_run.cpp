@@ -18,18 +18,13 @@ CompensateRun compensate_record(const CompensateRequest& o, const RecordSource& 
   run.request = o;
   run.request.data = source.name();
   run.fits = o.fits.empty() ? fit::load_fits(o.fit_file) : o.fits;
-  const std::vector<std::string> gyros = o.columns.gyro.empty() ? std::vector<std::string>{} : fit::parse_channels(o.columns.gyro);
-  if (!gyros.empty() && gyros.size() != run.fits.size())
-    throw InputError(fmt::format("--gyro-col {}: {} column{} for the {} channel{} of {}; name one column per channel, in "
-                                 "the fit's order",
-                                 o.columns.gyro, gyros.size(), gyros.size() == 1 ? "" : "s", run.fits.size(),
-                                 run.fits.size() == 1 ? "" : "s", o.fit_file));
+  const std::vector<std::string> gyros = gyro_per_channel(o.columns.gyro, run.fits.size(), o.fit_file);
   bool streamed = false;
   std::size_t channel = 0;
   run.channels = fit::for_each_saved_fit(run.fits, [&](const fit::SavedFit& fit) {
     fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
     fit::ColumnMap given = o.columns;
-    given.gyro = gyros.empty() ? "" : gyros[channel++];
+    given.gyro = gyros[channel++];
     pipeline.columns = source.fit_columns(pipeline.columns).with(given);
     pipeline.columns.units.validate();
     if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;

@@ -313,16 +313,23 @@ std::string allan_html(const Json& twin, std::size_t k) {
         {"plateau", "a plateau (the curve falls past it)"},
         {"gauss_markov", "a Gauss–Markov process in the noise model"},
         {"flicker", "flicker in the noise model"},
-        {"not_in_model", "a bound: the noise model names no slow noise there"},
+        {"not_in_model", "a bound: the noise model names no slow noise at the flat part"},
         {"no_model", "a bound: too short for a noise model"},
         {"no_flat_part", "a bound: no flat part"}};
-    const auto words = [&](const std::string& pointer) {
-      const std::string key = text_of(at(twin, pointer));
+    const auto words = [&](const std::string& key) {
       const auto it = kWords.find(key);
       return it == kWords.end() ? key : it->second;
     };
-    h += fmt::format("<td>{}; {}</td></tr>\n", words(p + "/bias_instability_dph/method"),
-                     words(fmt::format("{}/{}/bias_instability_support", base, s)));
+    // A value: its method, and what supports it where that adds (a plateau, a
+    // Gauss–Markov process); a bound: why it is one, and whose bound it is.
+    const Json* shown = at(twin, p + "/bias_instability_dph/shown");
+    const std::string method = text_of(at(twin, p + "/bias_instability_dph/method"));
+    const std::string support = text_of(at(twin, fmt::format("{}/{}/bias_instability_support", base, s)));
+    std::string read = shown != nullptr && shown->get<bool>() ? words(method) : words(support);
+    if (shown != nullptr && shown->get<bool>() && (support == "plateau" || support == "gauss_markov"))
+      read += "; " + words(support);
+    if (!(shown != nullptr && shown->get<bool>()) && method == "noise_model") read += " (the noise model's bound)";
+    h += fmt::format("<td>{}</td></tr>\n", read);
   }
   return h + "</table>\n";
 }
