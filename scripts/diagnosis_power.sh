@@ -6,10 +6,8 @@
 # as two halves side by side, joined after.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/build.sh
-seeds="${1:-100}"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+seeds="${1:-100}" && scripts/build.sh
+work=$(mktemp -d) && trap 'rm -rf "$work"' EXIT
 build/bench/diagnosis_power "$work/a.md" "$seeds" all cycle 0,1 &
 build/bench/diagnosis_power "$work/b.md" "$seeds" all cycle 2,3 &
 build/bench/diagnosis_power results/diagnosis_power_random.md "$seeds" clean random &

@@ -9,6 +9,7 @@
 
 #include <boost/random/normal_distribution.hpp>
 #include <cmath>
+#include <vector>
 
 #include "sim/util/random.h"
 
@@ -39,26 +40,46 @@ Eigen::MatrixXd steps(int windows, int from, int to) {
   return x;
 }
 
+// White noise of 0.1 (°/h)²·s: windows of 100 s have variance 1e-3.
+fit::NoiseModel white_noise() {
+  fit::NoiseModel m;
+  m.amplitude[fit::kWhite] = 0.1;
+  return m;
+}
+
+// The model's one regressor, a slow sine.
+Eigen::MatrixXd slow_sine(int l) {
+  Eigen::MatrixXd model(l, 1);
+  for (int i = 0; i < l; ++i) model(i, 0) = std::sin(i / 30.0);
+  return model;
+}
+
+// `count` records of the noise m (the null), from `seed`.
+std::vector<Eigen::VectorXd> null_records(const fit::NoiseModel& m, const fit::WindowGrid& g, int count,
+                                          std::uint64_t seed) {
+  Rng rng = make_rng(seed, 99);
+  boost::random::normal_distribution<double> normal;
+  std::vector<Eigen::VectorXd> out;
+  for (int r = 0; r < count; ++r) out.push_back(m.draw(g, [&] { return normal(rng); }));
+  return out;
+}
+
 TEST(LikelihoodTest, PValuesAreUniformUnderTheModelsNoise) {
   const int l = 200;
   const fit::WindowGrid g = grid_of(l);
   const fit::NoiseModel m = coloured();
   const fit::NoiseWhitener w(m, g);
-  Eigen::MatrixXd model(l, 1);
-  for (int i = 0; i < l; ++i) model(i, 0) = std::sin(i / 30.0);
+  const Eigen::MatrixXd model = slow_sine(l);
   Eigen::MatrixXd column(l, 1);
   for (int i = 0; i < l; ++i) column(i, 0) = std::cos(i / 17.0) + 0.01 * i;
   const Eigen::MatrixXd positions = steps(l, 5, l - 5);
-  Rng rng = make_rng(3, 99);
-  boost::random::normal_distribution<double> normal;
   const int replicates = 300;
-  int below_single = 0, below_steps = 0, below_boot = 0;
-  for (int r = 0; r < replicates; ++r) {
-    const Eigen::VectorXd y = m.draw(g, [&] { return normal(rng); });
+  int below_single = 0, below_steps = 0, below_boot = 0, r = 0;
+  for (const Eigen::VectorXd& y : null_records(m, g, replicates, 3)) {
     LikelihoodTest t(w, model, y);
     const std::size_t a = t.add(column);
     const std::size_t b = t.add(positions);
-    t.calibrate(200, static_cast<std::uint64_t>(r));
+    t.calibrate(200, static_cast<std::uint64_t>(r++));
     below_single += t.score(a).p_value < 0.1;
     below_steps += t.score(b).p_value < 0.1;
     below_boot += t.score(b).p_bootstrap < 0.1;
@@ -78,21 +99,14 @@ TEST(LikelihoodTest, PValuesAreUniformUnderTheModelsNoise) {
 TEST(LikelihoodTest, StepPValuesHoldTheirLevelUnderWhiteNoise) {
   const int l = 200;
   const fit::WindowGrid g = grid_of(l);
-  fit::NoiseModel m;
-  m.amplitude[fit::kWhite] = 0.1;
+  const fit::NoiseModel m = white_noise();
   const fit::NoiseWhitener w(m, g);
-  Eigen::MatrixXd model(l, 1);
-  for (int i = 0; i < l; ++i) model(i, 0) = std::sin(i / 30.0);
   const Eigen::MatrixXd positions = steps(l, 5, l - 5);
-  Rng rng = make_rng(4, 99);
-  boost::random::normal_distribution<double> normal;
-  const int replicates = 300;
-  int below_10 = 0, below_1 = 0, boot_below_1 = 0;
-  for (int r = 0; r < replicates; ++r) {
-    const Eigen::VectorXd y = m.draw(g, [&] { return normal(rng); });
-    LikelihoodTest t(w, model, y);
+  int below_10 = 0, below_1 = 0, boot_below_1 = 0, r = 0;
+  for (const Eigen::VectorXd& y : null_records(m, g, 300, 4)) {
+    LikelihoodTest t(w, slow_sine(l), y);
     const std::size_t s = t.add(positions);
-    t.calibrate(400, static_cast<std::uint64_t>(r));
+    t.calibrate(400, static_cast<std::uint64_t>(r++));
     below_10 += t.score(s).p_value < 0.1;
     below_1 += t.score(s).p_value < 0.01;
     boot_below_1 += t.score(s).p_bootstrap < 0.01;
@@ -127,17 +141,11 @@ TEST(LikelihoodTest, ALoudStepHasAPFarBelowTheDrawsResolution) {
 TEST(LikelihoodTest, TheFamilyCountsCorrelatedCandidatesOnce) {
   const int l = 300;
   const fit::WindowGrid g = grid_of(l);
-  fit::NoiseModel m;
-  m.amplitude[fit::kWhite] = 0.1;
-  const fit::NoiseWhitener w(m, g);
-  Rng rng = make_rng(9, 99);
-  boost::random::normal_distribution<double> normal;
-  Eigen::MatrixXd a(l, 1), b(l, 1);
-  for (int i = 0; i < l; ++i) {
-    a(i, 0) = normal(rng);
-    b(i, 0) = normal(rng);
-  }
-  const Eigen::VectorXd y = m.draw(g, [&] { return normal(rng); });
+  const fit::NoiseWhitener w(white_noise(), g);
+  // Two independent random columns, and a record of the noise.
+  const std::vector<Eigen::VectorXd> draws = null_records(white_noise(), g, 3, 9);
+  const Eigen::MatrixXd a = draws[0], b = draws[1];
+  const Eigen::VectorXd& y = draws[2];
   LikelihoodTest same(w, Eigen::MatrixXd(l, 0), y);
   same.add(a);
   same.add(a);
