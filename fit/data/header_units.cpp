@@ -139,16 +139,17 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
           "column '{}' holds raw counts ({}): give {} to turn them into {}, with the unit they "
           "give",
           c.name, h.said, c.scale_options.empty() ? c.option : c.scale_options, c.what));
-    if (c.given && c.weak && h.unit != nullptr) {  // the record's own header wins over a fit's untyped unit
-      if (std::find(header_set.begin(), header_set.end(), c.unit) != header_set.end()) {
-        // The other temperature column's header said it first (and is named as its source).
-        if (*c.unit != h.unit->name)
-          throw InputError(fmt::format(
-              "the temperature columns state different units ({}: {}; '{}': {}); they are read "
-              "with one --temp-unit",
-              *c.from, *c.unit, c.name, h.unit->name));
-        continue;
-      }
+    if (h.unit != nullptr &&
+        std::find(header_set.begin(), header_set.end(), c.unit) != header_set.end()) {
+      // The other temperature column's header said it first (and is named as its source).
+      if (*c.unit != h.unit->name)
+        throw InputError(fmt::format(
+            "the temperature columns state different units ({}: {}; '{}': {}); they are read "
+            "with one --temp-unit",
+            *c.from, *c.unit, c.name, h.unit->name));
+      continue;
+    }
+    if (h.unit != nullptr && (!c.given || c.weak)) {  // the header names it; it wins over a fit's untyped unit
       *c.unit = std::string(h.unit->name);
       *c.from = fmt::format("header '{}'", c.name);
       header_set.push_back(c.unit);
@@ -162,19 +163,6 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
             "column '{}' states its unit as {} ({}), but {} gives {} ({}): the numbers cannot be "
             "in both; correct the one that is wrong",
             c.name, h.unit->name, h.unit->meaning, *c.from, u.name, u.meaning));
-      continue;
-    }
-    if (h.unit != nullptr) {
-      if (!c.unit->empty()) {  // the other temperature column said it first
-        if (*c.unit != h.unit->name)
-          throw InputError(fmt::format(
-              "the temperature columns state different units ({}: {}; '{}': {}); they are read "
-              "with one --temp-unit",
-              *c.from, *c.unit, c.name, h.unit->name));
-        continue;
-      }
-      *c.unit = std::string(h.unit->name);
-      *c.from = fmt::format("header '{}'", c.name);
       continue;
     }
     if (h.unknown())

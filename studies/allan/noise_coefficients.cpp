@@ -221,7 +221,6 @@ NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, const Curve
   return k;
 }
 
-double chi2_bound(double edf, double p) { return edf / boost::math::quantile(boost::math::chi_squared(edf), p); }
 
 NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
   NoiseCoefficient k;
@@ -304,6 +303,8 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
 }
 
 }  // namespace
+
+double chi2_bound(double edf, double p) { return edf / boost::math::quantile(boost::math::chi_squared(edf), p); }
 
 const char* coefficient_method_name(CoefficientMethod m) {
   static constexpr const char* kNames[] = {"curve_fit", "curve_flat", "noise_model"};  // in the enum's order

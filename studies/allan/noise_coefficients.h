@@ -70,4 +70,8 @@ inline constexpr double kFlickerFloor = 0.6642824702679600;
 
 NoiseCoefficients read_noise_coefficients(const AllanCurve& curve);
 
+// σ²'s bound factor at `edf` degrees of freedom: σ²·edf/χ²_edf(p) (p = 0.025:
+// its 95 % upper value).
+double chi2_bound(double edf, double p);
+
 }  // namespace gyrotherm::studies

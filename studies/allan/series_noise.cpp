@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <fmt/format.h>
 
@@ -123,8 +122,7 @@ BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve
   for (const AllanRow& r : curve.rows)
     if (r.tau_s == b.tau_read_s) edf = r.edf;
   const double level = b.value * kFlickerFloor;
-  const double upper = edf > 0.0 ? level * std::sqrt(edf / boost::math::quantile(boost::math::chi_squared(edf), 0.025))
-                                 : b.hi * kFlickerFloor;
+  const double upper = edf > 0.0 ? level * std::sqrt(chi2_bound(edf, 0.025)) : b.hi * kFlickerFloor;
   b.shown = false;
   b.upper_bound = upper / kFlickerFloor;
   b.note = fmt::format("a bound only: the curve flattens at τ = {:.3g}–{:.3g} s, but {}; the flat part is what "

@@ -309,7 +309,6 @@ std::string allan_html(const Json& twin, std::size_t k) {
     static const std::map<std::string, std::string> kWords = {
         {"curve_flat", "the curve's flat part"},
         {"noise_model", "the noise model's flicker floor"},
-        {"curve_fit", "the curve fit"},
         {"plateau", "a plateau (the curve falls past it)"},
         {"gauss_markov", "a Gauss–Markov process in the noise model"},
         {"flicker", "flicker in the noise model"},
@@ -321,14 +320,12 @@ std::string allan_html(const Json& twin, std::size_t k) {
       return it == kWords.end() ? key : it->second;
     };
     // A value: its method, and what supports it where that adds (a plateau, a
-    // Gauss–Markov process); a bound: why it is one, and whose bound it is.
-    const Json* shown = at(twin, p + "/bias_instability_dph/shown");
-    const std::string method = text_of(at(twin, p + "/bias_instability_dph/method"));
+    // Gauss–Markov process); a bound: why it is one.
+    const Json* shown_b = at(twin, p + "/bias_instability_dph/shown");
+    const bool value = shown_b != nullptr && shown_b->get<bool>();
     const std::string support = text_of(at(twin, fmt::format("{}/{}/bias_instability_support", base, s)));
-    std::string read = shown != nullptr && shown->get<bool>() ? words(method) : words(support);
-    if (shown != nullptr && shown->get<bool>() && (support == "plateau" || support == "gauss_markov"))
-      read += "; " + words(support);
-    if (!(shown != nullptr && shown->get<bool>()) && method == "noise_model") read += " (the noise model's bound)";
+    std::string read = value ? words(text_of(at(twin, p + "/bias_instability_dph/method"))) : words(support);
+    if (value && (support == "plateau" || support == "gauss_markov")) read += "; " + words(support);
     h += fmt::format("<td>{}</td></tr>\n", read);
   }
   return h + "</table>\n";
