@@ -139,5 +139,31 @@ TEST(CliAllan, AFitOfSeveralChannelsTakesOneGyroColumnEach) {
   EXPECT_EQ(text.out.find("header 'temp2_c'"), std::string::npos) << text.out;
 }
 
+// Two temperature columns whose headers state different units are refused
+// (exit 2, both named), whether the units come from the headers alone or a
+// fit file brings its own (the header wins over it, once).
+TEST(CliAllan, TemperatureColumnsInTwoUnitsAreRefused) {
+  ScratchDir dir;
+  std::string same = "time_s,temp (C),temp2 (C),gyro_dph\n", mixed = "time_s,temp (C),temp2 (K),gyro_dph\n";
+  for (int i = 0; i < 4000; ++i) {
+    const double temp = 20.0 + 15.0 * std::sin(i / 600.0), far = temp + 0.5 * std::sin(i / 97.0);
+    const double gyro = 0.02 * temp + std::sin(0.7 * i);
+    same += fmt::format("{},{:.4f},{:.4f},{:.6f}\n", i, temp, far, gyro);
+    mixed += fmt::format("{},{:.4f},{:.4f},{:.6f}\n", i, temp, far + 273.15, gyro);
+  }
+  write_text(dir / "same.csv", same);
+  write_text(dir / "mixed.csv", mixed);
+  const std::string columns = " --temp-col 'temp (C)' --temp2-col 'temp2 (C)'";
+  ASSERT_EQ(run_cli(dir, "fit same.csv --model 'T + grad'" + columns + " -o g.json").exit_code, 0);
+  const auto plain = run_cli(dir, "allan mixed.csv --temp-col 'temp (C)' --temp2-col 'temp2 (K)'");
+  const auto fitted = run_cli(dir, "allan mixed.csv --fit g.json --temp2-col 'temp2 (K)'");
+  for (const auto& r : {plain, fitted}) {
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.err.find("the temperature columns state different units (header 'temp (C)': C; 'temp2 (K)': K)"),
+              std::string::npos)
+        << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace gyrotherm::studies
