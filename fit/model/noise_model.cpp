@@ -387,8 +387,8 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
       auto rise = [&](double log_v) {
         std::array<double, kNoiseKinds> v = m.amplitude;
         v[static_cast<std::size_t>(k)] = std::exp(log_v);
-        const double tau = k == kGaussMarkov && m.gm_tau_s <= 0.0 ? std::exp(0.5 * (lo_tau + hi_tau)) : point[2];
-        return reml.minus_two_ll(v, tau) - m.minus_two_log_likelihood - kChi95;
+        const double log_tau = k == kGaussMarkov && m.gm_tau_s <= 0.0 ? 0.5 * (lo_tau + hi_tau) : point[2];
+        return reml.minus_two_ll(v, log_tau) - m.minus_two_log_likelihood - kChi95;
       };
       double a = std::log(std::max({m.amplitude[static_cast<std::size_t>(k)], tiny, 1e-300}));
       double b = a + 2.0;
