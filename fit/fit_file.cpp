@@ -78,7 +78,8 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
     for (std::size_t k = 0; k < fit.terms.size(); ++k)
       intervals[fit.terms[k]->name] = {fit.engine.intervals[k].lower, fit.engine.intervals[k].upper};
     j["intervals_95"] = intervals;
-    j["interval_method"] = fit.engine.interval_method;
+    j["interval_method"] = interval_method_text(fit.engine.interval_method, fit.noise ? &fit.noise->model : nullptr);
+    j["interval_kind"] = to_string(fit.engine.interval_method.kind);
     if (!fit.lag_sensitivity.empty()) {
       // The sensor lag (s) that would move each rate or gradient term by its half-width (null: none would).
       Json lag;

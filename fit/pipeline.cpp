@@ -256,8 +256,8 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
       // The coefficients' intervals with the parameters' uncertainty in them.
       fit.engine.intervals.assign(li.ols.intervals.begin(), li.ols.intervals.begin() + static_cast<std::ptrdiff_t>(terms.size()));
       fit.engine.p_values.assign(li.ols.p_values.begin(), li.ols.p_values.begin() + static_cast<std::ptrdiff_t>(terms.size()));
-      fit.engine.interval_method = li.ols.interval_method +
-                                   "; with the fitted parameters' uncertainty (linearised)";
+      fit.engine.interval_method = li.ols.interval_method;
+      fit.engine.interval_method.linearised_parameters = true;
     }
   }
   fit.lag_sensitivity = lag_sensitivity(data, fit);

@@ -168,5 +168,61 @@ TEST(LikelihoodTest, SingleColumnTailIsBeta) {
   EXPECT_DOUBLE_EQ(LikelihoodTest::single_p(1.0, 10.0), 0.0);
 }
 
+// The autoregression of a whitened residual: none where it is white, the
+// coefficient where it is an AR(1).
+TEST(LikelihoodTest, TheResidualsAutoregressionIsFoundWhereThereIsOne) {
+  Rng rng = make_rng(5, 99);
+  boost::random::normal_distribution<double> normal;
+  const int l = 2000;
+  int empty = 0;
+  for (int r = 0; r < 20; ++r) {
+    Eigen::VectorXd e(l);
+    for (int i = 0; i < l; ++i) e[i] = normal(rng);
+    empty += residual_autoregression(e, 10).size() == 0;
+  }
+  EXPECT_GE(empty, 12);  // Akaike's criterion keeps a spurious order now and then
+  Eigen::VectorXd a(l);
+  a[0] = normal(rng);
+  for (int i = 1; i < l; ++i) a[i] = 0.5 * a[i - 1] + normal(rng);
+  const Eigen::VectorXd phi = residual_autoregression(a, 10);
+  ASSERT_GE(phi.size(), 1);
+  EXPECT_NEAR(phi[0], 0.5, 0.06);
+  EXPECT_EQ(residual_autoregression(a, 0).size(), 0);
+}
+
+// A noise model that misses correlation at short lags (a Gauss–Markov
+// process of 5 windows taken for white noise, as block means longer than
+// its correlation time take it) makes the test too bold for a column with
+// slow content; drawn through the residual's autoregression the bootstrap
+// carries that correlation, and the p-values hold their level again (on
+// these records 101 of 200 p-values fell below 0.1 without it, 16 with it).
+TEST(LikelihoodTest, CorrelationTheModelMissesIsDrawnIntoTheNull) {
+  const int l = 400;
+  const fit::WindowGrid g = grid_of(l);
+  fit::NoiseModel truth = white_noise();
+  truth.amplitude[fit::kGaussMarkov] = 2.0 * truth.amplitude[fit::kWhite] / 100.0;
+  truth.gm_tau_s = 500.0;
+  fit::NoiseModel assumed = white_noise();
+  assumed.amplitude[fit::kWhite] *= 3.0;  // the windows' variance, read as white
+  const fit::NoiseWhitener w(assumed, g);
+  Eigen::MatrixXd column(l, 1);
+  for (int i = 0; i < l; ++i) column(i, 0) = std::sin(i / 9.0) + std::cos(i / 23.0);
+  int plain = 0, sieved = 0, r = 0;
+  for (const Eigen::VectorXd& y : null_records(truth, g, 200, 6)) {
+    LikelihoodTest t(w, slow_sine(l), y);
+    const std::size_t a = t.add(column);
+    LikelihoodTest u(w, slow_sine(l), y);
+    const std::size_t b = u.add(column);
+    t.calibrate(400, static_cast<std::uint64_t>(r));
+    const Eigen::VectorXd phi = residual_autoregression(fit::gls(w, slow_sine(l), y).whitened_residual, 20);
+    u.calibrate(400, static_cast<std::uint64_t>(r++), phi);
+    plain += t.score(a).p_value < 0.1;
+    sieved += u.score(b).p_value < 0.1;
+  }
+  // 10 % of 200 = 20, binomial sd 4.2.
+  EXPECT_GT(plain, 40) << "the misspecified model alone";
+  EXPECT_NEAR(sieved, 20, 13);
+}
+
 }  // namespace
 }  // namespace gyrotherm::studies

@@ -1,6 +1,7 @@
 // Results are data (docs/architecture.md, "House rules"): the diagnosis's
-// structs hold numbers, enums and names; sentences are composed by the
-// renderers (studies/diagnose/diagnose_words.h). This scans the header for
+// and the fit engines' structs hold numbers, enums and names; sentences are
+// composed by the renderers (studies/diagnose/diagnose_words.h,
+// fit::interval_method_text). This scans the header for
 // every text member and holds it to a list of names, so a field that would
 // carry a sentence is stopped here, where the reviewer sees why.
 
@@ -60,6 +61,27 @@ TEST(ResultStructs, TheDiagnosisHoldsNamesNotSentences) {
                                    << "' is not a known name; a result holds numbers, enums and names, and "
                                       "sentences are composed in diagnose_words.cpp";
   for (const std::string& e : expected) EXPECT_TRUE(found.count(e)) << e << " is gone: take it off the list";
+}
+
+// The fit's summary as an engine returns it (fit/engines/engine.h): how its
+// intervals were computed is an IntervalMethod (a kind and its numbers),
+// rendered by interval_method_text(); no member holds that sentence.
+TEST(ResultStructs, TheFitResultHoldsItsIntervalMethodAsData) {
+  const std::map<std::string, std::string> names = {
+      {"engine", "FitResult: the engine's registry name"},
+      {"message", "FitResult: the engine's own status line (as an exception's what())"},
+      {"scope", "KeyValue: an engine name"},
+      {"key", "KeyValue: an option name"},
+      {"value", "KeyValue: an option value as given"},
+      {"name", "EngineInfo: the registry name"},
+      {"description", "EngineInfo: the registry's one-line description of the engine"},
+  };
+  const std::set<std::string> found = text_members("fit/engines/engine.h");
+  for (const std::string& f : found)
+    EXPECT_TRUE(names.count(f)) << "fit/engines/engine.h: the text member '" << f
+                                << "' is not a known name; how a result was computed is data (IntervalMethod), "
+                                   "its words are interval_method_text()'s";
+  for (const auto& [name, why] : names) EXPECT_TRUE(found.count(name)) << name << " is gone: take it off the list";
 }
 
 }  // namespace

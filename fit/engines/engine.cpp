@@ -3,10 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
+#include "fit/model/noise_model.h"
 #include "sim/util/input_error.h"
+#include "sim/util/format.h"
 
 namespace gyrotherm::fit {
 
@@ -46,15 +49,57 @@ EngineSettings engine_settings(std::uint64_t seed, long budget, double target,
 }
 
 const char* to_string(Termination t) {
-  switch (t) {
-    case Termination::exact: return "exact";
-    case Termination::target_reached: return "target_reached";
-    case Termination::budget_exhausted: return "budget_exhausted";
-    case Termination::max_iterations: return "max_iterations";
-    case Termination::converged: return "converged";
-    case Termination::stopped: return "stopped";
+  // In the enum's order.
+  static constexpr std::array<const char*, 6> names = {"exact",          "target_reached", "budget_exhausted",
+                                                       "max_iterations", "converged",      "stopped"};
+  return names[static_cast<std::size_t>(t)];
+}
+
+const char* to_string(IntervalKind k) {
+  // In the enum's order.
+  static constexpr std::array<const char*, 6> names = {"none", "noise_bootstrap", "noise_covariance",
+                                                       "gls",  "newey_west",      "cosine"};
+  return names[static_cast<std::size_t>(k)];
+}
+
+std::string interval_method_text(const IntervalMethod& m, const NoiseModel* noise) {
+  const std::string model = noise ? noise->description() : std::string("none");
+  std::string out;
+  switch (m.kind) {
+    case IntervalKind::none: return "";
+    case IntervalKind::noise_bootstrap:
+      out = fmt::format("parametric bootstrap, {} draws from each noise structure the record supports ({}), "
+                        "amplitudes drawn from their uncertainty; the widest basic interval",
+                        m.draws, model);
+      break;
+    case IntervalKind::noise_covariance:
+      out = fmt::format("least-squares covariance under the identified noise ({}); Student t with "
+                        "Satterthwaite dof {:.3g}", model, m.dof);
+      break;
+    case IntervalKind::gls:
+      out = fmt::format("generalised least squares under the identified noise ({}); the variance {}; Student t "
+                        "with Satterthwaite dof {:.3g}", model,
+                        m.widest_of > 0
+                            ? fmt::format("the widest under the {} noise models the record supports alike", m.widest_of)
+                            : std::string("under that model"),
+                        m.dof);
+      break;
+    case IntervalKind::newey_west:
+    case IntervalKind::cosine:
+      out = fmt::format("{}{}; Student t with {:g} dof",
+                        m.no_noise_model ? "no noise model could be identified on this record (too few windows for "
+                                           "the terms): " : "",
+                        m.kind == IntervalKind::newey_west
+                            ? fmt::format("Newey-West HAC pre-whitened by a VAR(1) (Andrews-Monahan), Bartlett kernel "
+                                          "with {} by Andrews' AR(1) rule", counted(static_cast<std::size_t>(m.lags), "lag"))
+                            : fmt::format("equal-weighted cosine long-run variance (Lazarus, Lewis, Stock & Watson "
+                                          "2018) on the {} lowest frequencies", m.lags),
+                        m.dof);
+      break;
   }
-  return "?";
+  if (m.has_lag1) out += fmt::format("; residual lag-1 autocorrelation {:.2f}", m.lag1_autocorrelation);
+  if (m.linearised_parameters) out += "; with the fitted parameters' uncertainty (linearised)";
+  return out;
 }
 
 std::string FitResult::brief_report() const {

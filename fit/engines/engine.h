@@ -48,6 +48,30 @@ struct Interval {
   double upper = 0.0;
 };
 
+// How an engine's intervals were computed: data, rendered by
+// interval_method_text() (the fit's JSON `interval_method`, its text report).
+enum class IntervalKind {
+  none,              // the engine gives no intervals
+  noise_bootstrap,   // ols: parametric bootstrap from the identified noise
+  noise_covariance,  // ols: the least-squares covariance under the identified noise
+  gls,               // gls: generalised least squares under the identified noise
+  newey_west,        // ols: pre-whitened Newey–West long-run variance
+  cosine,            // ols: equal-weighted cosine long-run variance
+};
+const char* to_string(IntervalKind k);
+
+struct IntervalMethod {
+  IntervalKind kind = IntervalKind::none;
+  bool no_noise_model = false;  // a long-run variance because no noise model could be identified
+  int draws = 0;                // noise_bootstrap: per noise structure
+  long lags = 0;                // newey_west: the Bartlett kernel's lags; cosine: its frequencies
+  double dof = 0;               // Student t's (the smallest Satterthwaite dof where they differ)
+  std::size_t widest_of = 0;    // gls: the variance is the widest under this many models (0: the identified one)
+  bool has_lag1 = false;        // ols: the residual's lag-1 autocorrelation, below
+  double lag1_autocorrelation = 0;
+  bool linearised_parameters = false;  // the fitted parameters' uncertainty is in (fit/pipeline.h)
+};
+
 struct FitResult {
   std::string engine;
   std::vector<double> z;              // best point in the unit box
@@ -62,9 +86,15 @@ struct FitResult {
   std::vector<bool> kept;                 // stepwise: which terms are in the model
   std::vector<double> p_values;           // stepwise/ols: per term
   std::vector<Interval> intervals;        // ols: 95 % intervals of the physical b_j
-  std::string interval_method;            // how the intervals were computed
+  IntervalMethod interval_method;         // how the intervals were computed
   std::string brief_report() const;
 };
+
+struct NoiseModel;
+// "least-squares covariance under the identified noise (…); Student t …":
+// the method in words, with `noise` (the one the intervals were computed
+// under) described where the method rests on it; "" for none.
+std::string interval_method_text(const IntervalMethod& method, const NoiseModel* noise);
 
 // Common settings; `options` holds engine-specific KEY=VALUE pairs.
 struct EngineSettings {

@@ -123,14 +123,9 @@ FitResult GlsEngine::fit(const LinearProblem& problem, FitObserver* observer) co
     const double t = se_beta > 0.0 ? std::abs(g.beta[j + 1]) / se_beta : INFINITY;
     r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t)) : 0.0);
   }
-  r.interval_method = fmt::format(
-      "generalised least squares under the identified noise ({}); the variance {}; Student t with Satterthwaite dof "
-      "{:.3g}",
-      noise.model.description(),
-      options_.covariance == "widest"
-          ? fmt::format("the widest under the {} noise models the record supports alike", models.size())
-          : std::string("under that model"),
-      *std::min_element(dofs.begin(), dofs.end()));
+  r.interval_method.kind = IntervalKind::gls;
+  r.interval_method.widest_of = options_.covariance == "widest" ? models.size() : 0;
+  r.interval_method.dof = *std::min_element(dofs.begin(), dofs.end());
   r.message = "generalised least squares by the noise's semi-separable Cholesky factor";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;

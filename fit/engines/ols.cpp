@@ -18,7 +18,8 @@ namespace {
 struct LongRunVariance {
   Eigen::MatrixXd S;        // long-run covariance of the scores, Σ_p Σ_q E[u_p u_qᵀ]
   double dof = 0.0;         // Student-t degrees of freedom (0: l − m − 1)
-  std::string description;
+  IntervalKind kind = IntervalKind::newey_west;
+  long lags = 0;            // the Bartlett kernel's lags, or the cosine frequencies
 };
 
 LongRunVariance prewhitened_newey_west(const Eigen::MatrixXd& u) {
@@ -67,9 +68,7 @@ LongRunVariance prewhitened_newey_west(const Eigen::MatrixXd& u) {
       (Eigen::MatrixXd::Identity(m, m) - A).fullPivLu().inverse();
   Eigen::MatrixXd S = recolour * S_w * recolour.transpose();
   S *= static_cast<double>(l) / static_cast<double>(l - m - 1);
-  return {S, 0.0, fmt::format("Newey-West HAC pre-whitened by a VAR(1) (Andrews-Monahan), Bartlett "
-                              "kernel with {} by Andrews' AR(1) rule", counted(static_cast<std::size_t>(lags), "lag"))};
-
+  return {S, 0.0, IntervalKind::newey_west, static_cast<long>(lags)};
 }
 
 // Equal-weighted cosine estimator: the scores projected on the B lowest
@@ -90,9 +89,7 @@ LongRunVariance equal_weighted_cosine(const Eigen::MatrixXd& u, int terms) {
     S += lambda * lambda.transpose();
   }
   S *= static_cast<double>(l) / static_cast<double>(b);
-  return {S, static_cast<double>(b),
-          fmt::format("equal-weighted cosine long-run variance (Lazarus, Lewis, Stock & Watson "
-                      "2018) on the {} lowest frequencies", b)};
+  return {S, static_cast<double>(b), IntervalKind::cosine, b};
 }
 
 }  // namespace
@@ -139,7 +136,7 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
       from_noise && (options_.intervals == "bootstrap" ||
                      (options_.intervals == "auto" &&
                       bootstrap_by_default(problem.noise()->model, problem.noise()->grid, X)));
-  std::string description;
+  IntervalMethod& method = r.interval_method;
   if (bootstrap) {
     const NoiseContext& noise = *problem.noise();
     const NoiseBootstrap boot = noise_bootstrap(noise.model, noise.grid, X, options_.draws, options_.seed);
@@ -148,10 +145,8 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
       r.intervals.push_back({lo / problem.scale()[j], hi / problem.scale()[j]});
       r.p_values.push_back(boot.p_value(j, beta[j]));
     }
-    description = fmt::format("parametric bootstrap, {} draws from each noise structure the "
-                              "record supports ({}), amplitudes drawn from their uncertainty; the "
-                              "widest basic interval",
-                              options_.draws, noise.model.description());
+    method.kind = IntervalKind::noise_bootstrap;
+    method.draws = options_.draws;
   } else {
     Eigen::MatrixXd V;
     std::vector<double> dofs;
@@ -161,10 +156,8 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
       NoiseSandwich sandwich = noise_sandwich(noise.model, noise.grid, X);
       V = std::move(sandwich.covariance);
       dofs = std::move(sandwich.dof);
-      description = fmt::format("least-squares covariance under the identified noise ({}); Student t "
-                                "with Satterthwaite dof {:.3g}",
-                                noise.model.description(),
-                                *std::min_element(dofs.begin(), dofs.end()));
+      method.kind = IntervalKind::noise_covariance;
+      method.dof = *std::min_element(dofs.begin(), dofs.end());
     } else {
       const Eigen::MatrixXd u = X.array().colwise() * e.array();  // rows: e_p x̃_p
       const LongRunVariance lrv = options_.intervals == "ewc"
@@ -174,12 +167,10 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
           (X.transpose() * X).ldlt().solve(Eigen::MatrixXd::Identity(m, m));
       V = xtx_inv * lrv.S * xtx_inv;
       dofs.assign(static_cast<std::size_t>(m), lrv.dof > 0 ? lrv.dof : static_cast<double>(l - m - 1));
-      description = fmt::format("{}{}; Student t with {:g} dof",
-                                options_.intervals != "nw" && options_.intervals != "ewc"
-                                    ? "no noise model could be identified on this record (too few "
-                                      "windows for the terms): "
-                                    : "",
-                                lrv.description, dofs.front());
+      method.kind = lrv.kind;
+      method.lags = lrv.lags;
+      method.no_noise_model = options_.intervals != "nw" && options_.intervals != "ewc";
+      method.dof = dofs.front();
     }
     const Coefficients c = problem.physical(r.z);
     for (Eigen::Index j = 0; j < m; ++j) {
@@ -194,7 +185,8 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
                                             : 0.0);
     }
   }
-  r.interval_method = fmt::format("{}; residual lag-1 autocorrelation {:.2f}", description, rho);
+  method.has_lag1 = true;
+  method.lag1_autocorrelation = rho;
   r.message = "least squares by column-pivoting QR";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;

@@ -98,6 +98,17 @@ std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGr
   constexpr double z = 1.959963984540054;
   for (const int k : {kFlicker, kGaussMarkov, kRandomWalk}) {
     const auto kk = static_cast<std::size_t>(k);
+    if (k == kGaussMarkov && !model.present[kGaussMarkov] && !model.gm_bounds.empty()) {
+      for (const auto& [tau, bound] : model.gm_bounds) {
+        NoiseModel raised = model;
+        raised.alternatives.clear();
+        raised.amplitude[kGaussMarkov] = bound;
+        raised.present[kGaussMarkov] = true;
+        raised.gm_tau_s = tau;
+        out.push_back(raised);
+      }
+      continue;
+    }
     const int p = k == kRandomWalk ? 4 : k;
     const double value = model.amplitude[kk];
     const double upper = model.identified[kk] ? value * std::exp(z * std::sqrt(std::max(0.0, model.covariance(p, p))) / value)

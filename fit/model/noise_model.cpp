@@ -17,6 +17,9 @@ namespace {
 constexpr double kFloorLog = -30.0;           // log-weight of an absent component
 constexpr double kPresentLog = -14.0;         // above this a component is in the model
 constexpr double kChi95 = 3.841458820694124;  // χ²₁ 95 % point
+// An absent Gauss–Markov process is bounded at 2·kAbsentGaussMarkovHalf − 1
+// correlation times log-spaced strictly between Δ and the span (√(Δ·span) the middle one).
+constexpr int kAbsentGaussMarkovHalf = 3;
 // A Gauss–Markov process (two parameters, τ searched) must lower −2 log L by
 // χ²₂'s 95 % point to be added: on white noise it is then claimed rarely.
 constexpr double kGaussMarkovGain = 5.991464547107979;
@@ -134,6 +137,26 @@ struct Reml {
             scale * w(a[1]) / norm[kGaussMarkov], scale * w(a[3]) / norm[kRandomWalk]};
   }
 };
+
+// Where −2 log L, every amplitude of `m` held but component k's, has risen
+// by χ²₁(95 %) from m's as k's amplitude grows (Gauss–Markov at ln τ_c =
+// log_tau): the bound of a component the record does not pin down.
+double likelihood_bound(const Reml& reml, const NoiseModel& m, int k, double log_tau, double tiny) {
+  auto rise = [&](double log_v) {
+    std::array<double, kNoiseKinds> v = m.amplitude;
+    v[static_cast<std::size_t>(k)] = std::exp(log_v);
+    return reml.minus_two_ll(v, log_tau) - m.minus_two_log_likelihood - kChi95;
+  };
+  double a = std::log(std::max({m.amplitude[static_cast<std::size_t>(k)], tiny, 1e-300}));
+  double b = a + 2.0;
+  int guard = 0;
+  while (rise(b) < 0.0 && guard++ < 40) { a = b; b += 2.0; }
+  for (int it = 0; it < 20; ++it) {
+    const double c = 0.5 * (a + b);
+    (rise(c) < 0.0 ? a : b) = c;
+  }
+  return std::exp(b);
+}
 
 // Nelder–Mead on a box (Lagarias et al., SIAM J. Optim. 9 (1998)), clamped.
 Eigen::Vector4d nelder_mead(const std::function<double(const Eigen::Vector4d&)>& f,
@@ -380,25 +403,22 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
           m.present[static_cast<std::size_t>(k)] && log_sd(k) < 1.2;
     }
     // A bound for each component that is not identified: raise its amplitude
-    // (the others held) until −2 log L has risen by χ²₁(95 %).
+    // (the others held) until −2 log L has risen by χ²₁(95 %). An absent
+    // Gauss–Markov process has no correlation time of its own: it is bounded
+    // at times across the record's scales (the record bounds it differently
+    // at each), the one at √(Δ·span) standing for it.
     for (int k = 0; k < kNoiseKinds; ++k) {
       if (m.identified[static_cast<std::size_t>(k)]) continue;
       const double tiny = 1e-12 * m.amplitude[kWhite] * reml.norm[kWhite] / reml.norm[static_cast<std::size_t>(k)];
-      auto rise = [&](double log_v) {
-        std::array<double, kNoiseKinds> v = m.amplitude;
-        v[static_cast<std::size_t>(k)] = std::exp(log_v);
-        const double log_tau = k == kGaussMarkov && m.gm_tau_s <= 0.0 ? 0.5 * (lo_tau + hi_tau) : point[2];
-        return reml.minus_two_ll(v, log_tau) - m.minus_two_log_likelihood - kChi95;
-      };
-      double a = std::log(std::max({m.amplitude[static_cast<std::size_t>(k)], tiny, 1e-300}));
-      double b = a + 2.0;
-      int guard = 0;
-      while (rise(b) < 0.0 && guard++ < 40) { a = b; b += 2.0; }
-      for (int it = 0; it < 20; ++it) {
-        const double c = 0.5 * (a + b);
-        (rise(c) < 0.0 ? a : b) = c;
+      if (k == kGaussMarkov && !m.present[kGaussMarkov]) {
+        for (int g = 1; g < 2 * kAbsentGaussMarkovHalf; ++g) {
+          const double log_tau = lo_tau + (hi_tau - lo_tau) * g / (2 * kAbsentGaussMarkovHalf);
+          m.gm_bounds.emplace_back(std::exp(log_tau), likelihood_bound(reml, m, k, log_tau, tiny));
+          if (g == kAbsentGaussMarkovHalf) m.upper_bound[kGaussMarkov] = m.gm_bounds.back().second;
+        }
+        continue;
       }
-      m.upper_bound[static_cast<std::size_t>(k)] = std::exp(b);
+      m.upper_bound[static_cast<std::size_t>(k)] = likelihood_bound(reml, m, k, point[2], tiny);
     }
     return m;
   };

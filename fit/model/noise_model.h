@@ -44,6 +44,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <utility>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -84,6 +85,11 @@ struct NoiseModel {
   std::array<bool, kNoiseKinds> present{};     // in the model (amplitude not negligible)
   std::array<bool, kNoiseKinds> identified{};  // and pinned down by the record
   std::array<double, kNoiseKinds> upper_bound{};  // amplitude's 95 % bound where not identified
+  // An absent Gauss–Markov process's 95 % bounds (τ_c in s, σ² in (°/h)²) at
+  // correlation times log-spaced across the record's scales: having no τ_c
+  // of its own, it is bounded at each (upper_bound[kGaussMarkov] is the one
+  // at √(Δ·span)), and a test must hold under each (plausible_models).
+  std::vector<std::pair<double, double>> gm_bounds;
   double minus_two_log_likelihood = 0;
   // Other structures (which components are in) that the record supports
   // about as well (Akaike's criterion within 2): intervals take the widest.
@@ -141,8 +147,8 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
 // supports about as well (alternatives), and the model with each slow
 // component (flicker, Gauss–Markov, random walk) raised to the upper end of
 // its two-sided 95 % interval (a one-sided 97.5 % bound; for a component not
-// pinned down, its 95 % likelihood bound), the others held (an absent Gauss–Markov process at the correlation
-// time its bound was found at, √(Δ·span)). A test whose p-value is the
+// pinned down, its 95 % likelihood bound), the others held (an absent
+// Gauss–Markov process at each correlation time of gm_bounds, at its bound there). A test whose p-value is the
 // largest under all of them does not mistake noise the record could not pin
 // down for an effect (diagnose, studies/diagnose/selection.cpp).
 std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGrid& grid);

@@ -97,14 +97,59 @@ std::size_t LikelihoodTest::add(const Eigen::MatrixXd& columns, double weight) {
   return index;
 }
 
-void LikelihoodTest::calibrate(int draws, std::uint64_t seed) {
+Eigen::VectorXd residual_autoregression(const Eigen::VectorXd& e, int most_order) {
+  const Eigen::Index l = e.size();
+  const int top = std::clamp<int>(most_order, 0, static_cast<int>(l / 4));
+  if (top < 1) return {};
+  std::vector<double> r(static_cast<std::size_t>(top) + 1, 0.0);
+  for (int k = 0; k <= top; ++k)
+    r[static_cast<std::size_t>(k)] = e.head(l - k).dot(e.tail(l - k)) / static_cast<double>(l);
+  if (!(r[0] > 0.0)) return {};
+  // Levinson–Durbin: order k's coefficients and innovation variance.
+  Eigen::VectorXd phi = Eigen::VectorXd::Zero(top), best;
+  double variance = r[0];
+  double best_aic = static_cast<double>(l) * std::log(variance);
+  for (int k = 1; k <= top; ++k) {
+    double acc = r[static_cast<std::size_t>(k)];
+    for (int j = 1; j < k; ++j) acc -= phi[j - 1] * r[static_cast<std::size_t>(k - j)];
+    const double reflection = acc / variance;
+    Eigen::VectorXd next = phi;
+    next[k - 1] = reflection;
+    for (int j = 1; j < k; ++j) next[j - 1] = phi[j - 1] - reflection * phi[k - j - 1];
+    phi = next;
+    variance *= 1.0 - reflection * reflection;
+    if (!(variance > 0.0)) break;
+    const double aic = static_cast<double>(l) * std::log(variance) + 2.0 * k;
+    if (aic < best_aic) {
+      best_aic = aic;
+      best = phi.head(k);
+    }
+  }
+  return best;
+}
+
+void LikelihoodTest::calibrate(int draws, std::uint64_t seed, const Eigen::VectorXd& ar) {
   if (scores_.empty() || columns_.cols() == 0 || draws < 1) return;
   const Eigen::Index l = columns_.rows();
   Rng rng = make_rng(seed, streams::diagnosis_likelihood_bootstrap);
   boost::random::normal_distribution<double> normal;
   Eigen::MatrixXd e(l, draws);
-  for (Eigen::Index b = 0; b < draws; ++b)
-    for (Eigen::Index i = 0; i < l; ++i) e(i, b) = normal(rng);
+  // Each draw through the autoregression from rest, after a burn-in long
+  // enough for it to forget the start.
+  const Eigen::Index order = ar.size(), burn = 20 * order;
+  std::vector<double> x(static_cast<std::size_t>(burn + l));
+  for (Eigen::Index b = 0; b < draws; ++b) {
+    if (order == 0) {
+      for (Eigen::Index i = 0; i < l; ++i) e(i, b) = normal(rng);
+      continue;
+    }
+    for (Eigen::Index t = 0; t < burn + l; ++t) {
+      double v = normal(rng);
+      for (Eigen::Index j = 1; j <= std::min(order, t); ++j) v += ar[j - 1] * x[static_cast<std::size_t>(t - j)];
+      x[static_cast<std::size_t>(t)] = v;
+    }
+    for (Eigen::Index i = 0; i < l; ++i) e(i, b) = x[static_cast<std::size_t>(burn + i)];
+  }
   e -= q_ * (q_.transpose() * e);
   const Eigen::RowVectorXd norms = e.colwise().squaredNorm();
   const Eigen::MatrixXd dots = columns_.transpose() * e;  // columns × draws
@@ -128,7 +173,7 @@ void LikelihoodTest::calibrate(int draws, std::uint64_t seed) {
     }
     s.p_bootstrap = (above + 1.0) / (draws + 1.0);
     const double rate = tail_rate(std::move(v));
-    s.tests = grid_size[j] == 1 || !(rate > 0.0) ? 1.0 : std::max(1.0, rate);
+    s.tests = (grid_size[j] == 1 && order == 0) || !(rate > 0.0) ? 1.0 : std::max(1.0, rate);
     s.p_value = -std::expm1(s.tests * std::log1p(-single_p(s.share, dof_)));
   }
   // The family: each draw's smallest p_j/w_j over the candidates, Q_b, and

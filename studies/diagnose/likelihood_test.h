@@ -82,8 +82,9 @@ class LikelihoodTest {
   // family-wise correction; returns its index.
   std::size_t add(const Eigen::MatrixXd& columns, double weight = 1.0);
   // Draws the bootstrap (draws × windows independent normals from `seed`'s
-  // stream) and scores every candidate added.
-  void calibrate(int draws, std::uint64_t seed);
+  // stream, passed through the autoregression `ar` where it has
+  // coefficients: residual_autoregression's) and scores every candidate added.
+  void calibrate(int draws, std::uint64_t seed, const Eigen::VectorXd& ar = {});
   const CandidateScore& score(std::size_t candidate) const { return scores_[candidate]; }
   std::size_t candidates() const { return scores_.size(); }
   // W_eff: the family's effective number of tests (weighted; W = Σ w_j
@@ -109,6 +110,16 @@ class LikelihoodTest {
   std::vector<double> weights_;
   double family_tests_ = 0;
 };
+
+// The whitened residual's own correlation at short lags, which the noise
+// model, identified on block means, cannot see below a block's length: the
+// autoregression of order ≤ most_order with the least Akaike criterion
+// (Yule–Walker by Levinson–Durbin; empty when order 0 wins, as it does when
+// the model whitens the windows). Drawn through it, the bootstrap carries
+// that correlation into every candidate's null distribution: a sieve
+// bootstrap of what the model leaves (P. Bühlmann, "Sieve bootstrap for
+// time series", Bernoulli 3 (1997) 123–148).
+Eigen::VectorXd residual_autoregression(const Eigen::VectorXd& whitened_residual, int most_order);
 
 // The level a candidate of weight w is compared with in a family of W_eff
 // effective tests: w·(1 − (1 − α)^{1/W_eff}).

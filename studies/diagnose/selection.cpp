@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <optional>
+#include <cstdlib>
 
 #include "fit/engines/ols.h"
 #include "fit/model/formula.h"
@@ -150,14 +151,31 @@ struct Round {
 // family's effective number of tests (likelihood_test.h).
 std::vector<CandidateScore> score_all(const fit::NoiseWhitener& whitener, const Round& r,
                                       const std::vector<Grid>& grids, const std::vector<std::size_t>& which,
-                                      int draws, std::uint64_t seed, double* family_tests = nullptr) {
+                                      int draws, std::uint64_t seed, double* family_tests = nullptr,
+                                      const Eigen::VectorXd& ar = {}) {
   LikelihoodTest test(whitener, r.x, r.y);
   for (std::size_t j : which) test.add(grids[j].columns, grids[j].weight);
-  test.calibrate(draws, seed);
+  test.calibrate(draws, seed, ar);
   if (family_tests) *family_tests = test.family_tests();
   std::vector<CandidateScore> out;
   for (std::size_t i = 0; i < which.size(); ++i) out.push_back(test.score(i));
   return out;
+}
+
+// The short-lag autoregression of what the model and the round's leader
+// leave, whitened (residual_autoregression, likelihood_test.h), up to the
+// windows of one of the noise identification's blocks: the correlation the
+// block means could not show. Empty where there is none to fit.
+Eigen::VectorXd leftover_autoregression(const fit::NoiseWhitener& whitener, const Round& r,
+                                        const Eigen::VectorXd& leader, std::size_t blocks) {
+  if (blocks == 0) return {};
+  const int most = static_cast<int>(std::min<std::size_t>(20, (r.y.size() + blocks - 1) / blocks));
+  try {
+    return residual_autoregression(fit::gls(whitener, leader.size() > 0 ? with_column(r.x, leader) : r.x, r.y)
+                                       .whitened_residual, most);
+  } catch (const FitError&) {
+    return {};
+  }
 }
 
 // A candidate's report at its best grid value under the round's noise.
@@ -338,6 +356,7 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
     // residual by least squares.
     const auto seed = options.seed + static_cast<std::uint64_t>(round_number);
     const fit::NoiseModel without = noise;  // the model as it stands: the final noise when nothing joins
+    Eigen::VectorXd leading;                // the leading candidate's column
     {
       fit::NoiseModel white;
       white.amplitude[fit::kWhite] = 1.0;
@@ -347,8 +366,8 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
         if (ols[i].share > ols[lead].share) lead = i;
       // 2. The noise identified with it as a fixed effect too.
       if (ols[lead].fitted) {
-        const Eigen::VectorXd column = grids[untried[lead]].columns.col(static_cast<Eigen::Index>(ols[lead].best));
-        noise = noise_of(grid, with_column(r.x, column), y);
+        leading = grids[untried[lead]].columns.col(static_cast<Eigen::Index>(ols[lead].best));
+        noise = noise_of(grid, with_column(r.x, leading), y);
       }
     }
     // 3. Every candidate under that noise, and under each model it may as
@@ -361,7 +380,9 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
     // false alarms reached 10-13 % on a 75 h record; results/diagnosis_power.md.)
     const fit::NoiseWhitener whitener(noise, grid);
     double family_tests = 0.0;
-    std::vector<CandidateScore> scores = score_all(whitener, r, grids, untried, options.draws, seed, &family_tests);
+    std::vector<CandidateScore> scores =
+        score_all(whitener, r, grids, untried, options.draws, seed, &family_tests,
+                  leftover_autoregression(whitener, r, leading, noise.blocks));
     std::vector<fit::NoiseWhitener> others;
     for (const fit::NoiseModel& m : fit::plausible_models(noise, grid)) {
       try {
@@ -371,7 +392,9 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
     }
     for (std::size_t m = 1; m < others.size(); ++m) {
       double tests = 0.0;
-      const std::vector<CandidateScore> more = score_all(others[m], r, grids, untried, options.draws, seed, &tests);
+      const std::vector<CandidateScore> more =
+          score_all(others[m], r, grids, untried, options.draws, seed, &tests,
+                    leftover_autoregression(others[m], r, leading, noise.blocks));
       family_tests = std::max(family_tests, tests);
       for (std::size_t i = 0; i < scores.size(); ++i) {
         scores[i].p_value = std::max(scores[i].p_value, more[i].p_value);

@@ -62,7 +62,9 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
       extra += fmt::format("  truth {:.6g}", c.truth->parameters.at(std::string(terms[k]->name)));
     out += fmt::format("          {} = {:.6g}{}\n", terms[k]->parameter->name, result.parameters[k], extra);
   }
-  if (!result.engine.interval_method.empty()) out += fmt::format("  intervals: {}\n", result.engine.interval_method);
+  if (result.engine.interval_method.kind != fit::IntervalKind::none)
+    out += fmt::format("  intervals: {}\n", fit::interval_method_text(result.engine.interval_method,
+                                                                      result.noise ? &result.noise->model : nullptr));
   out += fmt::format("record: {}\n", fit::describe_support(result.support));
   for (std::size_t k = 0; k < terms.size() && k < result.support.flags.size(); ++k)
     if (!result.support.flags[k].empty())
