@@ -40,6 +40,7 @@
 #include "fit/model/noise_whitening.h"
 #include "sim/config_loader.h"
 #include "sim/simulator.h"
+#include "sim/util/gauss_markov.h"
 #include "sim/util/random.h"
 #include "studies/diagnose/diagnosis.h"
 
@@ -67,14 +68,7 @@ std::vector<Cell> cells(const fit::WindowGrid& g) {
     const double span = g.time_s.back() - g.time_s.front() + g.window_s;
     const int n = static_cast<int>(std::ceil(2.0 * std::log10(span / g.window_s))) + 1;
     for (int i = 0; i < n; ++i) c.noise.flicker_tau_s.push_back(g.window_s * std::pow(span / g.window_s, i / (n - 1.0)));
-    double peak = 0.0;
-    for (int k = 0; k <= 200; ++k) {
-      const double tau = g.window_s * std::pow(span / g.window_s, k / 200.0);
-      double v = 0.0;
-      for (double t : c.noise.flicker_tau_s) v += fit::gauss_markov_allan_variance(tau / t);
-      peak = std::max(peak, v);
-    }
-    c.noise.amplitude[fit::kFlicker] = std::pow(0.0005, 2) / peak;
+    c.noise.amplitude[fit::kFlicker] = std::pow(0.0005, 2) / bank_allan_peak(c.noise.flicker_tau_s, g.window_s, span, 200);
     out.push_back(c);
   }
   for (const double tau : {1000.0, 3600.0}) {

@@ -1,5 +1,7 @@
 #include "sim/noise.h"
 
+#include "sim/util/gauss_markov.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -27,37 +29,11 @@ double unit_normal(Rng& rng) {
   return normal(rng);
 }
 
-// (2x − 3 + 4e^{−x} − e^{−2x}) / x², the Allan variance of a unit-variance
-// Gauss–Markov process at x = τ/T.
-double gauss_markov_shape(double x) {
-  if (x < 2.0) {
-    // The closed form loses digits to cancellation for small x (it behaves like
-    // 2x/3), so sum its Taylor series instead:
-    //   2x − 3 + 4e^{−x} − e^{−2x} = Σ_{n≥3} (−1)^n (4 − 2^n) xⁿ / n!.
-    // For x < 2 the terms fall below 1e-17 of the sum well before n = 40.
-    double sum = 0.0;
-    double x_pow_over_fact = x * x * x / 6.0;  // xⁿ/n! at n = 3
-    double two_pow = 8.0;
-    double sign = -1.0;
-    for (int n = 3; n < 60; ++n) {
-      const double term = sign * (4.0 - two_pow) * x_pow_over_fact;
-      sum += term;
-      if (std::abs(term) < 1e-18 * std::abs(sum)) break;
-      x_pow_over_fact *= x / (n + 1);
-      two_pow *= 2.0;
-      sign = -sign;
-    }
-    return sum / (x * x);
-  }
-  const double e1 = std::exp(-x);
-  return (2.0 * x - 3.0 + 4.0 * e1 - e1 * e1) / (x * x);
-}
-
 }  // namespace
 
 double gauss_markov_allan_variance(double variance, double correlation_time_s, double tau_s) {
   assert(variance >= 0.0 && correlation_time_s > 0.0 && tau_s > 0.0);
-  return variance * gauss_markov_shape(tau_s / correlation_time_s);
+  return variance * gauss_markov_allan_shape(tau_s / correlation_time_s);
 }
 
 GyroNoise::GyroNoise(const NoiseConfig& config, double sample_interval_s, std::uint64_t seed)
@@ -95,15 +71,7 @@ GyroNoise::GyroNoise(const NoiseConfig& config, double sample_interval_s, std::u
     const double tau_hi_s = std::max(kPeakGridReach * config_.flicker_tau_max_s, tau_lo_s);
     const auto steps =
         static_cast<int>(std::ceil(kPeakGridPerDecade * std::log10(tau_hi_s / tau_lo_s)));
-    double peak_avar = 0.0;
-    for (int j = 0; j <= steps; ++j) {
-      const double tau_s =
-          steps == 0 ? tau_lo_s
-                     : tau_lo_s * std::pow(tau_hi_s / tau_lo_s, static_cast<double>(j) / steps);
-      double avar = 0.0;
-      for (double t : flicker_tau_s_) avar += gauss_markov_allan_variance(1.0, t, tau_s);
-      peak_avar = std::max(peak_avar, avar);
-    }
+    const double peak_avar = bank_allan_peak(flicker_tau_s_, tau_lo_s, tau_hi_s, steps);
     assert(peak_avar > 0.0);
     // 3. Scale the common variance so that the peak deviation is the bias instability.
     const double bi = config_.bias_instability_dph;

@@ -8,6 +8,8 @@
 
 #include "fit/model/noise_model.h"
 
+#include "sim/util/gauss_markov.h"
+
 namespace gyrotherm::fit {
 
 ExpWindow exp_window(double tau, double delta) {
@@ -207,9 +209,7 @@ Eigen::VectorXd NoiseModel::draw(const WindowGrid& g, const std::function<double
   return y;
 }
 
-double gauss_markov_allan_variance(double x) {
-  return x < 1e-4 ? 2.0 * x / 3.0 : (2.0 * x - 3.0 + 4.0 * std::exp(-x) - std::exp(-2.0 * x)) / (x * x);
-}
+double gauss_markov_allan_variance(double x) { return gauss_markov_allan_shape(x); }
 
 double NoiseModel::allan_variance(double tau_s) const {
   double avar = amplitude[kWhite] / tau_s + amplitude[kRandomWalk] * tau_s / 3.0;

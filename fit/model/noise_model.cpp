@@ -1,5 +1,7 @@
 #include "fit/model/noise_model.h"
 
+#include "sim/util/gauss_markov.h"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -39,14 +41,7 @@ std::vector<double> flicker_bank(const WindowGrid& g) {
 
 // The Allan deviation floor of the bank per unit s: max over τ of √Σ g(τ/τ_i).
 double bank_floor(const std::vector<double>& taus, double from_s, double to_s) {
-  double best = 0.0;
-  for (int k = 0; k <= 200; ++k) {
-    const double tau = from_s * std::pow(to_s / from_s, k / 200.0);
-    double avar = 0.0;
-    for (double t : taus) avar += gauss_markov_allan_variance(tau / t);
-    best = std::max(best, avar);
-  }
-  return std::sqrt(best);
+  return std::sqrt(bank_allan_peak(taus, from_s, to_s, 200));
 }
 
 // Block means of consecutive windows: [begin, end) of each block.
