@@ -38,7 +38,7 @@ cd build-asan
 # temperature), of the cycle's step cases only 19800_up, of the end-to-end
 # polynomial terms none beyond T^3; and the three slowest diagnose cases
 # (40-65 s each here), whose paths the other diagnose cases run.
-studies='IntervalsCover|NineOfTen|EightOfTen|UnbiasedAndCovered|UniformPValues|PValuesAreUniform|RarelyShowAStep|RecoveryOverSeeds|PlanIsShorterThanEveryRecipe|ThePlanMeetsItsTarget|PredictionMatchesTheSpread|NotPassedOffAsDrift/random'
+studies='IntervalsCover|NineOfTen|EightOfTen|UnbiasedAndCovered|UniformPValues|PValuesAreUniform|DrawnIntoTheNull|RarelyShowAStep|RecoveryOverSeeds|PlanIsShorterThanEveryRecipe|ThePlanMeetsItsTarget|PredictionMatchesTheSpread|NotPassedOffAsDrift/random'
 studies+='|ReachesTheFloor/t|ReachesTheFloor/warmup|ReachesTheFloor/hyst|ReachesTheFloor/T_3|ReachesTheFloor/T_dT|ReachesTheFloor/d2T'
 studies+='|NotPassedOffAsDrift/cycle_7200_up|NotPassedOffAsDrift/cycle_25200_down|TemperatureFourth.WorksEndToEnd|TemperatureFifth.WorksEndToEnd'
 studies+='|CExport.EveryTermAtOnce|NamedFirstOrGroupedNeverTheLagAlone|AnotherGyroAxisIsNoCauseUnlessNamed|DriftOnAMonotoneWarmUpCannotBeToldFromTemperature'
