@@ -17,6 +17,7 @@
 
 #include "cli_runner.h"
 #include "expect_input_error.h"
+#include "sim/util/gauss_markov.h"
 #include "fit/fit_file.h"
 #include "sim/config_loader.h"
 #include "sim/noise.h"
@@ -218,7 +219,7 @@ TEST(PlanNoise, AllanJsonTakesTheCompensatedSeries) {
   EXPECT_EQ(noise.model.gm_tau_s, 3000.0);
   EXPECT_FALSE(noise.model.present[kFlicker]);
   EXPECT_NEAR(noise.model.allan_variance(5000.0),
-              std::pow(60.0 * 3e-4, 2) / 5000.0 + 4e-6 * fit::gauss_markov_allan_variance(5000.0 / 3000.0), 1e-18);
+              std::pow(60.0 * 3e-4, 2) / 5000.0 + 4e-6 * gauss_markov_allan_shape(5000.0 / 3000.0), 1e-18);
   EXPECT_EQ(noise.description(),
             "white N = 3.0e-04 °/√h, no flicker, Gauss–Markov σ = 2.0e-03 °/h, τ = 3000 s, no random walk");
   // Without a compensated series: raw.

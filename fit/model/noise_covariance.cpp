@@ -98,31 +98,27 @@ std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGr
   for (const NoiseModel& a : model.alternatives) out.push_back(a);
   const double span = grid.time_s.empty() ? grid.window_s : grid.time_s.back() - grid.time_s.front() + grid.window_s;
   constexpr double z = 1.959963984540054;
+  // The model with component k at `amplitude` (a Gauss–Markov process at τ_c = tau_s).
+  const auto raise = [&](int k, double amplitude, double tau_s) {
+    NoiseModel raised = model;
+    raised.alternatives.clear();
+    raised.amplitude[static_cast<std::size_t>(k)] = amplitude;
+    raised.present[static_cast<std::size_t>(k)] = true;
+    if (k == kGaussMarkov) raised.gm_tau_s = tau_s;
+    out.push_back(std::move(raised));
+  };
   for (const int k : {kFlicker, kGaussMarkov, kRandomWalk}) {
     const auto kk = static_cast<std::size_t>(k);
     if (k == kGaussMarkov && !model.present[kGaussMarkov] && !model.gm_bounds.empty()) {
-      for (const auto& [tau, bound] : model.gm_bounds) {
-        NoiseModel raised = model;
-        raised.alternatives.clear();
-        raised.amplitude[kGaussMarkov] = bound;
-        raised.present[kGaussMarkov] = true;
-        raised.gm_tau_s = tau;
-        out.push_back(raised);
-      }
+      for (const auto& [tau, bound] : model.gm_bounds) raise(k, bound, tau);
       continue;
     }
     const int p = k == kRandomWalk ? 4 : k;
     const double value = model.amplitude[kk];
     const double upper = model.identified[kk] ? value * std::exp(z * std::sqrt(std::max(0.0, model.covariance(p, p))) / value)
                                               : std::max(model.upper_bound[kk], value);
-    if (!(upper > value)) continue;
-    NoiseModel raised = model;
-    raised.alternatives.clear();
-    raised.amplitude[kk] = upper;
-    raised.present[kk] = true;
-    if (k == kGaussMarkov && !(raised.gm_tau_s > 0.0)) raised.gm_tau_s = std::sqrt(grid.window_s * span);
-    if (k == kFlicker && raised.flicker_tau_s.empty()) continue;
-    out.push_back(raised);
+    if (!(upper > value) || (k == kFlicker && model.flicker_tau_s.empty())) continue;
+    raise(k, upper, model.gm_tau_s > 0.0 ? model.gm_tau_s : std::sqrt(grid.window_s * span));
   }
   return out;
 }
@@ -209,12 +205,10 @@ Eigen::VectorXd NoiseModel::draw(const WindowGrid& g, const std::function<double
   return y;
 }
 
-double gauss_markov_allan_variance(double x) { return gauss_markov_allan_shape(x); }
-
 double NoiseModel::allan_variance(double tau_s) const {
   double avar = amplitude[kWhite] / tau_s + amplitude[kRandomWalk] * tau_s / 3.0;
-  for (const double t : flicker_tau_s) avar += amplitude[kFlicker] * gauss_markov_allan_variance(tau_s / t);
-  if (gm_tau_s > 0.0) avar += amplitude[kGaussMarkov] * gauss_markov_allan_variance(tau_s / gm_tau_s);
+  for (const double t : flicker_tau_s) avar += amplitude[kFlicker] * gauss_markov_allan_shape(tau_s / t);
+  if (gm_tau_s > 0.0) avar += amplitude[kGaussMarkov] * gauss_markov_allan_shape(tau_s / gm_tau_s);
   return avar;
 }
 

@@ -11,7 +11,8 @@
 //   flicker (bias instability): M Gauss–Markov processes of equal variance s²,
 //       correlation times log-spaced two per decade from Δ to the record's
 //       span (a 1/f spectrum between them, Barnes 1966); its Allan floor
-//       B = s·max_τ √(Σ_i g(τ/τ_i)), g(x) = (2x − 3 + 4e^{−x} − e^{−2x})/x².
+//       B = s·max_τ √(Σ_i g(τ/τ_i)), g(x) = (2x − 3 + 4e^{−x} − e^{−2x})/x²
+//       (sim/util/gauss_markov.h, shared with the simulator).
 //   Gauss–Markov: variance σ², correlation time τ_c (free, Δ..span).
 //   rate random walk: K (°/h/√h), q_r = K²/3600 (°/h)²/s.
 //
@@ -125,9 +126,6 @@ struct ExpWindow {
 };
 ExpWindow exp_window(double tau, double delta);
 
-// The Allan variance of a unit-variance Gauss–Markov process at τ = x·τ_c:
-// g(x) = (2x − 3 + 4e^{−x} − e^{−2x})/x² (2x/3 as x → 0).
-double gauss_markov_allan_variance(double x);
 
 // Identifies the noise of y − design·b (intercept included) by REML. Throws
 // InputError when there are too few windows to say anything (fewer than

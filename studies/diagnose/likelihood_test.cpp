@@ -135,14 +135,10 @@ void LikelihoodTest::calibrate(int draws, std::uint64_t seed, const Eigen::Vecto
   boost::random::normal_distribution<double> normal;
   Eigen::MatrixXd e(l, draws);
   // Each draw through the autoregression from rest, after a burn-in long
-  // enough for it to forget the start.
+  // enough for it to forget the start (none without one: plain normals).
   const Eigen::Index order = ar.size(), burn = 20 * order;
   std::vector<double> x(static_cast<std::size_t>(burn + l));
   for (Eigen::Index b = 0; b < draws; ++b) {
-    if (order == 0) {
-      for (Eigen::Index i = 0; i < l; ++i) e(i, b) = normal(rng);
-      continue;
-    }
     for (Eigen::Index t = 0; t < burn + l; ++t) {
       double v = normal(rng);
       for (Eigen::Index j = 1; j <= std::min(order, t); ++j) v += ar[j - 1] * x[static_cast<std::size_t>(t - j)];

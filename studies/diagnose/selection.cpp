@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 #include <limits>
 #include <optional>
-#include <cstdlib>
 
 #include "fit/engines/ols.h"
 #include "fit/model/formula.h"
