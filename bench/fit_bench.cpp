@@ -6,6 +6,7 @@
 //    target σ = optimum·(1 + 1e-6) and a budget of 200 000 evaluations.
 //    Counters: median evaluations to the target, how many of the 10 reached
 //    it; the time is for the 10 fits.
+//  BM_CausalCompensate: the real-time compensator on 6, 24 and 72 h (below).
 //  BM_FitIntervals: fit_model (ols, the paper's model) on the 72 h random
 //    profile (scenarios/random.toml, 2593 windows), prepared once, with the
 //    identified noise model's intervals; BM_IdentifyNoise: the REML
@@ -21,6 +22,7 @@
 #include <string>
 
 #include "fit/model/formula.h"
+#include "fit/causal_compensator.h"
 #include "fit/engines/ols.h"
 #include "fit/pipeline.h"
 #include "sim/config_loader.h"
@@ -109,6 +111,35 @@ void BM_IdentifyNoise(benchmark::State& state) {
                                    {"T", "T^2", "dT"});
   for (auto _ : state) benchmark::DoNotOptimize(fit::identify_record_noise(data, problem));
 }
+
+// `compensate --causal` sample by sample on the first N hours of the 72 h
+// random profile (1 Hz) with T + T^2 + dT + lag: each closed window reads the
+// latest three and carries the lag, so the rate (samples/s) does not fall
+// with the length (it did, O(n²), while every window re-derived the history).
+void BM_CausalCompensate(benchmark::State& state) {
+  static const sim::SimulationResult r = [] {
+    const sim::Scenario sc = sim::load_scenario(std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/random.toml");
+    return sim::Simulator(sc, sim::load_rig(sc.rig_file), sim::load_gyro(sc.gyro_file)).run();
+  }();
+  const std::size_t n = std::min(r.time_s.size(), static_cast<std::size_t>(state.range(0)) * 3600);
+  fit::SavedFit fit;
+  fit.terms = fit::parse_formula("T + T^2 + dT + lag");
+  fit.parameters = fit::default_parameters(fit.terms);
+  fit.coefficients = {-7.0, {-3e-4, 1e-6, 1.8, 2e-4}};
+  fit.pipeline.derivative = fit::DerivativeMode::causal;
+  fit::CausalSettings settings;
+  settings.sample_interval_s = 1.0;
+  for (auto _ : state) {
+    fit::CausalCompensator compensator(fit, settings);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
+      sum += compensator.update(r.time_s[k], r.temp_c[k], 0.0, r.gyro_dph[k], {}, nullptr);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["samples/s"] =
+      benchmark::Counter(static_cast<double>(n), benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_CausalCompensate)->Arg(6)->Arg(24)->Arg(72)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_FitIntervals, model, std::string("model"))->Unit(benchmark::kMillisecond);
 // The parametric bootstrap, 1000 draws per structure (aim: ≤ 1 s on 72 h).

@@ -2,12 +2,48 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "fit/data/derivatives.h"
 #include "fit/model/terms.h"
 #include "fit/pipeline.h"
 
 namespace gyrotherm::fit {
+namespace {
+
+// The windows a closed window's row reads: itself and the two before it
+// (fit/data/derivatives.cpp's backward differences; the class comment).
+constexpr std::size_t kReach = 3;
+
+// Windows [from, to) of a series, every per-window column with them.
+AveragedSeries windows(const AveragedSeries& s, std::size_t from, std::size_t to) {
+  AveragedSeries out;
+  out.window_s = s.window_s;
+  out.start_time_s = s.start_time_s;
+  const auto cut = [from, to](const auto& v) {
+    std::decay_t<decltype(v)> part;
+    if (!v.empty()) part.assign(v.begin() + static_cast<std::ptrdiff_t>(from), v.begin() + static_cast<std::ptrdiff_t>(to));
+    return part;
+  };
+  out.time_s = cut(s.time_s);
+  out.temp_c = cut(s.temp_c);
+  out.gyro_dph = cut(s.gyro_dph);
+  out.temp2_c = cut(s.temp2_c);
+  out.samples = cut(s.samples);
+  out.gyro_sd_dph = cut(s.gyro_sd_dph);
+  out.gyro_lag1 = cut(s.gyro_lag1);
+  out.temp_rate_c_per_s = cut(s.temp_rate_c_per_s);
+  out.temp2_rate_c_per_s = cut(s.temp2_rate_c_per_s);
+  out.temp_rate_se = cut(s.temp_rate_se);
+  out.temp2_rate_se = cut(s.temp2_rate_se);
+  out.run = cut(s.run);
+  for (const auto& [name, values] : s.extra) out.extra[name] = cut(values);
+  for (const auto& [name, values] : s.extra_rate) out.extra_rate[name] = cut(values);
+  for (const auto& [name, values] : s.extra_rate_se) out.extra_rate_se[name] = cut(values);
+  return out;
+}
+
+}  // namespace
 
 CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& settings,
                                      std::vector<std::string> extra_names)
@@ -15,13 +51,28 @@ CausalCompensator::CausalCompensator(const SavedFit& fit, const CausalSettings& 
       settings_(settings),
       extra_names_(extra_names),
       averager_(fit.pipeline.averaging, settings.sample_interval_s, true, settings.bursts, std::move(extra_names)),
-      glitches_(HampelRule{fit.pipeline.outliers.threshold, settings.outlier_floor_dph}, fit.pipeline.outliers.window_s) {}
+      glitches_(HampelRule{fit.pipeline.outliers.threshold, settings.outlier_floor_dph}, fit.pipeline.outliers.window_s),
+      state_(fit.terms.size(), 0.0) {}
 
-double CausalCompensator::bias_of(const AveragedSeries& windows) const {
+double CausalCompensator::bias_of(const AveragedSeries& windows, bool carry) {
   const DerivedSeries derived = derive(windows, DerivativeMode::causal, fit_.pipeline.derivative_span_s, fit_.pipeline.sensor_tau_s);
-  const Eigen::MatrixXd x = settings_.hold_c ? design_matrix_held(derived, fit_.terms, fit_.parameters,
-                                                                  settings_.hold_c->first, settings_.hold_c->second)
-                                             : design_matrix(derived, fit_.terms, fit_.parameters);
+  Eigen::MatrixXd x = settings_.hold_c ? design_matrix_held(derived, fit_.terms, fit_.parameters,
+                                                            settings_.hold_c->first, settings_.hold_c->second)
+                                       : design_matrix(derived, fit_.terms, fit_.parameters);
+  const Eigen::Index last = x.rows() - 1;
+  for (std::size_t j = 0; j < fit_.terms.size(); ++j) {
+    const Term& term = *fit_.terms[j];
+    if (!term.next) continue;
+    const auto col = static_cast<Eigen::Index>(j);
+    if (carry && last > 0) {
+      // Held as design_matrix_held holds it: the temperatures within the range.
+      DerivedSeries held = derived;
+      if (settings_.hold_c && reads_temperature_level(&term))
+        for (double& t : held.temp_c) t = std::clamp(t, settings_.hold_c->first, settings_.hold_c->second);
+      x(last, col) = term.next(held, static_cast<std::size_t>(last), fit_.parameters[j], state_[j]);
+    }
+    if (carry) state_[j] = x(last, col);
+  }
   return model_values(x, fit_.coefficients).back();
 }
 
@@ -36,22 +87,9 @@ double CausalCompensator::update(double t, double temp, double temp2, double gyr
   averager_.add(t, temp, gyro, temp2, !rejected, extra);
   const AveragedSeries& closed = averager_.closed();
   while (window_bias_.size() < closed.size()) {
-    // The windows up to the next one not yet given a bias.
-    AveragedSeries prefix = closed;
-    const std::size_t keep = window_bias_.size() + 1;
-    prefix.time_s.resize(keep);
-    prefix.temp_c.resize(keep);
-    prefix.gyro_dph.resize(keep);
-    if (!prefix.temp2_c.empty()) prefix.temp2_c.resize(keep);
-    prefix.samples.resize(keep);
-    prefix.run.resize(keep);
-    for (auto& [name, values] : prefix.extra) values.resize(keep);
-    // Edge rates are not read in causal mode (fit/data/derivatives.h); kept the windows' length.
-    for (auto* v : {&prefix.temp_rate_c_per_s, &prefix.temp2_rate_c_per_s, &prefix.temp_rate_se, &prefix.temp2_rate_se})
-      if (!v->empty()) v->resize(keep);
-    for (auto* m : {&prefix.extra_rate, &prefix.extra_rate_se})
-      for (auto& [name, values] : *m) values.resize(keep);
-    window_bias_.push_back(bias_of(prefix));
+    // The next window not yet given a bias, and the two before it.
+    const std::size_t upto = window_bias_.size() + 1;
+    window_bias_.push_back(bias_of(windows(closed, upto - std::min(upto, kReach), upto), true));
   }
   if (!window_bias_.empty()) return window_bias_.back();
   // Before any window closes: this sample as a window of its own.
@@ -64,7 +102,7 @@ double CausalCompensator::update(double t, double temp, double temp2, double gyr
   own.samples = {1};
   own.run = {0};
   for (std::size_t i = 0; i < extra_names_.size() && i < extra.size(); ++i) own.extra[extra_names_[i]] = {extra[i]};
-  return bias_of(own);
+  return bias_of(own, false);
 }
 
 }  // namespace gyrotherm::fit

@@ -12,7 +12,12 @@
 //      interval Δ and burst mode, fed one sample at a time; a window closes
 //      when a sample beyond it, or after a gap, arrives.
 //   3. When a window closes: its backward derivatives and every term of the
-//      model over the windows so far, the model's bias B at that window.
+//      model, the model's bias B at that window. A closed window's row reads
+//      that window and the two before it (a backward rate the one before, the
+//      second derivative and a rate under a sensor time constant the two
+//      before), and a term with memory (lag) its own value at the window
+//      before, carried (Effect::next): the same numbers as the terms over the
+//      whole history, in constant time per window.
 //   4. The sample's bias is B of the latest closed window; before the first
 //      one closes, B of the sample itself taken as a window (its temperature,
 //      rates 0).
@@ -58,7 +63,10 @@ class CausalCompensator {
   const std::vector<double>& window_bias_dph() const { return window_bias_; }
 
  private:
-  double bias_of(const AveragedSeries& windows) const;
+  // B at the last of `windows` (the latest closed ones, or a sample as a
+  // window of its own); `carry`: the terms with memory continue from state_,
+  // which then holds their values at this window.
+  double bias_of(const AveragedSeries& windows, bool carry);
 
   const SavedFit& fit_;
   CausalSettings settings_;
@@ -66,6 +74,7 @@ class CausalCompensator {
   WindowAverager averager_;
   TrailingHampel glitches_;  // the glitch rule's trailing window
   std::vector<double> window_bias_;
+  std::vector<double> state_;  // each term with memory: its regressor at the latest closed window
   bool started_ = false;
   double start_time_s_ = 0.0;
 };

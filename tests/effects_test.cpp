@@ -99,6 +99,14 @@ TEST(Effects, EveryEffectKeepsTheContract) {
                             e->c_form.initial.find("{theta}") != std::string_view::npos;
     EXPECT_EQ(uses_theta, e->parameter.has_value()) << e->c_form.expression;
     EXPECT_EQ(e->c_form.stateful(), e->family == Family::temperature_state);
+    // A filter has its recursion, and the regressor is that recursion point
+    // by point (the real-time compensator carries it from window to window).
+    EXPECT_EQ(e->next != nullptr, e->c_form.stateful());
+    if (e->next) {
+      const double theta = e->parameter ? e->parameter->simulator_default : 0.0;
+      const std::vector<double> r = regressor_values(*e, s, theta);
+      for (std::size_t k = 1; k < s.size(); ++k) EXPECT_EQ(e->next(s, k, theta, r[k - 1]), r[k]) << k;
+    }
     // A rate vanishes in a soak; an effect of another family does not, or not
     // everywhere (diagnosis reads "a rate" as zero where the temperature holds).
     EffectSeries soak = s;

@@ -126,6 +126,13 @@ struct Effect {
   // r(t) at every point of the series; `parameter` is θ (ignored without
   // one). Call it through compute().
   Regressor regressor = nullptr;
+  // For an effect with memory (c_form.stateful()): r at point k ≥ 1 from
+  // `previous`, r at k − 1, and the series at k − 1 and k; the regressor is
+  // this recursion from its first point. The real-time compensator carries r
+  // from window to window with it (fit/causal_compensator.h), as the C export
+  // carries `prev`. nullptr for an effect without memory.
+  using Recursion = double (*)(const EffectSeries& series, std::size_t k, double parameter, double previous);
+  Recursion next = nullptr;
 
   void compute(const EffectSeries& series, double theta, std::span<double> out) const {
     regressor(*this, series, theta, out);

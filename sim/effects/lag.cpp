@@ -20,15 +20,17 @@
 namespace gyrotherm::effects {
 namespace {
 
+double next(const EffectSeries& s, std::size_t k, double tau_s, double previous) {
+  const double h = s.time_s[k] - s.time_s[k - 1];
+  const double slope = (s.temp_c[k] - s.temp_c[k - 1]) / h;
+  const double e = std::exp(-h / tau_s);
+  return s.temp_c[k] - tau_s * slope + e * (previous - s.temp_c[k - 1] + tau_s * slope);
+}
+
 void regressor(const Effect&, const EffectSeries& s, double tau_s, std::span<double> out) {
   if (out.empty()) return;
   out[0] = s.temp_c[0];
-  for (std::size_t k = 1; k < out.size(); ++k) {
-    const double h = s.time_s[k] - s.time_s[k - 1];
-    const double slope = (s.temp_c[k] - s.temp_c[k - 1]) / h;
-    const double e = std::exp(-h / tau_s);
-    out[k] = s.temp_c[k] - tau_s * slope + e * (out[k - 1] - s.temp_c[k - 1] + tau_s * slope);
-  }
+  for (std::size_t k = 1; k < out.size(); ++k) out[k] = next(s, k, tau_s, out[k - 1]);
 }
 
 }  // namespace
@@ -48,6 +50,7 @@ extern constinit const Effect lag{
     .c_form = {.expression = "T - {theta} * slope + exp(-h / {theta}) * (prev - prev_T + {theta} * slope)",
                .initial = "T"},
     .regressor = &regressor,
+    .next = &next,
 };
 
 }  // namespace gyrotherm::effects
