@@ -14,7 +14,12 @@ if [ "${1:-}" = "--all" ]; then
 fi
 targets=()
 for t in "$@"; do targets+=(--target "$t"); done
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${parts[@]}" > build.log 2>&1 || { cat build.log; exit 1; }
+# Ninja compiles a library's files while the libraries it links are still
+# being built (make waits for each); a build folder keeps the generator it
+# was made with.
+generator=()
+if [ ! -f build/CMakeCache.txt ] && command -v ninja > /dev/null; then generator=(-G Ninja); fi
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${parts[@]}" > build.log 2>&1 || { cat build.log; exit 1; }
 cmake --build build -j "$(nproc)" "${targets[@]}" 2>&1 | tee -a build.log | grep -E "error|warning|Error" || true
 test "${PIPESTATUS[0]}" -eq 0
 rm -f build.log

@@ -17,7 +17,9 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fr
 # (GYROTHERM_UNINSTRUMENTED_TESTS, tests/CMakeLists.txt): the libraries and
 # the program, which they drive, carry it; it more than doubled the test
 # files' compile time.
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGYROTHERM_BUILD_TESTS=ON -DGYROTHERM_BUILD_BENCH=OFF -DGYROTHERM_WITH_MPI=OFF -DGYROTHERM_PYTHON=OFF \
+generator=()  # Ninja when there is one (scripts/build.sh)
+if [ ! -f build-asan/CMakeCache.txt ] && command -v ninja > /dev/null; then generator=(-G Ninja); fi
+cmake -S . -B build-asan "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGYROTHERM_BUILD_TESTS=ON -DGYROTHERM_BUILD_BENCH=OFF -DGYROTHERM_WITH_MPI=OFF -DGYROTHERM_PYTHON=OFF \
   -DGYROTHERM_UNINSTRUMENTED_TESTS=ON \
   -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \

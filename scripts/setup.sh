@@ -10,7 +10,7 @@
 set -euo pipefail
 
 packages=(
-  g++ cmake make                     # compiler and build
+  g++ cmake make ninja-build         # compiler and build (Ninja keeps both cores busy)
   gcc                                # C: SUNDIALS' CMake config looks for OpenMP_C
   libeigen3-dev                      # linear algebra
   libsundials-dev                    # CVODE (pulls in OpenMPI and PETSc)

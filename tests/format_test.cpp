@@ -25,5 +25,19 @@ TEST(Format, ARangeShowsEnoughDecimalsToTellItsEndsApart) {
   EXPECT_EQ(decimals_to_tell_apart(1.0, 1.0 + 1e-12, 0), 6);  // at most 6
 }
 
+// A word a POSIX shell reads back as it was: plain words bare, anything
+// with a character the shell would act on in single quotes, a quote inside
+// them closed, escaped and reopened.
+TEST(Format, AShellWordIsQuotedOnlyWhenTheShellWouldChangeIt) {
+  EXPECT_EQ(shell_word("t=0.05,lag=0.3"), "t=0.05,lag=0.3");
+  EXPECT_EQ(shell_word("step@3600"), "step@3600");
+  EXPECT_EQ(shell_word("logs/run_1.csv"), "logs/run_1.csv");
+  EXPECT_EQ(shell_word("T^3"), "'T^3'");
+  EXPECT_EQ(shell_word("T*dT"), "'T*dT'");
+  EXPECT_EQ(shell_word("my log.csv"), "'my log.csv'");
+  EXPECT_EQ(shell_word("it's"), "'it'\\''s'");
+  EXPECT_EQ(shell_word(""), "''");
+}
+
 }  // namespace
 }  // namespace gyrotherm

@@ -28,10 +28,10 @@ using binary::Kind;
 using binary::printable;
 
 constexpr std::uint8_t kSync1 = 0xA3, kSync2 = 0x95;
-constexpr std::size_t kHeaderBytes = 3;  // A3 95 type
+constexpr std::size_t kDataflashHeaderBytes = 3;  // A3 95 type
 constexpr std::uint8_t kFmtType = 128;
 // FMT: type (B), length (B), name (n, char[4]), format (N, char[16]), labels (Z, char[64]).
-constexpr std::size_t kFmtBytes = kHeaderBytes + 1 + 1 + 4 + 16 + 64;
+constexpr std::size_t kFmtBytes = kDataflashHeaderBytes + 1 + 1 + 4 + 16 + 64;
 
 // One format character: its size, and how it reads as a number (none for text).
 struct FormatChar {
@@ -133,7 +133,7 @@ LogContents DataFlashReader::read() {
   contents_.format = "DataFlash";
   for (;;) {
     const std::uint64_t at = in_.offset();
-    const std::size_t head = in_.want(kHeaderBytes);
+    const std::size_t head = in_.want(kDataflashHeaderBytes);
     if (head == 0) break;
     const std::uint8_t* p = in_.data();
     const bool sync = p[0] == kSync1 && (head < 2 || p[1] == kSync2);
@@ -144,7 +144,7 @@ LogContents DataFlashReader::read() {
                                "log, or a message longer than its FMT says)",
                                found));
     }
-    if (head < kHeaderBytes) {
+    if (head < kDataflashHeaderBytes) {
       truncate_at(at);
       break;
     }
@@ -158,7 +158,7 @@ LogContents DataFlashReader::read() {
       truncate_at(at);
       break;
     }
-    const std::uint8_t* payload = in_.data() + kHeaderBytes;
+    const std::uint8_t* payload = in_.data() + kDataflashHeaderBytes;
     if (type == kFmtType)
       on_fmt(at, payload);
     else if (known.imu)
@@ -184,7 +184,7 @@ void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
   const std::string format = text_field(payload + 6, 16);
   const std::string labels = text_field(payload + 22, 64);
   const std::string what = fmt::format("FMT of type {} '{}' (format '{}')", type, printable(name), printable(format));
-  if (length < kHeaderBytes) in_.fail(at, fmt::format("{}: length {}, less than the 3-byte header", what, length));
+  if (length < kDataflashHeaderBytes) in_.fail(at, fmt::format("{}: length {}, less than the 3-byte header", what, length));
   if (type == kFmtType) {
     if (length != kFmtBytes || format != "BBnNZ")
       in_.fail(at, fmt::format("{}: length {}, expected FMT's own: {} bytes, format 'BBnNZ'", what, length, kFmtBytes));
@@ -192,7 +192,7 @@ void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
   }
   // The length must be the format's, when every character is known (a
   // character this reader does not know only matters in a message it reads).
-  std::size_t bytes = kHeaderBytes;
+  std::size_t bytes = kDataflashHeaderBytes;
   bool all_known = true;
   for (const char c : format) {
     const FormatChar* f = format_char(c);

@@ -28,8 +28,8 @@ using binary::hex_bytes;
 using binary::Kind;
 using binary::printable;
 
-constexpr std::size_t kHeaderBytes = 16;
-constexpr std::size_t kMessageHeaderBytes = 3;  // uint16 size, uint8 type
+constexpr std::size_t kFileHeaderBytes = 16;
+constexpr std::size_t kUlogMessageHeaderBytes = 3;  // uint16 size, uint8 type
 constexpr std::string_view kGyroTopic = "sensor_gyro";
 constexpr std::string_view kAccelTopic = "sensor_accel";
 // Deeper nesting than any PX4 message (about 3 levels) means a broken file,
@@ -121,17 +121,17 @@ LogContents ULogReader::read() {
     // cut message is dropped and reading goes on where the appended data starts.
     while (!appended_offsets_.empty() && appended_offsets_.front() <= at)
       appended_offsets_.erase(appended_offsets_.begin());
-    const std::size_t head = in_.want(kMessageHeaderBytes);
+    const std::size_t head = in_.want(kUlogMessageHeaderBytes);
     if (head == 0) break;
     std::size_t size = 0;
-    if (head == kMessageHeaderBytes) size = binary::load_u16(in_.data());
-    const std::size_t whole = kMessageHeaderBytes + size;
+    if (head == kUlogMessageHeaderBytes) size = binary::load_u16(in_.data());
+    const std::size_t whole = kUlogMessageHeaderBytes + size;
     if (!appended_offsets_.empty() &&
-        at + (head < kMessageHeaderBytes ? kMessageHeaderBytes : whole) > appended_offsets_.front()) {
+        at + (head < kUlogMessageHeaderBytes ? kUlogMessageHeaderBytes : whole) > appended_offsets_.front()) {
       in_.seek_forward(appended_offsets_.front());
       continue;
     }
-    if (head < kMessageHeaderBytes || in_.want(whole) < whole) {
+    if (head < kUlogMessageHeaderBytes || in_.want(whole) < whole) {
       truncate_at(at);
       break;
     }
@@ -146,7 +146,7 @@ LogContents ULogReader::read() {
                                                              {'P', &ULogReader::on_parameter}};
     const char type = static_cast<char>(in_.data()[2]);
     for (const auto& [handled, handler] : kHandlers)
-      if (type == handled) (this->*handler)(at, in_.data() + kMessageHeaderBytes, size);
+      if (type == handled) (this->*handler)(at, in_.data() + kUlogMessageHeaderBytes, size);
     in_.advance(whole);
   }
   return finish();
@@ -154,17 +154,17 @@ LogContents ULogReader::read() {
 
 void ULogReader::read_header() {
   static constexpr std::uint8_t kMagic[] = {'U', 'L', 'o', 'g', 0x01, 0x12, 0x35};
-  const std::size_t got = in_.want(kHeaderBytes);
+  const std::size_t got = in_.want(kFileHeaderBytes);
   const std::size_t compared = std::min(got, sizeof kMagic);
   if (compared == 0 || !std::equal(kMagic, kMagic + compared, in_.data()))
     in_.fail(0, fmt::format("not a ULog file: expected the magic 'ULog' 01 12 35, found {}",
                             compared == 0 ? std::string("an empty file") : hex_bytes(in_.data(), compared)));
-  if (got < kHeaderBytes)
+  if (got < kFileHeaderBytes)
     in_.fail(0, fmt::format("the ULog header is cut short: the file holds {} bytes, the header needs {} "
                             "(magic, version, start time)",
-                            got, kHeaderBytes));
+                            got, kFileHeaderBytes));
   contents_.format = fmt::format("ULog v{}", in_.data()[7]);
-  in_.advance(kHeaderBytes);
+  in_.advance(kFileHeaderBytes);
 }
 
 void ULogReader::on_flag_bits(std::uint64_t at, const std::uint8_t* p, std::size_t size) {

@@ -14,14 +14,13 @@
 namespace gyrotherm::fit {
 namespace {
 
-constexpr char kName[] = "afsa";
-constexpr double kBoxWidth = 2.0;
+constexpr char kAfsa[] = "afsa";
 
 using Options = AfsaEngine::Options;
 
 // Every option, once: parsing, validate() and the listing read this table
 // (a function's static, so that it exists whenever the registry is built).
-const OptionTable<Options>& option_table() {
+const OptionTable<Options>& afsa_option_table() {
   static const OptionTable<Options> table = {
     {"fish", &Options::fish, whole(2, 100000), "N, the swarm size"},
     {"max_iterations", &Options::max_iterations, whole(1, 100000000), "iteration limit"},
@@ -42,13 +41,13 @@ FitResult run(const AfsaEngine::Options& o, const LinearProblem& problem,
               FitObserver* observer) {
   fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, streams::afsa,
                             fish_swarm::PreyMove::step_towards, o.try_number);
-  school.visual = o.visual * kBoxWidth;
-  school.step = o.step * kBoxWidth;
+  school.visual = o.visual * fish_swarm::kBoxWidth;
+  school.step = o.step * fish_swarm::kBoxWidth;
   const std::size_t n = static_cast<std::size_t>(o.fish);
   const std::size_t m = school.dimension();
   const auto finish = [&](long iterations, Termination fallback) {
     return school.evaluator().result(
-        kName, iterations, fallback,
+        kAfsa, iterations, fallback,
         fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
                     iterations, o.max_iterations, o.visual, o.step));
   };
@@ -108,8 +107,8 @@ FitResult run(const AfsaEngine::Options& o, const LinearProblem& problem,
 }  // namespace
 
 void AfsaEngine::Options::validate() const {
-  check_options(kName, option_table(), *this);
-  check_stopping_rules(kName, max_evaluations, target_objective);
+  check_options(kAfsa, afsa_option_table(), *this);
+  check_stopping_rules(kAfsa, max_evaluations, target_objective);
 }
 
 AfsaEngine::AfsaEngine(Options options) : options_(std::move(options)) { options_.validate(); }
@@ -120,8 +119,8 @@ FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) c
 
 EngineInfo afsa_engine_info() {
   return engine_info<AfsaEngine>(
-      kName, "artificial fish swarm (Li 2002): prey, swarm and follow within a fixed Visual and Step",
-      /*stochastic=*/true, Options{}.max_evaluations, &option_table);
+      kAfsa, "artificial fish swarm (Li 2002): prey, swarm and follow within a fixed Visual and Step",
+      /*stochastic=*/true, Options{}.max_evaluations, &afsa_option_table);
 }
 
 }  // namespace gyrotherm::fit

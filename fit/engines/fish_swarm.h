@@ -35,6 +35,10 @@
 
 namespace gyrotherm::fit::fish_swarm {
 
+// The box's width in its own coordinates ([−1, 1]^m): Visual and Step are
+// fractions of it.
+inline constexpr double kBoxWidth = 2.0;
+
 struct Fish {
   std::vector<double> x;
   double f = 0.0;

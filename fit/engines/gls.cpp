@@ -55,7 +55,7 @@ class GlsEngine : public Engine {
   GlsOptions options_;
 };
 
-const OptionTable<GlsOptions>& option_table() {
+const OptionTable<GlsOptions>& gls_option_table() {
   static const OptionTable<GlsOptions> table = {
       {"covariance", &GlsOptions::covariance, one_of({"widest", "model"}),
        "widest (each interval the widest under the noise models the record supports alike) or model (the "
@@ -64,7 +64,7 @@ const OptionTable<GlsOptions>& option_table() {
   return table;
 }
 
-void GlsOptions::validate() const { check_options("gls", option_table(), *this); }
+void GlsOptions::validate() const { check_options("gls", gls_option_table(), *this); }
 
 // The variance of each coefficient of A·y (A = (XᵀC⁻¹X)⁻¹XᵀC⁻¹ on [1, X]) under
 // each model, the widest kept.
@@ -135,7 +135,7 @@ EngineInfo gls_engine_info() {
   EngineInfo info = engine_info<GlsEngine>("gls",
                                 "generalised least squares under the record's identified noise: narrower honest "
                                 "intervals where the noise has memory",
-                                           /*stochastic=*/false, /*default_evaluations=*/1, &option_table);
+                                           /*stochastic=*/false, /*default_evaluations=*/1, &gls_option_table);
   info.minimises_sigma = false;  // not in score's and reproduce's default engines
   return info;
 }

@@ -14,15 +14,14 @@
 namespace gyrotherm::fit {
 namespace {
 
-constexpr char kName[] = "iafsa";
-constexpr double kBoxWidth = 2.0;
+constexpr char kIafsa[] = "iafsa";
 constexpr int kMaxIterations = 100000000;
 
 using Options = IafsaEngine::Options;
 
 // Every option, once: parsing, validate() and the listing read this table
 // (a function's static, so that it exists whenever the registry is built).
-const OptionTable<Options>& option_table() {
+const OptionTable<Options>& iafsa_option_table() {
   static const OptionTable<Options> table = {
       {"fish", &Options::fish, whole_or_auto(2, 100000),
        "N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms"},
@@ -70,16 +69,16 @@ FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
       o.max_iterations == IafsaEngine::kAuto ? IafsaEngine::auto_iterations(m) : o.max_iterations;
   const auto finish = [&](long iterations, Termination fallback) {
     return eval.result(
-        kName, iterations, fallback,
+        kIafsa, iterations, fallback,
         fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
-                    iterations, g_last, school.visual / kBoxWidth,
-                    school.step / kBoxWidth));
+                    iterations, g_last, school.visual / fish_swarm::kBoxWidth,
+                    school.step / fish_swarm::kBoxWidth));
   };
 
   // (2) Scatter the swarm over the box; (3) the evaluator's best point is the
   // bulletin board from the first evaluation on.
-  school.visual = o.visual * kBoxWidth;
-  school.step = o.step * kBoxWidth;
+  school.visual = o.visual * fish_swarm::kBoxWidth;
+  school.step = o.step * fish_swarm::kBoxWidth;
   if (!school.scatter(n)) return finish(0, Termination::max_iterations);
   std::vector<Fish>& swarm = school.fish();
 
@@ -89,11 +88,11 @@ FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
     // (4) Eq. (5).
     const double alpha = std::exp(-3.0 * static_cast<double>(g) / g_max);
     if (o.schedule == "compound") {
-      school.visual = school.visual * alpha + o.visual_min * kBoxWidth;
-      school.step = school.step * alpha + o.step_min * kBoxWidth;
+      school.visual = school.visual * alpha + o.visual_min * fish_swarm::kBoxWidth;
+      school.step = school.step * alpha + o.step_min * fish_swarm::kBoxWidth;
     } else {
-      school.visual = o.visual * kBoxWidth * alpha + o.visual_min * kBoxWidth;
-      school.step = o.step * kBoxWidth * alpha + o.step_min * kBoxWidth;
+      school.visual = o.visual * fish_swarm::kBoxWidth * alpha + o.visual_min * fish_swarm::kBoxWidth;
+      school.step = o.step * fish_swarm::kBoxWidth * alpha + o.step_min * fish_swarm::kBoxWidth;
     }
 
     // The centre of the whole swarm, evaluated once for every fish.
@@ -139,8 +138,8 @@ FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
 }  // namespace
 
 void IafsaEngine::Options::validate() const {
-  check_options(kName, option_table(), *this);
-  check_stopping_rules(kName, max_evaluations, target_objective);
+  check_options(kIafsa, iafsa_option_table(), *this);
+  check_stopping_rules(kIafsa, max_evaluations, target_objective);
 }
 
 int IafsaEngine::auto_fish(std::size_t terms) {
@@ -159,10 +158,10 @@ FitResult IafsaEngine::fit(const LinearProblem& problem, FitObserver* observer) 
 }
 
 EngineInfo iafsa_engine_info() {
-  return engine_info<IafsaEngine>(kName,
+  return engine_info<IafsaEngine>(kIafsa,
                                   "improved artificial fish swarm (Yu et al. 2014): shrinking Visual "
                                   "and Step, swarm to the swarm's centre, follow the bulletin board",
-                                  /*stochastic=*/true, Options{}.max_evaluations, &option_table);
+                                  /*stochastic=*/true, Options{}.max_evaluations, &iafsa_option_table);
 }
 
 }  // namespace gyrotherm::fit

@@ -195,7 +195,7 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
 namespace {
 
 // Every option, once: parsing, validate() and the listing read this table.
-const OptionTable<OlsOptions>& option_table() {
+const OptionTable<OlsOptions>& ols_option_table() {
   static const OptionTable<OlsOptions> table = {
       {"intervals", &OlsOptions::intervals, one_of({"auto", "model", "bootstrap", "nw", "ewc"}),
        "auto (bootstrap on a record of fewer than 200 windows or under random-walk-dominated "
@@ -211,14 +211,14 @@ const OptionTable<OlsOptions>& option_table() {
 
 }  // namespace
 
-void OlsOptions::validate() const { check_options("ols", option_table(), *this); }
+void OlsOptions::validate() const { check_options("ols", ols_option_table(), *this); }
 
 OlsEngine::OlsEngine(OlsOptions options) : options_(std::move(options)) { options_.validate(); }
 
 EngineInfo ols_engine_info() {
   return engine_info<OlsEngine>(
       "ols", "exact least squares (QR) with autocorrelation-robust 95 % intervals: the reference",
-      /*stochastic=*/false, /*default_evaluations=*/1, &option_table);
+      /*stochastic=*/false, /*default_evaluations=*/1, &ols_option_table);
 }
 
 }  // namespace gyrotherm::fit

@@ -144,7 +144,7 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
 namespace {
 
 // Every option, once: parsing, validate() and the listing read this table.
-const OptionTable<StepwiseOptions>& option_table() {
+const OptionTable<StepwiseOptions>& stepwise_option_table() {
   static const OptionTable<StepwiseOptions> table = {
       {"p_enter", &StepwiseOptions::p_enter, number_above(0.0, 1.0),
        "a term enters when its p-value is below this"},
@@ -157,7 +157,7 @@ const OptionTable<StepwiseOptions>& option_table() {
 }  // namespace
 
 void StepwiseOptions::validate() const {
-  check_options("stepwise", option_table(), *this);
+  check_options("stepwise", stepwise_option_table(), *this);
   if (p_remove < p_enter)
     throw InputError(fmt::format("stepwise options: p_remove={} must be >= p_enter={} (or a "
                                  "term could enter and leave forever)",
@@ -169,7 +169,7 @@ StepwiseEngine::StepwiseEngine(StepwiseOptions options) : options_(options) { op
 EngineInfo stepwise_engine_info() {
   return engine_info<StepwiseEngine>(
       "stepwise", "stepwise regression as MATLAB's stepwisefit (enter p<0.05, remove p>0.10)",
-      /*stochastic=*/false, /*default_evaluations=*/0, &option_table);
+      /*stochastic=*/false, /*default_evaluations=*/0, &stepwise_option_table);
 }
 
 }  // namespace gyrotherm::fit

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 
 #include <string>
@@ -37,6 +38,23 @@ inline int decimals_to_tell_apart(double a, double b, int at_least) {
 inline std::string range_text(double lo, double hi, int decimals, std::string_view separator = "..") {
   const int d = decimals_to_tell_apart(lo, hi, decimals);
   return fmt::format("{:.{}f}{}{:.{}f}", lo, d, separator, hi, d);
+}
+
+// In single quotes for a POSIX shell (a ' inside written '\''): nothing
+// inside is special to it.
+inline std::string single_quoted(std::string_view s) {
+  std::string out = "'";
+  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// A word for a shell: as it is when no character in it is special to one
+// ("t=0.05,lag=0.3", "step@3600"), else single-quoted ("T^3", "T*dT").
+inline std::string shell_word(std::string_view s) {
+  bool plain = !s.empty();
+  for (const char c : s)
+    plain = plain && (std::isalnum(static_cast<unsigned char>(c)) || std::string_view("._-+=,/:@%").find(c) != std::string_view::npos);
+  return plain ? std::string(s) : single_quoted(s);
 }
 
 }  // namespace gyrotherm

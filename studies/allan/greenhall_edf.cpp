@@ -1,4 +1,5 @@
 #include "studies/allan/greenhall_edf.h"
+#include "sim/util/numbers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +8,6 @@
 namespace gyrotherm::studies {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kSecondDifference = 2;  // d: the Allan variance
 constexpr double kJmax = 100.0;       // the largest basic sum computed term by term
 
@@ -26,7 +26,7 @@ double sw(double t, int alpha) {
 
 // Eq. (8): filtered by the τ-average (F = ∞: its limit, sw of α + 2).
 double sx(double t, double f, int alpha) {
-  if (f == kInf) return sw(t, alpha + 2);
+  if (f == kInfinity) return sw(t, alpha + 2);
   return f * f * (2.0 * sw(t, alpha) - sw(t - 1.0 / f, alpha) - sw(t + 1.0 / f, alpha));
 }
 
@@ -88,13 +88,13 @@ double greenhall_edf(int alpha, std::size_t m_factor, std::size_t n_phase) {
   double inv = 0.0;
   if (alpha <= 0) {
     if (j <= kJmax) {
-      inv = inverse_edf_by_sum(j, m_terms, s, kInf, alpha);  // the phase unfiltered (header)
+      inv = inverse_edf_by_sum(j, m_terms, s, kInfinity, alpha);  // the phase unfiltered (header)
     } else if (r > d + 1.0) {
       double a0 = 0, a1 = 0;
       table2(alpha, a0, a1);
       inv = (a0 - a1 / r) / r;
     } else {
-      inv = inverse_edf_by_sum(kJmax, kJmax, kJmax / r, kInf, alpha);
+      inv = inverse_edf_by_sum(kJmax, kJmax, kJmax / r, kInfinity, alpha);
     }
   } else if (alpha == 1) {
     // Table 3: b0 + b1 ln m normalises sz(0) for flicker phase noise.

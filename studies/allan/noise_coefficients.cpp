@@ -1,4 +1,5 @@
 #include "studies/allan/noise_coefficients.h"
+#include "sim/util/numbers.h"
 
 #include <algorithm>
 #include <array>
@@ -37,7 +38,6 @@ std::string tau_span_text(double from_s, double to_s) {
   return fmt::format("τ = {:.3g}–{:.3g} s", from_s, to_s);
 }
 
-constexpr double kZ95 = 1.959963984540054;
 constexpr std::size_t kMinClusters = 8;  // rows the bias instability may be read from
 constexpr std::size_t kMaxRows = 160;    // rows the weighted fit uses (log-spaced when more)
 

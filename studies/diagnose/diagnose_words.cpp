@@ -179,17 +179,6 @@ std::string verdict_text(const Diagnosis& d) {
 
 namespace {
 
-// A value as a shell word: quoted unless it is plain.
-std::string shell_word(const std::string& v) {
-  const bool plain = !v.empty() && std::all_of(v.begin(), v.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("._-+/,:=").find(c) != std::string_view::npos;
-  });
-  if (plain) return v;
-  std::string quoted = "'";
-  for (char c : v) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
 // A value as a Python literal: a number or flag bare, text quoted.
 std::string python_literal(const GivenOption& o) {
   if (o.kind == OptionKind::flag) return o.value == "true" ? "True" : "False";

@@ -11,27 +11,11 @@
 
 #include "fit/fit_file.h"
 #include "fit/model/formula.h"
+#include "sim/util/format.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 namespace {
-
-// In single quotes for a POSIX shell (a ' inside written '\''): nothing
-// inside is special to it.
-std::string single_quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// A word for a shell: as it is when no character in it is special to one
-// ("t=0.05,lag=0.3"), else single-quoted ("T^3", "T*dT").
-std::string shell_word(const std::string& s) {
-  const bool plain = !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_-+=.,/:@%").find(c) != std::string_view::npos;
-  });
-  return plain ? s : single_quoted(s);
-}
 
 // Times since the record's start, and on the log's own clock.
 nlohmann::ordered_json segment_json(const SegmentReport& s, double start_time_s) {

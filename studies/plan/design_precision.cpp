@@ -10,12 +10,12 @@
 #include "fit/model/linear_problem.h"
 #include "fit/pipeline.h"
 #include "sim/simulator.h"
+#include "sim/util/numbers.h"
 
 namespace gyrotherm::studies::plan {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kLogStep = 1e-4;  // the fitter's step in ln θ (fit/pipeline.h)
 constexpr double kFewestWindows = 8;  // a shorter profile is not a test
 

@@ -12,12 +12,12 @@
 #include "fit/model/formula.h"
 #include "sim/config_loader.h"
 #include "sim/util/input_error.h"
+#include "sim/util/numbers.h"
 
 namespace gyrotherm::studies::plan {
 
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 double number_of(const std::string& text, const std::string& option) {
   double v = 0.0;

@@ -7,12 +7,12 @@
 #include "sim/simulator.h"
 #include "sim/util/parallel_for.h"
 #include "studies/simulated.h"
+#include "sim/util/numbers.h"
 
 namespace gyrotherm::studies::plan {
 
 namespace {
 
-constexpr double kZ95 = 1.959963984540054;
 
 struct SeedFit {
   std::vector<double> b, lower, upper;

@@ -9,13 +9,13 @@
 #include <sstream>
 
 #include "sim/util/input_error.h"
+#include "sim/util/numbers.h"
 
 namespace gyrotherm::studies {
 
 namespace {
 
 using Json = nlohmann::ordered_json;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 struct MetricRule {
   bool higher_is_worse;
@@ -33,7 +33,7 @@ MetricRule rule_of(const std::string& metric) {
 }
 
 double read_bound(const Json& v, const std::string& where, const std::string& field) {
-  if (v.is_null()) return kInf;  // "not reached"
+  if (v.is_null()) return kInfinity;  // "not reached"
   if (!v.is_number()) bad(where, field, "a number or null");
   return v.get<double>();
 }

@@ -15,12 +15,12 @@
 #include "sim/util/parallel_for.h"
 #include "sim/util/sha256.h"
 #include "studies/score/spread.h"
+#include "sim/util/numbers.h"
 
 namespace gyrotherm::studies {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -195,8 +195,8 @@ TrialOutcome Campaign::run_trial(std::size_t k) const {
         t.coefficient_error.push_back(std::abs(value - true_value) / std::abs(true_value));
       }
       // The best σ so far at each grid point, as a gap in the engines' (Gram) form.
-      t.curve_gap.assign(curve_grid_.size(), kInf);
-      double best = kInf;
+      t.curve_gap.assign(curve_grid_.size(), kInfinity);
+      double best = kInfinity;
       std::size_t h = 0;
       for (std::size_t i = 0; i < curve_grid_.size(); ++i) {
         for (; h < f.history.size() && f.history[h].evaluations <= curve_grid_[i]; ++h)
@@ -270,8 +270,8 @@ Scoreboard Campaign::summarize(std::vector<TrialOutcome> outcomes) const {
     for (const TrialOutcome& o : outcomes) {
       const EngineTrial& t = o.engines[e];
       s.reached += t.reached ? 1 : 0;
-      to_target.push_back(t.reached ? static_cast<double>(t.evaluations_to_target) : kInf);
-      seconds_to_target.push_back(t.reached ? t.seconds : kInf);
+      to_target.push_back(t.reached ? static_cast<double>(t.evaluations_to_target) : kInfinity);
+      seconds_to_target.push_back(t.reached ? t.seconds : kInfinity);
       seconds.push_back(t.seconds);
       evaluations.push_back(static_cast<double>(t.evaluations));
       gap.push_back(t.gap);
