@@ -16,19 +16,19 @@ namespace {
 
 constexpr char kAfsa[] = "afsa";
 
-using Options = AfsaEngine::Options;
+using AfsaOptions = AfsaEngine::Options;
 
 // Every option, once: parsing, validate() and the listing read this table
 // (a function's static, so that it exists whenever the registry is built).
-const OptionTable<Options>& afsa_option_table() {
-  static const OptionTable<Options> table = {
-    {"fish", &Options::fish, whole(2, 100000), "N, the swarm size"},
-    {"max_iterations", &Options::max_iterations, whole(1, 100000000), "iteration limit"},
-    {"visual", &Options::visual, number_above(0.0, 1.0), "Visual, fraction of the box width"},
-    {"step", &Options::step, number_above(0.0, 1.0), "Step, fraction of the box width"},
-    {"crowding", &Options::crowding, number_above(0.0, 1.0),
+const OptionTable<AfsaOptions>& afsa_option_table() {
+  static const OptionTable<AfsaOptions> table = {
+    {"fish", &AfsaOptions::fish, whole(2, 100000), "N, the swarm size"},
+    {"max_iterations", &AfsaOptions::max_iterations, whole(1, 100000000), "iteration limit"},
+    {"visual", &AfsaOptions::visual, number_above(0.0, 1.0), "Visual, fraction of the box width"},
+    {"step", &AfsaOptions::step, number_above(0.0, 1.0), "Step, fraction of the box width"},
+    {"crowding", &AfsaOptions::crowding, number_above(0.0, 1.0),
      "δ, crowded when n_f/N ≥ δ (1: never)"},
-    {"try_number", &Options::try_number, whole(1, 1000), "prey attempts before a random step"},
+    {"try_number", &AfsaOptions::try_number, whole(1, 1000), "prey attempts before a random step"},
   };
   return table;
 }
@@ -111,7 +111,7 @@ void AfsaEngine::Options::validate() const {
   check_stopping_rules(kAfsa, max_evaluations, target_objective);
 }
 
-AfsaEngine::AfsaEngine(Options options) : options_(std::move(options)) { options_.validate(); }
+AfsaEngine::AfsaEngine(AfsaOptions options) : options_(std::move(options)) { options_.validate(); }
 
 FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
   return run(options_, problem, observer);
@@ -120,7 +120,7 @@ FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) c
 EngineInfo afsa_engine_info() {
   return engine_info<AfsaEngine>(
       kAfsa, "artificial fish swarm (Li 2002): prey, swarm and follow within a fixed Visual and Step",
-      /*stochastic=*/true, Options{}.max_evaluations, &afsa_option_table);
+      /*stochastic=*/true, AfsaOptions{}.max_evaluations, &afsa_option_table);
 }
 
 }  // namespace gyrotherm::fit

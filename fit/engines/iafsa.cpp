@@ -17,26 +17,26 @@ namespace {
 constexpr char kIafsa[] = "iafsa";
 constexpr int kMaxIterations = 100000000;
 
-using Options = IafsaEngine::Options;
+using IafsaOptions = IafsaEngine::Options;
 
 // Every option, once: parsing, validate() and the listing read this table
 // (a function's static, so that it exists whenever the registry is built).
-const OptionTable<Options>& iafsa_option_table() {
-  static const OptionTable<Options> table = {
-      {"fish", &Options::fish, whole_or_auto(2, 100000),
+const OptionTable<IafsaOptions>& iafsa_option_table() {
+  static const OptionTable<IafsaOptions> table = {
+      {"fish", &IafsaOptions::fish, whole_or_auto(2, 100000),
        "N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms"},
-      {"max_iterations", &Options::max_iterations, whole_or_auto(1, kMaxIterations),
+      {"max_iterations", &IafsaOptions::max_iterations, whole_or_auto(1, kMaxIterations),
        "G_max of eq. (5), also a stopping rule; auto is 700 up to 3 terms, 700·2.5^(m − 3) for "
        "m terms"},
-      {"visual", &Options::visual, number_above(0.0, 1.0), "Visual_0, fraction of the box width"},
-      {"step", &Options::step, number_above(0.0, 1.0), "Step_0, fraction of the box width"},
-      {"visual_min", &Options::visual_min, number_in(0.0, 1.0),
+      {"visual", &IafsaOptions::visual, number_above(0.0, 1.0), "Visual_0, fraction of the box width"},
+      {"step", &IafsaOptions::step, number_above(0.0, 1.0), "Step_0, fraction of the box width"},
+      {"visual_min", &IafsaOptions::visual_min, number_in(0.0, 1.0),
        "Visual_min of eq. (5), fraction of the box width"},
-      {"step_min", &Options::step_min, number_in(0.0, 1.0),
+      {"step_min", &IafsaOptions::step_min, number_in(0.0, 1.0),
        "Step_min of eq. (5), fraction of the box width"},
-      {"crowding", &Options::crowding, number_above(0.0, 1.0), "δ, crowded when n/N ≥ δ (1: never)"},
-      {"try_number", &Options::try_number, whole(1, 1000), "prey attempts before a random step"},
-      {"schedule", &Options::schedule, one_of({"compound", "initial"}),
+      {"crowding", &IafsaOptions::crowding, number_above(0.0, 1.0), "δ, crowded when n/N ≥ δ (1: never)"},
+      {"try_number", &IafsaOptions::try_number, whole(1, 1000), "prey attempts before a random step"},
+      {"schedule", &IafsaOptions::schedule, one_of({"compound", "initial"}),
        "eq. (5) as an update (compound) or from Visual_0, Step_0 (initial)"},
   };
   return table;
@@ -151,7 +151,7 @@ int IafsaEngine::auto_iterations(std::size_t terms) {
   return static_cast<int>(std::min(700.0 * std::pow(2.5, extra), double{kMaxIterations}));
 }
 
-IafsaEngine::IafsaEngine(Options options) : options_(std::move(options)) { options_.validate(); }
+IafsaEngine::IafsaEngine(IafsaOptions options) : options_(std::move(options)) { options_.validate(); }
 
 FitResult IafsaEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
   return run(options_, problem, observer);
@@ -161,7 +161,7 @@ EngineInfo iafsa_engine_info() {
   return engine_info<IafsaEngine>(kIafsa,
                                   "improved artificial fish swarm (Yu et al. 2014): shrinking Visual "
                                   "and Step, swarm to the swarm's centre, follow the bulletin board",
-                                  /*stochastic=*/true, Options{}.max_evaluations, &iafsa_option_table);
+                                  /*stochastic=*/true, IafsaOptions{}.max_evaluations, &iafsa_option_table);
 }
 
 }  // namespace gyrotherm::fit
