@@ -25,18 +25,12 @@ AveragedSeries windows(const AveragedSeries& s, std::size_t from, std::size_t to
     if (!v.empty()) part.assign(v.begin() + static_cast<std::ptrdiff_t>(from), v.begin() + static_cast<std::ptrdiff_t>(to));
     return part;
   };
-  out.time_s = cut(s.time_s);
-  out.temp_c = cut(s.temp_c);
-  out.gyro_dph = cut(s.gyro_dph);
-  out.temp2_c = cut(s.temp2_c);
-  out.samples = cut(s.samples);
-  out.gyro_sd_dph = cut(s.gyro_sd_dph);
-  out.gyro_lag1 = cut(s.gyro_lag1);
-  out.temp_rate_c_per_s = cut(s.temp_rate_c_per_s);
-  out.temp2_rate_c_per_s = cut(s.temp2_rate_c_per_s);
-  out.temp_rate_se = cut(s.temp_rate_se);
-  out.temp2_rate_se = cut(s.temp2_rate_se);
-  out.run = cut(s.run);
+  for (auto column : {&AveragedSeries::time_s, &AveragedSeries::temp_c, &AveragedSeries::gyro_dph,
+                      &AveragedSeries::temp2_c, &AveragedSeries::gyro_sd_dph, &AveragedSeries::gyro_lag1,
+                      &AveragedSeries::temp_rate_c_per_s, &AveragedSeries::temp2_rate_c_per_s,
+                      &AveragedSeries::temp_rate_se, &AveragedSeries::temp2_rate_se})
+    out.*column = cut(s.*column);
+  for (auto column : {&AveragedSeries::samples, &AveragedSeries::run}) out.*column = cut(s.*column);
   for (const auto& [name, values] : s.extra) out.extra[name] = cut(values);
   for (const auto& [name, values] : s.extra_rate) out.extra_rate[name] = cut(values);
   for (const auto& [name, values] : s.extra_rate_se) out.extra_rate_se[name] = cut(values);

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string_view>
+#include <utility>
+
 #include "sim/util/format.h"
 
 namespace gyrotherm {
@@ -29,14 +32,10 @@ TEST(Format, ARangeShowsEnoughDecimalsToTellItsEndsApart) {
 // with a character the shell would act on in single quotes, a quote inside
 // them closed, escaped and reopened.
 TEST(Format, AShellWordIsQuotedOnlyWhenTheShellWouldChangeIt) {
-  EXPECT_EQ(shell_word("t=0.05,lag=0.3"), "t=0.05,lag=0.3");
-  EXPECT_EQ(shell_word("step@3600"), "step@3600");
-  EXPECT_EQ(shell_word("logs/run_1.csv"), "logs/run_1.csv");
-  EXPECT_EQ(shell_word("T^3"), "'T^3'");
-  EXPECT_EQ(shell_word("T*dT"), "'T*dT'");
-  EXPECT_EQ(shell_word("my log.csv"), "'my log.csv'");
-  EXPECT_EQ(shell_word("it's"), "'it'\\''s'");
-  EXPECT_EQ(shell_word(""), "''");
+  const std::pair<std::string_view, std::string_view> words[] = {
+      {"t=0.05,lag=0.3", "t=0.05,lag=0.3"}, {"step@3600", "step@3600"}, {"logs/run_1.csv", "logs/run_1.csv"},
+      {"T^3", "'T^3'"}, {"T*dT", "'T*dT'"}, {"my log.csv", "'my log.csv'"}, {"it's", "'it'\\''s'"}, {"", "''"}};
+  for (const auto& [word, written] : words) EXPECT_EQ(shell_word(word), written) << word;
 }
 
 }  // namespace
