@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <type_traits>
 
 #include "fit/data/derivatives.h"
@@ -60,10 +61,10 @@ double CausalCompensator::bias_of(const AveragedSeries& windows, bool carry) {
     const auto col = static_cast<Eigen::Index>(j);
     if (carry && last > 0) {
       // Held as design_matrix_held holds it: the temperatures within the range.
-      DerivedSeries held = derived;
+      std::optional<DerivedSeries> held;
       if (settings_.hold_c && reads_temperature_level(&term))
-        for (double& t : held.temp_c) t = std::clamp(t, settings_.hold_c->first, settings_.hold_c->second);
-      x(last, col) = term.next(held, static_cast<std::size_t>(last), fit_.parameters[j], state_[j]);
+        held = held_within(derived, settings_.hold_c->first, settings_.hold_c->second);
+      x(last, col) = term.next(held ? *held : derived, static_cast<std::size_t>(last), fit_.parameters[j], state_[j]);
     }
     if (carry) state_[j] = x(last, col);
   }

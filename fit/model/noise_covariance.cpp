@@ -9,6 +9,7 @@
 #include "fit/model/noise_model.h"
 
 #include "sim/util/gauss_markov.h"
+#include "sim/util/numbers.h"
 
 namespace gyrotherm::fit {
 
@@ -97,7 +98,7 @@ std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGr
   std::vector<NoiseModel> out = {model};
   for (const NoiseModel& a : model.alternatives) out.push_back(a);
   const double span = grid.time_s.empty() ? grid.window_s : grid.time_s.back() - grid.time_s.front() + grid.window_s;
-  constexpr double z = 1.959963984540054;
+  constexpr double z = kZ95;
   // The model with component k at `amplitude` (a Gauss–Markov process at τ_c = tau_s).
   const auto raise = [&](int k, double amplitude, double tau_s) {
     NoiseModel raised = model;
@@ -125,7 +126,7 @@ std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGr
 
 std::vector<NoiseParameter> NoiseModel::parameters() const {
   std::vector<NoiseParameter> out;
-  const double z = 1.959963984540054;
+  const double z = kZ95;
   // value = factor · amplitude^power, an interval from the log-amplitude's sd.
   auto add = [&](const char* name, const char* unit, int k, int p, double factor, double power) {
     NoiseParameter q;

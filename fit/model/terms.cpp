@@ -148,14 +148,19 @@ Eigen::MatrixXd design_matrix_held(const DerivedSeries& derived, const std::vect
   Eigen::MatrixXd x = design_matrix(derived, terms, parameters);
   if (std::all_of(derived.temp_c.begin(), derived.temp_c.end(), [&](double t) { return t >= lo_c && t <= hi_c; }))
     return x;
-  DerivedSeries held = derived;
-  for (double& t : held.temp_c) t = std::clamp(t, lo_c, hi_c);
+  const DerivedSeries held = held_within(derived, lo_c, hi_c);
   for (std::size_t j = 0; j < terms.size(); ++j) {
     if (!reads_temperature_level(terms[j])) continue;
     terms[j]->compute(held, parameters[j],
                       std::span<double>(x.col(static_cast<Eigen::Index>(j)).data(), static_cast<std::size_t>(x.rows())));
   }
   return x;
+}
+
+DerivedSeries held_within(const DerivedSeries& derived, double lo_c, double hi_c) {
+  DerivedSeries held = derived;
+  for (double& t : held.temp_c) t = std::clamp(t, lo_c, hi_c);
+  return held;
 }
 
 std::vector<double> default_parameters(const std::vector<const Term*>& terms) {

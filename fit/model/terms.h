@@ -78,6 +78,8 @@ Eigen::MatrixXd design_matrix(const DerivedSeries& derived, const std::vector<co
 // the log's columns see the record as it is.
 Eigen::MatrixXd design_matrix_held(const DerivedSeries& derived, const std::vector<const Term*>& terms,
                                    const std::vector<double>& parameters, double lo_c, double hi_c);
+// The series those terms read there: its temperatures clamped to [lo_c, hi_c].
+DerivedSeries held_within(const DerivedSeries& derived, double lo_c, double hi_c);
 
 // Default parameters: the geometric mean of each parameter's bounds, NaN for
 // terms without one.

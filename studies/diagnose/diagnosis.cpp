@@ -13,6 +13,7 @@
 #include "sim/util/input_error.h"
 #include "studies/diagnose/confounding.h"
 #include "studies/diagnose/diagnosis_steps.h"
+#include "sim/util/numbers.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -94,7 +95,7 @@ void size_steps(Diagnosis& d, const fit::PreparedData& data, const std::vector<c
       e.log_time_s = e.time_s + data.series.start_time_s;
       e.size_dph = f.beta[k];
       const double half =
-          1.959963984540054 * std::sqrt(std::max({0.0, f.covariance(k, k), fit::widest_variance(whiteners, x, k)}));
+          kZ95 * std::sqrt(std::max({0.0, f.covariance(k, k), fit::widest_variance(whiteners, x, k)}));
       e.size_interval_dph = {e.size_dph - half, e.size_dph + half};
       e.p_value = c.p_value;
       e.significant = c.significant && c.confounded_with.empty();

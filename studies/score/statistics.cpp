@@ -1,4 +1,5 @@
 #include "studies/score/statistics.h"
+#include "sim/util/numbers.h"
 
 #include <boost/math/distributions/binomial.hpp>
 #include <fmt/format.h>
@@ -35,7 +36,7 @@ Range median_interval(std::span<const double> sorted) {
 
 Range wilson_interval(std::size_t successes, std::size_t n) {
   assert(n > 0 && successes <= n);
-  constexpr double z = 1.959963984540054;
+  constexpr double z = kZ95;
   const double nn = static_cast<double>(n);
   const double p = static_cast<double>(successes) / nn;
   const double denominator = 1.0 + z * z / nn;
