@@ -19,6 +19,7 @@
 
 #include "imu_logs.h"
 #include "cli_runner.h"
+#include "fit/data/autopilot_log.h"
 #include "fit/data/measurement.h"
 #include "parameter_files.h"
 #include "synthetic_log.h"
@@ -93,6 +94,39 @@ TEST(LogReading, ALogGivesTheFitOfACsvOfTheSameNumbers) {
   ASSERT_EQ(run_cli(dir, "fit t.ulg --imu 1 --gyro-col gyro_x -o fit.json").exit_code, 0);
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "fit.json"))["pipeline"]["columns"]["imu"], 1);
   EXPECT_EQ(run_cli(dir, "compensate --fit fit.json t.ulg -o out.csv").exit_code, 0);
+}
+
+// The registry (fit/data/log_formats.def): each format is known by its first
+// bytes alone, no format's magic begins another's, a file the registry does
+// not know is a text table, and each format's reader reads its own file.
+TEST(LogReading, EachRegisteredFormatIsKnownByItsFirstBytes) {
+  ScratchDir dir;
+  const std::vector<fit::LogFormat>& formats = fit::log_format_registry();
+  ASSERT_EQ(formats.size(), 2u);
+  for (const fit::LogFormat& a : formats) {
+    EXPECT_FALSE(a.magic.empty()) << a.name;
+    for (const fit::LogFormat& b : formats)
+      EXPECT_TRUE(&a == &b || !b.magic.starts_with(a.magic)) << a.name << " begins " << b.name;
+    const std::filesystem::path file = dir / std::string(a.name);
+    std::ofstream(file, std::ios::binary) << a.magic << "not a message";
+    EXPECT_EQ(fit::log_format_of(file), &a) << a.name;
+  }
+  std::ofstream(dir / "t.csv") << "time_s,temp_c,gyro\n0,20,1\n";
+  EXPECT_EQ(fit::log_format_of(dir / "t.csv"), nullptr);
+  EXPECT_EQ(fit::log_format_of(dir / "absent.bin"), nullptr);
+  const std::vector<ImuSample> samples = synthetic_samples();
+  write_ulog(dir / "t.ulg", samples);
+  write_dataflash(dir / "t.bin", samples);
+  for (const auto& [file, name, title] : {std::tuple{"t.ulg", "ulog", "ULog v1"}, {"t.bin", "dataflash", "DataFlash"}}) {
+    const fit::LogFormat* format = fit::log_format_of(dir / file);
+    ASSERT_NE(format, nullptr) << file;
+    EXPECT_EQ(format->name, name);
+    const fit::LogContents contents = format->read(dir / file, -1, {});
+    EXPECT_EQ(contents.format, title);
+    EXPECT_TRUE(fit::stated_by_log_format(contents.format + " sensor_gyro instance 1"));
+    EXPECT_EQ(contents.gyros.back().samples, samples.size()) << file;
+  }
+  EXPECT_FALSE(fit::stated_by_log_format("the header of column gyro_x"));
 }
 
 TEST(LogReading, TheRealPx4LogsReadAsTheirReadmeSays) {

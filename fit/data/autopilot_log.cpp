@@ -262,18 +262,35 @@ int LogContents::default_instance() const {
   return -1;
 }
 
-AutopilotReader autopilot_log_reader(std::string_view format) { return format == "ulog" ? read_ulog : read_dataflash; }
+const std::vector<LogFormat>& log_format_registry() {
+  static const std::vector<LogFormat> formats = {
+#define LOG_FORMAT(name) name##_log_format(),
+#include "fit/data/log_formats.def"
+#undef LOG_FORMAT
+  };
+  return formats;
+}
 
-std::string autopilot_log_format(const std::filesystem::path& file) {
+const LogFormat* log_format_of(const std::filesystem::path& file) {
   std::FILE* f = std::fopen(file.c_str(), "rb");
-  if (f == nullptr) return "";
-  std::array<unsigned char, 7> head{};
+  if (f == nullptr) return nullptr;
+  std::array<char, 16> head{};
   const std::size_t got = std::fread(head.data(), 1, head.size(), f);
   std::fclose(f);
-  static constexpr std::array<unsigned char, 7> kULog = {'U', 'L', 'o', 'g', 0x01, 0x12, 0x35};
-  if (got == head.size() && head == kULog) return "ulog";
-  if (got >= 3 && head[0] == 0xA3 && head[1] == 0x95) return "dataflash";
-  return "";
+  const std::string_view start(head.data(), got);
+  for (const LogFormat& format : log_format_registry())
+    if (start.starts_with(format.magic)) return &format;
+  return nullptr;
+}
+
+std::string autopilot_log_format(const std::filesystem::path& file) {
+  const LogFormat* format = log_format_of(file);
+  return format == nullptr ? std::string() : std::string(format->name);
+}
+
+bool stated_by_log_format(std::string_view source) {
+  return std::any_of(log_format_registry().begin(), log_format_registry().end(),
+                     [&](const LogFormat& f) { return source.starts_with(f.title); });
 }
 
 }  // namespace gyrotherm::fit

@@ -127,14 +127,30 @@ using GyroSampleSink = std::function<void(double time_s, double temp_c, double x
 LogContents read_ulog(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
 LogContents read_dataflash(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
 
-// The reader of a format autopilot_log_format names: read_ulog for "ulog",
-// read_dataflash for "dataflash".
+// The binary log formats, a registry as the effects and the exporters are:
+// a format is one file (its reader, defining `LogFormat NAME_log_format()`),
+// one line LOG_FORMAT(NAME) in fit/data/log_formats.def and one test. A file
+// is a format's when it starts with that format's magic bytes; a file that
+// starts with none of them is read as a text table (CSV).
 using AutopilotReader = LogContents (*)(const std::filesystem::path& file, int instance, const GyroSampleSink& sink);
-AutopilotReader autopilot_log_reader(std::string_view format);
-
-// Which format a file is by its first bytes: "ulog", "dataflash" or ""
-// (anything else, e.g. a CSV, and a file that cannot be opened: its reader
-// reports that).
+struct LogFormat {
+  std::string_view name;   // "ulog": what autopilot_log_format gives
+  std::string_view title;  // "ULog": how LogContents::format begins ("ULog v1")
+  std::string_view magic;  // the bytes every file of the format starts with
+  AutopilotReader read;
+};
+const std::vector<LogFormat>& log_format_registry();
+// The format whose magic the file starts with; nullptr for any other file (a
+// CSV) and for a file that cannot be opened (its reader reports that).
+const LogFormat* log_format_of(const std::filesystem::path& file);
+// log_format_of's name, or "" for a text table.
 std::string autopilot_log_format(const std::filesystem::path& file);
+// Whether a unit's source text ("ULog v1 sensor_gyro 0") names a binary
+// format, whose files state their units.
+bool stated_by_log_format(std::string_view source);
+
+#define LOG_FORMAT(name) LogFormat name##_log_format();
+#include "fit/data/log_formats.def"
+#undef LOG_FORMAT
 
 }  // namespace gyrotherm::fit

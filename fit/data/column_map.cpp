@@ -35,7 +35,7 @@ const Unit& Units::gyro_unit() const { return unit_or_base(Quantity::gyro, gyro,
 const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
 
 ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns) {
-  if (columns.gyro == ColumnMap{}.gyro && !autopilot_log_format(file).empty()) columns.gyro = "gyro_x,gyro_y,gyro_z";
+  if (columns.gyro == ColumnMap{}.gyro && log_format_of(file) != nullptr) columns.gyro = "gyro_x,gyro_y,gyro_z";
   return columns;
 }
 

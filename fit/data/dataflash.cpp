@@ -29,6 +29,7 @@ using binary::printable;
 
 constexpr std::uint8_t kSync1 = 0xA3, kSync2 = 0x95;
 constexpr std::size_t kDataflashHeaderBytes = 3;  // A3 95 type
+constexpr std::string_view kDataflashTitle = "DataFlash";
 constexpr std::uint8_t kFmtType = 128;
 // FMT: type (B), length (B), name (n, char[4]), format (N, char[16]), labels (Z, char[64]).
 constexpr std::size_t kFmtBytes = kDataflashHeaderBytes + 1 + 1 + 4 + 16 + 64;
@@ -130,7 +131,7 @@ class DataFlashReader : binary::LogReader {
 };
 
 LogContents DataFlashReader::read() {
-  contents_.format = "DataFlash";
+  contents_.format = kDataflashTitle;
   for (;;) {
     const std::uint64_t at = in_.offset();
     const std::size_t head = in_.want(kDataflashHeaderBytes);
@@ -282,5 +283,8 @@ void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const st
 LogContents read_dataflash(const fs::path& file, int instance, const GyroSampleSink& sink) {
   return binary::read_with<DataFlashReader>(file, instance, sink);
 }
+
+// A message's two sync bytes begin the file.
+LogFormat dataflash_log_format() { return {"dataflash", kDataflashTitle, "\xA3\x95", read_dataflash}; }
 
 }  // namespace gyrotherm::fit

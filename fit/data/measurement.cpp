@@ -120,7 +120,7 @@ class CsvParser : public ColumnReader {
   void plan_fast_rows();
   // An autopilot log (fit/data/autopilot_log.h) read as the table
   // time_s, temp_c, gyro_x, gyro_y, gyro_z (s, °C, rad/s) of one gyro.
-  void read_log(const fs::path& file, const std::string& format, Measurement& m);
+  void read_log(const fs::path& file, const LogFormat& format, Measurement& m);
   // The time field of a row, in the file's unit or as an ISO 8601 timestamp
   // (seconds since the first row's): "" on success, else what is wrong.
   std::string read_time(std::string_view field, Measurement& m, double& value);
@@ -179,9 +179,8 @@ std::string CsvParser::read_time(std::string_view field, Measurement& m, double&
   return {};
 }
 
-void CsvParser::read_log(const fs::path& file, const std::string& format, Measurement& m) {
-  const AutopilotReader reader = autopilot_log_reader(format);
-  const LogContents contents = reader(file, -1, {});
+void CsvParser::read_log(const fs::path& file, const LogFormat& format, Measurement& m) {
+  const LogContents contents = format.read(file, -1, {});
   if (map_.imu && *map_.imu < 0)
     throw InputError(fmt::format("{}: --imu {}: a gyro instance is a number from 0 (the log holds {})", name_,
                                  *map_.imu, contents.instances()));
@@ -230,7 +229,7 @@ void CsvParser::read_log(const fs::path& file, const std::string& format, Measur
   use_units(u);
   m.units = units_;
   std::size_t sample = 0, without_temperature = 0;
-  reader(file, instance, [&](double t, double temp, double x, double y, double z) {
+  format.read(file, instance, [&](double t, double temp, double x, double y, double z) {
     ++sample;
     if (!std::isfinite(temp)) {
       ++without_temperature;
@@ -311,8 +310,8 @@ Measurement CsvParser::read(const fs::path& file) {
     throw InputError(located(name_, 0, "cannot read: it is a folder, expected a CSV file"));
   Measurement m;
   m.file = name_;
-  if (const std::string format = autopilot_log_format(file); !format.empty()) {
-    read_log(file, format, m);
+  if (const LogFormat* format = log_format_of(file); format != nullptr) {
+    read_log(file, *format, m);
     return m;
   }
   std::unique_ptr<std::FILE, FileCloser> handle(std::fopen(file.c_str(), "rb"));

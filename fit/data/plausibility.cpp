@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fit/data/autopilot_log.h"
+
 namespace gyrotherm::fit {
 namespace {
 
@@ -51,7 +53,7 @@ std::vector<std::string> unit_cautions(const Units& u, const ReadSummary& r) {
         "built (the best reach about 1e-4): {}, are its numbers really in that unit (rad/s or °/s read "
         "as °/h?); give --gyro-unit",
         n, gyro_read));
-  const bool log_format = u.gyro_from.starts_with("ULog") || u.gyro_from.starts_with("DataFlash");
+  const bool log_format = stated_by_log_format(u.gyro_from);
   if (n > kNoisiestArw && log_format)  // the format states the unit: the gyro turned
     out.push_back(fmt::format(
         "the gyro's sample-to-sample changes are an angle random walk of {:.3g} °/√h, more than any MEMS gyro's "

@@ -29,6 +29,8 @@ using binary::Kind;
 using binary::printable;
 
 constexpr std::size_t kFileHeaderBytes = 16;
+constexpr std::string_view kULogTitle = "ULog";
+constexpr std::string_view kULogMagic("ULog\x01\x12\x35", 7);
 constexpr std::size_t kUlogMessageHeaderBytes = 3;  // uint16 size, uint8 type
 constexpr std::string_view kGyroTopic = "sensor_gyro";
 constexpr std::string_view kAccelTopic = "sensor_accel";
@@ -153,17 +155,17 @@ LogContents ULogReader::read() {
 }
 
 void ULogReader::read_header() {
-  static constexpr std::uint8_t kMagic[] = {'U', 'L', 'o', 'g', 0x01, 0x12, 0x35};
   const std::size_t got = in_.want(kFileHeaderBytes);
-  const std::size_t compared = std::min(got, sizeof kMagic);
-  if (compared == 0 || !std::equal(kMagic, kMagic + compared, in_.data()))
+  const std::size_t compared = std::min(got, kULogMagic.size());
+  if (compared == 0 || !std::equal(kULogMagic.begin(), kULogMagic.begin() + compared, in_.data(),
+                                   [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }))
     in_.fail(0, fmt::format("not a ULog file: expected the magic 'ULog' 01 12 35, found {}",
                             compared == 0 ? std::string("an empty file") : hex_bytes(in_.data(), compared)));
   if (got < kFileHeaderBytes)
     in_.fail(0, fmt::format("the ULog header is cut short: the file holds {} bytes, the header needs {} "
                             "(magic, version, start time)",
                             got, kFileHeaderBytes));
-  contents_.format = fmt::format("ULog v{}", in_.data()[7]);
+  contents_.format = fmt::format("{} v{}", kULogTitle, in_.data()[7]);
   in_.advance(kFileHeaderBytes);
 }
 
@@ -375,5 +377,7 @@ void ULogReader::on_parameter(std::uint64_t at, const std::uint8_t* p, std::size
 LogContents read_ulog(const fs::path& file, int instance, const GyroSampleSink& sink) {
   return binary::read_with<ULogReader>(file, instance, sink);
 }
+
+LogFormat ulog_log_format() { return {"ulog", kULogTitle, kULogMagic, read_ulog}; }
 
 }  // namespace gyrotherm::fit

@@ -148,9 +148,15 @@ FitResult Evaluator::result(std::string engine, long iterations, Termination fal
 
 const std::vector<EngineInfo>& engine_registry() {
   static const std::vector<EngineInfo> registry = [] {
-    std::vector<EngineInfo> r = {ols_engine_info(), gls_engine_info(), stepwise_engine_info(), afsa_engine_info(),
-                                 iafsa_engine_info()};
-    for (EngineInfo& info : pagmo_engine_infos()) r.push_back(std::move(info));
+    std::vector<EngineInfo> r;
+    const auto add = [&r](std::vector<EngineInfo> infos) {
+      for (EngineInfo& info : infos) r.push_back(std::move(info));
+    };
+#define ENGINE(name) add({name##_engine_info()});
+#define ENGINE_FAMILY(name) add(name##_engine_infos());
+#include "fit/engines/engines.def"
+#undef ENGINE
+#undef ENGINE_FAMILY
     return r;
   }();
   return registry;

@@ -222,12 +222,12 @@ EngineInfo engine_info(std::string name, std::string description, bool stochasti
   return info;
 }
 
-// The registry entries, one function per engine file.
-EngineInfo ols_engine_info();
-EngineInfo gls_engine_info();
-EngineInfo stepwise_engine_info();
-EngineInfo afsa_engine_info();
-EngineInfo iafsa_engine_info();
-std::vector<EngineInfo> pagmo_engine_infos();  // pso, de, cmaes, abc
+// The registry entries, one function per engine file, one line each in
+// fit/engines/engines.def.
+#define ENGINE(name) EngineInfo name##_engine_info();
+#define ENGINE_FAMILY(name) std::vector<EngineInfo> name##_engine_infos();
+#include "fit/engines/engines.def"
+#undef ENGINE
+#undef ENGINE_FAMILY
 
 }  // namespace gyrotherm::fit

@@ -56,9 +56,9 @@ std::pair<int, std::size_t> pair_gyro(const CheckRequest& o, const fit::LogConte
   return {instance, 0};
 }
 
-void read_autopilot(const CheckRequest& o, const std::string& format, const std::vector<GyroCalibration>& cals,
+void read_autopilot(const CheckRequest& o, const fit::LogFormat& format, const std::vector<GyroCalibration>& cals,
                     Applied* a, CheckResult* r, std::size_t* cal) {
-  const fit::AutopilotReader reader = fit::autopilot_log_reader(format);
+  const fit::AutopilotReader reader = format.read;
   a->contents = reader(o.log, -1, {});
   const auto [instance, chosen] = pair_gyro(o, a->contents, cals);
   if (instance < 0)
@@ -119,8 +119,8 @@ Applied apply_firmware(const CheckRequest& o, const ParameterFile& p, CheckResul
                                  p.file, p.format == ParameterFormat::px4 ? "TC_G{n}_X{k}_{axis}" : "INS_TCAL{n}_GYR{k}_{axis}"));
   Applied a;
   std::size_t cal = 0;
-  if (const std::string format = fit::autopilot_log_format(o.log); !format.empty()) {
-    read_autopilot(o, format, cals, &a, r, &cal);
+  if (const fit::LogFormat* format = fit::log_format_of(o.log); format != nullptr) {
+    read_autopilot(o, *format, cals, &a, r, &cal);
   } else {
     read_csv(o, &a, r);
     if (o.columns.imu)
@@ -160,8 +160,8 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
   Applied a;
   r->calibration = p.file;
   r->log_format = "CSV";
-  if (const std::string format = fit::autopilot_log_format(o.log); !format.empty()) {
-    a.contents = fit::autopilot_log_reader(format)(o.log, -1, {});
+  if (const fit::LogFormat* format = fit::log_format_of(o.log); format != nullptr) {
+    a.contents = format->read(o.log, -1, {});
     r->log_format = a.contents.format;
   }
   bool first = true;

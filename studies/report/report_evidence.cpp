@@ -128,9 +128,9 @@ Json firmware_json(const fit::SavedFit& fit, double tref_c, const ChannelBand& b
 }
 
 Json sensors_json(const std::string& log, const fit::SavedFit& fit) {
-  const std::string format = fit::autopilot_log_format(log);
-  if (format.empty()) return {{"format", "text table"}, {"gyros", Json::array()}};
-  const fit::LogContents contents = fit::autopilot_log_reader(format)(log, -1, {});
+  const fit::LogFormat* format = fit::log_format_of(log);
+  if (format == nullptr) return {{"format", "text table"}, {"gyros", Json::array()}};
+  const fit::LogContents contents = format->read(log, -1, {});
   const int read = fit.pipeline.columns.imu.value_or(contents.default_instance());
   Json gyros = Json::array();
   for (const fit::LogGyro& g : contents.gyros)
