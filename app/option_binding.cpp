@@ -60,27 +60,6 @@ void add_listing_command(CLI::App& app, Run* run, const std::string& name, const
   });
 }
 
-template <class T>
-CLI::Option* add_value(CLI::App* command, const std::string& names, T& value, const std::string& help) {
-  CLI::Option* option = command->add_option(names, value, help);
-  // one value per name, so that a positional after it is never taken for one
-  if constexpr (std::is_same_v<T, std::vector<std::string>>) option->allow_extra_args(false);
-  return option;
-}
-template CLI::Option* add_value(CLI::App*, const std::string&, std::string&, const std::string&);
-template CLI::Option* add_value(CLI::App*, const std::string&, int&, const std::string&);
-template CLI::Option* add_value(CLI::App*, const std::string&, long&, const std::string&);
-template CLI::Option* add_value(CLI::App*, const std::string&, std::uint64_t&, const std::string&);
-template CLI::Option* add_value(CLI::App*, const std::string&, std::vector<std::string>&, const std::string&);
-
-void add_flag(CLI::App* command, const std::string& names, bool& value, const std::string& help) {
-  command->add_flag(names, value, help);
-}
-
-void require(CLI::Option* option) { option->required(); }
-
-bool given(const CLI::Option* option) { return option->count() > 0; }
-
 std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studies::OptionInfo>& rows) {
   struct Slot {
     CLI::Option* option = nullptr;
@@ -98,6 +77,8 @@ std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studi
       slot.option = command->add_flag(row.names, slot.flag, row.help);
     } else if (row.kind == studies::OptionKind::list) {
       slot.option = command->add_option(row.names, slot.list, row.help);
+      // one value per name, so that a positional after it is never taken for one
+      slot.option->allow_extra_args(row.several_per_name);
       slot.option->option_text(row.value_name + (row.required ? " REQUIRED" : ""));
     } else {
       slot.option = command->add_option(row.names, slot.text, row.help)->type_name(row.value_name);

@@ -4,8 +4,7 @@
 // required or not, with its help; when the command is chosen its options are
 // set from what was given (row.set, row by row) and handed to `work`. A value
 // that does not parse is the row's InputError (exit 2, as every bad input).
-// The commands without a table (reproduce, score) bind their options by hand
-// with add_value and add_flag. Only option_binding.cpp includes CLI11.
+// Every command's options are a table. Only option_binding.cpp includes CLI11.
 
 #include <cstddef>
 #include <cstdint>
@@ -27,17 +26,6 @@ namespace gyrotherm::app {
 using GivenValues = std::vector<std::pair<std::size_t, std::string>>;
 // Adds the rows to `command`; the function returned reads what was given.
 std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studies::OptionInfo>& rows);
-
-// An option of `command` on `value`, which outlives the parse: T is
-// std::string, int, long or std::uint64_t (a positional when `names` has no
-// dash), or std::vector<std::string>, one value per name given (repeatable);
-// option_binding.cpp instantiates these.
-template <class T>
-CLI::Option* add_value(CLI::App* command, const std::string& names, T& value, const std::string& help);
-void add_flag(CLI::App* command, const std::string& names, bool& value, const std::string& help);
-void require(CLI::Option* option);
-// Whether the option was on the command line.
-bool given(const CLI::Option* option);
 
 template <class Options>
 void bind_command(CLI::App* command, Run* run, const studies::OptionTable<Options>& table,

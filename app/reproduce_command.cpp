@@ -4,34 +4,20 @@
 
 #include <fmt/core.h>
 
+#include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "app/option_binding.h"
 #include "app/progress.h"
-#include "sim/util/comma_list.h"
+#include "studies/options/reproduce_options.h"
 #include "studies/reproduce/report.h"
 
 namespace gyrotherm::app {
 namespace {
 
-struct ReproduceCli {
-  std::string out = "results";
-  std::string scenarios;
-  std::string engines;
-  std::uint64_t seed = 1;
-  bool json = false;
-};
-
-
-int run_reproduce(const ReproduceCli& o) {
-  const std::string dir = o.scenarios.empty() ? default_scenarios_dir() : o.scenarios;
-  studies::ReproduceOptions options;
-  options.cycle = dir + "/cycle.toml";
-  options.test1 = dir + "/random.toml";
-  options.test2 = dir + "/warmup.toml";
-  options.engines = split_commas(o.engines);
-  options.engine_seed = o.seed;
+int run_reproduce(const studies::ReproduceCommandOptions& o) {
+  studies::ReproduceOptions options = studies::reproduce_request(o, default_scenarios_dir());
   options.progress = step_progress();
   const auto started = std::chrono::steady_clock::now();
   const studies::ReproduceResult r = studies::reproduce(options);
@@ -48,14 +34,9 @@ std::string default_scenarios_dir() {
 }
 
 void add_reproduce_command(CLI::App& app, Run* run) {
-  auto o = std::make_shared<ReproduceCli>();
-  CLI::App* cmd = add_subcommand(app, "reproduce", "Reproduce the paper's Table 1 on the simulated gyro (the main job)");
-  add_value(cmd, "--out", o->out, "Output folder (default results)");
-  add_value(cmd, "--scenarios", o->scenarios, "Folder with cycle.toml, random.toml, warmup.toml (default scenarios/)");
-  add_value(cmd, "--engines", o->engines, "Comma-separated engines (default: all)");
-  add_value(cmd, "--seed", o->seed, "Seed of the stochastic engines (default 1)");
-  add_flag(cmd, "--json", o->json, "Print table1.json, with the run times, on stdout");
-  when_chosen(cmd, run, [o] { return run_reproduce(*o); });
+  add_table_command<studies::ReproduceCommandOptions>(app, run, "reproduce",
+                                                       "Reproduce the paper's Table 1 on the simulated gyro (the main job)",
+                                                       studies::reproduce_option_table(), run_reproduce);
 }
 
 }  // namespace gyrotherm::app

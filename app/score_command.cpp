@@ -13,10 +13,10 @@
 #include <thread>
 
 #include "app/progress.h"
-#include "sim/util/comma_list.h"
 #include "app/option_binding.h"
 #include "app/score_mpi.h"
 #include "studies/score/baseline.h"
+#include "studies/options/score_options.h"
 #include "studies/score/campaign.h"
 #include "studies/score/outcome_packing.h"
 #include "studies/score/report.h"
@@ -25,35 +25,8 @@
 namespace gyrotherm::app {
 namespace {
 
-struct ScoreCli {
-  std::string scenario;
-  std::string engines;
-  long trials = 100;
-  int threads = 0;
-  std::uint64_t seed = 0;
-  const CLI::Option* seed_option = nullptr;  // given?
-  std::string model = std::string(fit::kDefaultModel);
-  std::vector<std::string> budgets;
-  std::vector<std::string> engine_options;
-  std::string baseline;
-  std::string out;
-  bool json = false;
-};
-
-studies::ScoreOptions score_options(const ScoreCli& o) {
-  studies::ScoreOptions s;
-  s.scenario = o.scenario;
-  s.engines = split_commas(o.engines);
-  s.model = o.model;
-  s.trials = o.trials;
-  if (o.seed_option != nullptr && given(o.seed_option)) s.seed = o.seed;
-  for (const std::string& b : o.budgets) s.add_budget(b);
-  for (const std::string& kv : o.engine_options) s.add_engine_option(kv);
-  return s;
-}
-
 // Rank 0's part after the trials: files, the baseline check, the report.
-int report(const studies::Scoreboard& board, const std::optional<studies::Baseline>& baseline, const ScoreCli& o) {
+int report(const studies::Scoreboard& board, const std::optional<studies::Baseline>& baseline, const studies::ScoreCommandOptions& o) {
   const std::string json = studies::scoreboard_json(board);
   std::vector<std::string> written;
   if (!o.out.empty()) {
@@ -79,7 +52,7 @@ int report(const studies::Scoreboard& board, const std::optional<studies::Baseli
   return 1;
 }
 
-int run_score(const ScoreCli& o) {
+int run_score(const studies::ScoreCommandOptions& o) {
   std::optional<ScoreMpi> mpi_holder;
   try {
     mpi_holder.emplace();
@@ -94,9 +67,7 @@ int run_score(const ScoreCli& o) {
   std::optional<studies::Baseline> baseline;
   int threads = o.threads;
   try {
-    if (o.threads < 0 || o.threads > 1024)
-      throw InputError(fmt::format("--threads {}: must be from 1 to 1024 (0: one per core)", o.threads));
-    campaign.emplace(score_options(o));
+    campaign.emplace(studies::score_request(o));
     if (!o.baseline.empty()) baseline = studies::load_baseline(o.baseline);
     if (threads == 0)
       threads = mpi.size() > 1 ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -139,28 +110,9 @@ int run_score(const ScoreCli& o) {
 }  // namespace
 
 void add_score_command(CLI::App& app, Run* run) {
-  auto o = std::make_shared<ScoreCli>();
-  CLI::App* cmd = add_subcommand(
-      app, "score",
-      "Monte Carlo campaign scoring the fitting engines on a scenario (also under mpirun)");
-  require(add_value(cmd, "scenario", o->scenario,
-                    "Scenario TOML (its [spread] table, if any, varies the gyro per trial)"));
-  add_value(cmd, "--engines", o->engines, "Comma-separated engines (default: all)");
-  add_value(cmd, "--trials", o->trials, "Number of trials N (default 100)");
-  add_value(cmd, "--threads", o->threads, "Threads per process (default: one per core; 1 under mpirun)");
-  o->seed_option = add_value(cmd, "--seed", o->seed, "Campaign seed S; trial k uses S + k (default: the scenario's seed)");
-  add_value(cmd, "--model", o->model, "Model formula (default 'T + T^2 + dT')");
-  add_value(cmd, "--budget", o->budgets,
-            "Evaluation budget: N for every seeded engine, or ENGINE=N (repeatable; 0: the engine's default)");
-  add_value(cmd, "--option", o->engine_options, "Engine option ENGINE:KEY=VALUE (repeatable)");
-  add_value(cmd, "--baseline", o->baseline,
-            "A saved 'score --json': exit 1 naming engine and metric where an engine is worse beyond "
-            "Monte Carlo noise");
-  add_value(cmd, "--out", o->out,
-            "Write scoreboard.json, scoreboard.md, convergence.csv and convergence.png here "
-            "(default: no files)");
-  add_flag(cmd, "--json", o->json, "Print the scoreboard as one JSON object");
-  when_chosen(cmd, run, [o] { return run_score(*o); });
+  add_table_command<studies::ScoreCommandOptions>(
+      app, run, "score", "Monte Carlo campaign scoring the fitting engines on a scenario (also under mpirun)",
+      studies::score_option_table(), run_score);
 }
 
 }  // namespace gyrotherm::app

@@ -14,6 +14,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_runner.h"
 #include "expect_input_error.h"
 #include "studies/options/allan_options.h"
@@ -22,6 +24,8 @@
 #include "studies/options/export_options.h"
 #include "studies/options/fit_options.h"
 #include "studies/options/plan_options.h"
+#include "studies/options/reproduce_options.h"
+#include "studies/options/score_options.h"
 #include "studies/options/simulate_options.h"
 
 namespace gyrotherm::studies {
@@ -287,7 +291,7 @@ void expect_help_lists_the_table(const OptionTable<O>& table) {
   for (const OptionRow<O>& row : table.rows) {
     (row.names.starts_with('-') ? named : positional).push_back(row.names);
     EXPECT_NE(r.out.find(row.help), std::string::npos) << row.help;
-    // The names, then what a value is ("--avg FLOAT", "--add TEXT ...", "data TEXT REQUIRED", "--json").
+    // The names, then what a value is ("--avg FLOAT", "--add TEXT", "data TEXT REQUIRED", "--json").
     const std::string shown = "\n  " + row.names + (row.value_name.empty() ? "" : " " + row.value_name) + " ";
     EXPECT_NE(r.out.find(shown), std::string::npos) << shown;
   }
@@ -303,6 +307,24 @@ TEST(OptionTable, HelpListsExactlyEachTablesNamesAndHelp) {
   expect_help_lists_the_table(export_option_table());
   expect_help_lists_the_table(simulate_option_table());
   expect_help_lists_the_table(plan_option_table());
+  expect_help_lists_the_table(reproduce_option_table());
+  expect_help_lists_the_table(score_option_table());
+}
+
+// A repeatable option takes one value per name, so that the positional after
+// it is never taken for a second value; plan's --range takes its two.
+TEST(OptionTable, ARepeatableOptionBeforeThePositionalTakesOneValue) {
+  ScratchDir dir;
+  const std::string scenario = std::string(GYROTHERM_SOURCE_DIR) + "/scenarios/cycle.toml";
+  const CliResult score = run_cli(dir, "score --budget 50 " + scenario + " --trials 1 --engines ols,afsa --json");
+  ASSERT_EQ(score.exit_code, 0) << score.err;
+  EXPECT_EQ(nlohmann::json::parse(score.out)["trials"], 1);
+  const CliResult two = run_cli(dir, "score " + scenario + " --budget 50 60 --trials 1");
+  EXPECT_EQ(two.exit_code, 2);
+  EXPECT_NE(two.err.find("60"), std::string::npos) << two.err;
+  // (No test of an hour meets the default precision: the refusal names the limits read.)
+  const CliResult range = run_cli(dir, "plan --range -10 40 --longest 1 --out p");
+  EXPECT_NE(range.err.find("at these limits (-10..40 °C"), std::string::npos) << range.err;
 }
 
 }  // namespace

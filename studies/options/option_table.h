@@ -33,8 +33,9 @@
 
 namespace gyrotherm::studies {
 
-// list: repeatable, one value each time (the command line also takes
-// several values after one name, as it always has).
+// list: repeatable, one value each time (on the command line one value per
+// name: `--add a --add b`, so that a positional after it is never taken for
+// one).
 enum class OptionKind { text, number, integer, flag, list };
 // "text", "number", "integer", "flag", "list".
 std::string_view kind_name(OptionKind kind);
@@ -50,11 +51,14 @@ struct OptionRow {
   // InputError naming the option and what was expected.
   std::function<void(Options&, const std::string& value)> set;
   // What --help shows after the names: "FLOAT", "INT", "UINT", "TEXT", for a
-  // list "TEXT ..." (plan's --range: "FLOAT x 2"); "" for a flag.
+  // list "TEXT" (plan's --range: "FLOAT x 2"); "" for a flag.
   std::string value_name;
   // The field's value as a user would write it (a list's values joined by
   // ","; nothing for an optional not set); empty where the row has no field.
   std::function<std::optional<std::string>(const Options&)> get;
+  // A list that takes several values after one name (plan's --range -20 50);
+  // every other list one per name.
+  bool several_per_name = false;
 };
 
 
@@ -71,12 +75,13 @@ struct OptionInfo {
   OptionKind kind = OptionKind::text;
   bool required = false;
   std::string value_name;
+  bool several_per_name = false;
 };
 template <class Options>
 std::vector<OptionInfo> list_options(const OptionTable<Options>& table) {
   std::vector<OptionInfo> out;
   for (const OptionRow<Options>& r : table.rows)
-    out.push_back({r.names, r.keyword, r.help, r.kind, r.required, r.value_name});
+    out.push_back({r.names, r.keyword, r.help, r.kind, r.required, r.value_name, r.several_per_name});
   return out;
 }
 
@@ -183,7 +188,7 @@ OptionRow<Options> field_row(std::string names, std::string help, Field field, b
   };
   if constexpr (std::is_same_v<T, std::vector<std::string>>) {
     row.kind = OptionKind::list;
-    row.value_name = "TEXT ...";
+    row.value_name = "TEXT";
     row.set = [field](Options& o, const std::string& v) { std::invoke(field, o).push_back(v); };
   } else if constexpr (std::is_same_v<Value, std::string>) {
     row.kind = OptionKind::text;
@@ -221,7 +226,7 @@ OptionRow<Options> nested_row(std::string names, std::string help, Outer Options
 template <class Whole, class Part, class Get>
 void append_rows(std::vector<OptionRow<Whole>>& rows, const std::vector<OptionRow<Part>>& part_rows, Get part) {
   for (const OptionRow<Part>& r : part_rows) {
-    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name, {}};
+    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name, {}, r.several_per_name};
     w.set = [set = r.set, part](Whole& o, const std::string& v) { set(std::invoke(part, o), v); };
     if (r.get)
       w.get = [get = r.get, part](const Whole& o) { return get(std::invoke(part, const_cast<Whole&>(o))); };

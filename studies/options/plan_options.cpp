@@ -17,6 +17,7 @@ template <class Field>
 OptionRow<O> row(std::string names, std::string help, Field field) {
   if constexpr (std::is_same_v<Field, std::vector<double> O::*>) {
     OptionRow<O> r{names, keyword_of(names), std::move(help), OptionKind::list, false, {}, "FLOAT x 2"};
+    r.several_per_name = true;
     r.set = [field, names](O& o, const std::string& v) {
       for (const std::string& item : split_commas(v)) (o.*field).push_back(parse_number(names, item));
     };
