@@ -74,14 +74,14 @@ std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studi
     Slot& slot = (*slots)[i];
     slot.kind = row.kind;
     if (row.kind == studies::OptionKind::flag) {
-      slot.option = command->add_flag(row.names, slot.flag, row.help);
+      slot.option = command->add_flag(row.names, slot.flag, studies::shown_help(row));
     } else if (row.kind == studies::OptionKind::list) {
-      slot.option = command->add_option(row.names, slot.list, row.help);
+      slot.option = command->add_option(row.names, slot.list, studies::shown_help(row));
       // one value per name, so that a positional after it is never taken for one
       slot.option->allow_extra_args(row.several_per_name);
       slot.option->option_text(row.value_name + (row.required ? " REQUIRED" : ""));
     } else {
-      slot.option = command->add_option(row.names, slot.text, row.help)->type_name(row.value_name);
+      slot.option = command->add_option(row.names, slot.text, studies::shown_help(row))->type_name(row.value_name);
     }
     if (row.required) slot.option->required();
   }

@@ -19,11 +19,13 @@
 #include "cli_runner.h"
 #include "expect_input_error.h"
 #include "studies/options/allan_options.h"
+#include "studies/options/check_options.h"
 #include "studies/options/compensate_options.h"
 #include "studies/options/diagnose_options.h"
 #include "studies/options/export_options.h"
 #include "studies/options/fit_options.h"
 #include "studies/options/plan_options.h"
+#include "studies/options/report_options.h"
 #include "studies/options/reproduce_options.h"
 #include "studies/options/score_options.h"
 #include "studies/options/simulate_options.h"
@@ -309,6 +311,51 @@ TEST(OptionTable, HelpListsExactlyEachTablesNamesAndHelp) {
   expect_help_lists_the_table(plan_option_table());
   expect_help_lists_the_table(reproduce_option_table());
   expect_help_lists_the_table(score_option_table());
+}
+
+// Defaults are stated once: the struct's initialiser (or a row's note where
+// the default is a rule, not a value), shown after the help as
+// "(default: V)"; no help types one itself, where it could drift from the
+// struct's.
+template <class O>
+void expect_defaults_from_the_struct(const OptionTable<O>& table) {
+  SCOPED_TRACE(table.command);
+  const std::regex typed(R"(\(default[ :]|; default |, default )");
+  const O defaults{};
+  const std::vector<OptionInfo> infos = list_options(table);
+  for (std::size_t k = 0; k < table.rows.size(); ++k) {
+    const OptionRow<O>& row = table.rows[k];
+    EXPECT_FALSE(std::regex_search(row.help, typed)) << row.names << ": " << row.help;
+    const OptionInfo& info = infos[k];
+    if (!row.default_note.empty()) {
+      EXPECT_EQ(info.default_value, row.default_note) << row.names;
+    } else if (row.kind != OptionKind::flag && row.kind != OptionKind::list && !row.required && row.get) {
+      const std::string value = row.get(defaults).value_or("");
+      EXPECT_EQ(info.default_value, value.find(' ') == std::string::npos ? value : "'" + value + "'") << row.names;
+    }
+    if (!info.default_value.empty()) {
+      EXPECT_EQ(shown_help(info), row.help + " (default: " + info.default_value + ")");
+    }
+  }
+}
+
+TEST(OptionTable, EveryDefaultComesFromTheStructOrARowsNote) {
+  expect_defaults_from_the_struct(fit_option_table());
+  expect_defaults_from_the_struct(diagnose_option_table());
+  expect_defaults_from_the_struct(allan_option_table());
+  expect_defaults_from_the_struct(compensate_option_table());
+  expect_defaults_from_the_struct(export_option_table());
+  expect_defaults_from_the_struct(simulate_option_table());
+  expect_defaults_from_the_struct(plan_option_table());
+  expect_defaults_from_the_struct(check_option_table());
+  expect_defaults_from_the_struct(report_option_table());
+  expect_defaults_from_the_struct(reproduce_option_table());
+  expect_defaults_from_the_struct(score_option_table());
+  // What a user reads: fit's window is the struct's 100 s.
+  const std::vector<OptionInfo> fit = list_options(fit_option_table());
+  const auto avg = std::find_if(fit.begin(), fit.end(), [](const OptionInfo& i) { return i.names == "--avg"; });
+  ASSERT_NE(avg, fit.end());
+  EXPECT_EQ(shown_help(*avg), "Averaging window in seconds (the paper's 100 s averages) (default: 100)");
 }
 
 // A repeatable option takes one value per name, so that the positional after

@@ -42,7 +42,8 @@ py::list option_rows(const std::string& command) {
     py::dict d;
     d["keyword"] = r.keyword;
     d["flag"] = r.names;
-    d["help"] = r.help;
+    d["help"] = studies::shown_help(r);
+    d["default"] = r.default_value;
     d["kind"] = std::string(studies::kind_name(r.kind));
     d["required"] = r.required;
     out.append(d);

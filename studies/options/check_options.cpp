@@ -19,9 +19,9 @@ std::vector<OptionRow<O>> check_rows() {
       nested_row("--max-residual",
           "Fail (exit 1) when an axis's residual against temperature exceeds this (in --residual-unit)",
           &O::request, &R::max_residual),
-      nested_row("--residual-unit", "Unit of --max-residual: dph, dps, rad/s or mrad/s (default dph)", &O::request, &R::residual_unit),
-      nested_row("--avg", "Window of the instability, s (default 100; a tenth of a shorter log)", &O::request, &R::avg_s),
-      nested_row("--boot", "ArduPilot: the boot gyro calibration, the log's first seconds (default 10)", &O::request, &R::boot_s),
+      nested_row("--residual-unit", "Unit of --max-residual: dph, dps, rad/s or mrad/s", &O::request, &R::residual_unit),
+      nested_row("--avg", "Window of the instability, s (a tenth of a log shorter than 10 windows)", &O::request, &R::avg_s),
+      nested_row("--boot", "ArduPilot: the boot gyro calibration, the log's first seconds", &O::request, &R::boot_s),
       field_row<O>("--json", "Print one JSON object", &O::json)};
   append_rows(rows, column_option_rows(/*fit_defaults=*/false), [](O& o) -> auto& { return o.request.columns; });
   return rows;

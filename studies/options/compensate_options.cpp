@@ -16,10 +16,9 @@ std::vector<OptionRow<O>> compensate_rows() {
                  &R::output),
       nested_row("--causal", "Real-time compensation: backward differences and only past windows", &O::request,
                  &R::causal),
-      nested_row("--extrapolate",
-                 "Evaluate the model outside the temperature range it was fitted on (default: hold it at the range's "
-                 "edge, as the firmwares do)",
-                 &O::request, &R::extrapolate),
+      defaulting(nested_row("--extrapolate", "Evaluate the model outside the temperature range it was fitted on",
+                            &O::request, &R::extrapolate),
+                 "hold it at the range's edge, as the firmwares do"),
       field_row<O>("--json", "Print one JSON object", &O::json)};
   append_rows(rows, column_option_rows(/*fit_defaults=*/true), [](O& o) -> auto& { return o.request.columns; });
   return rows;

@@ -10,6 +10,10 @@
 
 namespace gyrotherm::studies {
 
+std::string shown_help(const OptionInfo& row) {
+  return row.default_value.empty() ? row.help : fmt::format("{} (default: {})", row.help, row.default_value);
+}
+
 std::string_view kind_name(OptionKind kind) {
   switch (kind) {
     case OptionKind::text: return "text";
@@ -60,6 +64,9 @@ std::vector<std::size_t> rows_for_keywords(const std::string& command, const std
 
 namespace detail {
 std::string number_text(double value) { return fmt::format("{}", value); }
+std::string quoted_if_spaced(const std::string& value) {
+  return value.find(' ') == std::string::npos ? value : "'" + value + "'";
+}
 }  // namespace detail
 
 double parse_number(std::string_view option, const std::string& text) {

@@ -44,7 +44,11 @@ template <class Options>
 struct OptionRow {
   std::string names;    // as CLI11 takes them: "--avg", "-o,--output", or a positional "data"
   std::string keyword;  // the Python keyword: "avg", "output", "data", "time_col"
-  std::string help;     // the command line's help, unchanged
+  // What the option is, without its default: the default is the struct's own
+  // value, shown after the help as "(default: VALUE)" (shown_help), or the
+  // default_note where it is not a value ("the fit's", "a quarter of the
+  // record"). No help states a default itself (tests/option_table_test.cpp).
+  std::string help;
   OptionKind kind = OptionKind::text;
   bool required = false;
   // Parses one value ("true"/"false" for a flag) into the options; throws
@@ -59,6 +63,7 @@ struct OptionRow {
   // A list that takes several values after one name (plan's --range -20 50);
   // every other list one per name.
   bool several_per_name = false;
+  std::string default_note;
 };
 
 
@@ -69,6 +74,11 @@ struct OptionTable {
   std::vector<OptionRow<Options>> rows;
 };
 
+namespace detail {
+// 'T + T^2 + dT' for a value with a blank, as a user would type it; else the value.
+std::string quoted_if_spaced(const std::string& value);
+}  // namespace detail
+
 // A row without its setter: the command-line binding and docstrings.
 struct OptionInfo {
   std::string names, keyword, help;
@@ -76,12 +86,24 @@ struct OptionInfo {
   bool required = false;
   std::string value_name;
   bool several_per_name = false;
+  // The default as shown: the row's default_note, else the value a
+  // default-constructed Options holds (a text, number or whole number that is
+  // not empty; a flag is off and a list empty by default); "" for none.
+  std::string default_value;
 };
+// The help with its default: "Averaging window in seconds (default: 100)".
+std::string shown_help(const OptionInfo& row);
 template <class Options>
 std::vector<OptionInfo> list_options(const OptionTable<Options>& table) {
+  const Options defaults{};
   std::vector<OptionInfo> out;
-  for (const OptionRow<Options>& r : table.rows)
-    out.push_back({r.names, r.keyword, r.help, r.kind, r.required, r.value_name, r.several_per_name});
+  for (const OptionRow<Options>& r : table.rows) {
+    OptionInfo info{r.names, r.keyword, r.help, r.kind, r.required, r.value_name, r.several_per_name, r.default_note};
+    const bool valued = r.kind == OptionKind::text || r.kind == OptionKind::number || r.kind == OptionKind::integer;
+    if (info.default_value.empty() && valued && r.get && !r.required)
+      info.default_value = detail::quoted_if_spaced(r.get(defaults).value_or(""));
+    out.push_back(std::move(info));
+  }
   return out;
 }
 
@@ -212,6 +234,13 @@ OptionRow<Options> field_row(std::string names, std::string help, Field field, b
   return row;
 }
 
+// The row with its default in words, where it is not a value the struct holds.
+template <class Options>
+OptionRow<Options> defaulting(OptionRow<Options> row, std::string note) {
+  row.default_note = std::move(note);
+  return row;
+}
+
 // A row for a field of a member: (options.*outer).*inner, e.g. &O::request,
 // &ExportRequest::format.
 template <class Options, class Outer, class Inner, class T>
@@ -226,7 +255,8 @@ OptionRow<Options> nested_row(std::string names, std::string help, Outer Options
 template <class Whole, class Part, class Get>
 void append_rows(std::vector<OptionRow<Whole>>& rows, const std::vector<OptionRow<Part>>& part_rows, Get part) {
   for (const OptionRow<Part>& r : part_rows) {
-    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name, {}, r.several_per_name};
+    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name, {}, r.several_per_name,
+                       r.default_note};
     w.set = [set = r.set, part](Whole& o, const std::string& v) { set(std::invoke(part, o), v); };
     if (r.get)
       w.get = [get = r.get, part](const Whole& o) { return get(std::invoke(part, const_cast<Whole&>(o))); };

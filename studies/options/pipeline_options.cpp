@@ -32,38 +32,42 @@ fit::PipelineOptions DataOptions::resolved() const {
 std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
   using C = fit::ColumnMap;
   using fit::Quantity;
-  const auto is = [&](const std::string& plain) { return fit_defaults ? std::string(" (default: the fit's)") : plain; };
-  // The default: the fit's, or the unit the column's name states ("time (ms)", "gyro [rad/s]"), else the base.
-  const auto unit_help = [&](const char* what, Quantity q, const char* example, const char* base) {
-    return fmt::format("Unit of the {}: {}{}", what, fit::unit_names(q, " or "),
-                       fit_defaults ? std::string(" (default: the fit's)")
-                                    : fmt::format(" (default: the unit the column's name states, e.g. '{}', else {})",
-                                                  example, base));
+  // The default: the fit's (compensate), a rule in words, or a default map's
+  // value (a command that keeps its own map unset until given shows that).
+  const auto note = [&](OptionRow<C> row, const std::string& rule = {}) {
+    if (fit_defaults) return defaulting(std::move(row), "the fit's");
+    if (!rule.empty()) return defaulting(std::move(row), rule);
+    const std::string value = row.get(fit::ColumnMap{}).value_or("");
+    if (row.kind == OptionKind::flag || value.empty()) return row;
+    return defaulting(std::move(row), detail::quoted_if_spaced(value));
+  };
+  const auto unit_row = [&](const char* names, const char* what, Quantity q, const char* example, const char* base,
+                            std::string fit::Units::*field) {
+    return note(nested_row(names, fmt::format("Unit of the {}: {}", what, fit::unit_names(q, " or ")), &C::units, field),
+                fmt::format("the unit the column's name states, e.g. '{}', else {}", example, base));
   };
   return {
-      field_row<C>("--time-col", "Name of the time column" + is(" (default time_s)"), &C::time),
-      field_row<C>("--temp-col", "Name of the gyro temperature column" + is(" (default temp_c)"), &C::temp),
-      field_row<C>("--gyro-col", "Name of the gyro output column, or several A,B,C" + is(" (default gyro_dph)"), &C::gyro),
-      field_row<C>("--temp2-col", "Name of the far-side temperature column, for the grad term" + is(" (default temp2_c)"),
-                   &C::temp2),
-      nested_row("--time-unit", unit_help("time column", Quantity::time, "time (ms)", "s"), &C::units, &fit::Units::time),
-      nested_row("--gyro-unit", unit_help("gyro column", Quantity::gyro, "gyro [rad/s]", "dph"), &C::units, &fit::Units::gyro),
-      nested_row("--temp-unit", unit_help("temperature columns", Quantity::temperature, "temp (K)", "C"),
-                 &C::units, &fit::Units::temp),
-      nested_row("--gyro-scale", "Multiply the gyro column by K before its unit (raw counts, a logger's scale)" + is(""),
-                 &C::units, &fit::Units::gyro_scale),
-      nested_row("--temp-scale", "Temperature = A x column + B (raw counts): A, before --temp-unit" + is(" (default 1)"),
-                 &C::units, &fit::Units::temp_scale),
-      nested_row("--temp-offset", "Temperature = A x column + B: B" + is(" (default 0)"),
-                 &C::units, &fit::Units::temp_offset),
-      nested_row("--delimiter", "Column delimiter: comma, semicolon, tab or auto" + is(" (default auto: the one the header uses)"),
-                 &C::csv, &fit::CsvDialect::delimiter),
-      nested_row("--decimal-comma", "Numbers are written with a decimal comma (20,5)" + is(""),
-                 &C::csv, &fit::CsvDialect::decimal_comma),
-      field_row<C>("--imu", "The gyro instance of a PX4 ULog or ArduPilot DataFlash log" + is(" (default: the first with a temperature)"),
-                   &C::imu),
-      nested_row("--rate", "Sample rate in Hz of a log without a time column (row k at k / rate s)" + is(""),
-                 &C::csv, &fit::CsvDialect::rate_hz),
+      note(field_row<C>("--time-col", "Name of the time column", &C::time)),
+      note(field_row<C>("--temp-col", "Name of the gyro temperature column", &C::temp)),
+      note(field_row<C>("--gyro-col", "Name of the gyro output column, or several A,B,C", &C::gyro)),
+      note(field_row<C>("--temp2-col", "Name of the far-side temperature column, for the grad term", &C::temp2)),
+      unit_row("--time-unit", "time column", Quantity::time, "time (ms)", "s", &fit::Units::time),
+      unit_row("--gyro-unit", "gyro column", Quantity::gyro, "gyro [rad/s]", "dph", &fit::Units::gyro),
+      unit_row("--temp-unit", "temperature columns", Quantity::temperature, "temp (K)", "C", &fit::Units::temp),
+      note(nested_row("--gyro-scale", "Multiply the gyro column by K before its unit (raw counts, a logger's scale)",
+                      &C::units, &fit::Units::gyro_scale)),
+      note(nested_row("--temp-scale", "Temperature = A x column + B (raw counts): A, before --temp-unit", &C::units,
+                      &fit::Units::temp_scale)),
+      note(nested_row("--temp-offset", "Temperature = A x column + B: B", &C::units, &fit::Units::temp_offset)),
+      note(nested_row("--delimiter", "Column delimiter: comma, semicolon, tab or auto (the one the header uses)",
+                      &C::csv, &fit::CsvDialect::delimiter)),
+      note(nested_row("--decimal-comma", "Numbers are written with a decimal comma (20,5)", &C::csv,
+                      &fit::CsvDialect::decimal_comma)),
+      note(field_row<C>("--imu", "The gyro instance of a PX4 ULog or ArduPilot DataFlash log", &C::imu),
+           "the first with a temperature"),
+      note(nested_row("--rate", "Sample rate in Hz of a log without a time column (row k at k / rate s)", &C::csv,
+                      &fit::CsvDialect::rate_hz),
+           "a time column"),
   };
 }
 
@@ -71,21 +75,21 @@ std::vector<OptionRow<DataOptions>> data_option_rows(bool with_avg) {
   using D = DataOptions;
   std::vector<OptionRow<D>> rows;
   if (with_avg)
-    rows.push_back(field_row<D>("--avg", "Averaging window in seconds (default 100, the paper's 100 s averages)",
+    rows.push_back(field_row<D>("--avg", "Averaging window in seconds (the paper's 100 s averages)",
                                 [](D& o) -> auto& { return o.pipeline.averaging.window_s; }));
   rows.push_back(field_row<D>("--deriv-span",
                               "Longest time between two window centres that dT/dt and d2T/dt2 may span, "
-                              "across a gap or not (default 600 s)",
+                              "across a gap or not",
                               [](D& o) -> auto& { return o.pipeline.derivative_span_s; }));
   rows.push_back(field_row<D>("--sensor-tau",
                               "Time constant in s of the temperature sensors' lag behind the gyro's temperature: "
-                              "temperatures are read as T + tau dT/dt (default 0: no lag)",
+                              "temperatures are read as T + tau dT/dt (0: no lag)",
                               [](D& o) -> auto& { return o.pipeline.sensor_tau_s; }));
-  rows.push_back(field_row<D>("--causal", "Backward differences for dT/dt and d2T (a real-time compensator); default central",
+  rows.push_back(field_row<D>("--causal", "Backward differences for dT/dt and d2T (a real-time compensator) rather than central ones",
                               &D::causal));
   rows.push_back(field_row<D>("--keep-outliers", "Do not remove counting glitches", &D::keep_outliers));
   rows.push_back(field_row<D>("--outlier-threshold",
-                              "Glitch rule: deviation from the moving median in robust sigmas (default 8)",
+                              "Glitch rule: deviation from the moving median in robust sigmas",
                               &D::outlier_threshold));
   append_rows(rows, column_option_rows(false), [](D& o) -> auto& { return o.pipeline.columns; });
   return rows;
@@ -125,10 +129,10 @@ ModelRequest model_request(const ModelOptions& model, const DataOptions& data,
 std::vector<OptionRow<ModelOptions>> model_option_rows(const std::string& add_help) {
   using M = ModelOptions;
   return {
-      field_row<M>("--model", "Model formula, terms joined by + (default 'T + T^2 + dT')", &M::model),
+      field_row<M>("--model", "Model formula, terms joined by +", &M::model),
       field_row<M>("--add", add_help, &M::add),
-      field_row<M>("--engine", "Fitting engine (default ols; see 'gyrotherm engines')", &M::engine),
-      field_row<M>("--seed", "Seed of a stochastic engine and of ols's bootstrap intervals (default 1)", &M::seed),
+      field_row<M>("--engine", "Fitting engine (see 'gyrotherm engines')", &M::engine),
+      field_row<M>("--seed", "Seed of a stochastic engine and of ols's bootstrap intervals", &M::seed),
   };
 }
 

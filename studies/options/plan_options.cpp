@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "fit/model/formula.h"
 #include "sim/util/comma_list.h"
 #include "sim/util/input_error.h"
 
@@ -34,25 +35,25 @@ OptionRow<O> row(std::string names, std::string help, Field field) {
 
 std::vector<OptionRow<O>> plan_rows() {
   return {
-      row("--model", "The model to identify (default \"T + T^2 + dT\")", &R::model),
+      defaulting(row("--model", "The model to identify", &R::model), detail::quoted_if_spaced(std::string(fit::kDefaultModel))),
       row("--se", "Standard error wanted, TERM=VALUE in the coefficient's unit", &R::se),
       row("--rel-se", "Standard error wanted as a fraction of the prior: F (every term) or TERM=F", &R::rel_se),
       row("--separate", "Terms to tell apart, NAME or NAME=SIZE (prior coefficient), or a diagnose --json file",
           &R::separate),
-      row("--prior", "A coefficient's prior value, TERM=VALUE (default: the gyro file's)", &R::prior),
+      defaulting(row("--prior", "A coefficient's prior value, TERM=VALUE", &R::prior), "the gyro file's"),
       row("--param", "A nonlinear term's parameter, TERM=VALUE (e.g. lag=1200)", &R::param),
-      row("--scenario", "Room, start temperature, rig and gyro (default scenarios/cycle.toml)", &R::scenario),
+      defaulting(row("--scenario", "Room, start temperature, rig and gyro", &R::scenario), "scenarios/cycle.toml"),
       row("--rig", "Rig file instead of the scenario's", &R::rig),
       row("--gyro", "Gyro file (truth, priors and noise) instead of the scenario's", &R::gyro),
       row("--noise", "The noise (and priors) of a fit, diagnose or allan --json", &R::noise),
       row("--tau", "A first-order thermal path of TAU s from chamber to sensor instead of a rig", &R::tau_s),
-      row("--range", "Chamber range LO,HI in °C (default: the scenario's set points)", &O::range),
-      row("--max-rate", "Fastest ramp, °C/min (default: the scenario's fastest)", &R::max_rate_c_per_min),
-      row("--min-soak", "Shortest soak, s (default 0)", &R::min_soak_s),
-      row("--longest", "Longest test considered, h (default 72)", &R::longest_h),
-      row("--out", "Folder for plan.toml, rig.toml, gyro.toml, plan_setpoint.csv, plan.png (default plan)", &R::out),
+      defaulting(row("--range", "Chamber range LO,HI in °C", &O::range), "the scenario's set points"),
+      defaulting(row("--max-rate", "Fastest ramp, °C/min", &R::max_rate_c_per_min), "the scenario's fastest"),
+      row("--min-soak", "Shortest soak, s", &R::min_soak_s),
+      row("--longest", "Longest test considered, h", &R::longest_h),
+      row("--out", "Folder for plan.toml, rig.toml, gyro.toml, plan_setpoint.csv, plan.png", &R::out),
       row("--verify", "Simulate and fit the planned test N times; report achieved errors", &R::verify),
-      row("--seed", "First seed of --verify (default: the scenario's)", &R::seed),
+      defaulting(row("--seed", "First seed of --verify", &R::seed), "the scenario's"),
       field_row<O>("--json", "Print one JSON object", &O::json)};
 }
 

@@ -18,8 +18,8 @@ std::vector<OptionRow<O>> report_rows() {
   };
   std::vector<OptionRow<O>> rows = {
       row("data", "The log: a measurement CSV, a PX4 ULog or an ArduPilot DataFlash log", &R::data, true),
-      row("--fit", "A fit saved by 'gyrotherm fit -o' (default: fit here with --model and the data options)",
-          &R::fit_file),
+      defaulting(row("--fit", "A fit saved by 'gyrotherm fit -o'", &R::fit_file),
+                 "fit here with --model and the data options"),
       row("--params", "A calibration (PX4 .params, ArduPilot .parm or a fit file) to check on this log, as 'check'",
           &R::params),
       row("--max-residual", "With --params: PASS/FAIL against this residual against temperature, °/h",

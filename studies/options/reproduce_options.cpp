@@ -8,10 +8,11 @@ const OptionTable<ReproduceCommandOptions>& reproduce_option_table() {
   using O = ReproduceCommandOptions;
   static const OptionTable<O> table{
       "reproduce",
-      {field_row<O>("--out", "Output folder (default results)", &O::out),
-       field_row<O>("--scenarios", "Folder with cycle.toml, random.toml, warmup.toml (default scenarios/)", &O::scenarios),
-       field_row<O>("--engines", "Comma-separated engines (default: all)", &O::engines),
-       field_row<O>("--seed", "Seed of the stochastic engines (default 1)", &O::seed),
+      {field_row<O>("--out", "Output folder", &O::out),
+       defaulting(field_row<O>("--scenarios", "Folder with cycle.toml, random.toml, warmup.toml", &O::scenarios),
+                  "scenarios/"),
+       defaulting(field_row<O>("--engines", "Comma-separated engines", &O::engines), "all"),
+       field_row<O>("--seed", "Seed of the stochastic engines", &O::seed),
        field_row<O>("--json", "Print table1.json, with the run times, on stdout", &O::json)}};
   return table;
 }

@@ -13,11 +13,12 @@ const OptionTable<ScoreCommandOptions>& score_option_table() {
       "score",
       {field_row<O>("scenario", "Scenario TOML (its [spread] table, if any, varies the gyro per trial)", &O::scenario,
                     true),
-       field_row<O>("--engines", "Comma-separated engines (default: all)", &O::engines),
-       field_row<O>("--trials", "Number of trials N (default 100)", &O::trials),
-       field_row<O>("--threads", "Threads per process (default: one per core; 1 under mpirun)", &O::threads),
-       field_row<O>("--seed", "Campaign seed S; trial k uses S + k (default: the scenario's seed)", &O::seed),
-       field_row<O>("--model", "Model formula (default 'T + T^2 + dT')", &O::model),
+       defaulting(field_row<O>("--engines", "Comma-separated engines", &O::engines), "all"),
+       field_row<O>("--trials", "Number of trials N", &O::trials),
+       defaulting(field_row<O>("--threads", "Threads per process (0: one per core)", &O::threads),
+                  "one per core; 1 under mpirun"),
+       defaulting(field_row<O>("--seed", "Campaign seed S; trial k uses S + k", &O::seed), "the scenario's seed"),
+       field_row<O>("--model", "Model formula", &O::model),
        field_row<O>("--budget",
                     "Evaluation budget: N for every seeded engine, or ENGINE=N (repeatable; 0: the engine's default)",
                     &O::budgets),
@@ -26,10 +27,10 @@ const OptionTable<ScoreCommandOptions>& score_option_table() {
                     "A saved 'score --json': exit 1 naming engine and metric where an engine is worse beyond "
                     "Monte Carlo noise",
                     &O::baseline),
-       field_row<O>("--out",
-                    "Write scoreboard.json, scoreboard.md, convergence.csv and convergence.png here "
-                    "(default: no files)",
-                    &O::out),
+       defaulting(field_row<O>("--out",
+                               "Write scoreboard.json, scoreboard.md, convergence.csv and convergence.png here",
+                               &O::out),
+                  "no files"),
        field_row<O>("--json", "Print the scoreboard as one JSON object", &O::json)}};
   return table;
 }
