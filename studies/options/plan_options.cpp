@@ -35,7 +35,8 @@ OptionRow<O> row(std::string names, std::string help, Field field) {
 
 std::vector<OptionRow<O>> plan_rows() {
   return {
-      defaulting(row("--model", "The model to identify", &R::model), detail::quoted_if_spaced(std::string(fit::kDefaultModel))),
+      defaulting(row("--model", "The model to identify", &R::model),
+                 detail::quoted_if_spaced(std::string(fit::kDefaultModel))),
       row("--se", "Standard error wanted, TERM=VALUE in the coefficient's unit", &R::se),
       row("--rel-se", "Standard error wanted as a fraction of the prior: F (every term) or TERM=F", &R::rel_se),
       row("--separate", "Terms to tell apart, NAME or NAME=SIZE (prior coefficient), or a diagnose --json file",
@@ -47,7 +48,8 @@ std::vector<OptionRow<O>> plan_rows() {
       row("--gyro", "Gyro file (truth, priors and noise) instead of the scenario's", &R::gyro),
       row("--noise", "The noise (and priors) of a fit, diagnose or allan --json", &R::noise),
       row("--tau", "A first-order thermal path of TAU s from chamber to sensor instead of a rig", &R::tau_s),
-      defaulting(row("--range", "Chamber range LO,HI in °C", &O::range), "the scenario's set points"),
+      defaulting(row("--range", "Chamber range LO,HI in °C", &O::range),
+                 "the scenario's set points"),
       defaulting(row("--max-rate", "Fastest ramp, °C/min", &R::max_rate_c_per_min), "the scenario's fastest"),
       row("--min-soak", "Shortest soak, s", &R::min_soak_s),
       row("--longest", "Longest test considered, h", &R::longest_h),
