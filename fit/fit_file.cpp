@@ -73,13 +73,13 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
   Json history = Json::array();
   for (const HistoryPoint& h : fit.engine.history) history.push_back({h.evaluations, h.best_objective});
   j["history"] = history;
-  if (!fit.engine.intervals.empty()) {
+  if (!fit.engine.inference.intervals.empty()) {
     Json intervals;
     for (std::size_t k = 0; k < fit.terms.size(); ++k)
-      intervals[fit.terms[k]->name] = {fit.engine.intervals[k].lower, fit.engine.intervals[k].upper};
+      intervals[fit.terms[k]->name] = {fit.engine.inference.intervals[k].lower, fit.engine.inference.intervals[k].upper};
     j["intervals_95"] = intervals;
-    j["interval_method"] = interval_method_text(fit.engine.interval_method, fit.noise ? &fit.noise->model : nullptr);
-    j["interval_kind"] = to_string(fit.engine.interval_method.kind);
+    j["interval_method"] = interval_method_text(fit.engine.inference.interval_method, fit.noise ? &fit.noise->model : nullptr);
+    j["interval_kind"] = to_string(fit.engine.inference.interval_method.kind);
     if (!fit.lag_sensitivity.empty()) {
       // The sensor lag (s) that would move each rate or gradient term by its half-width (null: none would).
       Json lag;
@@ -108,15 +108,15 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                    {"flags", flags},
                    {"reasons", reasons}};
   }
-  if (!fit.engine.p_values.empty()) {
+  if (!fit.engine.inference.p_values.empty()) {
     Json p;
-    for (std::size_t k = 0; k < fit.terms.size(); ++k) p[fit.terms[k]->name] = fit.engine.p_values[k];
+    for (std::size_t k = 0; k < fit.terms.size(); ++k) p[fit.terms[k]->name] = fit.engine.inference.p_values[k];
     j["p_values"] = p;
   }
-  if (!fit.engine.kept.empty()) {
+  if (!fit.engine.inference.kept.empty()) {
     Json kept = Json::array();
     for (std::size_t k = 0; k < fit.terms.size(); ++k)
-      if (fit.engine.kept[k]) kept.push_back(fit.terms[k]->name);
+      if (fit.engine.inference.kept[k]) kept.push_back(fit.terms[k]->name);
     j["kept"] = kept;
   }
   Json gaps = Json::array();

@@ -106,7 +106,7 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
     if (noise) problem.attach_noise(noise);
     out.ols = engine.fit(problem);  // the engine that gave the intervals (ols), its options as given
     for (std::size_t i = 0; i < nonlinear.size(); ++i) {
-      const Interval& d = out.ols.intervals[static_cast<std::size_t>(x.cols()) + i];
+      const Interval& d = out.ols.inference.intervals[static_cast<std::size_t>(x.cols()) + i];
       out.parameters[nonlinear[i]] = Interval{parameters[nonlinear[i]] * std::exp(d.lower),
                                               parameters[nonlinear[i]] * std::exp(d.upper)};
     }
@@ -131,7 +131,7 @@ bool lag_moves(const Term& t) {
 
 std::vector<LagSensitivity> lag_sensitivity(const PreparedData& data, const ModelFit& fit) {
   std::vector<LagSensitivity> out;
-  if (fit.engine.intervals.size() != fit.terms.size() || data.series.size() < 3) return out;
+  if (fit.engine.inference.intervals.size() != fit.terms.size() || data.series.size() < 3) return out;
   if (std::none_of(fit.terms.begin(), fit.terms.end(), [](const Term* t) { return lag_moves(*t); })) return out;
   constexpr double kProbeS = 10.0;
   const DerivedSeries delagged = derive(data.series, data.derivative, data.derivative_span_s, data.sensor_tau_s + kProbeS);
@@ -151,7 +151,7 @@ std::vector<LagSensitivity> lag_sensitivity(const PreparedData& data, const Mode
   }
   for (std::size_t k = 0; k < fit.terms.size(); ++k) {
     if (!lag_moves(*fit.terms[k])) continue;
-    const double half = 0.5 * (fit.engine.intervals[k].upper - fit.engine.intervals[k].lower);
+    const double half = 0.5 * (fit.engine.inference.intervals[k].upper - fit.engine.inference.intervals[k].lower);
     const double per_s = std::abs(moved.b[k] - as_read.b[k]) / kProbeS;
     out.push_back({k, per_s > 0.0 ? half / per_s : std::numeric_limits<double>::infinity()});
   }
@@ -248,16 +248,16 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   for (std::size_t p = 0; p < fit.fitted_dph.size(); ++p) fit.residual_dph[p] = data.series.gyro_dph[p] - fit.fitted_dph[p];
   fit.warnings = problem.warnings();
   fit.parameter_intervals.assign(terms.size(), std::nullopt);
-  if (!fit.engine.intervals.empty()) {
+  if (!fit.engine.inference.intervals.empty()) {
     LinearisedIntervals li =
         linearised_intervals(data.derived, y, terms, fit.parameters, fit.coefficients, fit.noise, *e);
     fit.parameter_intervals = std::move(li.parameters);
-    if (!li.ols.intervals.empty()) {
+    if (!li.ols.inference.intervals.empty()) {
       // The coefficients' intervals with the parameters' uncertainty in them.
-      fit.engine.intervals.assign(li.ols.intervals.begin(), li.ols.intervals.begin() + static_cast<std::ptrdiff_t>(terms.size()));
-      fit.engine.p_values.assign(li.ols.p_values.begin(), li.ols.p_values.begin() + static_cast<std::ptrdiff_t>(terms.size()));
-      fit.engine.interval_method = li.ols.interval_method;
-      fit.engine.interval_method.linearised_parameters = true;
+      fit.engine.inference.intervals.assign(li.ols.inference.intervals.begin(), li.ols.inference.intervals.begin() + static_cast<std::ptrdiff_t>(terms.size()));
+      fit.engine.inference.p_values.assign(li.ols.inference.p_values.begin(), li.ols.inference.p_values.begin() + static_cast<std::ptrdiff_t>(terms.size()));
+      fit.engine.inference.interval_method = li.ols.inference.interval_method;
+      fit.engine.inference.interval_method.linearised_parameters = true;
     }
   }
   fit.lag_sensitivity = lag_sensitivity(data, fit);

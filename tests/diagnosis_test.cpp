@@ -115,7 +115,7 @@ TEST_P(HiddenEffectTest, RankedFirstSignificantAndAddingItReachesTheFloor) {
   // noise), has a 95 % interval that holds the hidden one, and so does the
   // refit's (ols, from the identified noise).
   const CandidateReport& first = d.candidates.front();
-  const fit::Interval iv = after.fit.engine.intervals.back();
+  const fit::Interval iv = after.fit.engine.inference.intervals.back();
   EXPECT_TRUE(first.coefficient_interval.lower <= h.coefficient && h.coefficient <= first.coefficient_interval.upper)
       << h.term << ": " << first.coefficient << ", 95 % [" << first.coefficient_interval.lower << ", "
       << first.coefficient_interval.upper << "]";
@@ -244,7 +244,7 @@ TEST(Diagnosis, AConfoundedCandidateIsExplainedByItsOwnGroup) {
   std::vector<const fit::Term*> with = fit::parse_formula("T + T^2 + dT");
   with.push_back(first.term);
   const fit::ModelFit f = fit::fit_model(data, with, fit::find_engine("ols"), {});
-  const fit::Interval iv = f.engine.intervals.back();
+  const fit::Interval iv = f.engine.inference.intervals.back();
   EXPECT_EQ(first.term->name, "T^4");
   EXPECT_TRUE(first.coefficient_interval.lower <= 5e-9 && 5e-9 <= first.coefficient_interval.upper)
       << first.coefficient;

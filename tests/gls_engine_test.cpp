@@ -89,10 +89,10 @@ TEST(GlsEngine, EqualsTheDenseFormula) {
     EXPECT_NEAR(r.z[jj] * problem.half_width()[j], beta[j + 1], 1e-8 * std::abs(beta[j + 1])) << j;
     // Half-width: t₉₅ (dof large: about 1.97) times the dense standard error.
     const double se = std::sqrt(cov(j + 1, j + 1)) / problem.scale()[j];
-    const double half = (r.intervals[jj].upper - r.intervals[jj].lower) / 2.0;
+    const double half = (r.inference.intervals[jj].upper - r.inference.intervals[jj].lower) / 2.0;
     EXPECT_GT(half / se, 1.959) << j;
     EXPECT_LT(half / se, 2.05) << j;
-    EXPECT_NEAR((r.intervals[jj].upper + r.intervals[jj].lower) / 2.0, coef.b[jj], 1e-9 * std::abs(coef.b[jj]));
+    EXPECT_NEAR((r.inference.intervals[jj].upper + r.inference.intervals[jj].lower) / 2.0, coef.b[jj], 1e-9 * std::abs(coef.b[jj]));
   }
   EXPECT_EQ(r.engine, "gls");
   // Not the least-squares optimum: a σ at or above it.
@@ -109,9 +109,9 @@ TEST(GlsEngine, IntervalsCoverAndAreNarrowerThanLeastSquaresUnderRandomWalk) {
     const FitResult g = gls_fit(problem, "model");
     const FitResult o = OlsEngine({.intervals = "model"}).fit(problem);
     for (int j = 0; j < 3; ++j) {
-      covered[j] += g.intervals[j].lower <= truth[j] && truth[j] <= g.intervals[j].upper;
-      gls_width[j] += g.intervals[j].upper - g.intervals[j].lower;
-      ols_width[j] += o.intervals[j].upper - o.intervals[j].lower;
+      covered[j] += g.inference.intervals[j].lower <= truth[j] && truth[j] <= g.inference.intervals[j].upper;
+      gls_width[j] += g.inference.intervals[j].upper - g.inference.intervals[j].lower;
+      ols_width[j] += o.inference.intervals[j].upper - o.inference.intervals[j].lower;
     }
   }
   for (int j = 0; j < 3; ++j) {

@@ -122,7 +122,7 @@ TEST(Lag, RecoveryOverSeeds) {
     const fit::ModelFit f = fit::fit_model(data, with_lag, ols, {});
     EXPECT_NEAR(f.coefficients.b[3] / 0.003, 1.0, 0.2) << "seed " << seed;
     EXPECT_NEAR(f.parameters[3] / 1200.0, 1.0, 0.2) << "seed " << seed;
-    c_covered += f.engine.intervals[3].lower <= 0.003 && 0.003 <= f.engine.intervals[3].upper;
+    c_covered += f.engine.inference.intervals[3].lower <= 0.003 && 0.003 <= f.engine.inference.intervals[3].upper;
     ASSERT_TRUE(f.parameter_intervals[3].has_value());
     tau_covered += f.parameter_intervals[3]->lower <= 1200.0 && 1200.0 <= f.parameter_intervals[3]->upper;
     const studies::Diagnosis d = studies::diagnose(data, fit::parse_formula("T + T^2 + dT"), ols, {});

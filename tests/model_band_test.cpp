@@ -60,7 +60,7 @@ TEST(ModelBand, ItsDiagonalGivesTheFitsIntervals) {
   ASSERT_TRUE(cov.has_value());
   ASSERT_EQ(cov->to_physical.rows(), 4);
   for (std::size_t j = 0; j < terms.size(); ++j) {
-    const double fit_half = 0.5 * (fit.engine.intervals[j].upper - fit.engine.intervals[j].lower);
+    const double fit_half = 0.5 * (fit.engine.inference.intervals[j].upper - fit.engine.inference.intervals[j].lower);
     Eigen::VectorXd w = Eigen::VectorXd::Zero(4);
     w[static_cast<Eigen::Index>(j) + 1] = 1.0;
     const double half = cov->half_width(w);

@@ -32,9 +32,9 @@ TEST(Ols, IntervalsCoverTheTruthUnderAutocorrelatedNoise) {
   for (std::uint64_t seed = 1; seed <= 100; ++seed) {
     const LinearProblem problem = paper_problem(0.002, 0.9, seed, 600);
     const FitResult r = OlsEngine().fit(problem);
-    ASSERT_EQ(r.intervals.size(), 3u);
+    ASSERT_EQ(r.inference.intervals.size(), 3u);
     for (int j = 0; j < 3; ++j)
-      covered[j] += r.intervals[j].lower <= truth[j] && truth[j] <= r.intervals[j].upper;
+      covered[j] += r.inference.intervals[j].lower <= truth[j] && truth[j] <= r.inference.intervals[j].upper;
   }
   for (int j = 0; j < 3; ++j) EXPECT_GE(covered[j], 85) << "term " << j;
 }

@@ -48,7 +48,7 @@ TEST(RecordSupport, TwoPlateausAreTwoLevelsAndSaySo) {
     const ModelFit f = fit_t(record(8.0, [](double t) { return t < 4 * 3600 ? 10.0 : 40.0; }, 1e-3, seed));
     EXPECT_EQ(f.support.temperature_levels, 2);
     EXPECT_NE(f.support.flags[0].find("2 temperature levels"), std::string::npos) << f.support.flags[0];
-    covered += f.engine.intervals[0].lower <= kB1 && kB1 <= f.engine.intervals[0].upper;
+    covered += f.engine.inference.intervals[0].lower <= kB1 && kB1 <= f.engine.inference.intervals[0].upper;
   }
   EXPECT_GE(covered, 8);
 }
@@ -63,7 +63,7 @@ TEST(RecordSupport, ANarrowWarmUpWithADriftIsFlaggedAndItsIntervalHoldsTheTruth)
     EXPECT_LT(f.support.temp_max_c - f.support.temp_min_c, 0.31);
     EXPECT_NE(f.support.flags[0].find("spans only"), std::string::npos) << f.support.flags[0];
     EXPECT_NE(f.support.flags[0].find("follows time"), std::string::npos) << f.support.flags[0];
-    covered += f.engine.intervals[0].lower <= kB1 && kB1 <= f.engine.intervals[0].upper;
+    covered += f.engine.inference.intervals[0].lower <= kB1 && kB1 <= f.engine.inference.intervals[0].upper;
   }
   EXPECT_GE(covered, 8);
 }

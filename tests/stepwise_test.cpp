@@ -33,10 +33,10 @@ TEST(Stepwise, KeepsTheTrueTermsAndDropsTheSpuriousOne) {
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
     const LinearProblem problem = problem_with_spurious_term(seed);
     const FitResult r = StepwiseEngine({}).fit(problem);
-    ASSERT_EQ(r.kept.size(), 4u);
-    EXPECT_TRUE(r.kept[0] && r.kept[1] && r.kept[2]) << r.message;
-    dropped += !r.kept[3];
-    if (!r.kept[3]) {
+    ASSERT_EQ(r.inference.kept.size(), 4u);
+    EXPECT_TRUE(r.inference.kept[0] && r.inference.kept[1] && r.inference.kept[2]) << r.message;
+    dropped += !r.inference.kept[3];
+    if (!r.inference.kept[3]) {
       EXPECT_EQ(r.z[3], 0.0);
     }
   }

@@ -72,6 +72,15 @@ struct IntervalMethod {
   bool linearised_parameters = false;  // the fitted parameters' uncertainty is in (fit/pipeline.h)
 };
 
+// Per term, from the regression engines: ols and gls give 95 % intervals of
+// the physical b_j and p-values, stepwise p-values and the terms it kept.
+struct TermInference {
+  std::vector<Interval> intervals;  // empty: none
+  IntervalMethod interval_method;   // how the intervals were computed
+  std::vector<double> p_values;     // empty: none
+  std::vector<bool> kept;           // stepwise: which terms are in the model; empty: every one
+};
+
 struct FitResult {
   std::string engine;
   std::vector<double> z;              // best point in the unit box
@@ -82,11 +91,9 @@ struct FitResult {
   Termination termination = Termination::budget_exhausted;
   std::string message;
   std::vector<HistoryPoint> history;  // best σ each time it improved
-  // Engine-specific extras (empty when not applicable).
-  std::vector<bool> kept;                 // stepwise: which terms are in the model
-  std::vector<double> p_values;           // stepwise/ols: per term
-  std::vector<Interval> intervals;        // ols: 95 % intervals of the physical b_j
-  IntervalMethod interval_method;         // how the intervals were computed
+  // What a statistical engine says of each term besides its value; empty for
+  // the search engines (afsa, iafsa, pagmo's), which give a point alone.
+  TermInference inference;
   std::string brief_report() const;
 };
 

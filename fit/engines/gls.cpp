@@ -119,13 +119,13 @@ FitResult GlsEngine::fit(const LinearProblem& problem, FitObserver* observer) co
     const double se_beta = std::sqrt(std::max(0.0, variance[j + 1]));
     const double se = se_beta / problem.scale()[j];
     const double b = c.b[static_cast<std::size_t>(j)];
-    r.intervals.push_back({b - t95 * se, b + t95 * se});
+    r.inference.intervals.push_back({b - t95 * se, b + t95 * se});
     const double t = se_beta > 0.0 ? std::abs(g.beta[j + 1]) / se_beta : INFINITY;
-    r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t)) : 0.0);
+    r.inference.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t)) : 0.0);
   }
-  r.interval_method.kind = IntervalKind::gls;
-  r.interval_method.widest_of = options_.covariance == "widest" ? models.size() : 0;
-  r.interval_method.dof = *std::min_element(dofs.begin(), dofs.end());
+  r.inference.interval_method.kind = IntervalKind::gls;
+  r.inference.interval_method.widest_of = options_.covariance == "widest" ? models.size() : 0;
+  r.inference.interval_method.dof = *std::min_element(dofs.begin(), dofs.end());
   r.message = "generalised least squares by the noise's semi-separable Cholesky factor";
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;

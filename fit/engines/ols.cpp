@@ -136,14 +136,14 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
       from_noise && (options_.intervals == "bootstrap" ||
                      (options_.intervals == "auto" &&
                       bootstrap_by_default(problem.noise()->model, problem.noise()->grid, X)));
-  IntervalMethod& method = r.interval_method;
+  IntervalMethod& method = r.inference.interval_method;
   if (bootstrap) {
     const NoiseContext& noise = *problem.noise();
     const NoiseBootstrap boot = noise_bootstrap(noise.model, noise.grid, X, options_.draws, options_.seed);
     for (Eigen::Index j = 0; j < m; ++j) {
       const auto [lo, hi] = boot.interval(j, beta[j]);
-      r.intervals.push_back({lo / problem.scale()[j], hi / problem.scale()[j]});
-      r.p_values.push_back(boot.p_value(j, beta[j]));
+      r.inference.intervals.push_back({lo / problem.scale()[j], hi / problem.scale()[j]});
+      r.inference.p_values.push_back(boot.p_value(j, beta[j]));
     }
     method.kind = IntervalKind::noise_bootstrap;
     method.draws = options_.draws;
@@ -179,9 +179,9 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
       const double se_beta = std::sqrt(std::max(0.0, V(j, j)));
       const double se = se_beta / problem.scale()[j];
       const double b = c.b[static_cast<std::size_t>(j)];
-      r.intervals.push_back({b - t95 * se, b + t95 * se});
+      r.inference.intervals.push_back({b - t95 * se, b + t95 * se});
       const double t = se_beta > 0.0 ? std::abs(beta[j]) / se_beta : INFINITY;
-      r.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t))
+      r.inference.p_values.push_back(std::isfinite(t) ? 2.0 * boost::math::cdf(boost::math::complement(t_dist, t))
                                             : 0.0);
     }
   }

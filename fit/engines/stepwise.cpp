@@ -105,8 +105,8 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
   FitResult r;
   r.engine = "stepwise";
   r.z.assign(static_cast<std::size_t>(m), 0.0);
-  r.kept = in;
-  r.p_values.assign(static_cast<std::size_t>(m), 1.0);
+  r.inference.kept = in;
+  r.inference.p_values.assign(static_cast<std::size_t>(m), 1.0);
   const std::vector<Eigen::Index> final_set = subset_of(-1);
   if (!final_set.empty()) {
     const SubsetFit f = fit_subset(problem, final_set);
@@ -114,7 +114,7 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
     for (std::size_t a = 0; a < final_set.size(); ++a) {
       const auto j = final_set[a];
       r.z[static_cast<std::size_t>(j)] = f.beta[static_cast<Eigen::Index>(a)] / problem.half_width()[j];
-      r.p_values[static_cast<std::size_t>(j)] = f.p_value[static_cast<Eigen::Index>(a)];
+      r.inference.p_values[static_cast<std::size_t>(j)] = f.p_value[static_cast<Eigen::Index>(a)];
     }
   }
   // p-values of the terms left out: as if each were added to the final model.
@@ -123,7 +123,7 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
     const std::vector<Eigen::Index> s = subset_of(j);
     const SubsetFit f = fit_subset(problem, s);
     ++fits;
-    r.p_values[static_cast<std::size_t>(j)] = f.p_value[std::find(s.begin(), s.end(), j) - s.begin()];
+    r.inference.p_values[static_cast<std::size_t>(j)] = f.p_value[std::find(s.begin(), s.end(), j) - s.begin()];
   }
   r.objective = problem.objective(r.z);
   r.evaluations = fits;

@@ -83,7 +83,7 @@ std::vector<Coverage> interval_coverage(const sim::Scenario& scenario, const sim
       const fit::ModelFit f = fit::fit_model(data, terms, fit::find_engine(methods[i].engine), settings);
       for (std::size_t k = 0; k < index.size(); ++k) {
         TermCoverage& t = out[i].terms[k];
-        const fit::Interval& iv = f.engine.intervals[index[k]];
+        const fit::Interval& iv = f.engine.inference.intervals[index[k]];
         t.covered += iv.lower <= t.truth && t.truth <= iv.upper;
         const double err = f.coefficients.b[index[k]] / t.truth - 1.0;
         sum[i][k] += err;

@@ -39,9 +39,9 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
   if (c.truth) errors = coefficient_errors(result, *c.truth);
   auto row = [&](const std::string& name, double value, const std::string& unit, std::size_t k) {
     std::string extra;
-    if (k < result.engine.intervals.size())
-      extra += fmt::format("  95% [{:.6g}, {:.6g}]", result.engine.intervals[k].lower, result.engine.intervals[k].upper);
-    if (!result.engine.kept.empty() && k < result.engine.kept.size() && !result.engine.kept[k])
+    if (k < result.engine.inference.intervals.size())
+      extra += fmt::format("  95% [{:.6g}, {:.6g}]", result.engine.inference.intervals[k].lower, result.engine.inference.intervals[k].upper);
+    if (!result.engine.inference.kept.empty() && k < result.engine.inference.kept.size() && !result.engine.inference.kept[k])
       extra += "  (dropped by stepwise)";
     if (c.truth) {
       const auto it = c.truth->coefficients.find(name);
@@ -62,8 +62,8 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
       extra += fmt::format("  truth {:.6g}", c.truth->parameters.at(std::string(terms[k]->name)));
     out += fmt::format("          {} = {:.6g}{}\n", terms[k]->parameter->name, result.parameters[k], extra);
   }
-  if (result.engine.interval_method.kind != fit::IntervalKind::none)
-    out += fmt::format("  intervals: {}\n", fit::interval_method_text(result.engine.interval_method,
+  if (result.engine.inference.interval_method.kind != fit::IntervalKind::none)
+    out += fmt::format("  intervals: {}\n", fit::interval_method_text(result.engine.inference.interval_method,
                                                                       result.noise ? &result.noise->model : nullptr));
   out += fmt::format("record: {}\n", fit::describe_support(result.support));
   for (std::size_t k = 0; k < terms.size() && k < result.support.flags.size(); ++k)

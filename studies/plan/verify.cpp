@@ -34,7 +34,7 @@ VerifyOutcome verify_plan(const sim::Scenario& scenario, const sim::RigConfig& r
         const fit::ModelFit f = fit::fit_model(fit::prepare_data(m, {}), terms, fit::find_engine("ols"), {});
         SeedFit& s = fits[k];
         s.b = f.coefficients.b;
-        for (const fit::Interval& iv : f.engine.intervals) {
+        for (const fit::Interval& iv : f.engine.inference.intervals) {
           s.lower.push_back(iv.lower);
           s.upper.push_back(iv.upper);
         }
