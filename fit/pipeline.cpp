@@ -118,8 +118,9 @@ LinearisedIntervals linearised_intervals(const DerivedSeries& derived, const Eig
 
 }  // namespace
 
-ModelFit reference_fit(const PreparedData& data, const std::vector<const Term*>& terms) {
-  return fit_model(data, terms, find_engine("ols"), {});
+ModelFit reference_fit(const PreparedData& data, const std::vector<const Term*>& terms,
+                       const EngineSettings& settings) {
+  return fit_model(data, terms, find_engine("ols"), settings);
 }
 
 namespace {

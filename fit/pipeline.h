@@ -97,9 +97,10 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
                    const EngineInfo& engine, const EngineSettings& settings,
                    FitObserver* observer = nullptr);
 
-// The fit every study takes as its reference: ols with its default intervals
-// (under the record's identified noise), the default engine's settings.
-ModelFit reference_fit(const PreparedData& data, const std::vector<const Term*>& terms);
+// The fit every study takes as its reference: ols, with its default intervals
+// (under the record's identified noise) unless `settings` choose others.
+ModelFit reference_fit(const PreparedData& data, const std::vector<const Term*>& terms,
+                       const EngineSettings& settings = {});
 
 // The windows of a prepared record as the noise model sees them.
 WindowGrid window_grid(const PreparedData& data);

@@ -23,8 +23,7 @@ std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data
     try {
       fit::EngineSettings settings;
       settings.options["intervals"] = "model";  // only the σ is wanted
-      return {model, fit::fit_model(data, fit::parse_formula(model), fit::find_engine("ols"), settings)
-                         .instability_after_dph};
+      return {model, fit::reference_fit(data, fit::parse_formula(model), settings).instability_after_dph};
     } catch (const FitError&) {
       continue;
     }

@@ -31,7 +31,7 @@ VerifyOutcome verify_plan(const sim::Scenario& scenario, const sim::RigConfig& r
         sim::Scenario sc = scenario;
         sc.seed = first_seed + k;
         const fit::Measurement m = measurement_of(sim::Simulator(sc, rig, gyro).record(trace), scenario.name);
-        const fit::ModelFit f = fit::fit_model(fit::prepare_data(m, {}), terms, fit::find_engine("ols"), {});
+        const fit::ModelFit f = fit::reference_fit(fit::prepare_data(m, {}), terms);
         SeedFit& s = fits[k];
         s.b = f.coefficients.b;
         for (const fit::Interval& iv : f.engine.inference.intervals) {
