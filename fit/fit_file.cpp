@@ -1,6 +1,8 @@
 #include "fit/fit_file.h"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 
 #include <fmt/format.h>
 
@@ -19,6 +21,137 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 }  // namespace
+
+namespace {
+
+// A field of one of the fit file's objects: InputError "KEY: missing (WHAT)"
+// or "KEY: must be a finite number"; read_object puts the object's path before it.
+const nlohmann::json& field(const nlohmann::json& obj, const char* key, std::string_view what) {
+  if (!obj.is_object() || !obj.contains(key)) throw InputError(fmt::format("{}: missing ({})", key, what));
+  return obj[key];
+}
+double finite(const nlohmann::json& obj, const char* key, std::string_view what) {
+  const nlohmann::json& v = field(obj, key, what);
+  if (!v.is_number() || !std::isfinite(v.get<double>()))
+    throw InputError(fmt::format("{}: must be a finite number ({})", key, what));
+  return v.get<double>();
+}
+// obj[key] read by its from_json, an error of a field inside it named by its path ("columns.csv.rate_hz").
+template <class T>
+void read_object(const nlohmann::json& obj, const char* key, std::string_view what, T& out) {
+  const nlohmann::json& v = field(obj, key, what);
+  try {
+    from_json(v, out);
+  } catch (const InputError& e) {
+    const std::string_view inner = e.what();
+    const bool path = !inner.empty() && (std::islower(static_cast<unsigned char>(inner[0])) || inner[0] == '_');
+    throw InputError(fmt::format("{}{}{}", key, path ? "." : ": ", inner));
+  }
+}
+
+}  // namespace
+
+void to_json(nlohmann::ordered_json& j, const CsvDialect& c) {
+  j = {{"delimiter", c.delimiter.empty() ? "auto" : c.delimiter},
+       {"decimal_comma", c.decimal_comma},
+       {"rate_hz", c.rate_hz}};
+}
+
+void from_json(const nlohmann::json& j, CsvDialect& c) {
+  c.delimiter = field(j, "delimiter", "comma, semicolon, tab or auto").get<std::string>();
+  c.decimal_comma = field(j, "decimal_comma", "true or false").get<bool>();
+  c.rate_hz = finite(j, "rate_hz", "Hz");
+  c.validate();
+}
+
+void to_json(nlohmann::ordered_json& j, const Units& u) {
+  j = {{"time", u.time_unit().name},
+       {"gyro", u.gyro_unit().name},
+       {"temp", u.temp_unit().name},
+       {"gyro_scale", u.gyro_scale},
+       {"temp_scale", u.temp_scale},
+       {"temp_offset", u.temp_offset},
+       {"conversion", u.description()},
+       {"from", {{"time", u.time_from}, {"gyro", u.gyro_from}, {"temp", u.temp_from}}}};
+}
+
+void from_json(const nlohmann::json& j, Units& u) {
+  u.time = field(j, "time", unit_names(Quantity::time, " or ")).get<std::string>();
+  u.gyro = field(j, "gyro", unit_names(Quantity::gyro, " or ")).get<std::string>();
+  u.temp = field(j, "temp", unit_names(Quantity::temperature, " or ")).get<std::string>();
+  u.gyro_scale = finite(j, "gyro_scale", "a number");
+  u.temp_scale = finite(j, "temp_scale", "a number");
+  u.temp_offset = finite(j, "temp_offset", "a number");
+  // Where each unit came from when fitting: only a typed one (an option) is
+  // given; one its record's header or the default gave yields to the header
+  // of the record it is applied to. (Fit files without "from": all given.)
+  const nlohmann::json* from = j.contains("from") && j["from"].is_object() ? &j["from"] : nullptr;
+  for (auto [key, text, weak] : {std::tuple{"time", &u.time_from, &u.time_weak},
+                                 {"gyro", &u.gyro_from, &u.gyro_weak},
+                                 {"temp", &u.temp_from, &u.temp_weak}}) {
+    text->clear();
+    if (from == nullptr || !from->contains(key) || !(*from)[key].is_string()) continue;
+    const std::string origin = (*from)[key].get<std::string>();
+    *weak = !origin.starts_with("--");
+    *text = fmt::format(", {} when fitting", origin.empty() ? "default" : origin);
+  }
+}
+
+void to_json(nlohmann::ordered_json& j, const ColumnMap& c) {
+  j = {{"time", c.time},
+       {"temp", c.temp},
+       {"gyro", c.gyro},
+       {"temp2", c.temp2},
+       {"imu", c.imu ? nlohmann::ordered_json(*c.imu) : nlohmann::ordered_json()},
+       {"csv", c.csv},
+       {"units", c.units}};
+}
+
+void from_json(const nlohmann::json& j, ColumnMap& c) {
+  c.time = field(j, "time", "name").get<std::string>();
+  c.temp = field(j, "temp", "name").get<std::string>();
+  c.gyro = field(j, "gyro", "name").get<std::string>();
+  c.temp2 = field(j, "temp2", "name").get<std::string>();
+  if (j.contains("imu") && !j["imu"].is_null()) {
+    const double imu = finite(j, "imu", "a gyro instance");
+    if (imu != std::floor(imu) || imu < 0 || imu > 255)
+      throw InputError(fmt::format("imu: {} is not a gyro instance (0..255)", imu));
+    c.imu = static_cast<int>(imu);
+  }
+  // Fit files from before the CSV forms and the units were options have none: the defaults.
+  if (j.contains("csv")) read_object(j, "csv", "the CSV form", c.csv);
+  if (j.contains("units")) read_object(j, "units", "the units", c.units);
+}
+
+void to_json(nlohmann::ordered_json& j, const PipelineOptions& p) {
+  j = {{"avg_s", p.averaging.window_s},
+       {"derivative", to_string(p.derivative)},
+       {"deriv_span_s", p.derivative_span_s},
+       {"remove_outliers", p.remove_outliers},
+       {"outlier_window_s", p.outliers.window_s},
+       {"outlier_threshold", p.outliers.threshold},
+       {"columns", p.columns}};
+  // A sensor lag given when fitting (--sensor-tau): compensate reads the temperatures the same way.
+  if (p.sensor_tau_s > 0.0) j["sensor_tau_s"] = p.sensor_tau_s;
+}
+
+void from_json(const nlohmann::json& j, PipelineOptions& p) {
+  p.averaging.window_s = finite(j, "avg_s", "the averaging window");
+  const std::string mode = field(j, "derivative", "central or causal").get<std::string>();
+  if (mode != "central" && mode != "causal")
+    throw InputError(fmt::format("derivative = '{}': expected 'central' or 'causal'", mode));
+  p.derivative = mode == "causal" ? DerivativeMode::causal : DerivativeMode::central;
+  // Fit files from before derivatives bridged gaps have no span: the default.
+  if (j.contains("deriv_span_s")) p.derivative_span_s = finite(j, "deriv_span_s", "s");
+  if (j.contains("sensor_tau_s")) {
+    p.sensor_tau_s = finite(j, "sensor_tau_s", "s");
+    if (!(p.sensor_tau_s >= 0.0)) throw InputError(fmt::format("sensor_tau_s: {} must be >= 0 (seconds)", p.sensor_tau_s));
+  }
+  p.remove_outliers = field(j, "remove_outliers", "true or false").get<bool>();
+  p.outliers.window_s = finite(j, "outlier_window_s", "s");
+  p.outliers.threshold = finite(j, "outlier_threshold", "MADs");
+  read_object(j, "columns", "column names", p.columns);
+}
 
 nlohmann::ordered_json noise_model_json(const NoiseModel& n) {
   Json components = Json::object();
@@ -141,35 +274,9 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
     j["data"]["temp_range_c"] = {*lo, *hi};  // of the window means: where the model was fitted
   }
-  j["pipeline"] = {{"avg_s", pipeline.averaging.window_s},
-                   {"derivative", to_string(pipeline.derivative)},
-                   {"deriv_span_s", pipeline.derivative_span_s},
-                   {"remove_outliers", pipeline.remove_outliers},
-                   {"outlier_window_s", pipeline.outliers.window_s},
-                   {"outlier_threshold", pipeline.outliers.threshold},
-                   {"columns",
-                    {{"time", pipeline.columns.time},
-                     {"temp", pipeline.columns.temp},
-                     {"gyro", pipeline.columns.gyro},
-                     {"temp2", pipeline.columns.temp2},
-                     {"imu", pipeline.columns.imu ? nlohmann::ordered_json(*pipeline.columns.imu) : nlohmann::ordered_json()},
-                     {"csv",
-                      {{"delimiter", pipeline.columns.csv.delimiter.empty() ? "auto" : pipeline.columns.csv.delimiter},
-                       {"decimal_comma", pipeline.columns.csv.decimal_comma},
-                       {"rate_hz", pipeline.columns.csv.rate_hz}}},
-                     {"units",
-                      {{"time", data.units.time_unit().name},
-                       {"gyro", data.units.gyro_unit().name},
-                       {"temp", data.units.temp_unit().name},
-                       {"gyro_scale", data.units.gyro_scale},
-                       {"temp_scale", data.units.temp_scale},
-                       {"temp_offset", data.units.temp_offset},
-                       {"conversion", data.units.description()},
-                       {"from", {{"time", data.units.time_from},
-                                 {"gyro", data.units.gyro_from},
-                                 {"temp", data.units.temp_from}}}}}}}};
-  // A sensor lag given when fitting (--sensor-tau): compensate reads the temperatures the same way.
-  if (pipeline.sensor_tau_s > 0.0) j["pipeline"]["sensor_tau_s"] = pipeline.sensor_tau_s;
+  PipelineOptions written = pipeline;
+  written.columns.units = data.units;  // the units the record was read in, each set
+  j["pipeline"] = written;
   return j;
 }
 
@@ -232,74 +339,20 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     s.parameters[k] = number(need(p, parameter.c_str(), "the parameter value"),
                              "parameters." + name + "." + parameter);
   }
-  const nlohmann::json& pipeline = need(j, "pipeline", "how the data were prepared");
-  s.pipeline.averaging.window_s = number(need(pipeline, "avg_s", "the averaging window"), "pipeline.avg_s");
-  const std::string mode = need(pipeline, "derivative", "central or causal").get<std::string>();
-  if (mode != "central" && mode != "causal")
-    throw InputError(fmt::format("{}: pipeline.derivative = '{}': expected 'central' or 'causal'",
-                                 file.string(), mode));
-  s.pipeline.derivative = mode == "causal" ? DerivativeMode::causal : DerivativeMode::central;
-  // Fit files from before derivatives bridged gaps have no span: the default.
-  if (pipeline.contains("deriv_span_s"))
-    s.pipeline.derivative_span_s = number(pipeline["deriv_span_s"], "pipeline.deriv_span_s");
-  if (pipeline.contains("sensor_tau_s")) {
-    s.pipeline.sensor_tau_s = number(pipeline["sensor_tau_s"], "pipeline.sensor_tau_s");
-    if (!(s.pipeline.sensor_tau_s >= 0.0))
-      throw InputError(fmt::format("{}: pipeline.sensor_tau_s: {} must be >= 0 (seconds)", file.string(),
-                                   s.pipeline.sensor_tau_s));
+  try {
+    read_object(j, "pipeline", "how the data were prepared", s.pipeline);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}; is this a file written by 'gyrotherm fit -o'?", file.string(), e.what()));
   }
-  s.pipeline.remove_outliers = need(pipeline, "remove_outliers", "bool").get<bool>();
-  s.pipeline.outliers.window_s = number(need(pipeline, "outlier_window_s", "s"), "pipeline.outlier_window_s");
-  s.pipeline.outliers.threshold = number(need(pipeline, "outlier_threshold", "MADs"), "pipeline.outlier_threshold");
-  const nlohmann::json& columns = need(pipeline, "columns", "column names");
-  s.pipeline.columns.time = need(columns, "time", "name").get<std::string>();
-  s.pipeline.columns.temp = need(columns, "temp", "name").get<std::string>();
-  s.pipeline.columns.gyro = need(columns, "gyro", "name").get<std::string>();
-  s.pipeline.columns.temp2 = need(columns, "temp2", "name").get<std::string>();
-  if (columns.contains("imu") && !columns["imu"].is_null()) {
-    const double imu = number(columns["imu"], "pipeline.columns.imu");
-    if (imu != std::floor(imu) || imu < 0 || imu > 255)
-      throw InputError(fmt::format("{}: pipeline.columns.imu: {} is not a gyro instance (0..255)", file.string(), imu));
-    s.pipeline.columns.imu = static_cast<int>(imu);
-  }
-  // Fit files from before the CSV forms were options have none: the defaults.
-  if (columns.contains("csv")) {
-    const nlohmann::json& c = columns["csv"];
-    CsvDialect& csv = s.pipeline.columns.csv;
-    csv.delimiter = need(c, "delimiter", "comma, semicolon, tab or auto").get<std::string>();
-    csv.decimal_comma = need(c, "decimal_comma", "bool").get<bool>();
-    csv.rate_hz = number(need(c, "rate_hz", "Hz"), "pipeline.columns.csv.rate_hz");
-    try {
-      csv.validate();
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: pipeline.columns.csv: {}", file.string(), e.what()));
-    }
-  }
-  // Fit files from before units were options have none: the defaults.
-  if (columns.contains("units")) {
-    const nlohmann::json& u = columns["units"];
+  // The units read are the fit's: said so where a report says where a unit
+  // came from, after where it came from when fitting.
+  if (j["pipeline"]["columns"].contains("units")) {
     Units& units = s.pipeline.columns.units;
-    units.time = need(u, "time", unit_names(Quantity::time, " or ")).get<std::string>();
-    units.gyro = need(u, "gyro", unit_names(Quantity::gyro, " or ")).get<std::string>();
-    units.temp = need(u, "temp", unit_names(Quantity::temperature, " or ")).get<std::string>();
-    units.gyro_scale = number(need(u, "gyro_scale", "a number"), "pipeline.columns.units.gyro_scale");
-    units.temp_scale = number(need(u, "temp_scale", "a number"), "pipeline.columns.units.temp_scale");
-    units.temp_offset = number(need(u, "temp_offset", "a number"), "pipeline.columns.units.temp_offset");
+    const std::array<std::string, 3> when_fitting = {units.time_from, units.gyro_from, units.temp_from};
     units.set_from_fit(file.string());
-    // Where each unit came from when fitting: only a typed one (an option) is
-    // given; one its record's header or the default gave yields to the header
-    // of the record it is applied to. (Fit files without "from": all given.)
-    if (u.contains("from") && u["from"].is_object()) {
-      const nlohmann::json& from = u["from"];
-      for (auto [key, text, weak] : {std::tuple{"time", &units.time_from, &units.time_weak},
-                                     {"gyro", &units.gyro_from, &units.gyro_weak},
-                                     {"temp", &units.temp_from, &units.temp_weak}}) {
-        if (!from.contains(key) || !from[key].is_string()) continue;
-        const std::string origin = from[key].get<std::string>();
-        *weak = !origin.starts_with("--");
-        *text += fmt::format(", {} when fitting", origin.empty() ? "default" : origin);
-      }
-    }
+    units.time_from += when_fitting[0];
+    units.gyro_from += when_fitting[1];
+    units.temp_from += when_fitting[2];
     try {
       units.validate();
     } catch (const InputError& e) {

@@ -37,6 +37,21 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
 nlohmann::ordered_json channels_json(
     const std::vector<std::pair<std::string, nlohmann::ordered_json>>& channels);
 
+// The fit file's `pipeline` object and its parts, written by to_json and read
+// back by from_json (nlohmann's hooks: `j["pipeline"] = options`,
+// `j.get<PipelineOptions>()`). from_json throws InputError naming the field by
+// its path in the object ("columns.csv.rate_hz: must be a finite number");
+// Units' from_json leaves in each `*_from` only ", ORIGIN when fitting" (the
+// loader puts the fit file's name before it) and does not validate.
+void to_json(nlohmann::ordered_json& j, const CsvDialect& c);
+void from_json(const nlohmann::json& j, CsvDialect& c);
+void to_json(nlohmann::ordered_json& j, const Units& u);
+void from_json(const nlohmann::json& j, Units& u);
+void to_json(nlohmann::ordered_json& j, const ColumnMap& c);
+void from_json(const nlohmann::json& j, ColumnMap& c);
+void to_json(nlohmann::ordered_json& j, const PipelineOptions& p);
+void from_json(const nlohmann::json& j, PipelineOptions& p);
+
 struct SavedFit {
   std::filesystem::path file;
   std::string engine;

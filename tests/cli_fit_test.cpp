@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli_runner.h"
+#include "fit/fit_file.h"
 #include "fit/engines/engine.h"
 #include "sim/effects/effect.h"
 
@@ -215,6 +216,56 @@ TEST(CliFit, CompensateWithAMalformedFitFile) {
   const auto r = run_cli(dir, "compensate d.csv --fit fit.json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("fit.json: missing field 'coefficients'"), std::string::npos) << r.err;
+}
+
+// The pipeline object written by to_json reads back by from_json to the same
+// options; a field that is wrong is named by its path in the object.
+TEST(CliFit, ThePipelineObjectRoundTripsAndNamesAFieldThatIsWrong) {
+  fit::PipelineOptions p;
+  p.averaging.window_s = 50.0;
+  p.derivative = fit::DerivativeMode::causal;
+  p.derivative_span_s = 900.0;
+  p.sensor_tau_s = 12.5;
+  p.remove_outliers = false;
+  p.outliers.threshold = 6.0;
+  p.columns.time = "t";
+  p.columns.gyro = "gx,gy";
+  p.columns.imu = 2;
+  p.columns.csv = {.delimiter = "semicolon", .decimal_comma = true, .rate_hz = 0.0};
+  p.columns.units.gyro = "rad/s";
+  p.columns.units.gyro_scale = 0.5;
+  p.columns.units.gyro_from = "--gyro-unit";
+  const nlohmann::ordered_json written = p;
+  const fit::PipelineOptions back = nlohmann::json::parse(written.dump()).get<fit::PipelineOptions>();
+  nlohmann::ordered_json again = back, first = written;  // the same but for where the units came from
+  again["columns"]["units"].erase("from");
+  first["columns"]["units"].erase("from");
+  EXPECT_EQ(again, first);
+  EXPECT_EQ(back.columns.units.gyro_from, ", --gyro-unit when fitting");
+  EXPECT_EQ(back.averaging.window_s, 50.0);
+  EXPECT_EQ(back.derivative, fit::DerivativeMode::causal);
+  EXPECT_EQ(back.sensor_tau_s, 12.5);
+  EXPECT_EQ(back.columns.imu, 2);
+  EXPECT_EQ(back.columns.csv.delimiter, "semicolon");
+  EXPECT_TRUE(back.columns.csv.decimal_comma);
+  EXPECT_EQ(back.columns.units.gyro_scale, 0.5);
+  EXPECT_FALSE(back.columns.units.gyro_weak);  // an option's unit stays given
+  EXPECT_TRUE(back.columns.units.time_weak);   // the default yields to the next record's header
+
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", "", "d.csv");
+  ASSERT_EQ(run_cli(dir, "fit d.csv --model T -o fit.json").exit_code, 0);
+  nlohmann::json fit = nlohmann::json::parse(slurp(dir / "fit.json"));
+  fit["pipeline"]["columns"]["csv"]["rate_hz"] = "fast";
+  write_text(dir / "bad.json", fit.dump());
+  const auto r = run_cli(dir, "compensate d.csv --fit bad.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bad.json: pipeline.columns.csv.rate_hz: must be a finite number (Hz)"), std::string::npos)
+      << r.err;
+  fit["pipeline"]["columns"].erase("time");
+  write_text(dir / "bad.json", fit.dump());
+  EXPECT_NE(run_cli(dir, "compensate d.csv --fit bad.json").err.find("bad.json: pipeline.columns.time: missing (name)"),
+            std::string::npos);
 }
 
 // Large logs (GYROTHERM_STREAM_ABOVE_MB=0 streams every file): fit, compensate
