@@ -358,6 +358,35 @@ TEST(OptionTable, EveryDefaultComesFromTheStructOrARowsNote) {
   EXPECT_EQ(shown_help(*avg), "Averaging window in seconds (the paper's 100 s averages) (default: 100)");
 }
 
+// docs/contracts.md lists every option of every command (its tables name
+// each as `--name`, or `-o, --output`): an option added to a table and not
+// to the contract fails here.
+template <class O>
+void expect_documented(const OptionTable<O>& table, const std::string& contracts) {
+  for (const OptionRow<O>& row : table.rows) {
+    if (!row.names.starts_with('-')) continue;  // a positional
+    const std::string name = display_name(row.names);
+    EXPECT_TRUE(contracts.find("`" + name) != std::string::npos || contracts.find(", " + name) != std::string::npos)
+        << table.command << " " << name << " is not in docs/contracts.md";
+  }
+}
+
+TEST(OptionTable, EveryOptionIsInTheContract) {
+  const std::string contracts = testing::slurp(std::filesystem::path(GYROTHERM_SOURCE_DIR) / "docs" / "contracts.md");
+  ASSERT_FALSE(contracts.empty());
+  expect_documented(fit_option_table(), contracts);
+  expect_documented(diagnose_option_table(), contracts);
+  expect_documented(allan_option_table(), contracts);
+  expect_documented(compensate_option_table(), contracts);
+  expect_documented(export_option_table(), contracts);
+  expect_documented(simulate_option_table(), contracts);
+  expect_documented(plan_option_table(), contracts);
+  expect_documented(check_option_table(), contracts);
+  expect_documented(report_option_table(), contracts);
+  expect_documented(reproduce_option_table(), contracts);
+  expect_documented(score_option_table(), contracts);
+}
+
 // A repeatable option takes one value per name, so that the positional after
 // it is never taken for a second value; plan's --range takes its two.
 TEST(OptionTable, ARepeatableOptionBeforeThePositionalTakesOneValue) {
