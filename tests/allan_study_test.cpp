@@ -135,8 +135,8 @@ TEST(AllanStudy, WhiteNoiseGivesItsLineAndTheAngleRandomWalk) {
     EXPECT_NEAR(k.arw_dpsh.value, kSigma / 60.0, 0.03 * kSigma / 60.0);
     EXPECT_LE(k.arw_dpsh.lo, k.arw_dpsh.value);
     EXPECT_GE(k.arw_dpsh.hi, k.arw_dpsh.value);
-    EXPECT_FALSE(k.rrw_dph_per_sqrt_h.shown) << k.rrw_dph_per_sqrt_h.note;
-    EXPECT_FALSE(k.bias_instability_dph.shown) << k.bias_instability_dph.note;  // it falls to the end
+    EXPECT_FALSE(k.rrw_dph_per_sqrt_h.shown) << coefficient_note(k.rrw_dph_per_sqrt_h);
+    EXPECT_FALSE(k.bias_instability_dph.shown) << coefficient_note(k.bias_instability_dph);  // it falls to the end
   }
   // A 68 % interval covers the truth at about two τ in three, not at every τ.
   const double share = static_cast<double>(covered) / total;
@@ -177,15 +177,15 @@ TEST(AllanStudy, ARandomWalkGivesTheRateRandomWalk) {
   for (std::size_t i = 0; i < y.size(); ++i) y[i] = level += steps[i];
   const AllanCurve c = allan_curve(seconds(y.size()), y, {}, "raw");
   const NoiseCoefficients k = read_noise_coefficients(c);
-  ASSERT_TRUE(k.rrw_dph_per_sqrt_h.shown) << k.rrw_dph_per_sqrt_h.note;
-  EXPECT_NEAR(k.rrw_dph_per_sqrt_h.value, 60.0 * kQ, 0.1 * 60.0 * kQ) << k.rrw_dph_per_sqrt_h.note;
+  ASSERT_TRUE(k.rrw_dph_per_sqrt_h.shown) << coefficient_note(k.rrw_dph_per_sqrt_h);
+  EXPECT_NEAR(k.rrw_dph_per_sqrt_h.value, 60.0 * kQ, 0.1 * 60.0 * kQ) << coefficient_note(k.rrw_dph_per_sqrt_h);
   // A walk sampled (not averaged) has σ² = q²(τ/3 + 1/(6τ)) exactly: a white
   // part N = q/√6 per √s. Where the fit shows it, its interval holds that.
   if (k.arw_dpsh.shown) {
-    EXPECT_LE(k.arw_dpsh.lo * 0.9, kQ / std::sqrt(6.0) / 60.0) << k.arw_dpsh.note;
-    EXPECT_GE(k.arw_dpsh.hi * 1.1, kQ / std::sqrt(6.0) / 60.0) << k.arw_dpsh.note;
+    EXPECT_LE(k.arw_dpsh.lo * 0.9, kQ / std::sqrt(6.0) / 60.0) << coefficient_note(k.arw_dpsh);
+    EXPECT_GE(k.arw_dpsh.hi * 1.1, kQ / std::sqrt(6.0) / 60.0) << coefficient_note(k.arw_dpsh);
   }
-  EXPECT_FALSE(k.bias_instability_dph.shown) << k.bias_instability_dph.note;  // it rises from the start
+  EXPECT_FALSE(k.bias_instability_dph.shown) << coefficient_note(k.bias_instability_dph);  // it rises from the start
 }
 
 // A first-order Gauss–Markov bias (correlation time 200 s): its Allan
@@ -200,7 +200,7 @@ TEST(AllanStudy, AGaussMarkovBiasGivesItsFlatTopAndBiasInstability) {
   for (std::size_t i = 0; i < y.size(); ++i) y[i] = x = phi * x + e[i];
   const AllanCurve c = allan_curve(seconds(y.size()), y, {}, "raw");
   const NoiseCoefficients k = read_noise_coefficients(c);
-  ASSERT_TRUE(k.bias_instability_dph.shown) << k.bias_instability_dph.note;
+  ASSERT_TRUE(k.bias_instability_dph.shown) << coefficient_note(k.bias_instability_dph);
   const auto covariance = [&](std::size_t lag) { return kSigma * kSigma * std::pow(phi, static_cast<double>(lag)); };
   const auto m = static_cast<std::size_t>(k.bias_instability_dph.tau_read_s);
   const double analytic = std::sqrt(analytic_avar(covariance, m));
@@ -356,14 +356,14 @@ TEST(AllanStudy, AGaussMarkovPlateauGivesTheBiasInstabilityWithinFifteenPercent)
     const NoiseCoefficient& b = s.coefficients.bias_instability_dph;
     if (!b.shown) {
       ++bounds;
-      EXPECT_EQ(s.bias_support, BiasSupport::not_in_model) << "seed " << seed << ": " << b.note;
-      EXPECT_GT(b.upper_bound, 0.5 * analytic) << "seed " << seed << ": " << b.note;
+      EXPECT_EQ(s.bias_support, BiasSupport::not_in_model) << "seed " << seed << ": " << coefficient_note(b);
+      EXPECT_GT(b.upper_bound, 0.5 * analytic) << "seed " << seed << ": " << coefficient_note(b);
       continue;
     }
-    EXPECT_NEAR(b.value, analytic, 0.15 * analytic) << "seed " << seed << ": " << b.note;
+    EXPECT_NEAR(b.value, analytic, 0.15 * analytic) << "seed " << seed << ": " << coefficient_note(b);
     EXPECT_FALSE(s.coefficients.rrw_dph_per_sqrt_h.shown && s.coefficients.rrw_dph_per_sqrt_h.lo > 0.0 &&
                  b.tau_from_s < 100.0)
-        << b.note;
+        << coefficient_note(b);
   }
   EXPECT_LE(bounds, 2);
 }

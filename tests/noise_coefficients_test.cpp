@@ -38,11 +38,11 @@ AllanCurve v_shaped_curve() {
 // A flat stretch that is a single τ is named as that τ, not as "256–256 s".
 TEST(NoiseCoefficients, AFlatStretchOfOneTauIsNamedAsThatTau) {
   const NoiseCoefficient b = read_noise_coefficients(v_shaped_curve()).bias_instability_dph;
-  ASSERT_TRUE(b.shown) << b.note;
+  ASSERT_TRUE(b.shown) << coefficient_note(b);
   EXPECT_EQ(b.tau_from_s, 256.0);
   EXPECT_EQ(b.tau_to_s, 256.0);
-  EXPECT_NE(b.note.find("τ = 256 s"), std::string::npos) << b.note;
-  EXPECT_EQ(b.note.find("256–256"), std::string::npos) << b.note;
+  EXPECT_NE(coefficient_note(b).find("τ = 256 s"), std::string::npos) << coefficient_note(b);
+  EXPECT_EQ(coefficient_note(b).find("256–256"), std::string::npos) << coefficient_note(b);
 }
 
 }  // namespace

@@ -84,5 +84,14 @@ TEST(ResultStructs, TheFitResultHoldsItsIntervalMethodAsData) {
   for (const auto& [name, why] : names) EXPECT_TRUE(found.count(name)) << name << " is gone: take it off the list";
 }
 
+// The Allan coefficients (studies/allan/noise_coefficients.h): how each was
+// read is a Reading and its numbers; coefficient_note() words it.
+TEST(ResultStructs, TheAllanCoefficientsHoldNoSentence) {
+  const std::set<std::string> found = text_members("studies/allan/noise_coefficients.h");
+  for (const std::string& f : found)
+    ADD_FAILURE() << "studies/allan/noise_coefficients.h: the text member '" << f
+                  << "': a coefficient's reading is a Reading and numbers, worded by coefficient_note()";
+}
+
 }  // namespace
 }  // namespace gyrotherm

@@ -30,7 +30,7 @@ nlohmann::ordered_json coefficient_json(const NoiseCoefficient& k) {
     j["tau_read_s"] = k.tau_read_s;
   }
   j["upper_bound"] = k.upper_bound > 0.0 ? nlohmann::ordered_json(k.upper_bound) : nlohmann::ordered_json();
-  j["note"] = k.note;
+  j["note"] = coefficient_note(k);
   return j;
 }
 
@@ -188,9 +188,9 @@ std::string allan_text(const AllanStudy& study) {
   out += "how each was read:\n";
   for (const AllanSeries& s : study.series) {
     const NoiseCoefficients& k = s.coefficients;
-    out += fmt::format("  {}: ARW: {}\n  {}: bias instability: {}\n  {}: RRW: {}\n", s.curve.name, k.arw_dpsh.note,
-                       s.curve.name, k.bias_instability_dph.note, s.curve.name, k.rrw_dph_per_sqrt_h.note);
-    if (k.quantization_arcsec.shown) out += fmt::format("  {}: quantisation: {}\n", s.curve.name, k.quantization_arcsec.note);
+    out += fmt::format("  {}: ARW: {}\n  {}: bias instability: {}\n  {}: RRW: {}\n", s.curve.name, coefficient_note(k.arw_dpsh),
+                       s.curve.name, coefficient_note(k.bias_instability_dph), s.curve.name, coefficient_note(k.rrw_dph_per_sqrt_h));
+    if (k.quantization_arcsec.shown) out += fmt::format("  {}: quantisation: {}\n", s.curve.name, coefficient_note(k.quantization_arcsec));
   }
   out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664, or the "
          "noise model's flicker floor)\n";

@@ -177,10 +177,11 @@ CurveFit fit_curve(const AllanCurve& c, const std::function<bool(const AllanRow&
 // it dominates is judged on `whole`, the curve fitted over every τ with every
 // term (f may be a refit of some terms on some τ).
 NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, const CurveFit& whole, int term,
-                             const std::string& what) {
+                             CoefficientKind kind) {
   NoiseCoefficient k;
+  k.kind = kind;
   if (!f.ok) {
-    k.note = "not shown: too few τ for the weighted fit";
+    k.reading = Reading::too_few_taus;
     return k;
   }
   const auto t = static_cast<std::size_t>(term);
@@ -202,28 +203,29 @@ NoiseCoefficient fitted_term(const AllanCurve& c, const CurveFit& f, const Curve
     }
   }
   if (k.tau_from_s == 0.0) k.tau_from_s = k.tau_to_s = k.tau_read_s;
-  const std::string fit_text = fmt::format("weighted fit of the standard terms to σ² at {} τ (χ²/dof {:.2g})",
-                                           f.taus, f.chi2_per_dof);
+  k.fit_taus = static_cast<int>(f.taus);
+  k.fit_chi2_per_dof = f.chi2_per_dof;
   if (std::isnan(sd)) {
-    k.note = fmt::format("not resolved: {} cannot be fitted beside the other terms on these τ (no bound)", what);
+    k.reading = Reading::not_separable;
     return k;
   }
   if (!(a - kZ95 * sd > 0.0)) {
+    k.reading = Reading::below_bound;
     k.upper_bound = std::sqrt(std::max(0.0, a) + kZ95 * sd);
-    k.note = fmt::format("not resolved: {} below {:.3g} (95 % bound of the {})", what, k.upper_bound, fit_text);
     return k;
   }
   k.shown = true;
   k.value = std::sqrt(a);
   k.lo = std::sqrt(std::max(0.0, a - z * sd));
   k.hi = std::sqrt(a + z * sd);
-  k.note = fmt::format("{}; {} dominates {}", fit_text, what, tau_span_text(k.tau_from_s, k.tau_to_s));
+  k.reading = Reading::fitted;
   return k;
 }
 
 
 NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
   NoiseCoefficient k;
+  k.kind = CoefficientKind::bias_instability;
   k.method = CoefficientMethod::curve_flat;
   // Rows with at least kMinClusters clusters (terms ≥ (clusters − 2)·m).
   std::vector<std::size_t> usable;
@@ -231,7 +233,7 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
     if (c.rows[i].adev_dph > 0.0 && c.rows[i].terms + 2 * c.rows[i].m >= kMinClusters * c.rows[i].m)
       usable.push_back(i);
   if (usable.size() < 3) {
-    k.note = "not shown: fewer than 3 τ with 8 clusters";
+    k.reading = Reading::too_few_clusters;
     return k;
   }
   // Flat rows: usable, with a τ on either side, local slope within ±0.2.
@@ -284,25 +286,72 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
       bool hump = false;
       for (std::size_t i = to + 1; i < c.rows.size(); ++i) hump = hump || c.rows[i].hi_dph < level;
       k.plateau = hump;
-      k.note = fmt::format("the flat part of the curve, {} (local slope within ±0.2{}), σ/0.664{}",
-                           tau_span_text(k.tau_from_s, k.tau_to_s), from == to ? ", at this τ alone" : "",
-                           hump ? "; the curve falls past it: a plateau of a correlated (Gauss–Markov) bias" : "");
+      k.reading = Reading::flat_part;
       return k;
     }
   }
   k.upper_bound = bound;
   k.tau_read_s = low.tau_s;
-  k.note = lowest == usable.back()
-               ? fmt::format("a bound only: the curve still falls at its longest usable τ ({:.3g} s), so the flat "
-                             "part is beyond the record; B ≤ {:.3g} °/h (the flicker floor lies under every point)",
-                             low.tau_s, bound)
-               : fmt::format("not shown: no flat part above what the fitted white noise gives; "
-                             "B ≤ {:.3g} °/h (the curve's lowest point, τ = {:.3g} s)",
-                             bound, low.tau_s);
+  k.reading = lowest == usable.back() ? Reading::still_falling : Reading::no_flat_part;
   return k;
 }
 
 }  // namespace
+
+std::string coefficient_note(const NoiseCoefficient& k) {
+  const char* what = k.kind == CoefficientKind::arw   ? "angle random walk (−½ slope)"
+                     : k.kind == CoefficientKind::rrw ? "rate random walk (+½ slope)"
+                                                      : "quantisation (−1 slope)";
+  const std::string fit_text = fmt::format("weighted fit of the standard terms to σ² at {} τ (χ²/dof {:.2g})",
+                                           k.fit_taus, k.fit_chi2_per_dof);
+  const std::string span = fmt::format("τ = {:.3g}–{:.3g} s", k.tau_from_s, k.tau_to_s);
+  std::string note;
+  switch (k.reading) {
+    case Reading::too_few_taus: note = "not shown: too few τ for the weighted fit"; break;
+    case Reading::not_separable:
+      note = fmt::format("not resolved: {} cannot be fitted beside the other terms on these τ (no bound)", what);
+      break;
+    case Reading::below_bound:
+      note = fmt::format("not resolved: {} below {:.3g} (95 % bound of the {})", what, k.upper_bound, fit_text);
+      break;
+    case Reading::fitted:
+      note = fmt::format("{}; {} dominates {}", fit_text, what, tau_span_text(k.tau_from_s, k.tau_to_s));
+      break;
+    case Reading::too_few_clusters: note = "not shown: fewer than 3 τ with 8 clusters"; break;
+    case Reading::flat_part:
+      note = fmt::format("the flat part of the curve, {} (local slope within ±0.2{}), σ/0.664{}",
+                         tau_span_text(k.tau_from_s, k.tau_to_s), k.tau_from_s == k.tau_to_s ? ", at this τ alone" : "",
+                         k.plateau ? "; the curve falls past it: a plateau of a correlated (Gauss–Markov) bias" : "");
+      break;
+    case Reading::still_falling:
+      note = fmt::format("a bound only: the curve still falls at its longest usable τ ({:.3g} s), so the flat "
+                         "part is beyond the record; B ≤ {:.3g} °/h (the flicker floor lies under every point)",
+                         k.tau_read_s, k.upper_bound);
+      break;
+    case Reading::no_flat_part:
+      note = fmt::format("not shown: no flat part above what the fitted white noise gives; "
+                         "B ≤ {:.3g} °/h (the curve's lowest point, τ = {:.3g} s)",
+                         k.upper_bound, k.tau_read_s);
+      break;
+    case Reading::noise_model:
+      note = fmt::format("the series' noise model (REML): its flicker floor, separated from the white noise (slow "
+                         "error a compensation leaves counts in it); flicker {} of the Allan variance at {}",
+                         k.flicker_dominates ? "makes most" : "weighs most, if not half,", span);
+      break;
+    case Reading::unexplained_flat:
+      note = fmt::format("a bound only: the curve flattens at {}, but {}; the flat part is what "
+                         "the fit's model leaves on a compensated series, or noise no model names; B ≤ {:.3g} °/h",
+                         span,
+                         k.has_noise_model ? "the series' noise model finds no flicker or Gauss–Markov process there"
+                                           : "the series is too short for a noise model to say what it is",
+                         k.upper_bound);
+      break;
+  }
+  if (k.gauss_markov_tau_s > 0.0)
+    note += fmt::format("; the series' noise model has a Gauss–Markov process of correlation time {:.3g} s",
+                        k.gauss_markov_tau_s);
+  return note;
+}
 
 double chi2_bound(double edf, double p) { return edf / boost::math::quantile(boost::math::chi_squared(edf), p); }
 
@@ -324,9 +373,9 @@ NoiseCoefficients read_noise_coefficients(const AllanCurve& c) {
   };
   const CurveFit w = f.ok ? fit_curve(c, white_dominated, kWhiteTerms) : CurveFit{};
   const CurveFit& white_fit = w.ok && w.in[kN] ? w : f;
-  k.arw_dpsh = fitted_term(c, white_fit, f, kN, "angle random walk (−½ slope)");
-  k.rrw_dph_per_sqrt_h = fitted_term(c, f, f, kK, "rate random walk (+½ slope)");
-  k.quantization_arcsec = fitted_term(c, white_fit, f, kQ, "quantisation (−1 slope)");
+  k.arw_dpsh = fitted_term(c, white_fit, f, kN, CoefficientKind::arw);
+  k.rrw_dph_per_sqrt_h = fitted_term(c, f, f, kK, CoefficientKind::rrw);
+  k.quantization_arcsec = fitted_term(c, white_fit, f, kQ, CoefficientKind::quantization);
   k.bias_instability_dph = bias_instability(c, f);
   return k;
 }

@@ -46,7 +46,26 @@ namespace gyrotherm::studies {
 enum class CoefficientMethod { curve_fit, curve_flat, noise_model };
 const char* coefficient_method_name(CoefficientMethod m);  // "curve_fit", "curve_flat", "noise_model"
 
+// Which coefficient: what the words name.
+enum class CoefficientKind { arw, bias_instability, rrw, quantization };
+// How a coefficient was read, or why it is not shown; coefficient_note()
+// words it.
+enum class Reading {
+  fitted,            // the weighted fit of the standard terms; the term dominates τ_from..τ_to
+  too_few_taus,      // no weighted fit could be made
+  not_separable,     // the term cannot be fitted beside the others on these τ (no bound)
+  below_bound,       // not resolved: below upper_bound, the fit's 95 % bound
+  too_few_clusters,  // B: fewer than 3 τ with 8 clusters
+  flat_part,         // B: the curve's flat part, τ_from..τ_to (plateau: it falls past it)
+  still_falling,     // B: a bound only, the curve still falls at its longest usable τ (tau_read_s)
+  no_flat_part,      // B: no flat part above the fitted white noise; bound at the lowest point (tau_read_s)
+  noise_model,       // B: the series' noise model's flicker floor
+  unexplained_flat,  // B: a bound only, a flat part that no noise model names
+};
+
 struct NoiseCoefficient {
+  CoefficientKind kind = CoefficientKind::arw;
+  Reading reading = Reading::too_few_taus;
   bool shown = false;
   CoefficientMethod method = CoefficientMethod::curve_fit;
   double value = 0.0, lo = 0.0, hi = 0.0;   // in the coefficient's unit, at the curve's confidence
@@ -54,8 +73,17 @@ struct NoiseCoefficient {
   double tau_from_s = 0.0, tau_to_s = 0.0;  // the τ range where the term shows
   double tau_read_s = 0.0;                  // where it weighs most (B: where it was read)
   bool plateau = false;                     // B: the curve falls past its flat part beyond its interval (a plateau)
-  std::string note;                         // how it was read, or why it is not shown
+  int fit_taus = 0;                         // fitted, below_bound: the weighted fit's τ and its χ²/dof
+  double fit_chi2_per_dof = 0.0;
+  double gauss_markov_tau_s = 0.0;          // B: > 0 where the series' noise model has a Gauss–Markov process
+  bool flicker_dominates = false;           // noise_model: flicker makes most of the variance there (else weighs most)
+  bool has_noise_model = false;             // unexplained_flat: a noise model was identified (and names nothing)
 };
+
+// How it was read, or why it is not shown, in words: "weighted fit of the
+// standard terms to σ² at 12 τ (χ²/dof 1.1); angle random walk (−½ slope)
+// dominates τ = 1–64 s".
+std::string coefficient_note(const NoiseCoefficient& k);
 
 struct NoiseCoefficients {
   NoiseCoefficient arw_dpsh;             // °/√h

@@ -88,10 +88,9 @@ void read_from_model(NoiseCoefficient& b, const AllanCurve& curve, const fit::No
   b.tau_from_s = from > 0.0 ? from : best_tau;
   b.tau_to_s = from > 0.0 ? to : best_tau;
   b.tau_read_s = best_tau;
-  b.note = fmt::format("the series' noise model (REML): its flicker floor, separated from the white noise (slow "
-                       "error a compensation leaves counts in it); flicker {} of the Allan variance at "
-                       "τ = {:.3g}–{:.3g} s",
-                       from > 0.0 ? "makes most" : "weighs most, if not half,", b.tau_from_s, b.tau_to_s);
+  b.reading = Reading::noise_model;
+  b.flicker_dominates = from > 0.0;
+  b.gauss_markov_tau_s = 0.0;
 }
 
 }  // namespace
@@ -108,8 +107,7 @@ BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve
   const bool accounted = noise && std::sqrt(noise->allan_variance(b.tau_read_s)) >= lo_at_read;
   if (b.plateau && has_flicker && accounted) return BiasSupport::plateau;
   if (noise && noise->identified[fit::kGaussMarkov] && noise->amplitude[fit::kGaussMarkov] > 0.0 && accounted) {
-    b.note += fmt::format("; the series' noise model has a Gauss–Markov process of correlation time {:.3g} s",
-                          noise->gm_tau_s);
+    b.gauss_markov_tau_s = noise->gm_tau_s;
     return BiasSupport::gauss_markov;
   }
   if (has_flicker) {
@@ -125,12 +123,8 @@ BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve
   const double upper = edf > 0.0 ? level * std::sqrt(chi2_bound(edf, 0.025)) : b.hi * kFlickerFloor;
   b.shown = false;
   b.upper_bound = upper / kFlickerFloor;
-  b.note = fmt::format("a bound only: the curve flattens at τ = {:.3g}–{:.3g} s, but {}; the flat part is what "
-                       "the fit's model leaves on a compensated series, or noise no model names; B ≤ {:.3g} °/h",
-                       b.tau_from_s, b.tau_to_s,
-                       noise ? "the series' noise model finds no flicker or Gauss–Markov process there"
-                             : "the series is too short for a noise model to say what it is",
-                       b.upper_bound);
+  b.reading = Reading::unexplained_flat;
+  b.has_noise_model = noise.has_value();
   return why;
 }
 
