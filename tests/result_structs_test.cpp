@@ -93,5 +93,25 @@ TEST(ResultStructs, TheAllanCoefficientsHoldNoSentence) {
                   << "': a coefficient's reading is a Reading and numbers, worded by coefficient_note()";
 }
 
+// What a firmware export achieves (studies/export/firmware_outcome.h): the
+// rule, the notes of a costly axis and the warnings are worded by its json(),
+// lines(), notes() and warnings() from the firmware, each axis's FirmwareCost
+// and the numbers.
+TEST(ResultStructs, TheFirmwareOutcomeHoldsNamesNotSentences) {
+  const std::map<std::string, std::string> names = {
+      {"channel", "AxisOutcome: the fit's channel"},
+      {"data", "FirmwareOutcome: the record's name"},
+      {"fit_file", "FirmwareOutcome: a file name"},
+      {"missing_data", "FirmwareOutcome: the data's name as the fit gives it"},
+      {"cautions", "FirmwareOutcome: the record's unit cautions as fit::measurement_cautions words them (the fit "
+                   "layer's sentences, quoted)"},
+  };
+  const std::set<std::string> found = text_members("studies/export/firmware_outcome.h");
+  for (const std::string& f : found)
+    EXPECT_TRUE(names.count(f)) << "studies/export/firmware_outcome.h: the text member '" << f
+                                << "' is not a known name; the outcome's words are its renderers'";
+  for (const auto& [name, why] : names) EXPECT_TRUE(found.count(name)) << name << " is gone: take it off the list";
+}
+
 }  // namespace
 }  // namespace gyrotherm

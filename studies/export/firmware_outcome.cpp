@@ -81,22 +81,17 @@ std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, con
 FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, const std::string& data_option,
                                  std::optional<double> boot_c, const fit::Table* data_table) {
   FirmwareOutcome o;
+  o.firmware = firmware;
   const ExportRange& r = file.range;
   const auto tmin = static_cast<float>(r.tmin_c), tmax = static_cast<float>(r.tmax_c);
   const auto tref = static_cast<float>(r.tref_c);
-  o.rule = firmware == Firmware::px4
-               ? "PX4 recomputes the offsets once a second and applies them only when the temperature has moved "
-                 "more than 1 °C since the last applied"
-               : "ArduPilot corrects every sample, relative to the gyro offsets taken at boot";
   for (std::size_t i = 0; i < 3; ++i) {
     const AxisModel& a = file.axes[i];
     if (!a.present) continue;
     const FittedData data = fitted_data(*a.fit, data_option, data_table);
     if (!data.here()) {
-      o.notes.push_back(fmt::format("what {} will achieve is not predicted: the data {} was fitted on ('{}') is not "
-                                    "here; give it with --data",
-                                    firmware == Firmware::px4 ? "PX4" : "ArduPilot", a.fit->file.string(),
-                                    a.fit->data_file));
+      o.fit_file = a.fit->file.string();
+      o.missing_data = a.fit->data_file;
       o.axes.clear();
       return o;
     }
@@ -105,9 +100,7 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
     const fit::Measurement m = data.read(pipeline.columns);
     // The record's units checked as fit checks them, each caution once.
     for (const std::string& c : fit::measurement_cautions(m))
-      if (const std::string w = fmt::format("caution: {}: {}", data.name, c);
-          std::find(o.warnings.begin(), o.warnings.end(), w) == o.warnings.end())
-        o.warnings.push_back(w);
+      if (std::find(o.cautions.begin(), o.cautions.end(), c) == o.cautions.end()) o.cautions.push_back(c);
     AxisOutcome out;
     out.axis = "XYZ"[i];
     out.channel = a.channel;
@@ -135,45 +128,39 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
   }
   if (firmware == Firmware::ardupilot && !o.axes.empty()) {
     const double boot = boot_c.value_or(std::nan(""));
-    if (boot_c && (boot < r.tmin_c || boot > r.tmax_c)) {
-      std::string errors;
-      for (const AxisOutcome& a : o.axes) errors += fmt::format("{}{}: {:.4g}", errors.empty() ? "" : ", ", a.axis, a.boot_error_dph);
-      o.warnings.push_back(fmt::format(
-          "--boot-temp {:g} °C is outside the fitted range [{:.2f}, {:.2f}] °C: ArduPilot clamps it, and a gyro "
-          "calibrated at boot there keeps a constant error all flight ({} °/h, by the model extrapolated); boot "
-          "within the range, or fit over the temperatures the vehicle boots at",
-          boot, r.tmin_c, r.tmax_c, errors));
-    }
+    if (boot_c && (boot < r.tmin_c || boot > r.tmax_c)) o.boot_outside_c = boot;
   }
-  for (const AxisOutcome& a : o.axes) {
-    if (a.firmware_dph <= kTooCostly * a.model_dph) continue;
-    std::string help;
-    if (a.exported_dph > kTooCostly * a.model_dph)
-      help = "the exported cubic already leaves this much (terms dropped, or samples outside the fitted range held at "
-             "its edge): fit a polynomial over the temperature range the vehicle will see";
-    else if (firmware == Firmware::px4)
-      help = "the cost is PX4's 1 °C step, not the model: it grows with how fast the bias changes per °C; a "
-             "compensation applied at every sample (--format c in your own code) avoids it";
-    else
-      help = "samples outside the fitted range are held at its edge: fit over the temperature range the vehicle "
-             "will see";
-    o.notes.push_back(fmt::format("{} ({}): as {} applies it {:.4g} °/h against the model's {:.4g} ({:.2f}x): {}",
-                                  a.axis, a.channel, firmware == Firmware::px4 ? "PX4" : "ArduPilot", a.firmware_dph,
-                                  a.model_dph, a.firmware_dph / a.model_dph, help));
-  }
+  o.tmin_c = r.tmin_c;
+  o.tmax_c = r.tmax_c;
+  for (AxisOutcome& a : o.axes)
+    if (a.firmware_dph > kTooCostly * a.model_dph)
+      a.cost = a.exported_dph > kTooCostly * a.model_dph ? FirmwareCost::exported_cubic
+               : firmware == Firmware::px4               ? FirmwareCost::px4_step
+                                                         : FirmwareCost::held_edge;
   return o;
 }
 
 void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out) {
   for (const std::string& line : outcome.lines()) out->lines.push_back(line);
-  for (const std::string& w : outcome.warnings) out->warnings.push_back(w);
+  for (const std::string& w : outcome.warnings()) out->warnings.push_back(w);
   out->json_fields.emplace_back("firmware_outcome", outcome.json().dump());
 }
+
+namespace {
+
+// How the firmware applies the parameters, one line.
+const char* rule_text(Firmware firmware) {
+  return firmware == Firmware::px4 ? "PX4 recomputes the offsets once a second and applies them only when the "
+                                     "temperature has moved more than 1 °C since the last applied"
+                                   : "ArduPilot corrects every sample, relative to the gyro offsets taken at boot";
+}
+
+}  // namespace
 
 nlohmann::ordered_json FirmwareOutcome::json() const {
   nlohmann::ordered_json j;
   j["data"] = data.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(data);
-  j["rule"] = rule;
+  j["rule"] = rule_text(firmware);
   j["axes"] = nlohmann::ordered_json::array();
   for (const AxisOutcome& a : axes)
     j["axes"].push_back({{"axis", std::string(1, a.axis)},
@@ -183,20 +170,60 @@ nlohmann::ordered_json FirmwareOutcome::json() const {
                          {"exported_dph", a.exported_dph},
                          {"firmware_dph", a.firmware_dph},
                          {"boot_error_dph", a.boot_error_dph}});
-  j["notes"] = notes;
+  j["notes"] = notes();
   return j;
+}
+
+std::vector<std::string> FirmwareOutcome::notes() const {
+  const char* name = firmware == Firmware::px4 ? "PX4" : "ArduPilot";
+  if (!missing_data.empty() || (!fit_file.empty() && axes.empty()))
+    return {fmt::format("what {} will achieve is not predicted: the data {} was fitted on ('{}') is not here; give it "
+                        "with --data",
+                        name, fit_file, missing_data)};
+  std::vector<std::string> out;
+  for (const AxisOutcome& a : axes) {
+    if (a.cost == FirmwareCost::none) continue;
+    const char* help =
+        a.cost == FirmwareCost::exported_cubic
+            ? "the exported cubic already leaves this much (terms dropped, or samples outside the fitted range held "
+              "at its edge): fit a polynomial over the temperature range the vehicle will see"
+        : a.cost == FirmwareCost::px4_step
+            ? "the cost is PX4's 1 °C step, not the model: it grows with how fast the bias changes per °C; a "
+              "compensation applied at every sample (--format c in your own code) avoids it"
+            : "samples outside the fitted range are held at its edge: fit over the temperature range the vehicle "
+              "will see";
+    out.push_back(fmt::format("{} ({}): as {} applies it {:.4g} °/h against the model's {:.4g} ({:.2f}x): {}", a.axis,
+                              a.channel, name, a.firmware_dph, a.model_dph, a.firmware_dph / a.model_dph, help));
+  }
+  return out;
+}
+
+std::vector<std::string> FirmwareOutcome::warnings() const {
+  std::vector<std::string> out;
+  for (const std::string& c : cautions) out.push_back(fmt::format("caution: {}: {}", data, c));
+  if (boot_outside_c) {
+    std::string errors;
+    for (const AxisOutcome& a : axes)
+      errors += fmt::format("{}{}: {:.4g}", errors.empty() ? "" : ", ", a.axis, a.boot_error_dph);
+    out.push_back(fmt::format(
+        "--boot-temp {:g} °C is outside the fitted range [{:.2f}, {:.2f}] °C: ArduPilot clamps it, and a gyro "
+        "calibrated at boot there keeps a constant error all flight ({} °/h, by the model extrapolated); boot "
+        "within the range, or fit over the temperatures the vehicle boots at",
+        *boot_outside_c, tmin_c, tmax_c, errors));
+  }
+  return out;
 }
 
 std::vector<std::string> FirmwareOutcome::lines() const {
   std::vector<std::string> out;
   if (!axes.empty()) {
-    out.push_back(fmt::format("on {} (instability of the window averages, °/h): {}", data, rule));
+    out.push_back(fmt::format("on {} (instability of the window averages, °/h): {}", data, rule_text(firmware)));
     for (const AxisOutcome& a : axes)
       out.push_back(fmt::format("  {} ({}): raw {:.4g}, model {:.4g}, exported cubic {:.4g}, as the firmware applies it "
                                 "{:.4g}",
                                 a.axis, a.channel, a.before_dph, a.model_dph, a.exported_dph, a.firmware_dph));
   }
-  for (const std::string& n : notes) out.push_back(n);
+  for (const std::string& n : notes()) out.push_back(n);
   return out;
 }
 

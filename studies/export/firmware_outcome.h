@@ -50,24 +50,42 @@ std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std
 std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, const std::array<float, 3>& g,
                                           float tmin, float tmax, float boot_c, double bias_at_boot_dph);
 
+enum class Firmware { px4, ardupilot };
+
+// Where the firmware's rule costs more than 20 % above the model, why (the
+// notes say what would help).
+enum class FirmwareCost {
+  none,            // within 20 %
+  exported_cubic,  // the exported cubic already leaves it (terms dropped, or samples held at the range's edge)
+  px4_step,        // PX4's 1 °C step
+  held_edge,       // ArduPilot: samples outside the fitted range held at its edge
+};
+
 struct AxisOutcome {
   char axis = 'X';
   std::string channel;
   double before_dph = 0, model_dph = 0, exported_dph = 0, firmware_dph = 0;
   double boot_error_dph = 0;  // ArduPilot: the constant a boot outside the range leaves
+  FirmwareCost cost = FirmwareCost::none;
 };
 
+// The outcome as data; json(), lines() and warnings() word it.
 struct FirmwareOutcome {
+  Firmware firmware = Firmware::px4;
   std::string data;                // the record it was computed on; empty: not here
-  std::string rule;                // how the firmware applies the parameters, one line
+  // Not here: the fit file and the data it names (the notes say to give it with --data).
+  std::string fit_file, missing_data;
   std::vector<AxisOutcome> axes;   // the axes exported
-  std::vector<std::string> notes;  // where the rule costs more than 20 %, and what would help
-  std::vector<std::string> warnings;
+  // The record's unit cautions (fit::measurement_cautions), each once.
+  std::vector<std::string> cautions;
+  // ArduPilot: a --boot-temp outside the fitted range [tmin_c, tmax_c].
+  std::optional<double> boot_outside_c;
+  double tmin_c = 0.0, tmax_c = 0.0;
   nlohmann::ordered_json json() const;
-  std::vector<std::string> lines() const;  // for the terminal
+  std::vector<std::string> lines() const;     // for the terminal
+  std::vector<std::string> notes() const;     // where the rule costs more than 20 %, and what would help
+  std::vector<std::string> warnings() const;  // for stderr
 };
-
-enum class Firmware { px4, ardupilot };
 
 // The outcome of `file` applied by `firmware` on the data each axis's fit was
 // made on (`data_table`, else `data_option`, else the fit's own file); without that data, an
