@@ -466,6 +466,7 @@ def engines():
 
 
 def options(command):
-    """The options of a command (fit, diagnose, allan, compensate, export, simulate, plan), as the
-    command line has them: keyword, flag, help (with the default and unit), kind, required."""
+    """The options of a command (fit, diagnose, allan, compensate, export, simulate, plan, check,
+    report), as the command line has them: keyword, flag, help (ending "(default: VALUE)" where there
+    is one), default (the value, or the rule in words; "" for none), kind, required."""
     return _g.option_table(command)

@@ -32,6 +32,16 @@ def test_options_are_the_clis(cycle_csv):
     assert result.as_dict()["pipeline"]["avg_s"] == 200
 
 
+def test_each_option_states_its_default_once():
+    rows = {r["keyword"]: r for r in gyrotherm.options("fit")}
+    assert rows["avg"]["default"] == "100"
+    assert rows["avg"]["help"].endswith("(default: 100)")
+    assert rows["model"]["default"] == "'T + T^2 + dT'"
+    assert rows["imu"]["default"] == "the first with a temperature"
+    assert rows["add"]["default"] == ""  # a list: empty by default
+    assert rows["avg"]["help"].count("default") == 1
+
+
 def test_the_summary_is_the_clis_table(cycle_csv):
     text = gyrotherm.fit(cycle_csv, model="T + T^2").summary()
     cli = run_cli("fit", cycle_csv, "--model", "T + T^2")
