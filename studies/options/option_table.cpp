@@ -44,7 +44,8 @@ std::vector<std::size_t> rows_for_keywords(const std::string& command, const std
   std::vector<std::size_t> out;
   std::set<std::size_t> seen;
   for (const auto& [keyword, value] : given) {
-    const auto row = std::find_if(rows.begin(), rows.end(), [&](const OptionInfo& r) { return r.keyword == keyword; });
+    const std::string& wanted = keyword;  // (clang before 16 cannot capture a structured binding)
+    const auto row = std::find_if(rows.begin(), rows.end(), [&](const OptionInfo& r) { return r.keyword == wanted; });
     if (row == rows.end()) {
       std::vector<std::string> known;
       for (const OptionInfo& r : rows) known.push_back(r.keyword);
