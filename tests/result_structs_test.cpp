@@ -103,8 +103,8 @@ TEST(ResultStructs, TheFirmwareOutcomeHoldsNamesNotSentences) {
       {"data", "FirmwareOutcome: the record's name"},
       {"fit_file", "FirmwareOutcome: a file name"},
       {"missing_data", "FirmwareOutcome: the data's name as the fit gives it"},
-      {"cautions", "FirmwareOutcome: the record's unit cautions as fit::measurement_cautions words them (the fit "
-                   "layer's sentences, quoted)"},
+      {"text", "RecordCaution: a unit caution as fit::measurement_cautions words it (the fit layer's sentence, "
+               "quoted)"},
   };
   const std::set<std::string> found = text_members("studies/export/firmware_outcome.h");
   for (const std::string& f : found)

@@ -37,7 +37,7 @@ using fish_swarm::Fish;
 
 // One run: Li's choice of mates and targets on top of the shared school
 // (fit/engines/fish_swarm.h), whose evaluator's best point is the bulletin board.
-FitResult run(const AfsaEngine::Options& o, const LinearProblem& problem,
+FitResult run_afsa(const AfsaEngine::Options& o, const LinearProblem& problem,
               FitObserver* observer) {
   fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, streams::afsa,
                             fish_swarm::PreyMove::step_towards, o.try_number);
@@ -114,7 +114,7 @@ void AfsaEngine::Options::validate() const {
 AfsaEngine::AfsaEngine(AfsaOptions options) : options_(std::move(options)) { options_.validate(); }
 
 FitResult AfsaEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
-  return run(options_, problem, observer);
+  return run_afsa(options_, problem, observer);
 }
 
 EngineInfo afsa_engine_info() {

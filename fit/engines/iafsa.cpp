@@ -57,7 +57,7 @@ double crowd(const fish_swarm::School& school, const std::vector<double>& point,
 
 // One run: the paper's schedule and targets on top of the shared school
 // (fit/engines/fish_swarm.h), whose evaluator's best point is the bulletin board.
-FitResult run(const IafsaEngine::Options& o, const LinearProblem& problem,
+FitResult run_iafsa(const IafsaEngine::Options& o, const LinearProblem& problem,
               FitObserver* observer) {
   fish_swarm::School school(problem, o.max_evaluations, o.target_objective, o.seed, streams::iafsa,
                             fish_swarm::PreyMove::jump_to, o.try_number);
@@ -154,7 +154,7 @@ int IafsaEngine::auto_iterations(std::size_t terms) {
 IafsaEngine::IafsaEngine(IafsaOptions options) : options_(std::move(options)) { options_.validate(); }
 
 FitResult IafsaEngine::fit(const LinearProblem& problem, FitObserver* observer) const {
-  return run(options_, problem, observer);
+  return run_iafsa(options_, problem, observer);
 }
 
 EngineInfo iafsa_engine_info() {

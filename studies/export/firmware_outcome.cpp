@@ -99,8 +99,10 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
     const fit::PipelineOptions pipeline = fit::reading_columns_of(a.fit->pipeline, a.fit->terms);
     const fit::Measurement m = data.read(pipeline.columns);
     // The record's units checked as fit checks them, each caution once.
-    for (const std::string& c : fit::measurement_cautions(m))
-      if (std::find(o.cautions.begin(), o.cautions.end(), c) == o.cautions.end()) o.cautions.push_back(c);
+    for (const std::string& c : fit::measurement_cautions(m)) {
+      const RecordCaution caution{data.name, c};
+      if (std::find(o.cautions.begin(), o.cautions.end(), caution) == o.cautions.end()) o.cautions.push_back(caution);
+    }
     AxisOutcome out;
     out.axis = "XYZ"[i];
     out.channel = a.channel;
@@ -133,7 +135,7 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
   o.tmin_c = r.tmin_c;
   o.tmax_c = r.tmax_c;
   for (AxisOutcome& a : o.axes)
-    if (a.firmware_dph > kTooCostly * a.model_dph)
+    if (!(a.firmware_dph <= kTooCostly * a.model_dph))  // (a NaN, of a record too short, counts as costly)
       a.cost = a.exported_dph > kTooCostly * a.model_dph ? FirmwareCost::exported_cubic
                : firmware == Firmware::px4               ? FirmwareCost::px4_step
                                                          : FirmwareCost::held_edge;
@@ -149,7 +151,7 @@ void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out) {
 namespace {
 
 // How the firmware applies the parameters, one line.
-const char* rule_text(Firmware firmware) {
+const char* firmware_rule_text(Firmware firmware) {
   return firmware == Firmware::px4 ? "PX4 recomputes the offsets once a second and applies them only when the "
                                      "temperature has moved more than 1 °C since the last applied"
                                    : "ArduPilot corrects every sample, relative to the gyro offsets taken at boot";
@@ -160,7 +162,7 @@ const char* rule_text(Firmware firmware) {
 nlohmann::ordered_json FirmwareOutcome::json() const {
   nlohmann::ordered_json j;
   j["data"] = data.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(data);
-  j["rule"] = rule_text(firmware);
+  j["rule"] = firmware_rule_text(firmware);
   j["axes"] = nlohmann::ordered_json::array();
   for (const AxisOutcome& a : axes)
     j["axes"].push_back({{"axis", std::string(1, a.axis)},
@@ -200,7 +202,7 @@ std::vector<std::string> FirmwareOutcome::notes() const {
 
 std::vector<std::string> FirmwareOutcome::warnings() const {
   std::vector<std::string> out;
-  for (const std::string& c : cautions) out.push_back(fmt::format("caution: {}: {}", data, c));
+  for (const RecordCaution& c : cautions) out.push_back(fmt::format("caution: {}: {}", c.data, c.text));
   if (boot_outside_c) {
     std::string errors;
     for (const AxisOutcome& a : axes)
@@ -217,7 +219,7 @@ std::vector<std::string> FirmwareOutcome::warnings() const {
 std::vector<std::string> FirmwareOutcome::lines() const {
   std::vector<std::string> out;
   if (!axes.empty()) {
-    out.push_back(fmt::format("on {} (instability of the window averages, °/h): {}", data, rule_text(firmware)));
+    out.push_back(fmt::format("on {} (instability of the window averages, °/h): {}", data, firmware_rule_text(firmware)));
     for (const AxisOutcome& a : axes)
       out.push_back(fmt::format("  {} ({}): raw {:.4g}, model {:.4g}, exported cubic {:.4g}, as the firmware applies it "
                                 "{:.4g}",

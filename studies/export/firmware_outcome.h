@@ -69,6 +69,13 @@ struct AxisOutcome {
   FirmwareCost cost = FirmwareCost::none;
 };
 
+// A record's unit caution as fit::measurement_cautions words it (the fit
+// layer's sentence, quoted).
+struct RecordCaution {
+  std::string data, text;
+  bool operator==(const RecordCaution&) const = default;
+};
+
 // The outcome as data; json(), lines() and warnings() word it.
 struct FirmwareOutcome {
   Firmware firmware = Firmware::px4;
@@ -76,8 +83,8 @@ struct FirmwareOutcome {
   // Not here: the fit file and the data it names (the notes say to give it with --data).
   std::string fit_file, missing_data;
   std::vector<AxisOutcome> axes;   // the axes exported
-  // The record's unit cautions (fit::measurement_cautions), each once.
-  std::vector<std::string> cautions;
+  // The records' unit cautions, each once.
+  std::vector<RecordCaution> cautions;
   // ArduPilot: a --boot-temp outside the fitted range [tmin_c, tmax_c].
   std::optional<double> boot_outside_c;
   double tmin_c = 0.0, tmax_c = 0.0;

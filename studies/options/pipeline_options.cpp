@@ -60,7 +60,8 @@ std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
                       &fit::Units::temp_scale)),
       note(nested_row("--temp-offset", "Temperature = A x column + B: B", &C::units, &fit::Units::temp_offset)),
       note(nested_row("--delimiter", "Column delimiter: comma, semicolon, tab or auto (the one the header uses)",
-                      &C::csv, &fit::CsvDialect::delimiter)),
+                      &C::csv, &fit::CsvDialect::delimiter),
+           "auto"),
       note(nested_row("--decimal-comma", "Numbers are written with a decimal comma (20,5)", &C::csv,
                       &fit::CsvDialect::decimal_comma)),
       note(field_row<C>("--imu", "The gyro instance of a PX4 ULog or ArduPilot DataFlash log", &C::imu),
@@ -88,9 +89,11 @@ std::vector<OptionRow<DataOptions>> data_option_rows(bool with_avg) {
   rows.push_back(field_row<D>("--causal", "Backward differences for dT/dt and d2T (a real-time compensator) rather than central ones",
                               &D::causal));
   rows.push_back(field_row<D>("--keep-outliers", "Do not remove counting glitches", &D::keep_outliers));
-  rows.push_back(field_row<D>("--outlier-threshold",
-                              "Glitch rule: deviation from the moving median in robust sigmas",
-                              &D::outlier_threshold));
+  // (Unset until given: the glitch rule's own threshold applies.)
+  rows.push_back(defaulting(field_row<D>("--outlier-threshold",
+                                         "Glitch rule: deviation from the moving median in robust sigmas",
+                                         &D::outlier_threshold),
+                            detail::number_text(fit::OutlierOptions{}.threshold)));
   append_rows(rows, column_option_rows(false), [](D& o) -> auto& { return o.pipeline.columns; });
   return rows;
 }

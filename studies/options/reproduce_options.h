@@ -13,7 +13,7 @@ namespace gyrotherm::studies {
 struct ReproduceCommandOptions {
   std::string out = "results";  // the report's folder
   std::string scenarios;        // the folder of cycle.toml, random.toml, warmup.toml ("": the default one)
-  std::string engines;          // comma-separated ("": every registered engine)
+  std::string engines;          // comma-separated ("": every engine that minimises σ, all but gls)
   std::uint64_t seed = 1;       // of the stochastic engines
   bool json = false;            // print table1.json rather than the text
 };

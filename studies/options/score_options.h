@@ -14,7 +14,7 @@ namespace gyrotherm::studies {
 
 struct ScoreCommandOptions {
   std::string scenario;
-  std::string engines;  // comma-separated ("": every registered engine)
+  std::string engines;  // comma-separated ("": every engine that minimises σ, all but gls)
   long trials = 100;
   int threads = 0;                     // per process (0: one per core; 1 under mpirun)
   std::optional<std::uint64_t> seed;   // absent: the scenario's
