@@ -144,6 +144,22 @@ TEST(AllanStudy, WhiteNoiseGivesItsLineAndTheAngleRandomWalk) {
   EXPECT_LE(share, 0.82) << covered << " of " << total;
 }
 
+// Why no bias instability was read is said, not "no flat part" for every
+// case: white noise falls to the record's end (the flat part, if any, lies
+// beyond it), and a record of 20 samples has too few τ with 8 clusters to tell.
+TEST(AllanStudy, ABoundSaysWhyTheCurveGaveNoFlatPart) {
+  const AllanSeries falling = allan_series(seconds(1 << 14), white(1 << 14, 0.02, 3), {}, "white");
+  EXPECT_FALSE(falling.coefficients.bias_instability_dph.shown);
+  EXPECT_EQ(falling.bias_support, BiasSupport::beyond_record)
+      << coefficient_note(falling.coefficients.bias_instability_dph);
+  EXPECT_STREQ(bias_support_name(falling.bias_support), "beyond_record");
+  const AllanSeries short_one = allan_series(seconds(20), white(20, 0.02, 4), {}, "short");
+  EXPECT_FALSE(short_one.coefficients.bias_instability_dph.shown);
+  EXPECT_EQ(short_one.bias_support, BiasSupport::too_few_taus)
+      << coefficient_note(short_one.coefficients.bias_instability_dph);
+  EXPECT_STREQ(bias_support_name(short_one.bias_support), "too_few_taus");
+}
+
 // Over 200 records the 68 % interval at a mid τ covers the truth in 60–76 %.
 TEST(AllanStudy, IntervalsCoverAsTheySayOverSeeds) {
   constexpr double kSigma = 1.0;

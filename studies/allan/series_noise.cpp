@@ -47,8 +47,8 @@ std::optional<fit::NoiseModel> identify_series_noise(std::span<const double> tim
 }
 
 const char* bias_support_name(BiasSupport s) {
-  static constexpr const char* kNames[] = {"plateau",      "gauss_markov", "flicker",
-                                           "not_in_model", "no_model",     "no_flat_part"};  // in the enum's order
+  static constexpr const char* kNames[] = {"plateau",  "gauss_markov", "flicker",      "not_in_model",
+                                           "no_model", "no_flat_part", "beyond_record", "too_few_taus"};  // the enum's order
   return kNames[static_cast<int>(s)];
 }
 
@@ -97,7 +97,10 @@ void read_from_model(NoiseCoefficient& b, const AllanCurve& curve, const fit::No
 
 BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve,
                                     const std::optional<fit::NoiseModel>& noise) {
-  if (!b.shown) return BiasSupport::no_flat_part;
+  if (!b.shown)  // why the curve gave no flat part
+    return b.reading == Reading::too_few_clusters ? BiasSupport::too_few_taus
+           : b.reading == Reading::still_falling  ? BiasSupport::beyond_record
+                                                  : BiasSupport::no_flat_part;
   const bool has_flicker = noise && noise->identified[fit::kFlicker] && noise->amplitude[fit::kFlicker] > 0.0 &&
                            noise->flicker_floor_per_s > 0.0;
   // The model accounts for the flat part's level: its Allan deviation there

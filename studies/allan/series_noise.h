@@ -47,8 +47,10 @@ enum class BiasSupport {
   not_in_model,     // a flat part the model does not support: a bound
   no_model,         // a flat part, no noise model (too few windows): a bound
   no_flat_part,     // the curve has none: its bound
+  beyond_record,    // the curve still falls at its longest usable τ: a flat part, if any, lies beyond the record
+  too_few_taus,     // fewer than 3 τ with 8 clusters: the curve cannot tell
 };
-// "plateau", "gauss_markov", "flicker", "not_in_model", "no_model", "no_flat_part"
+// "plateau", "gauss_markov", "flicker", "not_in_model", "no_model", "no_flat_part", "beyond_record", "too_few_taus"
 const char* bias_support_name(BiasSupport s);
 BiasSupport settle_bias_instability(NoiseCoefficient& b, const AllanCurve& curve,
                                     const std::optional<fit::NoiseModel>& noise);

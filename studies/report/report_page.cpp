@@ -314,7 +314,9 @@ std::string allan_html(const Json& twin, std::size_t k) {
         {"flicker", "flicker in the noise model"},
         {"not_in_model", "a bound: the noise model names no slow noise at the flat part"},
         {"no_model", "a bound: too short for a noise model"},
-        {"no_flat_part", "a bound: no flat part"}};
+        {"no_flat_part", "a bound: no flat part"},
+        {"beyond_record", "a bound: the curve still falls, a flat part lies beyond the record"},
+        {"too_few_taus", "too few τ to tell"}};
     const auto words = [&](const std::string& key) {
       const auto it = kWords.find(key);
       return it == kWords.end() ? key : it->second;
