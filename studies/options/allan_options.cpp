@@ -27,6 +27,7 @@ std::vector<OptionRow<O>> allan_rows() {
                  &AllanRequest::plot),
       field_row<O>("--json", "Print one JSON object", &O::json)};
   append_rows(rows, data_option_rows(false), &O::data_options);
+  add_fit_file_defaults(rows, "with --fit");
   return rows;
 }
 

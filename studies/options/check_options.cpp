@@ -24,6 +24,7 @@ std::vector<OptionRow<O>> check_rows() {
       nested_row("--boot", "ArduPilot: the boot gyro calibration, the log's first seconds", &O::request, &R::boot_s),
       field_row<O>("--json", "Print one JSON object", &O::json)};
   append_rows(rows, column_option_rows(/*fit_defaults=*/false), [](O& o) -> auto& { return o.request.columns; });
+  add_fit_file_defaults(rows, "with a fit file as --params");
   for (OptionRow<O>& r : rows)
     if (r.names == "--imu") r.default_note = "the one the calibration is for";
   return rows;

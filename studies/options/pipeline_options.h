@@ -5,6 +5,8 @@
 // diagnose. Their rows (studies/options/option_table.h) go into each
 // command's table.
 
+#include <fmt/format.h>
+
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -36,6 +38,16 @@ std::vector<GivenOption> given_data_options(const fit::PipelineOptions& pipeline
 // The column and unit options alone; with fit_defaults the help says an
 // unset option keeps the fit file's.
 std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults);
+// The column options among `rows` (a command that can also read a fit file's
+// columns, as allan --fit and check with a fit file do): each default gains
+// "; WHEN: the fit's" ("time_s; with --fit: the fit's").
+template <class Options>
+void add_fit_file_defaults(std::vector<OptionRow<Options>>& rows, const std::string& when) {
+  for (const OptionRow<fit::ColumnMap>& c : column_option_rows(false))
+    for (OptionRow<Options>& r : rows)
+      if (r.names == c.names)
+        r.default_note = fmt::format("{}; {}: the fit's", c.default_note.empty() ? "off" : c.default_note, when);
+}
 
 // The model and engine options shared by fit and diagnose.
 struct ModelOptions {
