@@ -1,7 +1,6 @@
 #include "fit/fit_file.h"
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 
 #include <fmt/format.h>
@@ -145,7 +144,8 @@ void from_json(const nlohmann::json& j, PipelineOptions& p) {
   if (j.contains("deriv_span_s")) p.derivative_span_s = finite(j, "deriv_span_s", "s");
   if (j.contains("sensor_tau_s")) {
     p.sensor_tau_s = finite(j, "sensor_tau_s", "s");
-    if (!(p.sensor_tau_s >= 0.0)) throw InputError(fmt::format("sensor_tau_s: {} must be >= 0 (seconds)", p.sensor_tau_s));
+    if (!(p.sensor_tau_s >= 0.0))
+      throw InputError(fmt::format("sensor_tau_s: {} must be >= 0 (seconds)", p.sensor_tau_s));
   }
   p.remove_outliers = field(j, "remove_outliers", "true or false").get<bool>();
   p.outliers.window_s = finite(j, "outlier_window_s", "s");
@@ -211,7 +211,8 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
     for (std::size_t k = 0; k < fit.terms.size(); ++k)
       intervals[fit.terms[k]->name] = {fit.engine.inference.intervals[k].lower, fit.engine.inference.intervals[k].upper};
     j["intervals_95"] = intervals;
-    j["interval_method"] = interval_method_text(fit.engine.inference.interval_method, fit.noise ? &fit.noise->model : nullptr);
+    j["interval_method"] =
+        interval_method_text(fit.engine.inference.interval_method, fit.noise ? &fit.noise->model : nullptr);
     j["interval_kind"] = to_string(fit.engine.inference.interval_method.kind);
     if (!fit.lag_sensitivity.empty()) {
       // The sensor lag (s) that would move each rate or gradient term by its half-width (null: none would).
@@ -345,14 +346,10 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     throw InputError(fmt::format("{}: {}; is this a file written by 'gyrotherm fit -o'?", file.string(), e.what()));
   }
   // The units read are the fit's: said so where a report says where a unit
-  // came from, after where it came from when fitting.
+  // came from, before where it came from when fitting.
   if (j["pipeline"]["columns"].contains("units")) {
     Units& units = s.pipeline.columns.units;
-    const std::array<std::string, 3> when_fitting = {units.time_from, units.gyro_from, units.temp_from};
     units.set_from_fit(file.string());
-    units.time_from += when_fitting[0];
-    units.gyro_from += when_fitting[1];
-    units.temp_from += when_fitting[2];
     try {
       units.validate();
     } catch (const InputError& e) {

@@ -42,7 +42,8 @@ nlohmann::ordered_json channels_json(
 // `j.get<PipelineOptions>()`). from_json throws InputError naming the field by
 // its path in the object ("columns.csv.rate_hz: must be a finite number");
 // Units' from_json leaves in each `*_from` only ", ORIGIN when fitting" (the
-// loader puts the fit file's name before it) and does not validate.
+// loader puts the fit file's name before it, Units::set_from_fit) and does not
+// validate.
 void to_json(nlohmann::ordered_json& j, const CsvDialect& c);
 void from_json(const nlohmann::json& j, CsvDialect& c);
 void to_json(nlohmann::ordered_json& j, const Units& u);

@@ -152,7 +152,8 @@ std::vector<LagSensitivity> lag_sensitivity(const PreparedData& data, const Mode
   }
   for (std::size_t k = 0; k < fit.terms.size(); ++k) {
     if (!lag_moves(*fit.terms[k])) continue;
-    const double half = 0.5 * (fit.engine.inference.intervals[k].upper - fit.engine.inference.intervals[k].lower);
+    const Interval& interval = fit.engine.inference.intervals[k];
+    const double half = 0.5 * (interval.upper - interval.lower);
     const double per_s = std::abs(moved.b[k] - as_read.b[k]) / kProbeS;
     out.push_back({k, per_s > 0.0 ? half / per_s : std::numeric_limits<double>::infinity()});
   }
@@ -255,10 +256,13 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
     fit.parameter_intervals = std::move(li.parameters);
     if (!li.ols.inference.intervals.empty()) {
       // The coefficients' intervals with the parameters' uncertainty in them.
-      fit.engine.inference.intervals.assign(li.ols.inference.intervals.begin(), li.ols.inference.intervals.begin() + static_cast<std::ptrdiff_t>(terms.size()));
-      fit.engine.inference.p_values.assign(li.ols.inference.p_values.begin(), li.ols.inference.p_values.begin() + static_cast<std::ptrdiff_t>(terms.size()));
-      fit.engine.inference.interval_method = li.ols.inference.interval_method;
-      fit.engine.inference.interval_method.linearised_parameters = true;
+      const TermInference& linearised = li.ols.inference;
+      const auto n = static_cast<std::ptrdiff_t>(terms.size());
+      TermInference& inference = fit.engine.inference;
+      inference.intervals.assign(linearised.intervals.begin(), linearised.intervals.begin() + n);
+      inference.p_values.assign(linearised.p_values.begin(), linearised.p_values.begin() + n);
+      inference.interval_method = linearised.interval_method;
+      inference.interval_method.linearised_parameters = true;
     }
   }
   fit.lag_sensitivity = lag_sensitivity(data, fit);

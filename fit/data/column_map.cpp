@@ -79,8 +79,8 @@ constexpr std::string_view kFromFitFile = "the fit file ", kFromFitInMemory = "t
 }
 
 void Units::set_from_fit(const std::string& file) {
-  time_from = gyro_from = temp_from =
-      file == kFitInMemory ? std::string(kFromFitInMemory) : std::string(kFromFitFile) + file;
+  const std::string fit = file == kFitInMemory ? std::string(kFromFitInMemory) : std::string(kFromFitFile) + file;
+  for (std::string* from : {&time_from, &gyro_from, &temp_from}) *from = fit + *from;
 }
 
 bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyro_from.starts_with(kFromFitInMemory); }

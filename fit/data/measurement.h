@@ -80,10 +80,10 @@ struct Units {
 
   // Throws InputError naming the option, the value and what is allowed.
   void validate() const;
-  // Every unit taken from a saved fit: *_from = "the fit file FILE", or
-  // "the fit given in memory" for FILE kFitInMemory (a Python FitResult never
-  // saved); from_fit() tells such units from those a record's header or
-  // options gave.
+  // Every unit taken from a saved fit: "the fit file FILE", or "the fit given
+  // in memory" for FILE kFitInMemory (a Python FitResult never saved), put
+  // before what each *_from holds (the fit file's ", ORIGIN when fitting");
+  // from_fit() tells such units from those a record's header or options gave.
   void set_from_fit(const std::string& file);
   bool from_fit() const;
   bool identity() const;

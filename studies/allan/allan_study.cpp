@@ -188,9 +188,11 @@ std::string allan_text(const AllanStudy& study) {
   out += "how each was read:\n";
   for (const AllanSeries& s : study.series) {
     const NoiseCoefficients& k = s.coefficients;
-    out += fmt::format("  {}: ARW: {}\n  {}: bias instability: {}\n  {}: RRW: {}\n", s.curve.name, coefficient_note(k.arw_dpsh),
-                       s.curve.name, coefficient_note(k.bias_instability_dph), s.curve.name, coefficient_note(k.rrw_dph_per_sqrt_h));
-    if (k.quantization_arcsec.shown) out += fmt::format("  {}: quantisation: {}\n", s.curve.name, coefficient_note(k.quantization_arcsec));
+    out += fmt::format("  {}: ARW: {}\n  {}: bias instability: {}\n  {}: RRW: {}\n", s.curve.name,
+                       coefficient_note(k.arw_dpsh), s.curve.name, coefficient_note(k.bias_instability_dph), s.curve.name,
+                       coefficient_note(k.rrw_dph_per_sqrt_h));
+    if (k.quantization_arcsec.shown)
+      out += fmt::format("  {}: quantisation: {}\n", s.curve.name, coefficient_note(k.quantization_arcsec));
   }
   out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664, or the "
          "noise model's flicker floor)\n";

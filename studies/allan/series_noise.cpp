@@ -90,7 +90,6 @@ void read_from_model(NoiseCoefficient& b, const AllanCurve& curve, const fit::No
   b.tau_read_s = best_tau;
   b.reading = Reading::noise_model;
   b.flicker_dominates = from > 0.0;
-  b.gauss_markov_tau_s = 0.0;
 }
 
 }  // namespace

@@ -178,7 +178,7 @@ nlohmann::ordered_json FirmwareOutcome::json() const {
 
 std::vector<std::string> FirmwareOutcome::notes() const {
   const char* name = firmware == Firmware::px4 ? "PX4" : "ArduPilot";
-  if (!missing_data.empty() || (!fit_file.empty() && axes.empty()))
+  if (!fit_file.empty())  // the data is not here
     return {fmt::format("what {} will achieve is not predicted: the data {} was fitted on ('{}') is not here; give it "
                         "with --data",
                         name, fit_file, missing_data)};
@@ -219,7 +219,8 @@ std::vector<std::string> FirmwareOutcome::warnings() const {
 std::vector<std::string> FirmwareOutcome::lines() const {
   std::vector<std::string> out;
   if (!axes.empty()) {
-    out.push_back(fmt::format("on {} (instability of the window averages, °/h): {}", data, firmware_rule_text(firmware)));
+    out.push_back(
+        fmt::format("on {} (instability of the window averages, °/h): {}", data, firmware_rule_text(firmware)));
     for (const AxisOutcome& a : axes)
       out.push_back(fmt::format("  {} ({}): raw {:.4g}, model {:.4g}, exported cubic {:.4g}, as the firmware applies it "
                                 "{:.4g}",

@@ -39,9 +39,10 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
   if (c.truth) errors = coefficient_errors(result, *c.truth);
   auto row = [&](const std::string& name, double value, const std::string& unit, std::size_t k) {
     std::string extra;
-    if (k < result.engine.inference.intervals.size())
-      extra += fmt::format("  95% [{:.6g}, {:.6g}]", result.engine.inference.intervals[k].lower, result.engine.inference.intervals[k].upper);
-    if (!result.engine.inference.kept.empty() && k < result.engine.inference.kept.size() && !result.engine.inference.kept[k])
+    const fit::TermInference& inference = result.engine.inference;
+    if (k < inference.intervals.size())
+      extra += fmt::format("  95% [{:.6g}, {:.6g}]", inference.intervals[k].lower, inference.intervals[k].upper);
+    if (k < inference.kept.size() && !inference.kept[k])
       extra += "  (dropped by stepwise)";
     if (c.truth) {
       const auto it = c.truth->coefficients.find(name);

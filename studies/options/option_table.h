@@ -93,15 +93,22 @@ struct OptionInfo {
 };
 // The help with its default: "Averaging window in seconds (default: 100)".
 std::string shown_help(const OptionInfo& row);
+// The value `defaults` hold for a text, number or whole-number row that is
+// not required, as a user would write it; "" for any other row and an unset
+// or empty value.
+template <class Options>
+std::string value_default(const OptionRow<Options>& r, const Options& defaults) {
+  const bool valued = r.kind == OptionKind::text || r.kind == OptionKind::number || r.kind == OptionKind::integer;
+  if (!valued || !r.get || r.required) return {};
+  return detail::quoted_if_spaced(r.get(defaults).value_or(""));
+}
 template <class Options>
 std::vector<OptionInfo> list_options(const OptionTable<Options>& table) {
   const Options defaults{};
   std::vector<OptionInfo> out;
   for (const OptionRow<Options>& r : table.rows) {
     OptionInfo info{r.names, r.keyword, r.help, r.kind, r.required, r.value_name, r.several_per_name, r.default_note};
-    const bool valued = r.kind == OptionKind::text || r.kind == OptionKind::number || r.kind == OptionKind::integer;
-    if (info.default_value.empty() && valued && r.get && !r.required)
-      info.default_value = detail::quoted_if_spaced(r.get(defaults).value_or(""));
+    if (info.default_value.empty()) info.default_value = value_default(r, defaults);
     out.push_back(std::move(info));
   }
   return out;

@@ -37,9 +37,8 @@ std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
   const auto note = [&](OptionRow<C> row, const std::string& rule = {}) {
     if (fit_defaults) return defaulting(std::move(row), "the fit's");
     if (!rule.empty()) return defaulting(std::move(row), rule);
-    const std::string value = row.get(fit::ColumnMap{}).value_or("");
-    if (row.kind == OptionKind::flag || value.empty()) return row;
-    return defaulting(std::move(row), detail::quoted_if_spaced(value));
+    const std::string value = value_default(row, fit::ColumnMap{});
+    return value.empty() ? row : defaulting(std::move(row), value);
   };
   const auto unit_row = [&](const char* names, const char* what, Quantity q, const char* example, const char* base,
                             std::string fit::Units::*field) {

@@ -5,8 +5,6 @@
 // diagnose. Their rows (studies/options/option_table.h) go into each
 // command's table.
 
-#include <fmt/format.h>
-
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -46,7 +44,7 @@ void add_fit_file_defaults(std::vector<OptionRow<Options>>& rows, const std::str
   for (const OptionRow<fit::ColumnMap>& c : column_option_rows(false))
     for (OptionRow<Options>& r : rows)
       if (r.names == c.names)
-        r.default_note = fmt::format("{}; {}: the fit's", c.default_note.empty() ? "off" : c.default_note, when);
+        r.default_note = (c.default_note.empty() ? std::string("off") : c.default_note) + "; " + when + ": the fit's";
 }
 
 // The model and engine options shared by fit and diagnose.
