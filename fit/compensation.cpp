@@ -276,7 +276,7 @@ nlohmann::ordered_json compensation_json(const Compensation& c, const SavedFit& 
   j["ratio"] = c.ratio();
   j["windows"] = c.data.series.size();
   j["outliers_removed"] = c.data.outliers.removed;
-  j["cautions"] = c.data.cautions;  // numbers that look like another unit (as fit's data.cautions)
+  j["cautions"] = caution_texts(c.data.cautions);  // numbers that look like another unit (as fit's data.cautions)
   if (c.fit_range_c) {
     // Where the record leaves the range the fit was made on, and what the model did there.
     j["fit_temp_range_c"] = {c.fit_range_c->first, c.fit_range_c->second};

@@ -202,7 +202,7 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
   j["termination"] = to_string(fit.engine.termination);
   j["message"] = fit.engine.message;
   j["seed"] = settings.seed;
-  j["warnings"] = fit.warnings;
+  j["warnings"] = fit_warnings(fit);
   Json history = Json::array();
   for (const HistoryPoint& h : fit.engine.history) history.push_back({h.evaluations, h.best_objective});
   j["history"] = history;
@@ -269,7 +269,7 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
                {"bursts", data.averaging.bursts},
                {"windows_described", describe_windows(data, pipeline)},
                {"units", data.units.used()},
-               {"cautions", data.cautions}};
+               {"cautions", caution_texts(data.cautions)}};
   j["data"]["outlier_floor_dph"] = data.outliers.floor_dph;  // the glitch rule's s_floor on this record
   if (!data.series.temp_c.empty()) {
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());

@@ -226,6 +226,12 @@ std::vector<double> fit_parameters(const DerivedSeries& derived, const std::vect
   return params;
 }
 
+std::vector<std::string> fit_warnings(const ModelFit& fit) {
+  std::vector<std::string> out;
+  if (fit.near_collinearity) out.push_back(near_collinearity_text(*fit.near_collinearity));
+  return out;
+}
+
 ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& terms,
                    const EngineInfo& engine, const EngineSettings& settings,
                    FitObserver* observer) {
@@ -248,7 +254,7 @@ ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& ter
   fit.fitted_dph = model_values(problem.design(), fit.coefficients);
   fit.residual_dph.resize(fit.fitted_dph.size());
   for (std::size_t p = 0; p < fit.fitted_dph.size(); ++p) fit.residual_dph[p] = data.series.gyro_dph[p] - fit.fitted_dph[p];
-  fit.warnings = problem.warnings();
+  fit.near_collinearity = problem.near_collinearity();
   fit.parameter_intervals.assign(terms.size(), std::nullopt);
   if (!fit.engine.inference.intervals.empty()) {
     LinearisedIntervals li =

@@ -83,7 +83,7 @@ struct ModelFit {
   std::size_t points = 0;
   // Per window: the model's value B = b0 + Σ b_j x_j and the residual y − B.
   std::vector<double> fitted_dph, residual_dph;
-  std::vector<std::string> warnings;   // e.g. poorly conditioned terms
+  std::optional<NearCollinearity> near_collinearity;  // terms poorly determined alone (absent: none)
   // The record's noise, identified by REML on this model's residual (absent
   // when the record has too few windows); ols's intervals come from it.
   std::shared_ptr<const NoiseContext> noise;
@@ -91,6 +91,10 @@ struct ModelFit {
   std::vector<LagSensitivity> lag_sensitivity;  // rate and gradient terms with intervals
   double ratio() const { return instability_before_dph / instability_after_dph; }
 };
+
+// The fit's warnings, worded (its JSON `warnings`, its text report's
+// "warning:" lines): the nearly collinear terms.
+std::vector<std::string> fit_warnings(const ModelFit& fit);
 
 // Steps 4–6. Throws FitError for a design that cannot be fitted.
 ModelFit fit_model(const PreparedData& data, const std::vector<const Term*>& terms,

@@ -40,6 +40,16 @@ std::set<std::string> text_members(const std::string& header) {
   return out;
 }
 
+// Holds `header`'s text members to `names` (each with what it holds): a
+// member not listed fails, with `rule` saying where its words belong.
+void expect_text_members(const std::string& header, const std::map<std::string, std::string>& names,
+                         const std::string& rule) {
+  const std::set<std::string> found = text_members(header);
+  for (const std::string& f : found)
+    EXPECT_TRUE(names.count(f)) << header << ": the text member '" << f << "' is not a known name; " << rule;
+  for (const auto& [name, why] : names) EXPECT_TRUE(found.count(name)) << name << " is gone: take it off the list";
+}
+
 TEST(ResultStructs, TheDiagnosisHoldsNamesNotSentences) {
   // Each text member and what it holds.
   const std::map<std::string, std::string> names = {
@@ -76,12 +86,8 @@ TEST(ResultStructs, TheFitResultHoldsItsIntervalMethodAsData) {
       {"name", "EngineInfo: the registry name"},
       {"description", "EngineInfo: the registry's one-line description of the engine"},
   };
-  const std::set<std::string> found = text_members("fit/engines/engine.h");
-  for (const std::string& f : found)
-    EXPECT_TRUE(names.count(f)) << "fit/engines/engine.h: the text member '" << f
-                                << "' is not a known name; how a result was computed is data (IntervalMethod), "
-                                   "its words are interval_method_text()'s";
-  for (const auto& [name, why] : names) EXPECT_TRUE(found.count(name)) << name << " is gone: take it off the list";
+  expect_text_members("fit/engines/engine.h", names,
+                      "how a result was computed is data (IntervalMethod), its words are interval_method_text()'s");
 }
 
 // The Allan coefficients (studies/allan/noise_coefficients.h): how each was
@@ -103,14 +109,25 @@ TEST(ResultStructs, TheFirmwareOutcomeHoldsNamesNotSentences) {
       {"data", "FirmwareOutcome: the record's name"},
       {"fit_file", "FirmwareOutcome: a file name"},
       {"missing_data", "FirmwareOutcome: the data's name as the fit gives it"},
-      {"text", "RecordCaution: a unit caution as fit::measurement_cautions words it (the fit layer's sentence, "
-               "quoted)"},
   };
-  const std::set<std::string> found = text_members("studies/export/firmware_outcome.h");
-  for (const std::string& f : found)
-    EXPECT_TRUE(names.count(f)) << "studies/export/firmware_outcome.h: the text member '" << f
-                                << "' is not a known name; the outcome's words are its renderers'";
-  for (const auto& [name, why] : names) EXPECT_TRUE(found.count(name)) << name << " is gone: take it off the list";
+  expect_text_members("studies/export/firmware_outcome.h", names, "the outcome's words are its renderers'");
+}
+
+// The fit's warnings and the data's unit cautions: a NearCollinearity (the
+// terms and the condition number) and a UnitCaution (a CautionKind, the
+// numbers judged and the unit read), worded by fit::fit_warnings and
+// fit::caution_text for every report, JSON and page.
+TEST(ResultStructs, TheFitsWarningsAndTheDataCautionsAreData) {
+  expect_text_members("fit/pipeline.h", {}, "a fit's warning is data, worded by fit_warnings()");
+  expect_text_members("fit/model/linear_problem.h",
+                      {{"terms", "NearCollinearity: term names"}, {"names_", "LinearProblem: term names"}},
+                      "a warning is data, worded by near_collinearity_text()");
+  expect_text_members("fit/data/plausibility.h",
+                      {{"unit", "UnitCaution: a unit's name"},
+                       {"unit_source", "UnitCaution: what chose the unit (a header, an option, a log format)"}},
+                      "a caution is a CautionKind and numbers, worded by caution_text()");
+  expect_text_members("fit/data/prepare.h", {{"file", "PreparedData: the record's name"}},
+                      "the data's cautions are UnitCautions");
 }
 
 }  // namespace

@@ -43,58 +43,85 @@ ReadSummary ReadProbe::summary() const {
   return out;
 }
 
-std::vector<std::string> unit_cautions(const Units& u, const ReadSummary& r) {
-  std::vector<std::string> out;
+std::vector<UnitCaution> unit_cautions(const Units& u, const ReadSummary& r) {
+  std::vector<UnitCaution> out;
+  const auto caution = [&](CautionKind kind, std::string_view unit, const std::string& source) {
+    out.push_back(UnitCaution{kind, r, std::string(unit), source, stated_by_log_format(source)});
+  };
   const double n = r.arw_deg_per_sqrt_h;
-  const std::string gyro_read = fmt::format("read in {} ({})", u.gyro_unit().name, u.gyro_from.empty() ? "default" : u.gyro_from);
-  if (n > 0.0 && n < kQuietestArw)
-    out.push_back(fmt::format(
-        "the gyro's sample-to-sample noise is an angle random walk of {:.2g} °/√h, quieter than any gyro "
-        "built (the best reach about 1e-4): {}, are its numbers really in that unit (rad/s or °/s read "
-        "as °/h?); give --gyro-unit",
-        n, gyro_read));
-  const bool log_format = stated_by_log_format(u.gyro_from);
-  if (n > kNoisiestArw && log_format)  // the format states the unit: the gyro turned
-    out.push_back(fmt::format(
-        "the gyro's sample-to-sample changes are an angle random walk of {:.3g} °/√h, more than any MEMS gyro's "
-        "noise (0.1 to 10), in the unit the log's format states ({}): the vehicle turned, and a rotation is read "
-        "as bias; a thermal test holds the gyro still",
-        n, u.gyro_from));
+  const std::string_view gyro = u.gyro_unit().name;
+  if (n > 0.0 && n < kQuietestArw) caution(CautionKind::gyro_too_quiet, gyro, u.gyro_from);
+  if (n > kNoisiestArw && stated_by_log_format(u.gyro_from))  // the format states the unit: the gyro turned
+    caution(CautionKind::vehicle_turned, gyro, u.gyro_from);
   else if (r.moving_share > kMovingShare)  // smooth turns: large rates, small sample-to-sample changes
-    out.push_back(fmt::format(
-        "the gyro reads more than {:g} °/s on {:.0f} % of the samples (up to {:.3g} °/s, {}): no gyro at rest "
-        "has such a bias, so {}; a thermal test holds the gyro still",
-        kRestRateDph / 3600.0, 100.0 * r.moving_share, r.largest_rate_dph / 3600.0, gyro_read,
-        log_format ? "the vehicle turned, and a rotation is read as bias"
-                   : "it turned (a rotation is read as bias), or its numbers are in a smaller unit than that "
-                     "(°/h read as °/s?)"));
+    caution(CautionKind::gyro_turning, gyro, u.gyro_from);
   else if (n > kNoisiestArw)
-    out.push_back(fmt::format(
-        "the gyro's sample-to-sample noise is an angle random walk of {:.3g} °/√h, noisier than any MEMS "
-        "gyro (0.1 to 10): {}, are its numbers really in that unit (°/h read as °/s?); give --gyro-unit",
-        n, gyro_read));
-  if (r.span_s > kLongestSpanS)
-    out.push_back(fmt::format(
-        "the record spans {:.0f} days, read in {} ({}): if the test was shorter, the time column is in "
-        "another unit (ms or us?); give --time-unit",
-        r.span_s / 86400.0, u.time_unit().name, u.time_from.empty() ? "default" : u.time_from));
+    caution(CautionKind::gyro_too_noisy, gyro, u.gyro_from);
+  if (r.span_s > kLongestSpanS) caution(CautionKind::span_too_long, u.time_unit().name, u.time_from);
   if (r.temp_max_c < kColdestC || r.temp_min_c > kHottestC)
-    out.push_back(fmt::format(
-        "every temperature is {} ({:.4g}..{:.4g} °C, read in {} ({})): is the column in another unit "
-        "(°C read as K?) or raw counts (give --temp-scale and --temp-offset)?",
-        r.temp_max_c < kColdestC ? "below -100 °C" : "above 200 °C", r.temp_min_c, r.temp_max_c,
-        u.temp_unit().name, u.temp_from.empty() ? "default" : u.temp_from));
+    caution(CautionKind::temperature_outside, u.temp_unit().name, u.temp_from);
   return out;
 }
 
-std::string units_text(const Units& units, const std::vector<std::string>& cautions) {
+std::string caution_text(const UnitCaution& c) {
+  const ReadSummary& r = c.read;
+  const double n = r.arw_deg_per_sqrt_h;
+  const std::string source = c.unit_source.empty() ? "default" : c.unit_source;
+  const std::string read_in = fmt::format("read in {} ({})", c.unit, source);
+  switch (c.kind) {
+    case CautionKind::gyro_too_quiet:
+      return fmt::format(
+          "the gyro's sample-to-sample noise is an angle random walk of {:.2g} °/√h, quieter than any gyro "
+          "built (the best reach about 1e-4): {}, are its numbers really in that unit (rad/s or °/s read "
+          "as °/h?); give --gyro-unit",
+          n, read_in);
+    case CautionKind::vehicle_turned:
+      return fmt::format(
+          "the gyro's sample-to-sample changes are an angle random walk of {:.3g} °/√h, more than any MEMS gyro's "
+          "noise (0.1 to 10), in the unit the log's format states ({}): the vehicle turned, and a rotation is read "
+          "as bias; a thermal test holds the gyro still",
+          n, c.unit_source);
+    case CautionKind::gyro_turning:
+      return fmt::format(
+          "the gyro reads more than {:g} °/s on {:.0f} % of the samples (up to {:.3g} °/s, {}): no gyro at rest "
+          "has such a bias, so {}; a thermal test holds the gyro still",
+          kRestRateDph / 3600.0, 100.0 * r.moving_share, r.largest_rate_dph / 3600.0, read_in,
+          c.unit_from_log_format ? "the vehicle turned, and a rotation is read as bias"
+                                 : "it turned (a rotation is read as bias), or its numbers are in a smaller unit "
+                                   "than that (°/h read as °/s?)");
+    case CautionKind::gyro_too_noisy:
+      return fmt::format(
+          "the gyro's sample-to-sample noise is an angle random walk of {:.3g} °/√h, noisier than any MEMS "
+          "gyro (0.1 to 10): {}, are its numbers really in that unit (°/h read as °/s?); give --gyro-unit",
+          n, read_in);
+    case CautionKind::span_too_long:
+      return fmt::format(
+          "the record spans {:.0f} days, {}: if the test was shorter, the time column is in another unit "
+          "(ms or us?); give --time-unit",
+          r.span_s / 86400.0, read_in);
+    case CautionKind::temperature_outside:
+      return fmt::format(
+          "every temperature is {} ({:.4g}..{:.4g} °C, {}): is the column in another unit (°C read as K?) or "
+          "raw counts (give --temp-scale and --temp-offset)?",
+          r.temp_max_c < kColdestC ? "below -100 °C" : "above 200 °C", r.temp_min_c, r.temp_max_c, read_in);
+  }
+  return {};
+}
+
+std::vector<std::string> caution_texts(const std::vector<UnitCaution>& cautions) {
+  std::vector<std::string> out;
+  for (const UnitCaution& c : cautions) out.push_back(caution_text(c));
+  return out;
+}
+
+std::string units_text(const Units& units, const std::vector<UnitCaution>& cautions) {
   std::string out = fmt::format("  units: {}{}\n", units.used(),
                                 units.identity() ? std::string() : "; converted: " + units.description());
-  for (const std::string& c : cautions) out += "  caution: " + c + "\n";
+  for (const UnitCaution& c : cautions) out += "  caution: " + caution_text(c) + "\n";
   return out;
 }
 
-std::vector<std::string> measurement_cautions(const Measurement& m) {
+std::vector<UnitCaution> measurement_cautions(const Measurement& m) {
   ReadProbe probe;
   for (std::size_t k = 0; k < m.size(); ++k) probe.add(m.time_s[k], m.temp_c[k], m.gyro_dph[k]);
   return unit_cautions(m.units, probe.summary());

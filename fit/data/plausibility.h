@@ -52,26 +52,47 @@ class ReadProbe {
   std::size_t samples_ = 0, pairs_ = 0, moving_ = 0;
 };
 
+// A sign that a column was read in another unit than its own (or that the
+// gyro turned), with the numbers that show it; caution_text words it.
+enum class CautionKind {
+  gyro_too_quiet,      // white noise below any gyro built: rad/s or °/s read as °/h?
+  vehicle_turned,      // in a log's stated unit, sample-to-sample changes no gyro's noise makes
+  gyro_turning,        // large rates on many samples: it turned, or a smaller unit
+  gyro_too_noisy,      // white noise above any MEMS gyro: °/h read as °/s?
+  span_too_long,       // a record of more than 30 days: ms or µs read as s?
+  temperature_outside  // every temperature below −100 °C or above 200 °C: K, or raw counts?
+};
+struct UnitCaution {
+  CautionKind kind = CautionKind::gyro_too_quiet;
+  ReadSummary read;  // the numbers judged
+  // The column's unit as read, and what chose it (Units::*_from; empty: the default).
+  std::string unit, unit_source;
+  bool unit_from_log_format = false;  // the unit is the one a log format states
+  bool operator==(const UnitCaution&) const = default;
+};
+std::string caution_text(const UnitCaution& caution);
+std::vector<std::string> caution_texts(const std::vector<UnitCaution>& cautions);
+
 // The cautions for a record read in `units` (empty when all looks right).
-std::vector<std::string> unit_cautions(const Units& units, const ReadSummary& read);
+std::vector<UnitCaution> unit_cautions(const Units& units, const ReadSummary& read);
 
 // "  units: time ms (header 'time (ms)'), …\n" and a "  caution: …" line each.
-std::string units_text(const Units& units, const std::vector<std::string>& cautions);
+std::string units_text(const Units& units, const std::vector<UnitCaution>& cautions);
 
 // The summary and cautions of a whole measurement (allan reads one directly).
-std::vector<std::string> measurement_cautions(const Measurement& m);
+std::vector<UnitCaution> measurement_cautions(const Measurement& m);
 
 // Runs `work`; an InputError it throws on a record with cautions is thrown
 // again with them (a fit that fails on numbers read in the wrong unit — a
 // temperature in K makes T and T² collinear — says what looks wrong).
 template <class Work>
-auto with_cautions(const std::vector<std::string>& cautions, Work&& work) {
+auto with_cautions(const std::vector<UnitCaution>& cautions, Work&& work) {
   try {
     return work();
   } catch (const InputError& e) {
     if (cautions.empty()) throw;
     std::string why = e.what();
-    for (const std::string& c : cautions) why += "\n  caution (how the record was read): " + c;
+    for (const UnitCaution& c : cautions) why += "\n  caution (how the record was read): " + caution_text(c);
     throw InputError(why);
   }
 }

@@ -16,6 +16,7 @@
 #include "fit/data/derivatives.h"
 #include "fit/data/measurement.h"
 #include "fit/data/outliers.h"
+#include "fit/data/plausibility.h"
 
 namespace gyrotherm::fit {
 
@@ -32,7 +33,7 @@ struct PipelineOptions {
 struct PreparedData {
   std::string file;
   Units units;  // the units the columns were read in, each set (Measurement::units)
-  std::vector<std::string> cautions;  // numbers that look like another unit (fit/data/plausibility.h)
+  std::vector<UnitCaution> cautions;  // numbers that look like another unit (fit/data/plausibility.h)
   std::size_t raw_samples = 0;
   OutlierReport outliers;
   AveragingReport averaging;

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "sim/util/format.h"
 #include "sim/util/input_error.h"
@@ -55,22 +56,17 @@ LinearProblem::LinearProblem(Eigen::MatrixXd design, Eigen::VectorXd y,
   if (condition_ > kPoorlyConditioned) {
     // Name the terms that make up the nearly null direction.
     const Eigen::VectorXd v = eig.eigenvectors().col(0);
-    std::string terms;
+    std::vector<std::string> terms;
     for (Eigen::Index j = 0; j < m; ++j)
-      if (std::abs(v[j]) > 0.1)
-        terms += (terms.empty() ? "" : ", ") + names_[static_cast<std::size_t>(j)];
+      if (std::abs(v[j]) > 0.1) terms.push_back(names_[static_cast<std::size_t>(j)]);
     if (condition_ > kIllConditioned && (collinear == Collinear::refuse || !std::isfinite(condition_)))
       throw FitError(fmt::format(
           "the model's terms are collinear on this data ({}; condition number {:.3g} of the "
           "scaled design, above {:.0e}): their coefficients would be set by the noise, not by "
           "the data. Use data with a wider temperature range or more varied rates, or drop one "
           "of these terms",
-          terms, condition_, kIllConditioned));
-    warnings_.push_back(fmt::format(
-        "{} are nearly collinear on this data (condition number {:.3g}): each coefficient "
-        "alone is poorly determined, their combination is not; a wider temperature range "
-        "separates them",
-        terms, condition_));
+          fmt::join(terms, ", "), condition_, kIllConditioned));
+    near_collinearity_ = NearCollinearity{std::move(terms), condition_};
   }
   const Eigen::MatrixXd inverse = gram_.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
   half_width_ = 2.0 * std::sqrt(s_yy_) * inverse.diagonal().cwiseSqrt();
@@ -140,6 +136,13 @@ double LinearProblem::sigma_two_pass(const Coefficients& c) const {
   const Eigen::VectorXd r = residuals(c);
   const double mean = r.mean();
   return std::sqrt((r.array() - mean).square().sum() / static_cast<double>(r.size() - 1));
+}
+
+std::string near_collinearity_text(const NearCollinearity& c) {
+  return fmt::format(
+      "{} are nearly collinear on this data (condition number {:.3g}): each coefficient alone is poorly "
+      "determined, their combination is not; a wider temperature range separates them",
+      fmt::join(c.terms, ", "), c.condition);
 }
 
 }  // namespace gyrotherm::fit

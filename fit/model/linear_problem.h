@@ -31,6 +31,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -50,6 +51,16 @@ struct Coefficients {
 // the data, e.g. a cross-validation fold, whose predictions are all that is
 // used).
 enum class Collinear { refuse, keep };
+
+// Terms so nearly collinear on the data (condition number of G above
+// kPoorlyConditioned) that each coefficient alone is poorly determined,
+// though their combination is not: a warning, worded by
+// near_collinearity_text (the fit's JSON `warnings`, its text report).
+struct NearCollinearity {
+  std::vector<std::string> terms;  // the names along the nearly null direction
+  double condition = 0.0;          // of G
+};
+std::string near_collinearity_text(const NearCollinearity& c);
 
 class LinearProblem {
  public:
@@ -95,7 +106,8 @@ class LinearProblem {
   const Eigen::VectorXd& scale() const { return scale_; }             // s_j
   const Eigen::VectorXd& half_width() const { return half_width_; }   // h_j
   double condition_number() const { return condition_; }              // of G
-  const std::vector<std::string>& warnings() const { return warnings_; }
+  // Terms nearly collinear on this data (absent: none): a warning, not a refusal.
+  const std::optional<NearCollinearity>& near_collinearity() const { return near_collinearity_; }
 
   // The record's identified noise at these points (absent: none identified);
   // ols computes its intervals from it (fit/model/noise_model.h).
@@ -114,7 +126,7 @@ class LinearProblem {
   double y_mean_ = 0.0;
   double s_yy_ = 0.0;
   double condition_ = 1.0;
-  std::vector<std::string> warnings_;
+  std::optional<NearCollinearity> near_collinearity_;
   std::shared_ptr<const NoiseContext> noise_;
 };
 

@@ -90,7 +90,7 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
   nlohmann::ordered_json j;
   j["data"] = study.data_file;
   j["units"] = study.units.used();
-  j["cautions"] = study.cautions;
+  j["cautions"] = fit::caution_texts(study.cautions);
   j["fit"] = study.fit_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(study.fit_file);
   if (!study.channel.empty()) j["channel"] = study.channel;
   j["confidence"] = study.series.front().curve.confidence;

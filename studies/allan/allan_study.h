@@ -17,6 +17,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "fit/data/measurement.h"
+#include "fit/data/plausibility.h"
 #include "fit/data/table.h"
 #include "fit/fit_file.h"
 #include "studies/allan/allan_curve.h"
@@ -39,7 +40,7 @@ AllanSeries allan_series(std::span<const double> time_s, std::span<const double>
 
 struct AllanStudy {
   fit::Units units;                   // the log's columns were read in these
-  std::vector<std::string> cautions;  // numbers that look like another unit
+  std::vector<fit::UnitCaution> cautions;  // numbers that look like another unit
   std::string data_file, fit_file, channel;
   std::vector<AllanSeries> series;  // "raw", then "compensated" with a fit
   std::size_t outliers = 0;         // samples the fit's glitch rule flagged (kept in both series)

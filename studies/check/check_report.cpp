@@ -117,7 +117,7 @@ nlohmann::ordered_json check_json(const CheckResult& r) {
                                 {"bin_c", r.bin_c},
                                 {"axes", axes},
                                 {"findings", findings},
-                                {"cautions", r.cautions},
+                                {"cautions", fit::caution_texts(r.cautions)},
                                 {"max_residual_dph", r.limit_dph ? nlohmann::ordered_json(*r.limit_dph) : nullptr},
                                 {"passed", r.passed ? nlohmann::ordered_json(*r.passed) : nullptr}};
   return out;
@@ -151,7 +151,7 @@ std::string check_text(const CheckResult& r) {
       out += "\n";
     }
   }
-  for (const std::string& c : r.cautions) out += "caution: " + c + "\n";
+  for (const fit::UnitCaution& c : r.cautions) out += "caution: " + fit::caution_text(c) + "\n";
   for (const CheckFinding& f : r.findings) out += "finding: " + finding_text(f, r) + "\n";
   if (r.passed)
     out += fmt::format("verdict: {} (every axis's residual against temperature within {:.4g} °/h)\n",

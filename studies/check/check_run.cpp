@@ -22,6 +22,14 @@ namespace gyrotherm::studies {
 
 namespace {
 
+// A caution the report has not yet worded (the axes of one log often share one).
+void add_caution(CheckResult& r, const fit::UnitCaution& c) {
+  const std::string text = fit::caution_text(c);
+  for (const fit::UnitCaution& had : r.cautions)
+    if (fit::caution_text(had) == text) return;
+  r.cautions.push_back(c);
+}
+
 constexpr double kSpanMinimumC = 10.0;  // ArduPilot's minimum span for a temperature calibration
 constexpr double kSpanAdviceC = 25.0;   // and its advice
 constexpr std::size_t kBinSamples = 10; // a temperature bin needs this many samples to be shown
@@ -92,8 +100,7 @@ void read_csv(const CheckRequest& o, Applied* a, CheckResult* r) {
     fit::ColumnMap one = columns;
     one.gyro = gyros[k];
     const fit::Measurement m = fit::read_measurement_csv(o.log, one);
-    for (const std::string& c : fit::measurement_cautions(m))
-      if (std::find(r->cautions.begin(), r->cautions.end(), c) == r->cautions.end()) r->cautions.push_back(c);
+    for (const fit::UnitCaution& c : fit::measurement_cautions(m)) add_caution(*r, c);
     if (k == 0) a->time_s = m.time_s, a->temp_c = m.temp_c;
     a->raw_dph.push_back(m.gyro_dph);
     a->axis.push_back(std::string(1, kAxisNames[k]));
@@ -175,8 +182,7 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
       first = false;
     }
     a.axis.push_back(run.fits[k].channel);
-    for (const std::string& caution : c.data.cautions)
-      if (std::find(r->cautions.begin(), r->cautions.end(), caution) == r->cautions.end()) r->cautions.push_back(caution);
+    for (const fit::UnitCaution& caution : c.data.cautions) add_caution(*r, caution);
     a.raw_dph.push_back(full ? c.gyro_dph : c.data.series.gyro_dph);
     a.subtracted_dph.push_back(full ? c.model_dph : c.window_model_dph);
   }

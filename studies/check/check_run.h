@@ -28,6 +28,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "fit/data/measurement.h"
+#include "fit/data/plausibility.h"
 #include "studies/check/check_parameters.h"
 
 namespace gyrotherm::studies {
@@ -111,7 +112,8 @@ struct CheckResult {
   double bin_c = 0.0;
   std::vector<AxisCheck> axes;
   std::vector<CheckFinding> findings;
-  std::vector<std::string> cautions;  // the log's units checked as fit checks them (a CSV's; a fit file's channels)
+  // The log's units checked as fit checks them (a CSV's; a fit file's channels), each worded once.
+  std::vector<fit::UnitCaution> cautions;
   std::optional<double> limit_dph;  // --max-residual in °/h
   // With a limit: whether every axis's residual is within it.
   std::optional<bool> passed;

@@ -88,7 +88,7 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
                          hours_text(rows[i].start_s), hours_text(rows[i].end_s), rows[i].ratio_to_floor,
                          d.segments[i].ratio_to_floor);
   }
-  for (const std::string& w : d.fit.warnings) out += fmt::format("warning: {}\n", w);
+  for (const std::string& w : fit::fit_warnings(d.fit)) out += fmt::format("warning: {}\n", w);
   for (const StepEvent& e : d.events)
     out += fmt::format("event: a bias step at {} of {:+.3g} °/h (95 % [{:.3g}, {:.3g}]){}\n", hours_text(e.time_s),
                        e.size_dph, e.size_interval_dph.lower, e.size_interval_dph.upper,
@@ -183,7 +183,7 @@ nlohmann::ordered_json diagnose_json(const DiagnoseRun& run) {
   const auto one = [](const ChannelDiagnosis& c) {
     nlohmann::ordered_json j = diagnosis_json(c.report);
     j["units"] = c.data.units.used();
-    j["cautions"] = c.data.cautions;
+    j["cautions"] = fit::caution_texts(c.data.cautions);
     return j;
   };
   if (run.channels.size() == 1) return one(run.channels.front());

@@ -203,7 +203,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   j["skipped"] = skipped_texts(d.skipped);
   j["columns_tried"] = d.columns_tried;
   j["significance"] = significance_text(report.options);
-  j["warnings"] = d.fit.warnings;
+  j["warnings"] = fit::fit_warnings(d.fit);
   nlohmann::ordered_json events = nlohmann::ordered_json::array();
   for (const StepEvent& e : d.events)
     events.push_back({{"kind", "step"},

@@ -99,9 +99,11 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
     const fit::PipelineOptions pipeline = fit::reading_columns_of(a.fit->pipeline, a.fit->terms);
     const fit::Measurement m = data.read(pipeline.columns);
     // The record's units checked as fit checks them, each caution once.
-    for (const std::string& c : fit::measurement_cautions(m)) {
-      const RecordCaution caution{data.name, c};
-      if (std::find(o.cautions.begin(), o.cautions.end(), caution) == o.cautions.end()) o.cautions.push_back(caution);
+    for (const fit::UnitCaution& c : fit::measurement_cautions(m)) {
+      const auto worded_alike = [&](const RecordCaution& had) {
+        return had.data == data.name && fit::caution_text(had.caution) == fit::caution_text(c);
+      };
+      if (std::none_of(o.cautions.begin(), o.cautions.end(), worded_alike)) o.cautions.push_back({data.name, c});
     }
     AxisOutcome out;
     out.axis = "XYZ"[i];
@@ -202,7 +204,7 @@ std::vector<std::string> FirmwareOutcome::notes() const {
 
 std::vector<std::string> FirmwareOutcome::warnings() const {
   std::vector<std::string> out;
-  for (const RecordCaution& c : cautions) out.push_back(fmt::format("caution: {}: {}", c.data, c.text));
+  for (const RecordCaution& c : cautions) out.push_back(fmt::format("caution: {}: {}", c.data, fit::caution_text(c.caution)));
   if (boot_outside_c) {
     std::string errors;
     for (const AxisOutcome& a : axes)

@@ -32,6 +32,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "fit/data/measurement.h"
+#include "fit/data/plausibility.h"
 #include "studies/export/firmware.h"
 
 namespace gyrotherm::studies {
@@ -69,11 +70,10 @@ struct AxisOutcome {
   FirmwareCost cost = FirmwareCost::none;
 };
 
-// A record's unit caution as fit::measurement_cautions words it (the fit
-// layer's sentence, quoted).
+// A record's unit caution (fit/data/plausibility.h), worded by fit::caution_text.
 struct RecordCaution {
-  std::string data, text;
-  bool operator==(const RecordCaution&) const = default;
+  std::string data;  // the record's name
+  fit::UnitCaution caution;
 };
 
 // The outcome as data; json(), lines() and warnings() word it.

@@ -76,7 +76,7 @@ std::string compensate_text(const CompensateRun& run) {
                        fit::formula_text(fit.terms), run.channel_json[i]["derivative"].get<std::string>());
     out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
                        fit::averages_name(c.data, fit.pipeline), c.before_dph, c.after_dph, c.ratio());
-    for (const std::string& caution : c.data.cautions) out += "caution: " + caution + "\n";
+    for (const fit::UnitCaution& caution : c.data.cautions) out += "caution: " + fit::caution_text(caution) + "\n";
     if (c.windows_outside > 0 && c.fit_range_c) {
       const auto [lo, hi] = std::minmax_element(c.data.derived.temp_c.begin(), c.data.derived.temp_c.end());
       out += fmt::format(

@@ -80,7 +80,7 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
   out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n", fit::averages_name(data, c.pipeline),
                      result.instability_before_dph, result.instability_after_dph, result.ratio());
   out += fmt::format("engine: {}\n", result.engine.brief_report());
-  for (const std::string& w : result.warnings) out += fmt::format("warning: {}\n", w);
+  for (const std::string& w : fit::fit_warnings(result)) out += fmt::format("warning: {}\n", w);
   out += fmt::format("gap to the least-squares optimum: {:.3g} (relative)\n",
                      result.instability_after_dph / result.optimum_dph - 1.0);
   return out;

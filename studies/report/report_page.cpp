@@ -86,7 +86,7 @@ Json log_summary(const ReportRequest& o, const CompensateRun& compensated) {
          {"span_c", *hi - *lo},
          {"heating_c_per_min", heat},
          {"cooling_c_per_min", cool},
-         {"cautions", c.data.cautions}};
+         {"cautions", fit::caution_texts(c.data.cautions)}};
   return j;
 }
 
