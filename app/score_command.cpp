@@ -41,14 +41,15 @@ int report(const studies::Scoreboard& board, const std::optional<studies::Baseli
     fmt::print("{}", studies::score_text(board));
     for (const std::string& f : written) fmt::print("wrote {}\n", f);
   }
-  for (const std::string& note : check.notes) fmt::print(stderr, "gyrotherm: score: note: {}\n", note);
+  for (const studies::BaselineNote& note : check.notes)
+    fmt::print(stderr, "gyrotherm: score: note: {}\n", studies::baseline_note_text(note));
   if (!baseline) return 0;
   if (check.passed()) {
     if (!o.json) fmt::print("baseline {}: no engine is worse beyond Monte Carlo noise\n", o.baseline);
     return 0;
   }
   for (const studies::Regression& r : check.regressions)
-    fmt::print(stderr, "gyrotherm: score: worse than the baseline {}: {}\n", o.baseline, r.message);
+    fmt::print(stderr, "gyrotherm: score: worse than the baseline {}: {}\n", o.baseline, studies::regression_text(r));
   return 1;
 }
 

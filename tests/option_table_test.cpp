@@ -9,6 +9,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <regex>
 #include <set>
@@ -24,6 +27,7 @@
 #include "studies/options/diagnose_options.h"
 #include "studies/options/export_options.h"
 #include "studies/options/fit_options.h"
+#include "studies/options/option_reference.h"
 #include "studies/options/plan_options.h"
 #include "studies/options/report_options.h"
 #include "studies/options/reproduce_options.h"
@@ -361,30 +365,40 @@ TEST(OptionTable, EveryDefaultComesFromTheStructOrARowsNote) {
 // docs/contracts.md lists every option of every command (its tables name
 // each as `--name`, or `-o, --output`): an option added to a table and not
 // to the contract fails here.
-template <class O>
-void expect_documented(const OptionTable<O>& table, const std::string& contracts) {
-  for (const OptionRow<O>& row : table.rows) {
-    if (!row.names.starts_with('-')) continue;  // a positional
-    const std::string name = display_name(row.names);
-    EXPECT_TRUE(contracts.find("`" + name) != std::string::npos || contracts.find(", " + name) != std::string::npos)
-        << table.command << " " << name << " is not in docs/contracts.md";
-  }
-}
-
 TEST(OptionTable, EveryOptionIsInTheContract) {
   const std::string contracts = testing::slurp(std::filesystem::path(GYROTHERM_SOURCE_DIR) / "docs" / "contracts.md");
   ASSERT_FALSE(contracts.empty());
-  expect_documented(fit_option_table(), contracts);
-  expect_documented(diagnose_option_table(), contracts);
-  expect_documented(allan_option_table(), contracts);
-  expect_documented(compensate_option_table(), contracts);
-  expect_documented(export_option_table(), contracts);
-  expect_documented(simulate_option_table(), contracts);
-  expect_documented(plan_option_table(), contracts);
-  expect_documented(check_option_table(), contracts);
-  expect_documented(report_option_table(), contracts);
-  expect_documented(reproduce_option_table(), contracts);
-  expect_documented(score_option_table(), contracts);
+  ASSERT_EQ(every_command_options().size(), 11u);  // the eleven commands
+  for (const CommandOptions& c : every_command_options())
+    for (const OptionInfo& row : c.rows) {
+      if (!row.names.starts_with('-')) continue;  // a positional
+      const std::string name = display_name(row.names);
+      EXPECT_TRUE(contracts.find("`" + name) != std::string::npos || contracts.find(", " + name) != std::string::npos)
+          << c.command << " " << name << " is not in docs/contracts.md";
+    }
+}
+
+// docs/options.md is options_markdown()'s output, so the reference of every
+// option, its value and its default cannot drift from the tables. With
+// GYROTHERM_UPDATE_DOCS=1 the test writes the file instead of failing.
+TEST(OptionTable, TheOptionsReferenceIsGenerated) {
+  const std::filesystem::path file = std::filesystem::path(GYROTHERM_SOURCE_DIR) / "docs" / "options.md";
+  const std::string expected = options_markdown();
+  if (const char* update = std::getenv("GYROTHERM_UPDATE_DOCS"); update != nullptr && std::string(update) == "1") {
+    std::ofstream(file, std::ios::binary) << expected;
+    GTEST_SKIP() << "wrote " << file;
+  }
+  const std::string written = testing::slurp(file);
+  EXPECT_TRUE(written == expected) << file
+                                   << " differs from the option tables; run this test with GYROTHERM_UPDATE_DOCS=1 "
+                                      "to write it";
+  // Every command's every option is in it, with its default.
+  for (const CommandOptions& c : every_command_options()) {
+    EXPECT_NE(written.find("\n## " + c.command + "\n"), std::string::npos) << c.command;
+    for (const OptionInfo& row : c.rows)
+      if (!row.default_value.empty())
+        EXPECT_NE(written.find(" | " + row.default_value), std::string::npos) << c.command << " " << row.names;
+  }
 }
 
 // A repeatable option takes one value per name, so that the positional after

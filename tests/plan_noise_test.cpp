@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -240,10 +241,10 @@ TEST(PlanNoise, WrittenNoiseMakesTheSimulatorDrawIt) {
     if (tau > 0.0) c["gauss_markov_tau"] = {{"value", tau}};
     return nlohmann::ordered_json{{"noise_model", {{"components", c}}}};
   };
-  std::string note = "stale";
+  std::optional<GaussMarkovMerged> note = GaussMarkovMerged{};  // stale: each call resets it
   const PlanNoise flicker = noise_of_json(json_file(dir, "flicker.json", components(2e-4, 5e-4, 0.0, 0.0)));
   const sim::NoiseConfig written = noise_config_of(flicker, shipped_noise(), false, &note);
-  EXPECT_EQ(note, "");
+  EXPECT_FALSE(note);
   EXPECT_NEAR(written.arw_deg_per_sqrt_h, 2e-4, 1e-18);
   EXPECT_NEAR(written.bias_instability_dph, 5e-4, 1e-15);
   EXPECT_EQ(written.flicker_processes, 11);
@@ -261,7 +262,7 @@ TEST(PlanNoise, WrittenNoiseMakesTheSimulatorDrawIt) {
 
   const PlanNoise gm = noise_of_json(json_file(dir, "gm.json", components(2e-4, 0.0, 2e-3, 700.0)));
   const sim::NoiseConfig one = noise_config_of(gm, shipped_noise(), false, &note);
-  EXPECT_EQ(note, "");
+  EXPECT_FALSE(note);
   EXPECT_EQ(one.flicker_processes, 1);
   const sim::GyroNoise simulator(one, 1.0, 3);
   ASSERT_EQ(simulator.flicker_correlation_times_s().size(), 1u);
@@ -270,7 +271,12 @@ TEST(PlanNoise, WrittenNoiseMakesTheSimulatorDrawIt) {
 
   const PlanNoise both = noise_of_json(json_file(dir, "both.json", components(2e-4, 5e-4, 2e-3, 700.0)));
   const sim::NoiseConfig merged = noise_config_of(both, shipped_noise(), false, &note);
-  EXPECT_NE(note.find("merged into the flicker bank"), std::string::npos) << note;
+  ASSERT_TRUE(note);
+  EXPECT_NEAR(note->sigma_dph, 2e-3, 1e-15);  // the component's σ (°/h)
+  EXPECT_EQ(note->tau_s, 700.0);
+  EXPECT_EQ(note->processes, merged.flicker_processes);
+  EXPECT_EQ(note->merged_b_dph, merged.bias_instability_dph);
+  EXPECT_NE(note_text(*note).find("merged into the flicker bank"), std::string::npos) << note_text(*note);
   const sim::GyroNoise merged_simulator(merged, 1.0, 3);
   EXPECT_NEAR(merged_simulator.flicker_variance_dph2() / (both.model.amplitude[kFlicker] + 4e-6 / 11.0), 1.0, 1e-12);
 

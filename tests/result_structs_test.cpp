@@ -130,5 +130,63 @@ TEST(ResultStructs, TheFitsWarningsAndTheDataCautionsAreData) {
                       "the data's cautions are UnitCautions");
 }
 
+// A plan's result (studies/plan/): its notes are PlanNotes (a struct of
+// numbers and names per kind), its thermal path a ThermalPath, its noise the
+// PlanNoise itself, a baseline's shortfall its closest Precision (a Refusal
+// and the standard errors), a target's source a TargetFrom; note_text,
+// thermal_path_text, noise_text, baseline_why, refusal_text and
+// target_from_text word them.
+TEST(ResultStructs, ThePlanHoldsNamesNotSentences) {
+  expect_text_members("studies/plan/plan.h",
+                      {{"model", "PlanRequest: --model as given; PlanResult: a formula"},
+                       {"se", "PlanRequest: --se values"},
+                       {"rel_se", "PlanRequest: --rel-se values"},
+                       {"separate", "PlanRequest: --separate values"},
+                       {"param", "PlanRequest: --param values"},
+                       {"prior", "PlanRequest: --prior values"},
+                       {"scenario", "PlanRequest: a file name"},
+                       {"rig", "PlanRequest: a file name"},
+                       {"gyro", "PlanRequest: a file name"},
+                       {"noise", "PlanRequest: a file name"},
+                       {"out", "PlanRequest: a folder name"},
+                       {"term", "TermPlan: a term name"},
+                       {"unit", "TermPlan: a unit's name"},
+                       {"rel_se_given", "TermPlan: the --rel-se value as given"},
+                       {"recipe", "Baseline: the recipe's name"},
+                       {"about", "Baseline: the recipe registry's description"},
+                       {"scenario_file", "PlanResult: a file name"},
+                       {"setpoint_file", "PlanResult: a file name"},
+                       {"rig_file", "PlanResult: a file name"},
+                       {"gyro_file", "PlanResult: a file name"},
+                       {"figure_file", "PlanResult: a file name"}},
+                      "a plan's words are its renderers' (plan.cpp, plan_notes.cpp)");
+  expect_text_members("studies/plan/plan_notes.h",
+                      {{"rig_file", "ThermalPath: a file name"},
+                       {"scenario_file", "ThermalPath: a file name"},
+                       {"name", "LooseNoise::Component: a noise component's name"},
+                       {"unit", "LooseNoise::Component: its unit"},
+                       {"file", "LooseNoise: a file name"},
+                       {"term", "ParameterAssumed: a term name"},
+                       {"parameter", "ParameterAssumed: the parameter's name"},
+                       {"recipe", "RecipeIsPlan: the recipe's name"}},
+                      "a note is data, worded by note_text()");
+  expect_text_members("studies/plan/precision.h", {{"refused_terms", "Precision: term names"}},
+                      "why a design is refused is a Refusal, worded by refusal_text()");
+}
+
+// The score baseline's check (studies/score/baseline.h): a regression is its
+// engine, metric and both values with their intervals, a note a kind and the
+// names it concerns; regression_text and baseline_note_text word them.
+TEST(ResultStructs, TheBaselineCheckHoldsNamesNotSentences) {
+  expect_text_members("studies/score/baseline.h",
+                      {{"file", "Baseline: a file name"},
+                       {"scenario", "Baseline: a file name"},
+                       {"model", "Baseline: a formula"},
+                       {"engine", "Regression: an engine name"},
+                       {"metric", "Regression, BaselineNote: a metric's JSON field name"},
+                       {"name", "BaselineNote: an engine or a file's role"}},
+                      "the check's words are regression_text()'s and baseline_note_text()'s");
+}
+
 }  // namespace
 }  // namespace gyrotherm

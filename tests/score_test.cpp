@@ -391,7 +391,7 @@ TEST_F(ScoreBaseline, ACampaignPassesAgainstItself) {
   EXPECT_GE(good_->engines[1].success_rate, 0.5);
   EXPECT_EQ(base.engines.at("iafsa").size(), 4u + good_->error_terms.size());
   const BaselineComparison c = compare_to_baseline(*good_, base);
-  EXPECT_TRUE(c.passed()) << c.regressions.front().message;
+  EXPECT_TRUE(c.passed()) << regression_text(c.regressions.front());
   EXPECT_TRUE(c.notes.empty());
 }
 
@@ -400,7 +400,7 @@ TEST_F(ScoreBaseline, AStarvedEngineIsNamedWithTheMetric) {
   ASSERT_FALSE(c.passed());
   std::set<std::string> metrics;
   for (const Regression& r : c.regressions) {
-    EXPECT_EQ(r.engine, "iafsa") << r.message;  // ols did not change
+    EXPECT_EQ(r.engine, "iafsa") << regression_text(r);  // ols did not change
     metrics.insert(r.metric);
   }
   EXPECT_TRUE(metrics.count("success_rate"));
@@ -411,10 +411,12 @@ TEST_F(ScoreBaseline, AStarvedEngineIsNamedWithTheMetric) {
   }
   const auto it = std::find_if(c.regressions.begin(), c.regressions.end(),
                                [](const Regression& r) { return r.metric == "success_rate"; });
-  EXPECT_NE(it->message.find("iafsa: success_rate = 0"), std::string::npos) << it->message;
-  EXPECT_NE(it->message.find(fmt::format("below the baseline's {:.4g}", good_->engines[1].success_rate)),
-            std::string::npos)
-      << it->message;
+  ASSERT_NE(it, c.regressions.end());
+  const std::string message = regression_text(*it);
+  EXPECT_FALSE(it->higher_is_worse);  // a benefit, below its baseline
+  EXPECT_NE(message.find("iafsa: success_rate = 0"), std::string::npos) << message;
+  EXPECT_NE(message.find(fmt::format("below the baseline's {:.4g}", good_->engines[1].success_rate)), std::string::npos)
+      << message;
   // The other way round, the starved baseline makes nobody worse.
   EXPECT_TRUE(compare_to_baseline(*good_, parse_baseline(scoreboard_json(*bad_), "b.json")).passed());
 }
@@ -445,8 +447,11 @@ TEST_F(ScoreBaseline, EditedCoefficientErrorAndUnknownEngines) {
   EXPECT_EQ(c.regressions[0].engine, "ols");
   EXPECT_EQ(c.regressions[0].metric, "coefficient_error_median.dT");
   ASSERT_EQ(c.notes.size(), 2u);
-  EXPECT_NE(c.notes[0].find("another gyro file"), std::string::npos);
-  EXPECT_NE(c.notes[1].find("no baseline for engine 'iafsa'"), std::string::npos);
+  EXPECT_EQ(c.notes[0].kind, BaselineNote::Kind::file_changed);
+  EXPECT_EQ(c.notes[0].name, "gyro");
+  EXPECT_NE(baseline_note_text(c.notes[0]).find("another gyro file"), std::string::npos);
+  EXPECT_EQ(c.notes[1].kind, BaselineNote::Kind::engine_missing);
+  EXPECT_NE(baseline_note_text(c.notes[1]).find("no baseline for engine 'iafsa'"), std::string::npos);
 }
 
 TEST_F(ScoreBaseline, MalformedOrIncomparableBaselinesAreInputErrors) {

@@ -37,6 +37,7 @@ struct ReadSummary {
   double temp_min_c = 0, temp_max_c = 0;  // of the temperature as read
   double moving_share = 0;                // samples whose |gyro| exceeds a rest rate (10 °/s)
   double largest_rate_dph = 0;            // the largest |gyro| read
+  bool operator==(const ReadSummary&) const = default;
 };
 
 // What the checks are judged on, gathered one sample at a time (s, °C, °/h),
@@ -91,9 +92,9 @@ auto with_cautions(const std::vector<UnitCaution>& cautions, Work&& work) {
     return work();
   } catch (const InputError& e) {
     if (cautions.empty()) throw;
-    std::string why = e.what();
-    for (const UnitCaution& c : cautions) why += "\n  caution (how the record was read): " + caution_text(c);
-    throw InputError(why);
+    std::string message(e.what());
+    for (const UnitCaution& c : cautions) message += "\n  caution (how the record was read): " + caution_text(c);
+    throw InputError(message);
   }
 }
 

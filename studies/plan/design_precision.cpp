@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <limits>
 
 #include "fit/data/prepare.h"
@@ -33,6 +34,22 @@ sim::Scenario DesignEvaluator::scenario(const ChamberProfile& profile) const {
   return s;
 }
 
+std::string refusal_text(const Precision& p) {
+  switch (p.refusal) {
+    case Refusal::none: return {};
+    case Refusal::too_short:
+      return fmt::format("a test of {:.0f} s has fewer than {} windows", p.duration_s, kFewestWindows);
+    case Refusal::too_few_windows: return fmt::format("{} windows for {} unknowns", p.windows, p.se.size() + 1);
+    case Refusal::constant_regressor:
+      return fmt::format("the regressor of '{}' does not vary on this profile", fmt::join(p.refused_terms, ", "));
+    case Refusal::collinear:
+      return fmt::format("{} are collinear on this profile (condition number {:.3g}, the fitter refuses above {:.0e})",
+                         p.refused_terms.empty() ? std::string("the terms") : fmt::format("{}", fmt::join(p.refused_terms, ", ")),
+                         p.condition, fit::LinearProblem::kIllConditioned);
+  }
+  return {};
+}
+
 Precision DesignEvaluator::precision(const ChamberProfile& profile) const {
   return evaluate(profile, nullptr);
 }
@@ -51,7 +68,7 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   p.se.assign(m_terms, kInfinity);
   p.log_parameter_se.assign(m_terms, std::nan(""));
   if (p.duration_s < kFewestWindows * fit::AveragingOptions{}.window_s) {
-    p.refused = fmt::format("a test of {:.0f} s has fewer than {} windows", p.duration_s, kFewestWindows);
+    p.refusal = Refusal::too_short;
     return p;
   }
   const sim::Simulator simulator(scenario(profile), rig_, gyro_);
@@ -103,7 +120,7 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   const Eigen::Index l = X.rows();
   Eigen::Index cols = X.cols();
   if (l < static_cast<Eigen::Index>(m_terms) + 2) {
-    p.refused = fmt::format("{} windows for {} unknowns", l, m_terms + 1);
+    p.refusal = Refusal::too_few_windows;
     return p;
   }
   if (l < cols + 2) {  // too few windows for the parameters too: they stay unknown
@@ -123,7 +140,8 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
         Z.col(j).setZero();
         continue;
       }
-      p.refused = fmt::format("the regressor of '{}' does not vary on this profile", model_.terms[j]->name);
+      p.refusal = Refusal::constant_regressor;
+      p.refused_terms = {std::string(model_.terms[j]->name)};
       return p;
     }
     Z.col(j) /= norm[j];
@@ -136,14 +154,10 @@ Precision DesignEvaluator::evaluate(const ChamberProfile& profile, PrecisionDeta
   const double lo = eig.eigenvalues().minCoeff(), hi = eig.eigenvalues().maxCoeff();
   p.condition = lo > 0.0 ? hi / lo : kInfinity;
   if (!(p.condition <= fit::LinearProblem::kIllConditioned)) {
-    std::string names;
     const Eigen::VectorXd v = eig.eigenvectors().col(0);
     for (std::size_t j = 0; j < m_terms; ++j)
-      if (std::abs(v[static_cast<Eigen::Index>(j)]) > 0.1)
-        names += (names.empty() ? "" : ", ") + std::string(model_.terms[j]->name);
-    p.refused = fmt::format("{} are collinear on this profile (condition number {:.3g}, the fitter refuses above {:.0e})",
-                            names.empty() ? std::string("the terms") : names, p.condition,
-                            fit::LinearProblem::kIllConditioned);
+      if (std::abs(v[static_cast<Eigen::Index>(j)]) > 0.1) p.refused_terms.emplace_back(model_.terms[j]->name);
+    p.refusal = Refusal::collinear;
     return p;
   }
   if (cols > model_cols) {

@@ -30,7 +30,7 @@
 //    term's coefficient has a target (studies/plan/search.h).
 // 5. A design the fitter would refuse — the scaled correlation matrix's
 //    condition number above LinearProblem::kIllConditioned — identifies
-//    nothing: every standard error is +∞ and `refused` says why.
+//    nothing: every standard error is +∞ and its `refusal` says why.
 
 #include <Eigen/Core>
 #include <string>
@@ -41,6 +41,7 @@
 #include "sim/rig_config.h"
 #include "sim/scenario.h"
 #include "studies/plan/plan_noise.h"
+#include "studies/plan/precision.h"
 #include "studies/plan/profiles.h"
 
 namespace gyrotherm::studies::plan {
@@ -52,20 +53,6 @@ struct PlanModel {
   std::vector<const fit::Term*> terms;
   std::vector<double> parameters;
   std::vector<double> prior;
-};
-
-// se(ln θ) at which a nonlinear term's prediction is trusted: θ within
-// about ±10 % (one standard error), where the regressor is close to linear in ln θ.
-inline constexpr double kLogParameterSe = 0.1;
-
-struct Precision {
-  double duration_s = 0;
-  std::vector<double> se;  // per term, in the coefficient's unit; +∞ where not identified
-  std::vector<double> log_parameter_se;  // per term: se of ln θ (NaN: no parameter or no prior)
-  double condition = 0;    // of the scaled design's correlation matrix
-  std::string refused;     // why nothing is identified ("" when the design is fitted)
-  std::size_t windows = 0;
-  double sensor_min_c = 0, sensor_max_c = 0;
 };
 
 // Where each coefficient's information comes from, for the figure.

@@ -43,6 +43,26 @@ std::string hours(double s) { return fmt::format("{:.2f} h", s / 3600.0); }
 
 }  // namespace
 
+std::string baseline_why(const Baseline& b, const PlanResult& r) {
+  if (b.met) return {};
+  if (b.closest.refused()) return refusal_text(b.closest);
+  if (b.too_long) return fmt::format("longer than --longest ({})", hours(r.limits.longest_s));
+  return shortfalls(r.terms, b.closest);
+}
+
+std::string target_from_text(const TermPlan& t) {
+  switch (t.target_from) {
+    case TermPlan::TargetFrom::none: return {};
+    case TermPlan::TargetFrom::se: return "--se";
+    case TermPlan::TargetFrom::rel_se: return "--rel-se " + t.rel_se_given;
+    case TermPlan::TargetFrom::separate: return "--separate (p < 0.01, 90 % power)";
+    case TermPlan::TargetFrom::detect: return "detect (p < 0.01, 90 % power)";
+  }
+  return {};
+}
+
+std::string noise_text(const PlanNoise& noise) { return noise.description() + " (" + noise.source + ")"; }
+
 PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   auto report = [&](const std::string& stage, int done, int total) {
@@ -58,7 +78,7 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   r.model = fit::formula_text(setup.model.terms);
   r.limits = setup.limits;
   r.thermal_path = setup.thermal_path;
-  r.noise = setup.noise.description() + " (" + setup.noise.source + ")";
+  r.noise = setup.noise;
   r.notes = setup.notes;
   sim::Scenario predicted = setup.base;
   predicted.sample_rate_hz = kPredictionRateHz;
@@ -77,10 +97,10 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
     b.duration_s = o.best.precision.duration_s;
     b.shortfall = o.best.shortfall;
     b.closest_s = o.best.precision.duration_s;
-    if (!o.met)
-      b.why = !o.best.precision.refused.empty() ? o.best.precision.refused
-              : !o.best.fits ? fmt::format("longer than --longest ({})", hours(setup.limits.longest_s))
-                             : shortfalls(setup.terms, o.best.precision);
+    if (!o.met) {
+      b.closest = o.best.precision;
+      b.too_long = !o.best.fits;
+    }
     r.baselines.push_back(b);
     r.evaluations += o.evaluations;
     // The warm-up's cold soak is not counted: it is no plan for a unit that starts warm.
@@ -97,21 +117,19 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
                                      [&](int done, int total) { report("planning", done, total); });
   // The search's family is not every profile: where a recipe does better, it is the plan.
   if (best_recipe && (!plan.met || best_recipe->precision.duration_s < plan.best.precision.duration_s)) {
-    r.notes.push_back(fmt::format("the planned test is the recipe '{}': no profile of the searched family "
-                                  "(full-range legs at the rate limit) was shorter",
-                                  best_recipe_name));
+    r.notes.emplace_back(RecipeIsPlan{best_recipe_name});
     plan.best = *best_recipe;
     plan.met = true;
   }
   r.evaluations += plan.evaluations;
   if (!plan.met) {
     const Precision& p = plan.best.precision;
-    if (!p.refused.empty() || !std::isfinite(plan.best.shortfall))
+    if (p.refused() || !std::isfinite(plan.best.shortfall))
       throw InputError(fmt::format(
           "the model cannot be identified at these limits by any test of at most {}: {}. The rig's thermal "
           "path ({}) over {}..{} °C at {} °C/min does not make these terms differ",
-          hours(setup.limits.longest_s), p.refused.empty() ? "its terms do not vary apart" : p.refused,
-          setup.thermal_path, setup.limits.low_c, setup.limits.high_c, setup.limits.max_rate_c_per_min));
+          hours(setup.limits.longest_s), p.refused() ? refusal_text(p) : "its terms do not vary apart",
+          thermal_path_text(setup.thermal_path), setup.limits.low_c, setup.limits.high_c, setup.limits.max_rate_c_per_min));
     throw InputError(fmt::format(
         "no test of at most {} at these limits ({}..{} °C, {} °C/min, soaks ≥ {} s) meets the precision "
         "wanted: the closest ({}) gives {}. Under this gyro's noise ({}) a longer test does not always help "
@@ -175,7 +193,7 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
     predicted[t.term] = number(t.predicted_se);
     target[t.term] = number(t.target_se);
     prior[t.term] = t.prior == 0.0 ? Json(nullptr) : Json(t.prior);
-    from[t.term] = t.target_from;
+    from[t.term] = target_from_text(t);
   }
   j["predicted_se"] = predicted;
   Json parameters = Json::object();
@@ -193,7 +211,7 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
                          {"about", b.about},
                          {"closest_s", b.met ? Json(nullptr) : Json(b.closest_s)},
                          {"shortfall", number(b.shortfall)},
-                         {"why", b.why}});
+                         {"why", baseline_why(b, r)}});
   j["baselines"] = baselines;
   Json segments = Json::array();
   for (const sim::Segment& s : r.profile.segments) {
@@ -207,8 +225,8 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
                  {"max_rate_c_per_min", r.limits.max_rate_c_per_min},
                  {"min_soak_s", r.limits.min_soak_s},
                  {"longest_s", r.limits.longest_s}};
-  j["thermal_path"] = r.thermal_path;
-  j["noise"] = r.noise;
+  j["thermal_path"] = thermal_path_text(r.thermal_path);
+  j["noise"] = noise_text(r.noise);
   j["sensor_range_c"] = {r.sensor_min_c, r.sensor_max_c};
   j["windows"] = r.windows;
   if (r.verification) {
@@ -225,7 +243,9 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
     j["reported_se"] = reported;
     j["verify"] = {{"seeds", v.seeds}, {"first_seed", v.first_seed}, {"truth", truth}, {"seconds", v.seconds}};
   }
-  j["notes"] = r.notes;
+  Json notes = Json::array();
+  for (const PlanNote& n : r.notes) notes.push_back(note_text(n));
+  j["notes"] = notes;
   j["evaluations"] = r.evaluations;
   j["seconds"] = r.seconds;
   return j;
@@ -233,9 +253,9 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
 
 std::string plan_text(const PlanResult& r) {
   std::string out = fmt::format("plan for B = b0 + {}\n", r.model);
-  out += fmt::format("  rig: {}; chamber {}..{} °C, at most {} °C/min, soaks ≥ {} s\n", r.thermal_path,
+  out += fmt::format("  rig: {}; chamber {}..{} °C, at most {} °C/min, soaks ≥ {} s\n", thermal_path_text(r.thermal_path),
                      r.limits.low_c, r.limits.high_c, r.limits.max_rate_c_per_min, r.limits.min_soak_s);
-  out += fmt::format("  noise: {}\n\n", r.noise);
+  out += fmt::format("  noise: {}\n\n", noise_text(r.noise));
   out += fmt::format("planned test: {} ({} windows; the sensor {:.1f}..{:.1f} °C)\n", hours(r.duration_s),
                      r.windows, r.sensor_min_c, r.sensor_max_c);
   out += fmt::format("  start soaked at {} °C, switched on at t = 0\n", r.profile.start_c);
@@ -267,7 +287,7 @@ std::string plan_text(const PlanResult& r) {
       out += fmt::format("  {:<22} {:>9}  ({:+.0f} %)\n", b.recipe, hours(b.duration_s),
                          100.0 * (b.duration_s / r.duration_s - 1.0));
     else
-      out += fmt::format("  {:<22} {:>9}  (the closest, {}: {})\n", b.recipe, "never", hours(b.closest_s), b.why);
+      out += fmt::format("  {:<22} {:>9}  (the closest, {}: {})\n", b.recipe, "never", hours(b.closest_s), baseline_why(b, r));
   }
   for (const TermPlan& t : r.terms)
     if (!std::isnan(t.parameter_log_se))
@@ -275,7 +295,7 @@ std::string plan_text(const PlanResult& r) {
                  ? fmt::format("{}'s parameter {:g}: predicted within ±{:.0f} % (one standard error of ln θ)\n",
                                t.term, t.parameter, 100.0 * t.parameter_log_se)
                  : fmt::format("{}'s parameter {:g}: not identified by this test\n", t.term, t.parameter);
-  for (const std::string& n : r.notes) out += "note: " + n + "\n";
+  for (const PlanNote& n : r.notes) out += "note: " + note_text(n) + "\n";
   out += fmt::format("\nwrote {}, {} (chamber programme), {}, {} and {}\n", r.scenario_file, r.setpoint_file, r.rig_file,
                      r.gyro_file, r.figure_file);
   out += fmt::format("run it: gyrotherm simulate {} --output plan.csv\n", r.scenario_file);

@@ -41,6 +41,9 @@
 #include <string>
 #include <vector>
 
+#include "studies/plan/plan_noise.h"
+#include "studies/plan/plan_notes.h"
+#include "studies/plan/precision.h"
 #include "studies/plan/profiles.h"
 
 namespace gyrotherm::studies::plan {
@@ -73,19 +76,27 @@ struct TermPlan {
   std::string unit;        // of the coefficient
   double prior = 0;        // 0: none
   double target_se = 0;    // +∞: no target (reported only)
-  std::string target_from; // "--se", "--rel-se 0.3", "--separate", "detect"
+  // Where the target came from (target_from_text words it): --se, --rel-se
+  // (rel_se_given: the option's value as given), --separate, or a prior to
+  // detect; none: no target.
+  enum class TargetFrom { none, se, rel_se, separate, detect } target_from = TargetFrom::none;
+  std::string rel_se_given;
   double predicted_se = 0;
   double parameter = 0;         // a nonlinear term's θ (NaN without one)
   double parameter_log_se = 0;  // its predicted se of ln θ (NaN: none predicted)
 };
 
 struct Baseline {
-  std::string recipe, about;
+  std::string recipe, about;  // the recipe's name and its registry description
   bool met = false;
   double duration_s = 0;   // the shortest that meets the target (when met)
   double shortfall = 0;    // else: the closest's largest se / target
   double closest_s = 0;    // and its length
-  std::string why;         // what holds it back when not met
+  // What holds the closest back when not met (baseline_why words it): its
+  // precision (a refusal, or the terms short of their targets), or a test
+  // longer than --longest.
+  Precision closest;
+  bool too_long = false;
 };
 
 struct Verification {
@@ -100,8 +111,8 @@ struct PlanResult {
   std::string model;  // the model fitted: the one asked for and the group to separate
   std::vector<TermPlan> terms;
   RigLimits limits;
-  std::string thermal_path;  // "rig_shield.toml (scenario cycle.toml)" / "first-order lag, τ = 1800 s"
-  std::string noise;         // the noise's description and source
+  ThermalPath thermal_path;
+  PlanNoise noise;           // the noise predicted under (noise_text words it and its source)
   ChamberProfile profile;
   double duration_s = 0;
   double sensor_min_c = 0, sensor_max_c = 0;
@@ -109,7 +120,7 @@ struct PlanResult {
   std::vector<Baseline> baselines;
   std::optional<Verification> verification;
   std::string scenario_file, setpoint_file, rig_file, gyro_file, figure_file;
-  std::vector<std::string> notes;
+  std::vector<PlanNote> notes;
   std::size_t evaluations = 0;
   double seconds = 0;
 };
@@ -121,6 +132,14 @@ struct PlanProgress {
 // Throws InputError (exit 2, nothing written) for bad options, and when no
 // profile within the limits meets the target (saying what limits it).
 PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress = {});
+
+// What holds a baseline back (empty when it is met): a refusal, a test
+// longer than --longest, or each term short of its target.
+std::string baseline_why(const Baseline& baseline, const PlanResult& result);
+// "--se", "--rel-se 0.3", "--separate (p < 0.01, 90 % power)", "detect (…)"; "" without a target.
+std::string target_from_text(const TermPlan& term);
+// The noise's description and, in parentheses, its source.
+std::string noise_text(const PlanNoise& noise);
 
 nlohmann::ordered_json plan_json(const PlanResult& result);
 std::string plan_text(const PlanResult& result);

@@ -21,7 +21,7 @@ std::string header_of(const PlanResult& r) {
   return fmt::format("Written by `gyrotherm plan` for B = b0 + {}: the shortest test found ({:.2f} h) at\n"
                      "{}..{} °C, at most {} °C/min; rig: {}.",
                      r.model, r.duration_s / 3600.0, r.limits.low_c, r.limits.high_c,
-                     r.limits.max_rate_c_per_min, r.thermal_path);
+                     r.limits.max_rate_c_per_min, thermal_path_text(r.thermal_path));
 }
 
 void plot(const std::filesystem::path& png, const PlanResult& r, const PrecisionDetail& d) {

@@ -280,8 +280,8 @@ std::string PlanNoise::description() const {
 }
 
 sim::NoiseConfig noise_config_of(const PlanNoise& noise, const sim::NoiseConfig& base, bool from_gyro_file,
-                                 std::string* note) {
-  if (note != nullptr) note->clear();
+                                 std::optional<GaussMarkovMerged>* merged) {
+  if (merged != nullptr) merged->reset();
   if (from_gyro_file) return base;  // the gyro's own, quantisation and glitches included
   const fit::NoiseModel& m = noise.model;
   sim::NoiseConfig out;  // the bank's τ range and count: the defaults when there is none
@@ -305,13 +305,10 @@ sim::NoiseConfig noise_config_of(const PlanNoise& noise, const sim::NoiseConfig&
     out.flicker_tau_max_s = rounded(m.flicker_tau_s.back());
     out.flicker_processes = static_cast<int>(m.flicker_tau_s.size());
     out.bias_instability_dph = rounded(std::sqrt(variance) * floor_per_s(m.flicker_tau_s));
-    if (gauss_markov && note != nullptr)
-      *note = fmt::format(
-          "the Gauss–Markov process (σ = {:.3g} °/h, τ = {} s) is merged into the flicker bank by its variance "
-          "(a gyro file has one bank): bias_instability_dph {:.3g} → {:.3g} °/h over {} processes {:g}..{:g} s",
-          std::sqrt(m.amplitude[kGaussMarkov]), human(m.gm_tau_s),
-          std::sqrt(m.amplitude[kFlicker]) * m.flicker_floor_per_s, out.bias_instability_dph, out.flicker_processes,
-          out.flicker_tau_min_s, out.flicker_tau_max_s);
+    if (gauss_markov && merged != nullptr)
+      *merged = GaussMarkovMerged{std::sqrt(m.amplitude[kGaussMarkov]), m.gm_tau_s,
+                                  std::sqrt(m.amplitude[kFlicker]) * m.flicker_floor_per_s, out.bias_instability_dph,
+                                  out.flicker_processes, out.flicker_tau_min_s, out.flicker_tau_max_s};
   } else if (gauss_markov) {
     // One process at τ_c: the simulator sets s² = B²/peak, so B = σ·√peak.
     out.flicker_tau_min_s = out.flicker_tau_max_s = m.gm_tau_s;

@@ -27,10 +27,12 @@
 //     draws the same s². a(T) = 1 (k = 0).
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "fit/model/noise_model.h"
 #include "sim/gyro_config.h"
+#include "studies/plan/plan_notes.h"
 
 namespace gyrotherm::studies::plan {
 
@@ -72,9 +74,9 @@ PlanNoise noise_of_json(const std::filesystem::path& file);
 // and glitches 0 unless `base` (the gyro file's own) had them and the noise
 // came from that file. A Gauss–Markov process with flicker present cannot be
 // written (the gyro file has one bank): it is merged into the bank by its
-// variance, and *note says so; a Gauss–Markov process alone is a one-process
-// bank.
+// variance, and *merged says how; a Gauss–Markov process alone is a
+// one-process bank.
 sim::NoiseConfig noise_config_of(const PlanNoise& noise, const sim::NoiseConfig& base, bool from_gyro_file,
-                                 std::string* note);
+                                 std::optional<GaussMarkovMerged>* merged);
 
 }  // namespace gyrotherm::studies::plan

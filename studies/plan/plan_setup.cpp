@@ -198,17 +198,16 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   s.limits.longest_s = rq.longest_h * 3600.0;
   s.limits.start_c = std::clamp(s.base.start_c, s.limits.low_c, s.limits.high_c);
   if (s.limits.start_c != s.base.start_c)
-    s.notes.push_back(fmt::format("the scenario starts at {} °C, outside --range: the tests start soaked at {} °C",
-                                  s.base.start_c, s.limits.start_c));
+    s.notes.emplace_back(StartClamped{s.base.start_c, s.limits.start_c});
   s.base.start_c = s.limits.start_c;
   s.base.initial = sim::InitialCondition::soaked;
   if (rq.tau_s) {
     if (!(*rq.tau_s > 0.0)) throw InputError(fmt::format("--tau {}: must be > 0 s", *rq.tau_s));
     s.rig = first_order_rig(*rq.tau_s, s.rig);
-    s.thermal_path = fmt::format("first-order lag from the chamber air to the sensor, τ = {:g} s", *rq.tau_s);
+    s.thermal_path.tau_s = *rq.tau_s;
   } else {
-    s.thermal_path = fmt::format("{} (the thermal network of {})", rig_file.filename().string(),
-                                 std::filesystem::path(rq.scenario).filename().string());
+    s.thermal_path.rig_file = rig_file.filename().string();
+    s.thermal_path.scenario_file = std::filesystem::path(rq.scenario).filename().string();
   }
 
   // The model, the group to separate and their priors.
@@ -268,17 +267,13 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     // Components the record could not pin down are used at their estimate;
     // their bound says how much worse the noise could be.
     if (j.contains("noise_model") && j["noise_model"].is_object() && j["noise_model"].contains("components")) {
-      std::string loose;
+      LooseNoise loose{std::filesystem::path(noise_file).filename().string(), {}};
       for (const auto& [name, c] : j["noise_model"]["components"].items())
         if (c.is_object() && c.value("identified", true) == false && c.contains("interval_95") &&
             c["interval_95"].is_array() && c["interval_95"].size() == 2 && c["interval_95"][1].is_number() &&
             c["interval_95"][1].get<double>() > 0.0)
-          loose += fmt::format("{}{} (≤ {:.3g} {})", loose.empty() ? "" : ", ", name,
-                               c["interval_95"][1].get<double>(), c.value("unit", ""));
-      if (!loose.empty())
-        s.notes.push_back(fmt::format("{}'s record did not pin down {}: each is used at its estimate, so the "
-                                      "predicted errors are optimistic where the noise is nearer its bound",
-                                      std::filesystem::path(noise_file).filename().string(), loose));
+          loose.components.push_back({name, c.value("unit", ""), c["interval_95"][1].get<double>()});
+      if (!loose.components.empty()) s.notes.emplace_back(std::move(loose));
     }
     if (j.contains("coefficients") && j["coefficients"].is_object())
       for (std::size_t k = 0; k < s.model.terms.size(); ++k) {
@@ -289,9 +284,9 @@ PlanSetup plan_setup(const PlanRequest& rq) {
           for (const auto& [key, v] : j["parameters"][name].items())
             if (v.is_number()) s.model.parameters[k] = v.get<double>();
       }
-    std::string note;
-    s.gyro.noise = noise_config_of(s.noise, s.gyro.noise, false, &note);
-    if (!note.empty()) s.notes.push_back(note);
+    std::optional<GaussMarkovMerged> merged;
+    s.gyro.noise = noise_config_of(s.noise, s.gyro.noise, false, &merged);
+    if (merged) s.notes.emplace_back(*merged);
   } else {
     s.noise = noise_of_gyro(s.gyro.noise, 1.0 / s.base.sample_rate_hz, "gyro file " + gyro_file.filename().string());
   }
@@ -336,7 +331,7 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   for (std::size_t g = 0; g < group.size(); ++g) {
     const std::size_t j = index_of(s.model, group[g]);
     s.terms[j].target_se = need_prior(j, "--separate " + group[g]) / kDetectableInSe;
-    s.terms[j].target_from = "--separate (p < 0.01, 90 % power)";
+    s.terms[j].target_from = TermPlan::TargetFrom::separate;
   }
   for (const std::string& item : rq.rel_se) {
     if (item.find('=') == std::string::npos) {
@@ -345,7 +340,8 @@ PlanSetup plan_setup(const PlanRequest& rq) {
       for (std::size_t j = 0; j < model_terms; ++j)
         if (s.model.prior[j] != 0.0) {
           s.terms[j].target_se = f * std::abs(s.model.prior[j]);
-          s.terms[j].target_from = "--rel-se " + item;
+          s.terms[j].target_from = TermPlan::TargetFrom::rel_se;
+          s.terms[j].rel_se_given = item;
         }
       continue;
     }
@@ -354,7 +350,8 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     if (j == s.model.terms.size()) throw InputError(fmt::format("--rel-se {}: {} is not in the model", item, name));
     if (!(f > 0.0)) throw InputError(fmt::format("--rel-se {}: must be > 0", item));
     s.terms[j].target_se = f * need_prior(j, "--rel-se " + item);
-    s.terms[j].target_from = "--rel-se " + item;
+    s.terms[j].target_from = TermPlan::TargetFrom::rel_se;
+    s.terms[j].rel_se_given = item;
   }
   for (const std::string& item : rq.se) {
     const auto [name, v] = name_value(item, "--se");
@@ -362,21 +359,20 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     if (j == s.model.terms.size()) throw InputError(fmt::format("--se {}: {} is not in the model", item, name));
     if (!(v > 0.0)) throw InputError(fmt::format("--se {}: must be > 0 (in {})", item, s.terms[j].unit));
     s.terms[j].target_se = v;
-    s.terms[j].target_from = "--se";
+    s.terms[j].target_from = TermPlan::TargetFrom::se;
   }
   if (rq.se.empty() && rq.rel_se.empty() && rq.separate.empty())
     for (std::size_t j = 0; j < model_terms; ++j)
       if (s.model.prior[j] != 0.0 && !std::isfinite(s.terms[j].target_se)) {
         s.terms[j].target_se = std::abs(s.model.prior[j]) / kDetectableInSe;
-        s.terms[j].target_from = "detect (p < 0.01, 90 % power)";
+        s.terms[j].target_from = TermPlan::TargetFrom::detect;
       }
   if (std::none_of(s.terms.begin(), s.terms.end(), [](const TermPlan& t) { return std::isfinite(t.target_se); }))
     throw InputError("no precision to plan for: no term has a prior value to detect; give --se TERM=VALUE");
   for (std::size_t j = 0; j < s.model.terms.size(); ++j)
     if (s.model.terms[j]->parameter && s.model.prior[j] == 0.0)
-      s.notes.push_back(fmt::format("{}'s {} is taken as known ({:g}): without a prior coefficient its "
-                                    "uncertainty cannot be predicted",
-                                    s.terms[j].term, s.model.terms[j]->parameter->name, s.model.parameters[j]));
+      s.notes.emplace_back(ParameterAssumed{s.terms[j].term, std::string(s.model.terms[j]->parameter->name),
+                                            s.model.parameters[j]});
   // The gyro --verify simulates: priors as the truth where the gyro had none.
   for (std::size_t j = 0; j < s.model.terms.size(); ++j)
     if (s.model.terms[j]->effect && s.model.prior[j] != 0.0) {

@@ -26,8 +26,8 @@ struct PlanSetup {
   PlanModel model;
   std::vector<TermPlan> terms;
   RigLimits limits;
-  std::string thermal_path;
-  std::vector<std::string> notes;
+  ThermalPath thermal_path;
+  std::vector<PlanNote> notes;
 };
 
 PlanSetup plan_setup(const PlanRequest& request);

@@ -123,6 +123,26 @@ std::map<std::string, BaselineMetric> checked_metrics(const Scoreboard& board, c
   return m;
 }
 
+std::string regression_text(const Regression& r) {
+  return fmt::format("{}: {} = {} (95 % interval {}..{}) is {} the baseline's {} ({}..{}), beyond Monte Carlo noise",
+                     r.engine, r.metric, format_value(r.now.value, "{:.4g}"), format_value(r.now.ci.low, "{:.4g}"),
+                     format_value(r.now.ci.high, "{:.4g}"), r.higher_is_worse ? "above" : "below",
+                     format_value(r.baseline.value, "{:.4g}"), format_value(r.baseline.ci.low, "{:.4g}"),
+                     format_value(r.baseline.ci.high, "{:.4g}"));
+}
+
+std::string baseline_note_text(const BaselineNote& n) {
+  switch (n.kind) {
+    case BaselineNote::Kind::file_changed:
+      return fmt::format("the baseline was made with another {} file (SHA-256 differs); if it changed on purpose, "
+                         "make the baseline again",
+                         n.name);
+    case BaselineNote::Kind::engine_missing: return fmt::format("no baseline for engine '{}'", n.name);
+    case BaselineNote::Kind::metric_missing: return fmt::format("{}: no baseline for {}", n.name, n.metric);
+  }
+  return {};
+}
+
 BaselineComparison compare_to_baseline(const Scoreboard& current, const Baseline& baseline) {
   if (baseline.model != current.model)
     throw InputError(fmt::format("{}: made for the model '{}', this campaign fits '{}'", baseline.file,
@@ -134,21 +154,19 @@ BaselineComparison compare_to_baseline(const Scoreboard& current, const Baseline
   for (const auto& [file, sha] : current.file_sha256) {
     const auto it = baseline.file_sha256.find(file);
     if (it != baseline.file_sha256.end() && it->second != sha)
-      out.notes.push_back(fmt::format("the baseline was made with another {} file (SHA-256 differs); "
-                                      "if it changed on purpose, make the baseline again",
-                                      file));
+      out.notes.push_back({BaselineNote::Kind::file_changed, file, {}});
   }
   const double eps = current.target_relative;
   for (const EngineScore& e : current.engines) {
     const auto base = baseline.engines.find(e.engine);
     if (base == baseline.engines.end()) {
-      out.notes.push_back(fmt::format("no baseline for engine '{}'", e.engine));
+      out.notes.push_back({BaselineNote::Kind::engine_missing, e.engine, {}});
       continue;
     }
     for (const auto& [metric, now] : checked_metrics(current, e)) {
       const auto b = base->second.find(metric);
       if (b == base->second.end()) {
-        out.notes.push_back(fmt::format("{}: no baseline for {}", e.engine, metric));
+        out.notes.push_back({BaselineNote::Kind::metric_missing, e.engine, metric});
         continue;
       }
       const MetricRule rule = rule_of(metric);
@@ -162,13 +180,7 @@ BaselineComparison compare_to_baseline(const Scoreboard& current, const Baseline
                              ? std::isfinite(r.high) && c.low > r.high + 1e-9 * std::abs(r.high)
                              : std::isfinite(r.low) && c.high < r.low - 1e-9 * std::abs(r.low);
       if (!worse) continue;
-      out.regressions.push_back(
-          {e.engine, metric,
-           fmt::format("{}: {} = {} (95 % interval {}..{}) is {} the baseline's {} ({}..{}), beyond Monte Carlo noise",
-                       e.engine, metric, format_value(now.value, "{:.4g}"), format_value(now.ci.low, "{:.4g}"),
-                       format_value(now.ci.high, "{:.4g}"), rule.higher_is_worse ? "above" : "below",
-                       format_value(b->second.value, "{:.4g}"), format_value(b->second.ci.low, "{:.4g}"),
-                       format_value(b->second.ci.high, "{:.4g}"))});
+      out.regressions.push_back({e.engine, metric, now, b->second, rule.higher_is_worse});
     }
   }
   return out;

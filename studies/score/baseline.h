@@ -44,15 +44,30 @@ Baseline parse_baseline(std::string_view json, const std::string& where);
 // coefficient_error_median.<term>.
 std::map<std::string, BaselineMetric> checked_metrics(const Scoreboard& board, const EngineScore& e);
 
-// Where an engine is worse than the baseline beyond Monte Carlo noise.
+// Where an engine is worse than the baseline beyond Monte Carlo noise;
+// regression_text words it (one line with both values and intervals).
 struct Regression {
   std::string engine;
   std::string metric;   // e.g. "success_rate", "coefficient_error_median.T"
-  std::string message;  // one line with both values and intervals
+  BaselineMetric now, baseline;
+  bool higher_is_worse = true;  // a cost (above the baseline) or a benefit (below it)
 };
+std::string regression_text(const Regression& r);
+
+// What the check could not compare; baseline_note_text words it.
+struct BaselineNote {
+  enum class Kind {
+    file_changed,    // an input file's SHA-256 differs from the baseline's (`name`: the file's role)
+    engine_missing,  // the baseline has no such engine (`name`: the engine)
+    metric_missing   // the baseline has no such metric for the engine (`name`, `metric`)
+  } kind = Kind::engine_missing;
+  std::string name, metric;
+};
+std::string baseline_note_text(const BaselineNote& note);
+
 struct BaselineComparison {
   std::vector<Regression> regressions;
-  std::vector<std::string> notes;  // engines without a baseline, other scenario files, ...
+  std::vector<BaselineNote> notes;
   bool passed() const { return regressions.empty(); }
 };
 // The rule of the header comment. Throws InputError if the baseline was made
