@@ -96,59 +96,27 @@ void scenario_limits(const sim::Scenario& s, RigLimits& limits, bool want_range,
   }
 }
 
-}  // namespace
-
-sim::RigConfig first_order_rig(double tau_s, const sim::RigConfig& chamber_of) {
-  sim::RigConfig r;
-  r.chamber = chamber_of.chamber;
-  r.sensor = chamber_of.sensor;
-  r.case_.capacity_j_per_k = 1000.0;
-  r.case_.convection_w_per_k = 1000.0 / tau_s;
-  r.case_.natural_convection = false;
-  r.case_.emissivity = 0.0;
-  r.case_.area_m2 = 0.0;
-  r.block.anode_capacity_j_per_k = r.block.far_capacity_j_per_k = 1.0;
-  r.block.anode_far_w_per_k = 0.0;
-  r.block.anode_case_w_per_k = r.block.far_case_w_per_k = 10.0;
-  r.sensor.time_constant_s = 1.0;
-  r.power = {0.0, 0.0, 0.0};
-  return r;
+// --out: checked before the search (which takes seconds to minutes).
+void check_out_folder(const std::string& out_option) {
+  std::error_code ec;
+  const std::filesystem::path out = out_option;
+  if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec))
+    throw InputError(fmt::format("--out {}: is a file, not a folder", out_option));
+  // The nearest folder that exists must be one, and writable.
+  std::filesystem::path up = out.empty() ? std::filesystem::path(".") : out;
+  while (!up.empty() && !std::filesystem::exists(up, ec)) up = up.parent_path();
+  if (up.empty()) up = ".";
+  if (!std::filesystem::is_directory(up, ec) || ::access(up.c_str(), W_OK) != 0)
+    throw InputError(fmt::format("--out {}: {} is not a folder this user can write in", out_option, up.string()));
+  for (const char* name : {"plan.toml", "rig.toml", "gyro.toml", "plan_setpoint.csv", "plan.png"})
+    if (std::filesystem::exists(out / name, ec) && !std::filesystem::is_regular_file(out / name, ec))
+      throw InputError(fmt::format("--out {}: {} is there and not a file", out_option, name));
 }
 
-PlanSetup plan_setup(const PlanRequest& rq) {
-  PlanSetup s;
-  {
-    // --out: checked before the search (which takes seconds to minutes).
-    std::error_code ec;
-    const std::filesystem::path out = rq.out;
-    if (std::filesystem::exists(out, ec) && !std::filesystem::is_directory(out, ec))
-      throw InputError(fmt::format("--out {}: is a file, not a folder", rq.out));
-    // The nearest folder that exists must be one, and writable.
-    std::filesystem::path up = out.empty() ? std::filesystem::path(".") : out;
-    while (!up.empty() && !std::filesystem::exists(up, ec)) up = up.parent_path();
-    if (up.empty()) up = ".";
-    if (!std::filesystem::is_directory(up, ec) || ::access(up.c_str(), W_OK) != 0)
-      throw InputError(fmt::format("--out {}: {} is not a folder this user can write in", rq.out, up.string()));
-    for (const char* name : {"plan.toml", "rig.toml", "gyro.toml", "plan_setpoint.csv", "plan.png"})
-      if (std::filesystem::exists(out / name, ec) && !std::filesystem::is_regular_file(out / name, ec))
-        throw InputError(fmt::format("--out {}: {} is there and not a file", rq.out, name));
-  }
-  if (rq.scenario.empty()) throw InputError("plan: no scenario given");
-  s.base = sim::load_scenario(rq.scenario);
-  const std::filesystem::path rig_file = rq.rig.empty() ? s.base.rig_file : std::filesystem::path(rq.rig);
-  const std::filesystem::path gyro_file = rq.gyro.empty() ? s.base.gyro_file : std::filesystem::path(rq.gyro);
-  s.rig = sim::load_rig(rig_file);
-  s.gyro = sim::load_gyro(gyro_file);
-  s.base.rig_file = rig_file;
-  s.base.gyro_file = gyro_file;
-  if (!s.base.chamber)
-    throw InputError(fmt::format("{} has no chamber (chamber = false): plan designs chamber tests; use a "
-                                 "scenario with a chamber, e.g. scenarios/cycle.toml",
-                                 rq.scenario));
-
-  // A diagnose --json given to --separate: its `plan` (the verdict's group,
-  // each member's size and parameter, the model, the record's range) and its
-  // noise, each where the options do not say otherwise.
+// A diagnose --json given to --separate: its `plan` (the verdict's group,
+// each member's size and parameter, the model, the record's range) and its
+// noise, each where the options do not say otherwise.
+std::optional<nlohmann::ordered_json> read_diagnosis(const PlanRequest& rq) {
   std::optional<nlohmann::ordered_json> diagnosis;
   if (rq.separate.size() == 1 && rq.separate[0].ends_with(".json")) {
     diagnosis = read_json(rq.separate[0], "--separate");
@@ -159,8 +127,13 @@ PlanSetup plan_setup(const PlanRequest& rq) {
                                    "--separate A=SIZE,B=SIZE",
                                    rq.separate[0]));
   }
+  return diagnosis;
+}
 
-  // The rig's limits; a diagnosis's range (its record's) where --range is not given.
+// The rig's limits (a diagnosis's range, its record's, where --range is not
+// given), the start clamped into them, and the thermal path.
+void set_limits(const PlanRequest& rq, const std::optional<nlohmann::ordered_json>& diagnosis,
+                const std::filesystem::path& rig_file, PlanSetup& s) {
   std::optional<std::pair<double, double>> range = rq.range_c;
   if (!range && diagnosis) {
     const nlohmann::ordered_json& d = *diagnosis;
@@ -209,8 +182,19 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     s.thermal_path.rig_file = rig_file.filename().string();
     s.thermal_path.scenario_file = std::filesystem::path(rq.scenario).filename().string();
   }
+}
 
-  // The model, the group to separate and their priors.
+// The terms to tell apart, with their sizes, and what a diagnosis brings.
+struct SeparateGroup {
+  std::size_t model_terms = 0;  // the model's own, before the group's are added
+  std::vector<std::string> names;
+  std::vector<double> sizes;
+  std::string noise_file;
+  std::vector<std::pair<std::string, double>> json_params;
+};
+
+// The model (--model, a diagnosis's, or the default) and the group to separate.
+SeparateGroup set_model(const PlanRequest& rq, const std::optional<nlohmann::ordered_json>& diagnosis, PlanSetup& s) {
   std::string model_text = rq.model.empty() ? std::string(fit::kDefaultModel) : rq.model;
   if (rq.model.empty() && diagnosis && (*diagnosis)["plan"].contains("model") &&
       (*diagnosis)["plan"]["model"].is_string())
@@ -223,33 +207,36 @@ PlanSetup plan_setup(const PlanRequest& rq) {
                                    t->name));
     add_term(s.model, t);
   }
-  const std::size_t model_terms = s.model.terms.size();
-  std::vector<std::string> group;
-  std::vector<double> group_size;
-  std::string noise_file = rq.noise;
-  std::vector<std::pair<std::string, double>> json_params;
+  SeparateGroup g;
+  g.model_terms = s.model.terms.size();
+  g.noise_file = rq.noise;
   if (diagnosis) {
     const nlohmann::ordered_json& d = *diagnosis;
     for (const auto& [name, size] : d["plan"]["separate"].items()) {
-      group.push_back(name);
-      group_size.push_back(size.is_number() ? size.get<double>() : std::nan(""));
+      g.names.push_back(name);
+      g.sizes.push_back(size.is_number() ? size.get<double>() : std::nan(""));
     }
     if (d["plan"].contains("param"))
       for (const auto& [name, value] : d["plan"]["param"].items())
-        if (value.is_number()) json_params.emplace_back(name, value.get<double>());
-    if (noise_file.empty() && d.contains("noise_model")) noise_file = rq.separate[0];
+        if (value.is_number()) g.json_params.emplace_back(name, value.get<double>());
+    if (g.noise_file.empty() && d.contains("noise_model")) g.noise_file = rq.separate[0];
   } else {
     for (const std::string& item : rq.separate) {
       const auto [name, size] = name_value(item, "--separate", true);
-      group.push_back(name);
-      group_size.push_back(size);
+      g.names.push_back(name);
+      g.sizes.push_back(size);
     }
   }
-  if (!rq.separate.empty() && group.size() < 2 && model_terms == 0)
+  if (!rq.separate.empty() && g.names.size() < 2 && g.model_terms == 0)
     throw InputError("--separate: name at least two terms to tell apart");
-  for (const std::string& g : group) add_term(s.model, term_named(g, "--separate"));
+  for (const std::string& name : g.names) add_term(s.model, term_named(name, "--separate"));
+  return g;
+}
 
-  // Priors: the gyro's truth, a fit JSON's coefficients, --separate's sizes.
+// Priors: the gyro's truth, a fit JSON's coefficients, --separate's sizes,
+// --prior; the noise; the parameters.
+void set_priors_and_noise(const PlanRequest& rq, const std::optional<nlohmann::ordered_json>& diagnosis,
+                          const std::filesystem::path& gyro_file, const SeparateGroup& g, PlanSetup& s) {
   for (std::size_t j = 0; j < s.model.terms.size(); ++j) {
     const fit::Term* t = s.model.terms[j];
     if (t->effect) {
@@ -259,15 +246,15 @@ PlanSetup plan_setup(const PlanRequest& rq) {
       s.model.parameters[j] = fit::default_parameters({t})[0];
     }
   }
-  s.noise_from_gyro_file = noise_file.empty();
-  if (!noise_file.empty()) {
-    s.noise = noise_of_json(noise_file);
-    const nlohmann::ordered_json j = diagnosis && noise_file == rq.separate[0] ? *diagnosis
-                                                                                : read_json(noise_file, "--noise");
+  s.noise_from_gyro_file = g.noise_file.empty();
+  if (!g.noise_file.empty()) {
+    s.noise = noise_of_json(g.noise_file);
+    const nlohmann::ordered_json j =
+        diagnosis && g.noise_file == rq.separate[0] ? *diagnosis : read_json(g.noise_file, "--noise");
     // Components the record could not pin down are used at their estimate;
     // their bound says how much worse the noise could be.
     if (j.contains("noise_model") && j["noise_model"].is_object() && j["noise_model"].contains("components")) {
-      LooseNoise loose{std::filesystem::path(noise_file).filename().string(), {}};
+      LooseNoise loose{std::filesystem::path(g.noise_file).filename().string(), {}};
       for (const auto& [name, c] : j["noise_model"]["components"].items())
         if (c.is_object() && c.value("identified", true) == false && c.contains("interval_95") &&
             c["interval_95"].is_array() && c["interval_95"].size() == 2 && c["interval_95"][1].is_number() &&
@@ -290,15 +277,15 @@ PlanSetup plan_setup(const PlanRequest& rq) {
   } else {
     s.noise = noise_of_gyro(s.gyro.noise, 1.0 / s.base.sample_rate_hz, "gyro file " + gyro_file.filename().string());
   }
-  for (std::size_t g = 0; g < group.size(); ++g)
-    if (std::isfinite(group_size[g])) s.model.prior[index_of(s.model, group[g])] = group_size[g];
+  for (std::size_t k = 0; k < g.names.size(); ++k)
+    if (std::isfinite(g.sizes[k])) s.model.prior[index_of(s.model, g.names[k])] = g.sizes[k];
   for (const std::string& item : rq.prior) {
     const auto [name, value] = name_value(item, "--prior");
     const std::size_t k = index_of(s.model, name);
     if (k == s.model.terms.size()) throw InputError(fmt::format("--prior {}: {} is not in the model", item, name));
     s.model.prior[k] = value;
   }
-  std::vector<std::pair<std::string, double>> params = json_params;
+  std::vector<std::pair<std::string, double>> params = g.json_params;
   for (const std::string& item : rq.param) params.push_back(name_value(item, "--param"));
   for (const auto& [name, value] : params) {
     const std::string item = fmt::format("{}={:g}", name, value);
@@ -310,8 +297,10 @@ PlanSetup plan_setup(const PlanRequest& rq) {
       throw InputError(fmt::format("--param {}: {} must lie in [{:g}, {:g}]", item, p.name, p.lower, p.upper));
     s.model.parameters[k] = value;
   }
+}
 
-  // The targets.
+// The targets (--se, --rel-se, --separate, or a prior to detect) and the gyro --verify simulates.
+void set_targets(const PlanRequest& rq, const SeparateGroup& g, PlanSetup& s) {
   s.terms.resize(s.model.terms.size());
   for (std::size_t j = 0; j < s.model.terms.size(); ++j) {
     TermPlan& t = s.terms[j];
@@ -328,16 +317,16 @@ PlanSetup plan_setup(const PlanRequest& rq) {
                                    option, s.terms[j].term, s.terms[j].term, s.terms[j].term));
     return std::abs(s.model.prior[j]);
   };
-  for (std::size_t g = 0; g < group.size(); ++g) {
-    const std::size_t j = index_of(s.model, group[g]);
-    s.terms[j].target_se = need_prior(j, "--separate " + group[g]) / kDetectableInSe;
+  for (const std::string& name : g.names) {
+    const std::size_t j = index_of(s.model, name);
+    s.terms[j].target_se = need_prior(j, "--separate " + name) / kDetectableInSe;
     s.terms[j].target_from = TermPlan::TargetFrom::separate;
   }
   for (const std::string& item : rq.rel_se) {
     if (item.find('=') == std::string::npos) {
       const double f = number_of(item, "--rel-se");
       if (!(f > 0.0)) throw InputError(fmt::format("--rel-se {}: must be > 0", item));
-      for (std::size_t j = 0; j < model_terms; ++j)
+      for (std::size_t j = 0; j < g.model_terms; ++j)
         if (s.model.prior[j] != 0.0) {
           s.terms[j].target_se = f * std::abs(s.model.prior[j]);
           s.terms[j].target_from = TermPlan::TargetFrom::rel_se;
@@ -362,7 +351,7 @@ PlanSetup plan_setup(const PlanRequest& rq) {
     s.terms[j].target_from = TermPlan::TargetFrom::se;
   }
   if (rq.se.empty() && rq.rel_se.empty() && rq.separate.empty())
-    for (std::size_t j = 0; j < model_terms; ++j)
+    for (std::size_t j = 0; j < g.model_terms; ++j)
       if (s.model.prior[j] != 0.0 && !std::isfinite(s.terms[j].target_se)) {
         s.terms[j].target_se = std::abs(s.model.prior[j]) / kDetectableInSe;
         s.terms[j].target_from = TermPlan::TargetFrom::detect;
@@ -380,6 +369,47 @@ PlanSetup plan_setup(const PlanRequest& rq) {
       if (s.model.terms[j]->parameter && std::isfinite(s.model.parameters[j]))
         s.gyro.parameter[std::string(s.model.terms[j]->name)] = s.model.parameters[j];
     }
+}
+
+}  // namespace
+
+sim::RigConfig first_order_rig(double tau_s, const sim::RigConfig& chamber_of) {
+  sim::RigConfig r;
+  r.chamber = chamber_of.chamber;
+  r.sensor = chamber_of.sensor;
+  r.case_.capacity_j_per_k = 1000.0;
+  r.case_.convection_w_per_k = 1000.0 / tau_s;
+  r.case_.natural_convection = false;
+  r.case_.emissivity = 0.0;
+  r.case_.area_m2 = 0.0;
+  r.block.anode_capacity_j_per_k = r.block.far_capacity_j_per_k = 1.0;
+  r.block.anode_far_w_per_k = 0.0;
+  r.block.anode_case_w_per_k = r.block.far_case_w_per_k = 10.0;
+  r.sensor.time_constant_s = 1.0;
+  r.power = {0.0, 0.0, 0.0};
+  return r;
+}
+
+PlanSetup plan_setup(const PlanRequest& rq) {
+  PlanSetup s;
+  check_out_folder(rq.out);
+  if (rq.scenario.empty()) throw InputError("plan: no scenario given");
+  s.base = sim::load_scenario(rq.scenario);
+  const std::filesystem::path rig_file = rq.rig.empty() ? s.base.rig_file : std::filesystem::path(rq.rig);
+  const std::filesystem::path gyro_file = rq.gyro.empty() ? s.base.gyro_file : std::filesystem::path(rq.gyro);
+  s.rig = sim::load_rig(rig_file);
+  s.gyro = sim::load_gyro(gyro_file);
+  s.base.rig_file = rig_file;
+  s.base.gyro_file = gyro_file;
+  if (!s.base.chamber)
+    throw InputError(fmt::format("{} has no chamber (chamber = false): plan designs chamber tests; use a "
+                                 "scenario with a chamber, e.g. scenarios/cycle.toml",
+                                 rq.scenario));
+  const std::optional<nlohmann::ordered_json> diagnosis = read_diagnosis(rq);
+  set_limits(rq, diagnosis, rig_file, s);
+  const SeparateGroup group = set_model(rq, diagnosis, s);
+  set_priors_and_noise(rq, diagnosis, gyro_file, group, s);
+  set_targets(rq, group, s);
   return s;
 }
 
