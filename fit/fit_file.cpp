@@ -23,17 +23,25 @@ using Json = nlohmann::ordered_json;
 
 namespace {
 
-// A field of one of the fit file's objects: InputError "KEY: missing (WHAT)"
-// or "KEY: must be a finite number"; read_object puts the object's path before it.
-const nlohmann::json& field(const nlohmann::json& obj, const char* key, std::string_view what) {
-  if (!obj.is_object() || !obj.contains(key)) throw InputError(fmt::format("{}: missing ({})", key, what));
+// A field of one of the fit file's objects, named in an error by its path
+// from there ("coefficients.T^2"): InputError "PATH: missing (WHAT)" or
+// "PATH: must be a finite number (WHAT)"; read_object puts the path of the
+// object it reads before it.
+const nlohmann::json& field_at(const nlohmann::json& obj, const std::string& key, const std::string& path,
+                               std::string_view what) {
+  if (!obj.is_object() || !obj.contains(key)) throw InputError(fmt::format("{}: missing ({})", path, what));
   return obj[key];
 }
-double finite(const nlohmann::json& obj, const char* key, std::string_view what) {
-  const nlohmann::json& v = field(obj, key, what);
+double finite_number(const nlohmann::json& v, const std::string& path, std::string_view what) {
   if (!v.is_number() || !std::isfinite(v.get<double>()))
-    throw InputError(fmt::format("{}: must be a finite number ({})", key, what));
+    throw InputError(fmt::format("{}: must be a finite number ({})", path, what));
   return v.get<double>();
+}
+const nlohmann::json& field(const nlohmann::json& obj, const char* key, std::string_view what) {
+  return field_at(obj, key, key, what);
+}
+double finite(const nlohmann::json& obj, const char* key, std::string_view what) {
+  return finite_number(field(obj, key, what), key, what);
 }
 // obj[key] read by its from_json, an error of a field inside it named by its path ("columns.csv.rate_hz").
 template <class T>
@@ -306,42 +314,87 @@ nlohmann::json read_json(const std::filesystem::path& file) {
   return j;
 }
 
-SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::json& j) {
-  auto need = [&](const nlohmann::json& obj, const char* key, std::string_view what) -> const nlohmann::json& {
-    if (!obj.is_object() || !obj.contains(key))
-      throw InputError(fmt::format("{}: missing field '{}' ({}); is this a file written by "
-                                   "'gyrotherm fit -o'?",
-                                   file.string(), key, what));
-    return obj[key];
-  };
-  auto number = [&](const nlohmann::json& v, const std::string& field) {
-    if (!v.is_number() || !std::isfinite(v.get<double>()))
-      throw InputError(fmt::format("{}: field '{}' must be a finite number", file.string(), field));
-    return v.get<double>();
-  };
-  SavedFit s;
-  s.file = file;
-  s.engine = need(j, "engine", "the engine's name").get<std::string>();
-  const std::string model = need(j, "model", "the model formula").get<std::string>();
-  s.terms = parse_formula(model);
-  const nlohmann::json& coefficients = need(j, "coefficients", "term -> value");
-  s.coefficients.intercept = number(need(coefficients, "1", "the intercept"), "coefficients.1");
+// The coefficients and parameters of the fit's terms (path-named errors).
+void read_terms(const nlohmann::json& j, SavedFit& s) {
+  s.engine = field(j, "engine", "the engine's name").get<std::string>();
+  s.terms = parse_formula(field(j, "model", "the model formula").get<std::string>());  // its errors name the model
+  const nlohmann::json& coefficients = field(j, "coefficients", "term -> value");
+  s.coefficients.intercept = finite_number(field_at(coefficients, "1", "coefficients.1", "the intercept"),
+                                           "coefficients.1", "the intercept");
   for (const Term* t : s.terms) {
-    const std::string name(t->name);
+    const std::string name(t->name), path = "coefficients." + name;
     s.coefficients.b.push_back(
-        number(need(coefficients, name.c_str(), "a model term's coefficient"), "coefficients." + name));
+        finite_number(field_at(coefficients, name, path, "a model term's coefficient"), path, "a model term's coefficient"));
   }
   s.parameters = default_parameters(s.terms);
   for (std::size_t k = 0; k < s.terms.size(); ++k) {
     if (!s.terms[k]->parameter) continue;
-    const nlohmann::json& params = need(j, "parameters", "nonlinear term parameters");
     const std::string name(s.terms[k]->name), parameter(s.terms[k]->parameter->name);
-    const nlohmann::json& p = need(params, name.c_str(), "the term's parameter");
-    s.parameters[k] = number(need(p, parameter.c_str(), "the parameter value"),
-                             "parameters." + name + "." + parameter);
+    const nlohmann::json& p = field_at(field(j, "parameters", "nonlinear term parameters"), name,
+                                       "parameters." + name, "the term's parameter");
+    const std::string path = "parameters." + name + "." + parameter;
+    s.parameters[k] = finite_number(field_at(p, parameter, path, "the parameter value"), path, "the parameter value");
   }
+}
+
+// What the fit file says of its data: the range, the file, the sample
+// interval, the glitch floor, the burst mode (each absent in older files).
+void read_data(const nlohmann::json& j, SavedFit& s) {
+  if (!j.contains("data") || !j["data"].is_object()) return;
+  const nlohmann::json& d = j["data"];
+  if (d.contains("temp_range_c")) {
+    const nlohmann::json& r = d["temp_range_c"];
+    if (!r.is_array() || r.size() != 2) throw InputError("data.temp_range_c: expected [min, max] in °C");
+    s.temp_range_c = {finite_number(r[0], "data.temp_range_c[0]", "°C"), finite_number(r[1], "data.temp_range_c[1]", "°C")};
+  }
+  if (d.contains("file") && d["file"].is_string()) s.data_file = d["file"].get<std::string>();
+  if (d.contains("sample_interval_s"))
+    s.sample_interval_s = finite_number(d["sample_interval_s"], "data.sample_interval_s", "s");
+  if (d.contains("outlier_floor_dph"))
+    s.outlier_floor_dph = finite_number(d["outlier_floor_dph"], "data.outlier_floor_dph", "°/h");
+  if (d.contains("bursts") && d["bursts"].is_boolean()) s.bursts = d["bursts"].get<bool>();
+}
+
+// The terms the record could not support over its range, with why (fit
+// files from before record.reasons have none).
+void read_record(const nlohmann::json& j, SavedFit& s) {
+  if (j.contains("record") && j["record"].is_object() && j["record"].contains("reasons")) {
+    const nlohmann::json& record = j["record"];
+    const nlohmann::json& reasons = record["reasons"];
+    if (!reasons.is_object())
+      throw InputError("record.reasons: expected {term: [reason, ...]}");
+    for (const auto& [term, list] : reasons.items()) {
+      bool limits = false;
+      for (const nlohmann::json& r : list.is_array() ? list : nlohmann::json::array()) {
+        bool known = false;
+        for (int k = 0; k < kSupportReasons; ++k)
+          if (r.is_string() && r.get<std::string>() == to_string(static_cast<SupportReason>(k))) {
+            known = true;
+            limits = limits || limits_range(static_cast<SupportReason>(k));
+          }
+        if (!known)
+          throw InputError(fmt::format("record.reasons.{}: expected a list of narrow_range, few_levels, gap, "
+                                       "time_locked",
+                                       term));
+      }
+      const nlohmann::json* why = record.contains("flags") && record["flags"].contains(term) ? &record["flags"][term] : nullptr;
+      (limits ? s.support_flags : s.meaning_flags)
+          .emplace_back(term, why && why->is_string() ? why->get<std::string>() : list.dump());
+    }
+  }
+}
+
+SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::json& j) {
+  SavedFit s;
+  s.file = file;
   try {
+    read_terms(j, s);
     read_object(j, "pipeline", "how the data were prepared", s.pipeline);
+    s.instability_after_dph = finite(j, "instability_after_dph", "°/h");
+    if (j.contains("instability_before_dph"))
+      s.instability_before_dph = finite_number(j["instability_before_dph"], "instability_before_dph", "°/h");
+    read_data(j, s);
+    read_record(j, s);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}; is this a file written by 'gyrotherm fit -o'?", file.string(), e.what()));
   }
@@ -354,49 +407,6 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
       units.validate();
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: pipeline.columns.units: {}", file.string(), e.what()));
-    }
-  }
-  s.instability_after_dph = number(need(j, "instability_after_dph", "°/h"), "instability_after_dph");
-  if (j.contains("instability_before_dph"))
-    s.instability_before_dph = number(j["instability_before_dph"], "instability_before_dph");
-  // Fit files from before the range was saved have none.
-  if (j.contains("data") && j["data"].is_object() && j["data"].contains("temp_range_c")) {
-    const nlohmann::json& r = j["data"]["temp_range_c"];
-    if (!r.is_array() || r.size() != 2)
-      throw InputError(fmt::format("{}: data.temp_range_c: expected [min, max] in °C", file.string()));
-    s.temp_range_c = {number(r[0], "data.temp_range_c[0]"), number(r[1], "data.temp_range_c[1]")};
-  }
-  if (j.contains("data") && j["data"].is_object()) {
-    const nlohmann::json& d = j["data"];
-    if (d.contains("file") && d["file"].is_string()) s.data_file = d["file"].get<std::string>();
-    if (d.contains("sample_interval_s")) s.sample_interval_s = number(d["sample_interval_s"], "data.sample_interval_s");
-    if (d.contains("outlier_floor_dph")) s.outlier_floor_dph = number(d["outlier_floor_dph"], "data.outlier_floor_dph");
-    if (d.contains("bursts") && d["bursts"].is_boolean()) s.bursts = d["bursts"].get<bool>();
-  }
-  // The terms the record could not support over its range, with why (fit
-  // files from before record.reasons have none).
-  if (j.contains("record") && j["record"].is_object() && j["record"].contains("reasons")) {
-    const nlohmann::json& record = j["record"];
-    const nlohmann::json& reasons = record["reasons"];
-    if (!reasons.is_object())
-      throw InputError(fmt::format("{}: record.reasons: expected {{term: [reason, ...]}}", file.string()));
-    for (const auto& [term, list] : reasons.items()) {
-      bool limits = false;
-      for (const nlohmann::json& r : list.is_array() ? list : nlohmann::json::array()) {
-        bool known = false;
-        for (int k = 0; k < kSupportReasons; ++k)
-          if (r.is_string() && r.get<std::string>() == to_string(static_cast<SupportReason>(k))) {
-            known = true;
-            limits = limits || limits_range(static_cast<SupportReason>(k));
-          }
-        if (!known)
-          throw InputError(fmt::format("{}: record.reasons.{}: expected a list of narrow_range, few_levels, gap, "
-                                       "time_locked",
-                                       file.string(), term));
-      }
-      const nlohmann::json* why = record.contains("flags") && record["flags"].contains(term) ? &record["flags"][term] : nullptr;
-      (limits ? s.support_flags : s.meaning_flags)
-          .emplace_back(term, why && why->is_string() ? why->get<std::string>() : list.dump());
     }
   }
   return s;

@@ -215,7 +215,23 @@ TEST(CliFit, CompensateWithAMalformedFitFile) {
   write_text(dir / "fit.json", "{\"engine\": \"ols\", \"model\": \"T\"}");
   const auto r = run_cli(dir, "compensate d.csv --fit fit.json");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("fit.json: missing field 'coefficients'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("fit.json: coefficients: missing (term -> value); is this a file written by 'gyrotherm fit -o'?"),
+            std::string::npos)
+      << r.err;
+  // A field inside an object is named by its path; an unknown term with the model.
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"engine": "ols", "model": "T", "coefficients": {"1": 0.5, "T": "x"}})",
+       "fit.json: coefficients.T: must be a finite number (a model term's coefficient)"},
+      {R"({"engine": "ols", "model": "T", "coefficients": {"1": 0.5}})",
+       "fit.json: coefficients.T: missing (a model term's coefficient)"},
+      {R"({"engine": "ols", "model": "T + T^9", "coefficients": {"1": 0.5}})",
+       "fit.json: model 'T + T^9': unknown term 'T^9'"}};
+  for (const auto& [text, expected] : cases) {
+    write_text(dir / "fit.json", text);
+    const auto bad = run_cli(dir, "compensate d.csv --fit fit.json");
+    EXPECT_EQ(bad.exit_code, 2) << text;
+    EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+  }
 }
 
 // The pipeline object written by to_json reads back by from_json to the same
