@@ -13,6 +13,7 @@
 #include "fit/model/formula.h"
 #include "fit/record_support.h"
 #include "sim/util/input_error.h"
+#include "sim/util/sha256.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -283,6 +284,8 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
     j["data"]["temp_range_c"] = {*lo, *hi};  // of the window means: where the model was fitted
   }
+  // The bytes it was fitted on, so that check can tell the same log given again.
+  if (std::error_code ec; std::filesystem::is_regular_file(data.file, ec)) j["data"]["sha256"] = sha256_file_hex(data.file);
   PipelineOptions written = pipeline;
   written.columns.units = data.units;  // the units the record was read in, each set
   j["pipeline"] = written;
@@ -348,6 +351,7 @@ void read_data(const nlohmann::json& j, SavedFit& s) {
     s.temp_range_c = {finite_number(r[0], "data.temp_range_c[0]", "°C"), finite_number(r[1], "data.temp_range_c[1]", "°C")};
   }
   if (d.contains("file") && d["file"].is_string()) s.data_file = d["file"].get<std::string>();
+  if (d.contains("sha256") && d["sha256"].is_string()) s.data_sha256 = d["sha256"].get<std::string>();
   if (d.contains("sample_interval_s"))
     s.sample_interval_s = finite_number(d["sample_interval_s"], "data.sample_interval_s", "s");
   if (d.contains("outlier_floor_dph"))

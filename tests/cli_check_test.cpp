@@ -292,6 +292,22 @@ TEST(CliCheck, AFitFileIsCheckedAsCompensateAppliesIt) {
   for (int a = 0; a < 3; ++a) EXPECT_LT(j["axes"][a]["after_dph"].get<double>(), 1.5 * 3.0) << a;
   // The model's constant is the bias: nothing is left but noise.
   EXPECT_LT(std::abs(j["axes"][0]["offset_dph"].get<double>()), 3.0);
+  const auto fitted_log = [](const nlohmann::json& check) {
+    for (const auto& f : check["findings"])
+      if (f["issue"] == "fitted_log") return true;
+    return false;
+  };
+  EXPECT_FALSE(fitted_log(j)) << j["findings"];
+  // The fit file knows the bytes it was fitted on: the same log given again
+  // is found (by content, not name), and the text says what its PASS means.
+  const nlohmann::json fit = nlohmann::json::parse(testing::slurp(dir.path() / "fit.json"));
+  EXPECT_EQ(fit["channels"][0]["data"]["sha256"].get<std::string>().size(), 64u);
+  std::filesystem::copy_file(dir.path() / "run1.ulg", dir.path() / "copy.ulg");
+  const nlohmann::json same = check_json(dir, "copy.ulg --params fit.json --max-residual 15");
+  EXPECT_TRUE(fitted_log(same)) << same["findings"];
+  const CliResult text = run_cli(dir, "check copy.ulg --params fit.json");
+  EXPECT_NE(text.out.find("finding: this log is the one the calibration was fitted on (run1.ulg"), std::string::npos)
+      << text.out;
 }
 
 TEST(CliCheck, BadParameterFilesAreRefusedNamingTheLine) {

@@ -69,6 +69,11 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
                          100.0 * f.value, r.tmin_c, r.tmax_c);
     case CheckIssue::residual_over_limit:
       return fmt::format("axis {}: the residual {:.4g} °/h exceeds the limit {:.4g} °/h", f.name, f.value, f.limit);
+    case CheckIssue::fitted_log:
+      return fmt::format("this log is the one the calibration was fitted on ({}, the same SHA-256): the residual is "
+                         "the fit's own, and says nothing of how the calibration holds on another test; check it on "
+                         "a second log",
+                         f.name.empty() ? std::string("the fit file's data") : f.name);
   }
   return "";
 }

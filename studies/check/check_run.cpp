@@ -14,6 +14,7 @@
 #include "fit/data/plausibility.h"
 #include "fit/data/units.h"
 #include "sim/util/input_error.h"
+#include "sim/util/sha256.h"
 #include "studies/export/firmware.h"
 #include "studies/export/firmware_outcome.h"
 #include "studies/fit/compensate_run.h"
@@ -171,6 +172,11 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
     a.contents = format->read(o.log, -1, {});
     r->log_format = a.contents.format;
   }
+  // The log the fit was made on, given again: its residual is the fit's own.
+  const auto fitted_here = std::find_if(p.fits.begin(), p.fits.end(), [](const fit::SavedFit& f) { return !f.data_sha256.empty(); });
+  if (std::error_code ec; fitted_here != p.fits.end() && std::filesystem::is_regular_file(o.log, ec) &&
+                          sha256_file_hex(o.log) == fitted_here->data_sha256)
+    r->findings.push_back({CheckIssue::fitted_log, 0.0, 0.0, fitted_here->data_file});
   bool first = true;
   for (std::size_t k = 0; k < run.channels.size(); ++k) {
     const fit::Compensation& c = run.channels[k];
@@ -348,6 +354,7 @@ std::string_view check_issue_name(CheckIssue issue) {
     case CheckIssue::device_mismatch: return "device_mismatch";
     case CheckIssue::outside_range: return "outside_range";
     case CheckIssue::residual_over_limit: return "residual_over_limit";
+    case CheckIssue::fitted_log: return "fitted_log";
   }
   return "";
 }

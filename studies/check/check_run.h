@@ -57,6 +57,7 @@ enum class CheckIssue {
   device_mismatch,           // the calibration's device id is no gyro of the log: the firmware would not apply it
   outside_range,             // samples outside TMIN..TMAX (held at the edge)
   residual_over_limit,       // --max-residual exceeded
+  fitted_log,                // the log is the one the fit was made on (same SHA-256): no second test
 };
 // "calibration_span_minimum", …
 std::string_view check_issue_name(CheckIssue issue);
