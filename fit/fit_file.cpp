@@ -352,6 +352,9 @@ void read_data(const nlohmann::json& j, SavedFit& s) {
   }
   if (d.contains("file") && d["file"].is_string()) s.data_file = d["file"].get<std::string>();
   if (d.contains("sha256") && d["sha256"].is_string()) s.data_sha256 = d["sha256"].get<std::string>();
+  if (d.contains("cautions") && d["cautions"].is_array())
+    for (const nlohmann::json& c : d["cautions"])
+      if (c.is_string()) s.data_cautions.push_back(c.get<std::string>());
   if (d.contains("sample_interval_s"))
     s.sample_interval_s = finite_number(d["sample_interval_s"], "data.sample_interval_s", "s");
   if (d.contains("outlier_floor_dph"))

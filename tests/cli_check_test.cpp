@@ -177,6 +177,7 @@ TEST(CliCheck, MaxResidualFailsAModelThatMissesTheCurve) {
   const CliResult text = run_cli(dir, "check run2.ulg --params line.params --max-residual 15");
   EXPECT_EQ(text.exit_code, 1);
   EXPECT_NE(text.out.find("verdict: FAIL"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("FAIL (every axis"), std::string::npos) << text.out;  // it does not say what PASS says
   // Without a limit, no verdict and exit 0.
   EXPECT_TRUE(check_json(dir, "run2.ulg --params line.params")["passed"].is_null());
 }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -150,6 +151,21 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   const nlohmann::json c_json = nlohmann::json::parse(checked.out);
   ASSERT_EQ(c_json["cautions"].size(), 1u) << checked.out;
   EXPECT_NE(c_json["cautions"][0].get<std::string>().find("°C read as K?"), std::string::npos);
+  // A fit made on it carries the caution into its file, and export stops on
+  // it: a firmware would clamp every real temperature to a TMIN near 300 °C.
+  ASSERT_EQ(run_cli(dir, "fit kelvin.csv --model T -o kfit.json").exit_code, 0);
+  const auto refused = run_cli(dir, "export kfit.json --format px4 -o kfit.params");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("look read in another unit"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("°C read as K?"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "kfit.params"));
+  const auto accepted = run_cli(dir, "export kfit.json --format px4 --accept-caution -o kfit.params");
+  ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
+  const std::string params = testing::slurp(dir / "kfit.params");
+  EXPECT_NE(params.find("# CAUTION (exported with --accept-caution): the data the fit was made on look read in"),
+            std::string::npos)
+      << params;
+  EXPECT_NE(params.find("every temperature is above 200 °C"), std::string::npos) << params;
 }
 
 }  // namespace

@@ -162,6 +162,13 @@ TEST(HeaderUnits, NumbersThatLookLikeAnotherUnitAreCautioned) {
   ASSERT_GE(t["data"]["cautions"].size(), 1u);
   EXPECT_NE(t["data"]["cautions"][0].get<std::string>().find("spans 83 days"), std::string::npos)
       << t["data"]["cautions"];
+  // With the default window the samples are 1000 s apart: the refusal says why.
+  const auto refused = run_cli(dir, "fit ms.csv" + cols);
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("the averaging window is shorter than the sample interval"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("caution (how the record was read): the record spans 83 days"), std::string::npos)
+      << refused.err;
   // A smooth turn at up to 47 °/s (sample-to-sample changes small): the
   // rates no gyro at rest reads are cautioned.
   std::string turn = "time,temp,gyro\n";

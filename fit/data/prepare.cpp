@@ -23,7 +23,9 @@ PreparedData prepare_data(const Measurement& m, const PipelineOptions& options) 
   d.raw_samples = m.size();
   std::vector<unsigned char> valid(m.size(), 1);
   if (options.remove_outliers) d.outliers = flag_outliers(m, options.outliers, valid);
-  d.series = average_windows(m, valid, options.averaging, &d.averaging);
+  // A window refused for numbers read in the wrong unit (a time in ms read
+  // as s: samples 1000 s apart) says what looks wrong.
+  d.series = with_cautions(d.cautions, [&] { return average_windows(m, valid, options.averaging, &d.averaging); });
   derive_into(d, options);
   return d;
 }

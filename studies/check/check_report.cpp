@@ -37,9 +37,15 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
     case CheckIssue::calibration_span_minimum:
     case CheckIssue::calibration_span_advice: {
       const bool minimum = f.issue == CheckIssue::calibration_span_minimum;
+      if (r.format != ParameterFormat::ardupilot)  // ArduPilot's limits are its own; the physics holds for every file
+        return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C), under {:g} °C: {}", f.value, r.tmin_c,
+                           r.tmax_c, f.limit,
+                           minimum ? "its polynomial is fitted on a few degrees and says little of the curve outside them"
+                                   : "a flight outside it runs on the edge's value");
       return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C), under the {:g} °C {}", f.value, r.tmin_c,
                          r.tmax_c, f.limit,
-                         minimum ? "ArduPilot requires for a temperature calibration: its curve is a guess beyond a few degrees"
+                         minimum ? "ArduPilot requires for a temperature calibration: its polynomial says little of "
+                                   "the curve beyond a few degrees"
                                  : "ArduPilot advises: a flight outside it runs on the edge's value");
     }
     case CheckIssue::log_span_minimum:
@@ -158,9 +164,12 @@ std::string check_text(const CheckResult& r) {
   }
   for (const fit::UnitCaution& c : r.cautions) out += "caution: " + fit::caution_text(c) + "\n";
   for (const CheckFinding& f : r.findings) out += "finding: " + finding_text(f, r) + "\n";
-  if (r.passed)
-    out += fmt::format("verdict: {} (every axis's residual against temperature within {:.4g} °/h)\n",
-                       *r.passed ? "PASS" : "FAIL", *r.limit_dph);
+  if (r.passed && *r.passed)
+    out += fmt::format("verdict: PASS (every axis's residual against temperature within {:.4g} °/h)\n", *r.limit_dph);
+  else if (r.passed)
+    out += fmt::format("verdict: FAIL (an axis's residual against temperature above {:.4g} °/h: the findings name "
+                       "it)\n",
+                       *r.limit_dph);
   return out;
 }
 

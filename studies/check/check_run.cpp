@@ -31,7 +31,7 @@ void add_caution(CheckResult& r, const fit::UnitCaution& c) {
   r.cautions.push_back(c);
 }
 
-constexpr double kSpanMinimumC = 10.0;  // ArduPilot's minimum span for a temperature calibration
+constexpr double kSpanMinimumC = kArduPilotSpanMinimumC;  // ArduPilot's minimum span for a temperature calibration
 constexpr double kSpanAdviceC = 25.0;   // and its advice
 constexpr std::size_t kBinSamples = 10; // a temperature bin needs this many samples to be shown
 constexpr int kMaxBins = 20;

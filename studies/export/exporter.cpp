@@ -124,6 +124,20 @@ ExportOutput run_export(const ExportRequest& request) {
         "plan'), or export anyway with --accept-caution (the cautions then go into the file)",
         request.fit_file, list));
   }
+  // Numbers that looked like another unit when fitted (a temperature in K, a
+  // rate in °/s read as °/h): the parameters would be wrong in the firmware.
+  std::vector<std::string> units;
+  for (const fit::SavedFit& f : fits)
+    for (const std::string& c : f.data_cautions) units.push_back(fmt::format("{}: {}", channel_name(f), c));
+  if (!units.empty() && !request.accept_caution) {
+    std::string list;
+    for (const std::string& c : units) list += "\n  " + c;
+    throw InputError(fmt::format(
+        "{}: the data it was fitted on look read in another unit, or moving, so the exported parameters would be "
+        "wrong in the firmware:{}\nfit again with the unit options the cautions name, or export anyway with "
+        "--accept-caution (the cautions then go into the file)",
+        request.fit_file, list));
+  }
   ExportOutput out = exporter.write(request, fits);
   // Cautions of meaning (temperature locked to time) travel too, without stopping the export.
   std::vector<std::string> meaning;
@@ -134,11 +148,16 @@ ExportOutput run_export(const ExportRequest& request) {
     top += fmt::format("{} CAUTION (exported with --accept-caution): the record the fit was made on cannot support:\n",
                        exporter.comment);
   for (const std::string& c : cautions) top += fmt::format("{}   {}\n", exporter.comment, c);
+  if (!units.empty())
+    top += fmt::format("{} CAUTION (exported with --accept-caution): the data the fit was made on look read in "
+                       "another unit, or moving:\n",
+                       exporter.comment);
+  for (const std::string& c : units) top += fmt::format("{}   {}\n", exporter.comment, c);
   if (!meaning.empty())
     top += fmt::format("{} CAUTION: on the record the fit was made on, what these numbers mean is uncertain:\n",
                        exporter.comment);
   for (const std::string& c : meaning) top += fmt::format("{}   {}\n", exporter.comment, c);
-  for (const auto* list : {&cautions, &meaning})
+  for (const auto* list : {&cautions, &units, &meaning})
     for (const std::string& c : *list) out.warnings.push_back("caution: " + c);
   out.text = top + out.text;
   write_file_atomically(request.output, out.text);

@@ -115,6 +115,12 @@ std::array<AxisModel, 3> firmware_axes(const ExportRequest& request, const std::
 
 // What both firmware formats write: the axes, the file's header (from the
 // first axis's fit), the range, and export's lines so far (dropped terms).
+// ArduPilot's own temperature calibration refuses a span under this (its
+// AP_InertialSensor_tempcal; check's calibration_span_minimum the same).
+inline constexpr double kArduPilotSpanMinimumC = 10.0;
+// "the calibration covers 8.2 °C (15.7..23.8 °C), under the 10 °C ArduPilot requires …"
+std::string ardupilot_span_caution(const ExportRange& r);
+
 struct FirmwareFile {
   std::array<AxisModel, 3> axes;
   ExportHeader header;

@@ -25,8 +25,11 @@ std::vector<OptionRow<O>> check_rows() {
       field_row<O>("--json", "Print one JSON object", &O::json)};
   append_rows(rows, column_option_rows(/*fit_defaults=*/false), [](O& o) -> auto& { return o.request.columns; });
   add_fit_file_defaults(rows, "with a fit file as --params");
-  for (OptionRow<O>& r : rows)
+  for (OptionRow<O>& r : rows) {
     if (r.names == "--imu") r.default_note = "the one the calibration is for";
+    // A CSV log checked against a PX4 or ArduPilot file is read as three axes (check_run.cpp's read_csv).
+    if (r.names == "--gyro-col") r.default_note = "gyro_x,gyro_y,gyro_z; with a fit file as --params: the fit's";
+  }
   return rows;
 }
 

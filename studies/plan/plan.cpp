@@ -88,6 +88,7 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   // The standard recipes at the same limits and target.
   const std::vector<Recipe> recipes = standard_recipes(setup.limits);
   std::optional<Candidate> best_recipe;  // the shortest recipe that meets the target
+  std::optional<double> warmup_s;        // the warm-up's duration, where it meets the target
   std::string best_recipe_name;
   for (std::size_t i = 0; i < recipes.size(); ++i) {
     report("standard recipes", static_cast<int>(i), static_cast<int>(recipes.size()));
@@ -103,6 +104,7 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
     }
     r.baselines.push_back(b);
     r.evaluations += o.evaluations;
+    if (o.met && recipes[i].kind == Recipe::Kind::warmup) warmup_s = o.best.precision.duration_s;
     // The warm-up's cold soak is not counted: it is no plan for a unit that starts warm.
     if (o.met && recipes[i].kind != Recipe::Kind::warmup &&
         (!best_recipe || o.best.precision.duration_s < best_recipe->precision.duration_s)) {
@@ -153,6 +155,8 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
   r.sensor_min_c = plan.best.precision.sensor_min_c;
   r.sensor_max_c = plan.best.precision.sensor_max_c;
   r.windows = plan.best.precision.windows;
+  if (warmup_s && *warmup_s < r.duration_s)
+    r.notes.emplace_back(WarmupNotCounted{*warmup_s, setup.limits.low_c, setup.limits.start_c});
   for (std::size_t j = 0; j < r.terms.size(); ++j) {
     r.terms[j].predicted_se = plan.best.precision.se[j];
     r.terms[j].parameter = setup.model.parameters[j];

@@ -37,6 +37,13 @@ struct NoteWords {
                        "predicted",
                        n.term, n.parameter, n.value);
   }
+  std::string operator()(const WarmupNotCounted& n) const {
+    return fmt::format("the warm-up from cold meets the precision in {:.2f} h, sooner than this plan, but only after "
+                       "a cold soak at {} °C unpowered that it does not count (hours for the unit to get there); the "
+                       "plan starts soaked at {} °C and counts all its time: take the warm-up where the unit can be "
+                       "cold-soaked beforehand",
+                       n.duration_s / 3600.0, n.low_c, n.start_c);
+  }
   std::string operator()(const RecipeIsPlan& n) const {
     return fmt::format("the planned test is the recipe '{}': no profile of the searched family (full-range legs at "
                        "the rate limit) was shorter",

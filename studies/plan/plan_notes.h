@@ -51,7 +51,13 @@ struct ParameterAssumed {
 struct RecipeIsPlan {
   std::string recipe;
 };
-using PlanNote = std::variant<StartClamped, LooseNoise, GaussMarkovMerged, ParameterAssumed, RecipeIsPlan>;
+// The warm-up from cold meets the precision sooner than the plan, but its
+// cold soak (unpowered, at the range's low end) is not counted: it is never the plan.
+struct WarmupNotCounted {
+  double duration_s = 0, low_c = 0, start_c = 0;
+};
+using PlanNote =
+    std::variant<StartClamped, LooseNoise, GaussMarkovMerged, ParameterAssumed, RecipeIsPlan, WarmupNotCounted>;
 std::string note_text(const PlanNote& note);
 
 }  // namespace gyrotherm::studies::plan
