@@ -99,6 +99,22 @@ nlohmann::ordered_json export_json(const ExportRequest& request, const ExportOut
   return j;
 }
 
+namespace {
+
+// Refuses the export (InputError) when `cautions` hold any and the user did
+// not --accept-caution: why, each caution, and what to do instead.
+void refuse_unless_accepted(const ExportRequest& request, const std::vector<std::string>& cautions,
+                            std::string_view why, std::string_view instead) {
+  if (cautions.empty() || request.accept_caution) return;
+  std::string list;
+  for (const std::string& c : cautions) list += "\n  " + c;
+  throw InputError(fmt::format("{}: {}:{}\n{}, or export anyway with --accept-caution (the cautions then go into the "
+                               "file)",
+                               request.fit_file, why, list, instead));
+}
+
+}  // namespace
+
 ExportOutput run_export(const ExportRequest& request) {
   const ExporterInfo& exporter = find_exporter(request.format);
   const std::vector<fit::SavedFit> fits = fit::load_fits(request.fit_file);
@@ -115,29 +131,19 @@ ExportOutput run_export(const ExportRequest& request) {
   for (const fit::SavedFit& f : fits)
     for (const auto& [term, why] : f.support_flags)
       cautions.push_back(fmt::format("{}: {}: {}", channel_name(f), term, why));
-  if (!cautions.empty() && !request.accept_caution) {
-    std::string list;
-    for (const std::string& c : cautions) list += "\n  " + c;
-    throw InputError(fmt::format(
-        "{}: the record it was fitted on cannot support these terms, so the exported parameters would claim more "
-        "than the fit showed:{}\nmeasure where the record has no data (a test over the whole range: 'gyrotherm "
-        "plan'), or export anyway with --accept-caution (the cautions then go into the file)",
-        request.fit_file, list));
-  }
+  refuse_unless_accepted(request, cautions,
+                         "the record it was fitted on cannot support these terms, so the exported parameters would "
+                         "claim more than the fit showed",
+                         "measure where the record has no data (a test over the whole range: 'gyrotherm plan')");
   // Numbers that looked like another unit when fitted (a temperature in K, a
   // rate in °/s read as °/h): the parameters would be wrong in the firmware.
   std::vector<std::string> units;
   for (const fit::SavedFit& f : fits)
     for (const std::string& c : f.data_cautions) units.push_back(fmt::format("{}: {}", channel_name(f), c));
-  if (!units.empty() && !request.accept_caution) {
-    std::string list;
-    for (const std::string& c : units) list += "\n  " + c;
-    throw InputError(fmt::format(
-        "{}: the data it was fitted on look read in another unit, or moving, so the exported parameters would be "
-        "wrong in the firmware:{}\nfit again with the unit options the cautions name, or export anyway with "
-        "--accept-caution (the cautions then go into the file)",
-        request.fit_file, list));
-  }
+  refuse_unless_accepted(request, units,
+                         "the data it was fitted on look read in another unit, or moving, so the exported parameters "
+                         "would be wrong in the firmware",
+                         "fit again with the unit options the cautions name");
   ExportOutput out = exporter.write(request, fits);
   // Cautions of meaning (temperature locked to time) travel too, without stopping the export.
   std::vector<std::string> meaning;
