@@ -180,6 +180,20 @@ TEST(CliCheck, MaxResidualFailsAModelThatMissesTheCurve) {
   EXPECT_EQ(text.out.find("FAIL (every axis"), std::string::npos) << text.out;  // it does not say what PASS says
   // Without a limit, no verdict and exit 0.
   EXPECT_TRUE(check_json(dir, "run2.ulg --params line.params")["passed"].is_null());
+  // A log too sparse for any temperature bin (15 samples over 50 °C): no
+  // residual is shown (null, not 0), a finding says so per axis, and the limit is not passed.
+  std::vector<ImuSample> sparse;
+  const std::vector<ImuSample> full = run_samples({10.0, 60.0, 5});
+  for (std::size_t k = 0; k < full.size(); k += 480) sparse.push_back(full[k]);
+  write_ulog(dir / "sparse.ulg", sparse);
+  const nlohmann::json none = check_json(dir, "sparse.ulg --params line.params --max-residual 15", 1);
+  EXPECT_TRUE(none["axes"][0]["residual_dph"].is_null()) << none["axes"][0];
+  EXPECT_TRUE(has(issues_of(none), "no_residual")) << none["findings"];
+  EXPECT_FALSE(has(issues_of(none), "residual_over_limit")) << none["findings"];
+  EXPECT_EQ(none["passed"], false);
+  const CliResult sparse_text = run_cli(dir, "check sparse.ulg --params line.params");
+  EXPECT_NE(sparse_text.out.find("this log cannot show the residual against temperature"), std::string::npos)
+      << sparse_text.out;
 }
 
 TEST(CliCheck, ArduPilotParametersOnASecondDataFlashLogWithBootOffsets) {

@@ -75,6 +75,10 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
                          100.0 * f.value, r.tmin_c, r.tmax_c);
     case CheckIssue::residual_over_limit:
       return fmt::format("axis {}: the residual {:.4g} °/h exceeds the limit {:.4g} °/h", f.name, f.value, f.limit);
+    case CheckIssue::no_residual:
+      return fmt::format("axis {}: no {:g} °C temperature bin holds the {:.0f} samples a residual needs: this log cannot "
+                         "show the residual against temperature{}",
+                         f.name, f.limit, f.value, r.limit_dph ? ", so it does not pass --max-residual" : "");
     case CheckIssue::fitted_log:
       return fmt::format("this log is the one the calibration was fitted on ({}, the same SHA-256): the residual is "
                          "the fit's own, and says nothing of how the calibration holds on another test; check it on "
@@ -145,10 +149,10 @@ std::string check_text(const CheckResult& r) {
                      "offset °/h", "residual °/h (at °C)", "outside");
   const auto number = [](double v, const char* spec) { return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : "n/a"; };
   for (const AxisCheck& x : r.axes)
-    out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11.4g} {:>13.4g} ({:>5.1f}) {:>8.1f}%\n", x.axis,
+    out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11.4g} {:>13} ({:>5}) {:>8.1f}%\n", x.axis,
                        number(x.before_dph, "{:.5g}"), number(x.after_dph, "{:.5g}"),
-                       number(x.before_dph / x.after_dph, "{:.2f}x"), x.offset_dph, x.residual_dph, x.residual_at_c,
-                       100.0 * x.outside_share);
+                       number(x.before_dph / x.after_dph, "{:.2f}x"), x.offset_dph, number(x.residual_dph, "{:.4g}"),
+                       number(x.residual_at_c, "{:.1f}"), 100.0 * x.outside_share);
   if (!r.axes.empty() && !std::isfinite(r.axes.front().before_dph))
     out += fmt::format("  (n/a: fewer than 3 windows of {:g} s in this log; --avg sets the window)\n", r.window_s);
   if (!r.axes.empty() && !r.axes.front().bins.empty()) {
@@ -167,8 +171,8 @@ std::string check_text(const CheckResult& r) {
   if (r.passed && *r.passed)
     out += fmt::format("verdict: PASS (every axis's residual against temperature within {:.4g} °/h)\n", *r.limit_dph);
   else if (r.passed)
-    out += fmt::format("verdict: FAIL (an axis's residual against temperature above {:.4g} °/h: the findings name "
-                       "it)\n",
+    out += fmt::format("verdict: FAIL (not every axis's residual against temperature is shown within {:.4g} °/h: the "
+                       "findings name the axis)\n",
                        *r.limit_dph);
   return out;
 }

@@ -251,7 +251,7 @@ AxisCheck judge_axis(const Applied& a, std::size_t k, const CheckResult& r) {
     if (count[b] < kBinSamples) continue;
     const TemperatureBin bin{low + static_cast<double>(b) * r.bin_c, low + static_cast<double>(b + 1) * r.bin_c, count[b],
                              sum[b] / static_cast<double>(count[b])};
-    if (std::abs(bin.mean_dph - x.offset_dph) >= x.residual_dph) {
+    if (!(std::abs(bin.mean_dph - x.offset_dph) < x.residual_dph)) {  // the first bin, or a larger one
       x.residual_dph = std::abs(bin.mean_dph - x.offset_dph);
       x.residual_at_c = 0.5 * (bin.low_c + bin.high_c);
     }
@@ -323,12 +323,16 @@ void add_findings(const Applied& a, CheckResult* r) {
   double outside = 0.0;
   for (const AxisCheck& x : r->axes) outside = std::max(outside, x.outside_share);
   if (outside > 0.0) r->findings.push_back({CheckIssue::outside_range, outside, 0.0, ""});
+  for (const AxisCheck& x : r->axes)
+    if (std::isnan(x.residual_dph)) r->findings.push_back({CheckIssue::no_residual, static_cast<double>(kBinSamples), r->bin_c, x.axis});
   if (r->limit_dph) {
+    // An axis whose residual cannot be shown does not pass: the log cannot say it is within the limit.
     r->passed = true;
     for (const AxisCheck& x : r->axes)
-      if (x.residual_dph > *r->limit_dph) {
+      if (!(x.residual_dph <= *r->limit_dph)) {
         r->passed = false;
-        r->findings.push_back({CheckIssue::residual_over_limit, x.residual_dph, *r->limit_dph, x.axis});
+        if (!std::isnan(x.residual_dph))
+          r->findings.push_back({CheckIssue::residual_over_limit, x.residual_dph, *r->limit_dph, x.axis});
       }
   }
 }
@@ -355,6 +359,7 @@ std::string_view check_issue_name(CheckIssue issue) {
     case CheckIssue::outside_range: return "outside_range";
     case CheckIssue::residual_over_limit: return "residual_over_limit";
     case CheckIssue::fitted_log: return "fitted_log";
+    case CheckIssue::no_residual: return "no_residual";
   }
   return "";
 }

@@ -21,6 +21,7 @@
 // judges); the share of samples outside TMIN..TMAX. Findings: the failure
 // modes users of both autopilots report (CheckIssue).
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,7 @@ enum class CheckIssue {
   outside_range,             // samples outside TMIN..TMAX (held at the edge)
   residual_over_limit,       // --max-residual exceeded
   fitted_log,                // the log is the one the fit was made on (same SHA-256): no second test
+  no_residual,               // no temperature bin has enough samples: the residual cannot be shown (`name` the axis)
 };
 // "calibration_span_minimum", …
 std::string_view check_issue_name(CheckIssue issue);
@@ -89,8 +91,8 @@ struct AxisCheck {
   std::string axis;  // "X", "Y", "Z", or the fit's channel
   double before_dph = 0.0, after_dph = 0.0;
   double offset_dph = 0.0;    // the mean compensated rate: the constant left
-  double residual_dph = 0.0;  // the largest |bin mean − offset|
-  double residual_at_c = 0.0; // the centre of that bin
+  double residual_dph = NAN;  // the largest |bin mean − offset| (NaN: no bin has enough samples)
+  double residual_at_c = NAN; // the centre of that bin
   std::vector<TemperatureBin> bins;
   double outside_share = 0.0;  // samples outside TMIN..TMAX
   // The window means (the instability's windows) of the time and of the rate

@@ -128,12 +128,14 @@ Json judged_limits(const std::vector<ReportLimit>& limits, const Json& twin) {
       value = INFINITY;
       for (const Json& c : twin["channels"]) value = std::min(value, c["compensate"]["ratio"].get<double>());
       passed = value >= l.value;
-    } else {  // residual: the check's worst axis
+    } else {  // residual: the check's worst axis; one it cannot show (null) does not pass
       value = 0.0;
-      for (const Json& a : twin["check"]["axes"]) value = std::max(value, a["residual_dph"].get<double>());
+      for (const Json& a : twin["check"]["axes"])
+        value = a["residual_dph"].is_number() ? std::max(value, a["residual_dph"].get<double>()) : NAN;
       passed = value <= l.value;
     }
-    out.push_back({{"name", l.name}, {"limit", l.value}, {"value", value}, {"passed", passed}});
+    out.push_back({{"name", l.name}, {"limit", l.value}, {"value", std::isnan(value) ? Json() : Json(value)},
+                   {"passed", passed}});
   }
   return out;
 }
