@@ -146,8 +146,11 @@ std::string verdict_text(const Diagnosis& d) {
   switch (v.kind) {
     case VerdictKind::nothing_to_try: verdict = "nothing left to try: every available term is already in the model"; break;
     case VerdictKind::none:
-      verdict = fmt::format("no missing effect is significant under the record's identified noise{}, so no term "
-                            "should be added",
+      // Absence of evidence, said as such: a test that finds nothing on a
+      // record with few levels or one direction of change has little power.
+      verdict = fmt::format("no missing effect is significant under the record's identified noise{}: the record "
+                            "gives no evidence for another term, which is no proof that none is missing (a record "
+                            "over more temperatures, both ways, tests harder)",
                             v.limited ? " (this record supported fewer tests than there are candidates; see 'not tried')"
                                       : "");
       break;
