@@ -5,12 +5,68 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 namespace gyrotherm::app {
+
+namespace {
+
+// Edits (insert, delete, substitute, swap two neighbours) from a to b.
+std::size_t edits(std::string_view a, std::string_view b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// " (did you mean 'fit'?)" for a word within two edits of one name (and
+// fewer than half its letters), else "".
+std::string did_you_mean(std::string_view typed, const std::vector<std::string>& names) {
+  std::string best;
+  std::size_t fewest = 3;
+  for (const std::string& n : names)
+    if (const std::size_t e = edits(typed, n); e < fewest && 2 * e < typed.size()) fewest = e, best = n;
+  return best.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", best);
+}
+
+// What a parse error cannot say: the command or option a typo was meant to be.
+std::string typo_hint(CLI::App& app, int argc, char** argv) {
+  if (argc < 2) return {};
+  std::vector<std::string> commands;
+  for (const CLI::App* c : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(c->get_name());
+  const std::string first = argv[1];
+  if (!first.starts_with('-') && std::find(commands.begin(), commands.end(), first) == commands.end())
+    return fmt::format("'{}' is no command{}; the commands: {}", first, did_you_mean(first, commands),
+                       fmt::join(commands, ", "));
+  for (const CLI::App* chosen : app.get_subcommands()) {
+    std::vector<std::string> options;
+    for (const CLI::Option* o : chosen->get_options())
+      for (const std::string& l : o->get_lnames()) options.push_back("--" + l);
+    for (int k = 2; k < argc; ++k) {
+      const std::string word = std::string(argv[k]).substr(0, std::string(argv[k]).find('='));
+      if (word.starts_with("--") && std::find(options.begin(), options.end(), word) == options.end())
+        if (const std::string hint = did_you_mean(word, options); !hint.empty())
+          return fmt::format("{} is no option of {}{}", word, chosen->get_name(), hint);
+    }
+  }
+  return {};
+}
+
+}  // namespace
 
 int parse_command_line(int argc, char** argv, Run* run) {
   // Static: the chosen command reads its options' counts and values when it
@@ -30,7 +86,9 @@ int parse_command_line(int argc, char** argv, Run* run) {
     std::fputs(app.help("", CLI::AppFormatMode::All).c_str(), stdout);
     return 0;
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "gyrotherm: {}\nRun 'gyrotherm --help' for the commands and options.\n", e.what());
+    const std::string hint = typo_hint(app, argc, argv);
+    fmt::print(stderr, "gyrotherm: {}{}\nRun 'gyrotherm --help' for the commands and options.\n", e.what(),
+               hint.empty() ? "" : "\ngyrotherm: " + hint);
     return 2;
   }
   return -1;

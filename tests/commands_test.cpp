@@ -50,5 +50,25 @@ TEST(Commands, EveryListedCommandIsOneFileAndAnswersHelp) {
   EXPECT_EQ(on_line, std::set<std::string>(commands.begin(), commands.end()));
 }
 
+// A typo in a command or an option is answered with the name it was near
+// (within two edits), exit 2; a word near nothing gets the list alone.
+TEST(Commands, ATypoIsAnsweredWithTheNameItWasNear) {
+  ScratchDir dir;
+  const CliResult command = run_cli(dir, "fti data.csv");
+  EXPECT_EQ(command.exit_code, 2);
+  EXPECT_NE(command.err.find("'fti' is no command (did you mean 'fit'?); the commands: simulate, fit"),
+            std::string::npos)
+      << command.err;
+  const CliResult option = run_cli(dir, "fit data.csv --modle T");
+  EXPECT_EQ(option.exit_code, 2);
+  EXPECT_NE(option.err.find("--modle is no option of fit (did you mean '--model'?)"), std::string::npos) << option.err;
+  const CliResult plural = run_cli(dir, "diagnose data.csv --candidate T^3");
+  EXPECT_NE(plural.err.find("did you mean '--candidates'?"), std::string::npos) << plural.err;
+  const CliResult far = run_cli(dir, "xyzzy");
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_NE(far.err.find("'xyzzy' is no command; the commands:"), std::string::npos) << far.err;
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+}
+
 }  // namespace
 }  // namespace gyrotherm::testing

@@ -55,6 +55,8 @@ def test_arrays_give_the_files_fit(cycle_csv):
     from_arrays = gyrotherm.fit(columns).as_dict()
     from_file = gyrotherm.fit(cycle_csv).as_dict()
     assert from_arrays["data"]["file"] == "arrays"
+    assert "sha256" not in from_arrays["data"]  # arrays have no bytes to hash
+    assert len(from_file["data"].pop("sha256")) == 64
     for d in (from_arrays, from_file):
         d["data"].pop("file")
         d.pop("truth", None), d.pop("truth_parameters", None), d.pop("coefficient_error", None)
