@@ -11,7 +11,7 @@
 namespace gyrotherm::app {
 
 void add_fit_command(CLI::App& app, Run* run) {
-  add_table_command<studies::FitCommandOptions>(app, run, "fit", "Fit a bias model to measurements (CSV)",
+  add_table_command<studies::FitCommandOptions>(app, run, "fit", "Fit a bias model to measurements (CSV, PX4 ULog, ArduPilot DataFlash)",
       studies::fit_option_table(), [](const auto& o) {
     const studies::FitRun r = studies::run_fit(studies::fit_request(o));
     fmt::print("{}", o.json ? r.json : studies::fit_text(r));

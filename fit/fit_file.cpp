@@ -312,7 +312,8 @@ nlohmann::json read_json(const std::filesystem::path& file) {
   try {
     in >> j;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: not valid JSON ({})", file.string(), e.what()));
+    throw InputError(fmt::format("{}: not a fit file: not JSON ({}); give the file 'gyrotherm fit -o' writes",
+                                 file.string(), e.what()));
   }
   return j;
 }

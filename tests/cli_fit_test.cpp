@@ -180,14 +180,14 @@ INSTANTIATE_TEST_SUITE_P(
                "d.csv", {"d.csv:4", "time"}},
         BadFit{"nan_cell", "time_s,temp_c,gyro_dph\n0,20,-7\n1,20,nan\n2,20,-7\n", "d.csv",
                {"d.csv:3", "gyro_dph", "finite"}},
-        BadFit{"too_few_points", rows(400), "d.csv", {"averaged points", "model"}},
+        BadFit{"too_few_points", rows(400), "d.csv", {"d.csv: only", "averaged points", "model"}},
         BadFit{"constant_temperature",
                [] {
                  std::string s = "time_s,temp_c,gyro_dph\n";
                  for (int k = 0; k < 3000; ++k) s += std::to_string(k) + ",25.0,-7.0\n";
                  return s;
                }(),
-               "d.csv", {"constant"}},
+               "d.csv", {"d.csv: ", "constant"}},
         BadFit{"grad_without_temp2", rows(3000), "d.csv --model 'T + grad'",
                {"grad", "temp2_c", "--temp2-col"}},
         BadFit{"unknown_term", rows(3000), "d.csv --model 'T + T^7'",

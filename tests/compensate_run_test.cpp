@@ -166,6 +166,22 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
             std::string::npos)
       << params;
   EXPECT_NE(params.find("every temperature is above 200 °C"), std::string::npos) << params;
+  // check with that one-channel fit file names its axis by the gyro column.
+  const auto one = run_cli(dir, "check kelvin.csv --params kfit.json --json");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(nlohmann::json::parse(one.out)["axes"][0]["axis"], "gyro_dph");
+  // Of a fit file with two channels, an export of one carries that one's
+  // cautions only: gyro_b (in rad/s, read as °/h) stops its own export, not gyro_dph's.
+  ASSERT_EQ(run_shell(dir, "awk -F, 'BEGIN{OFS=\",\"} /^time/{print $0,\"gyro_b\"; next} /^[0-9]/{print $0, $6/206264.806; "
+                           "next} {print}' warm.csv | tee two.csv").exit_code, 0);
+  const auto two = run_cli(dir, "fit two.csv --model T --gyro-col gyro_dph,gyro_b -o two.json");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  const auto quiet = run_cli(dir, "export two.json --format c --channel gyro_b -o b.h");
+  EXPECT_EQ(quiet.exit_code, 2);
+  EXPECT_NE(quiet.err.find("gyro_b: the gyro's sample-to-sample noise"), std::string::npos) << quiet.err;
+  const auto clean = run_cli(dir, "export two.json --format c --channel gyro_dph -o a.h");
+  ASSERT_EQ(clean.exit_code, 0) << clean.err;
+  EXPECT_EQ(testing::slurp(dir / "a.h").find("gyro_b"), std::string::npos);
 }
 
 }  // namespace

@@ -178,7 +178,7 @@ TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
   expect_refused(dir, "export fit.json --format betaflight -o out.txt", "expected c, px4 or ardupilot");
   // Corrupt, and from a version that did not save the temperature range.
   gyrotherm::testing::write_text(dir / "corrupt.json", "{\"engine\": \"ols\", \"model\": ");
-  expect_refused(dir, "export corrupt.json --format px4 -o out.txt", "corrupt.json: not valid JSON");
+  expect_refused(dir, "export corrupt.json --format px4 -o out.txt", "corrupt.json: not a fit file: not JSON");
   nlohmann::json old = nlohmann::json::parse(slurp(dir / "fit.json"));
   old["data"].erase("temp_range_c");
   gyrotherm::testing::write_text(dir / "old.json", old.dump());

@@ -187,7 +187,8 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
       if (c.fit_range_c) r->tmin_c = c.fit_range_c->first, r->tmax_c = c.fit_range_c->second;
       first = false;
     }
-    a.axis.push_back(run.fits[k].channel);
+    // A one-channel fit file names no channel: its gyro column then.
+    a.axis.push_back(!run.fits[k].channel.empty() ? run.fits[k].channel : run.fits[k].pipeline.columns.gyro);
     for (const fit::UnitCaution& caution : c.data.cautions) add_caution(*r, caution);
     a.raw_dph.push_back(full ? c.gyro_dph : c.data.series.gyro_dph);
     a.subtracted_dph.push_back(full ? c.model_dph : c.window_model_dph);

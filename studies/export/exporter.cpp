@@ -126,9 +126,13 @@ ExportOutput run_export(const ExportRequest& request) {
           "{}: the fit reads its temperatures de-lagged by --sensor-tau {:g} s, which no exported form applies "
           "(firmwares and the C compensator read the sensor as it is): fit again without --sensor-tau to export",
           request.fit_file, f.pipeline.sensor_tau_s));
-  // What the record could not support travels with the parameters, or stops them.
-  std::vector<std::string> cautions;
+  // What the record could not support travels with the parameters, or stops them:
+  // of the channels exported (--channel: that one).
+  std::vector<fit::SavedFit> exported;
   for (const fit::SavedFit& f : fits)
+    if (request.channel.empty() || channel_name(f) == request.channel) exported.push_back(f);
+  std::vector<std::string> cautions;
+  for (const fit::SavedFit& f : exported)
     for (const auto& [term, why] : f.support_flags)
       cautions.push_back(fmt::format("{}: {}: {}", channel_name(f), term, why));
   refuse_unless_accepted(request, cautions,
@@ -138,7 +142,7 @@ ExportOutput run_export(const ExportRequest& request) {
   // Numbers that looked like another unit when fitted (a temperature in K, a
   // rate in °/s read as °/h): the parameters would be wrong in the firmware.
   std::vector<std::string> units;
-  for (const fit::SavedFit& f : fits)
+  for (const fit::SavedFit& f : exported)
     for (const std::string& c : f.data_cautions) units.push_back(fmt::format("{}: {}", channel_name(f), c));
   refuse_unless_accepted(request, units,
                          "the data it was fitted on look read in another unit, or moving, so the exported parameters "
@@ -147,7 +151,7 @@ ExportOutput run_export(const ExportRequest& request) {
   ExportOutput out = exporter.write(request, fits);
   // Cautions of meaning (temperature locked to time) travel too, without stopping the export.
   std::vector<std::string> meaning;
-  for (const fit::SavedFit& f : fits)
+  for (const fit::SavedFit& f : exported)
     for (const auto& [term, why] : f.meaning_flags) meaning.push_back(fmt::format("{}: {}: {}", channel_name(f), term, why));
   std::string top;
   if (!cautions.empty())

@@ -107,7 +107,14 @@ FitRun fit_record(const FitRequest& request, const RecordSource& source,
         // Large logs are read once, never held (fit/data/streaming.h); a table is never copied.
         c.data = source.prepare(c.pipeline, &c.streamed);
         fit::check_columns(terms, c.data, c.pipeline.columns);
-        c.result = fit::with_cautions(c.data.cautions, [&] { return fit::fit_model(c.data, terms, *run.engine, request.settings); });
+        c.result = fit::with_cautions(c.data.cautions, [&] {
+          try {
+            return fit::fit_model(c.data, terms, *run.engine, request.settings);
+          } catch (const FitError& e) {  // a record that cannot be fitted: which one
+            throw FitError(fmt::format("{}{}: {}", c.data.file,
+                                       channels.size() > 1 ? fmt::format(" ({})", channel) : std::string(), e.what()));
+          }
+        });
         // The simulator's truth belongs to its one gyro column.
         if (channels.size() == 1) c.truth = truth();
         c.json = fit::fit_json(c.result, c.data, c.pipeline, request.settings);
