@@ -146,6 +146,9 @@ TEST(CliExport, AModelTheFirmwareCannotExpressIsRefusedOrDroppedWithItsCost) {
   const auto dropped = run_cli(dir, "export fit.json --format px4 --drop-unsupported -o out.params");
   ASSERT_EQ(dropped.exit_code, 0) << dropped.err;
   EXPECT_NE(dropped.out.find("dropped dT: the instability on d.csv rises from"), std::string::npos) << dropped.out;
+  // What the cubic costs is put down to the term left out, not to a range the record covers whole.
+  EXPECT_NE(dropped.out.find("the terms it leaves out (dT) carry it"), std::string::npos) << dropped.out;
+  EXPECT_EQ(dropped.out.find("outside the fitted range"), std::string::npos) << dropped.out;
   // The cubic left is the fit's own coefficients of T and T^2, not refitted.
   const Fitted fit = read_fit(nlohmann::json::parse(slurp(dir / "fit.json")));
   const auto p = read_qgc(slurp(dir / "out.params"));

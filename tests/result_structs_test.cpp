@@ -109,6 +109,7 @@ TEST(ResultStructs, TheFirmwareOutcomeHoldsNamesNotSentences) {
       {"data", "FirmwareOutcome: the record's name"},
       {"fit_file", "FirmwareOutcome: a file name"},
       {"missing_data", "FirmwareOutcome: the data's name as the fit gives it"},
+      {"dropped", "AxisOutcome: term names"},
   };
   expect_text_members("studies/export/firmware_outcome.h", names, "the outcome's words are its renderers'");
 }

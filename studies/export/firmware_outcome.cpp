@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "fit/compensation.h"
@@ -13,6 +14,11 @@
 
 namespace gyrotherm::studies {
 namespace {
+
+// Holding the samples outside the fitted range at its edge is a cause of a
+// cubic's cost where it costs more than this against not holding them.
+constexpr double kEdgeCost = 1.05;
+
 
 constexpr double kTooCostly = 1.2;  // the firmware's rule leaves more than 20 % above the model
 constexpr float kPx4HysteresisC = 1.0f;
@@ -110,11 +116,18 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
     out.channel = a.channel;
     out.model_dph = a.fit->instability_after_dph;
     out.before_dph = instability_less(m, std::vector<double>(m.size(), 0.0), pipeline);
-    std::vector<double> continuous(m.size());
+    out.dropped = a.model.dropped;
+    out.outside_share = static_cast<double>(std::count_if(m.temp_c.begin(), m.temp_c.end(), [&](double t) {
+                          return t < r.tmin_c || t > r.tmax_c;
+                        })) /
+                        static_cast<double>(std::max<std::size_t>(m.size(), 1));
+    std::vector<double> continuous(m.size()), unheld(m.size());  // the cubic held at the range's edge, and not
     if (firmware == Firmware::px4) {
       const std::array<float, 4> x = px4_coefficients(a, tref);
-      for (std::size_t k = 0; k < m.size(); ++k)
+      for (std::size_t k = 0; k < m.size(); ++k) {
         continuous[k] = px4_offset_dph(x, tref, tmin, tmax, static_cast<float>(m.temp_c[k]));
+        unheld[k] = px4_offset_dph(x, tref, -1e9f, 1e9f, static_cast<float>(m.temp_c[k]));
+      }
       out.exported_dph = instability_less(m, continuous, pipeline);
       out.firmware_dph = instability_less(m, px4_applied_dph(m.time_s, m.temp_c, x, tref, tmin, tmax), pipeline);
     } else {
@@ -122,12 +135,15 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
       const std::array<float, 3> g = ardupilot_coefficients(a);
       const double bias_at_boot = a.model.evaluate(boot);  // what the boot offsets take out (the model's word)
       const std::vector<double> applied = ardupilot_applied_dph(m.temp_c, g, tmin, tmax, boot, bias_at_boot);
-      for (std::size_t k = 0; k < m.size(); ++k)
+      for (std::size_t k = 0; k < m.size(); ++k) {
         continuous[k] = a.model.evaluate(std::clamp(m.temp_c[k], r.tmin_c, r.tmax_c));
+        unheld[k] = a.model.evaluate(m.temp_c[k]);
+      }
       out.exported_dph = instability_less(m, continuous, pipeline);
       out.firmware_dph = instability_less(m, applied, pipeline);
       out.boot_error_dph = a.model.evaluate(boot) - a.model.evaluate(std::clamp<double>(boot, r.tmin_c, r.tmax_c));
     }
+    out.edge_costs = out.exported_dph > kEdgeCost * instability_less(m, unheld, pipeline);
     o.axes.push_back(out);
   }
   if (firmware == Firmware::ardupilot && !o.axes.empty()) {
@@ -178,6 +194,32 @@ nlohmann::ordered_json FirmwareOutcome::json() const {
   return j;
 }
 
+namespace {
+
+// Why the exported cubic itself costs: the terms it left out, the samples
+// held at the fitted range's edge, or (neither) the cubic's own shape.
+std::string cubic_cost_text(const AxisOutcome& a) {
+  const bool dropped = !a.dropped.empty(), outside = a.outside_share > 0.0 && a.edge_costs;
+  const std::string terms = fmt::format("{}", fmt::join(a.dropped, ", "));
+  if (dropped && !outside)
+    return fmt::format("the exported cubic already leaves this much: the terms it leaves out ({}) carry it; "
+                       "--format c compensates with them at every sample",
+                       terms);
+  if (outside && !dropped)
+    return fmt::format("the exported cubic already leaves this much: {:.0f} % of the samples lie outside the fitted "
+                       "range, held at its edge; fit over the temperature range the vehicle will see",
+                       100.0 * a.outside_share);
+  if (dropped)
+    return fmt::format("the exported cubic already leaves this much: the terms it leaves out ({}) and the {:.0f} % "
+                       "of the samples outside the fitted range (held at its edge); --format c keeps the terms, a "
+                       "fit over the range the vehicle will see the rest",
+                       terms, 100.0 * a.outside_share);
+  return "the exported cubic already leaves this much (a polynomial in T of at most third order cannot follow the "
+         "fitted model): --format c compensates with the model itself";
+}
+
+}  // namespace
+
 std::vector<std::string> FirmwareOutcome::notes() const {
   const char* name = firmware == Firmware::px4 ? "PX4" : "ArduPilot";
   if (!fit_file.empty())  // the data is not here
@@ -187,10 +229,8 @@ std::vector<std::string> FirmwareOutcome::notes() const {
   std::vector<std::string> out;
   for (const AxisOutcome& a : axes) {
     if (a.cost == FirmwareCost::none) continue;
-    const char* help =
-        a.cost == FirmwareCost::exported_cubic
-            ? "the exported cubic already leaves this much (terms dropped, or samples outside the fitted range held "
-              "at its edge): fit a polynomial over the temperature range the vehicle will see"
+    const std::string help =
+        a.cost == FirmwareCost::exported_cubic ? cubic_cost_text(a)
         : a.cost == FirmwareCost::px4_step
             ? "the cost is PX4's 1 °C step, not the model: it grows with how fast the bias changes per °C; a "
               "compensation applied at every sample (--format c in your own code) avoids it"

@@ -68,6 +68,11 @@ struct AxisOutcome {
   double before_dph = 0, model_dph = 0, exported_dph = 0, firmware_dph = 0;
   double boot_error_dph = 0;  // ArduPilot: the constant a boot outside the range leaves
   FirmwareCost cost = FirmwareCost::none;
+  // What makes an exported cubic cost: the fit's terms it left out, and the
+  // share of the record's samples outside the fitted range (held at its edge).
+  std::vector<std::string> dropped;
+  double outside_share = 0;
+  bool edge_costs = false;  // holding those samples at the edge costs more than 5 % against not holding them
 };
 
 // A record's unit caution (fit/data/plausibility.h), worded by fit::caution_text.
