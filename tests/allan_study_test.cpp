@@ -502,6 +502,11 @@ TEST(CliAllan, CompensationLowersTheBiasInstabilityAndKeepsTheAngleRandomWalk) {
   const std::size_t model_line = text.out.find("noise model of compensated (REML)");
   ASSERT_NE(model_line, std::string::npos) << text.out;
   EXPECT_EQ(text.out.find("bias_instability", model_line), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("bias instability in the table above", model_line), std::string::npos) << text.out;
+  // The raw series' model is not the gyro's noise: it holds the drift the fit removes.
+  const std::size_t raw_line = text.out.find("noise model of raw (REML)");
+  ASSERT_NE(raw_line, std::string::npos) << text.out;
+  EXPECT_LT(text.out.find("the raw series holds the thermal drift the fit removes", raw_line), model_line) << text.out;
   // The thermal drift the fit removes sits in the raw output's long τ: there
   // the raw curve rises far above the compensated one, and hides the flicker
   // floor (raw gives a bound on B, not a value, so no ratio).

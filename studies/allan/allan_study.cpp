@@ -196,10 +196,18 @@ std::string allan_text(const AllanStudy& study) {
   }
   out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664, or the "
          "noise model's flicker floor)\n";
-  // Bias instability is in the table above, once.
+  // Bias instability is in the table above, once. Beside a compensated
+  // series, the raw one still holds the thermal drift the fit removes: its
+  // model reads that drift as slow noise, so it is no model of the gyro's noise.
+  const bool compensated = study.series.size() > 1;
   for (const AllanSeries& s : study.series)
     if (s.noise)
-      out += fmt::format("noise model of {} (REML): {}\n", s.curve.name, s.noise->description("bias_instability"));
+      out += fmt::format("noise model of {} (REML): {}; bias instability in the table above{}\n", s.curve.name,
+                         s.noise->description("bias_instability"),
+                         compensated && &s == &study.series.front()
+                             ? " (the raw series holds the thermal drift the fit removes, read here as slow noise: "
+                               "the compensated series' model is the gyro's)"
+                             : "");
   if (const auto ratio = study.bias_instability_ratio())
     out += fmt::format("bias instability raw / compensated: {:.3g}\n", *ratio);
   return out;
