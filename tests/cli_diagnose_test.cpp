@@ -110,6 +110,23 @@ TEST(CliDiagnose, CleanDataSaysSo) {
   EXPECT_EQ(r.out.find("next:"), std::string::npos);
 }
 
+// A group told apart by no test over the record's range (powers of T nearly
+// proportional over it): the plan command leaves --range to the user's
+// chamber instead of repeating the record's, and plan --separate on the
+// JSON does not take that range either.
+TEST(CliDiagnose, APlanForAGroupTheRangeCannotSeparateLeavesTheRangeToTheChamber) {
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", "--hidden T^3=1e-6", "t3.csv");
+  const auto r = run_cli(dir, "diagnose t3.csv --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("plan")) << j["verdict"];
+  EXPECT_EQ(j["plan"]["range_separates"], false) << j["confounded"];
+  EXPECT_EQ(j["plan_command"].get<std::string>().find("--range"), std::string::npos) << j["plan_command"];
+  const auto text = run_cli(dir, "diagnose t3.csv");
+  EXPECT_NE(text.out.find("add --range LO,HI, your chamber's, wider than the record's"), std::string::npos) << text.out;
+}
+
 // Bands and segments narrower than a degree are printed with the decimals
 // that show them (not "13..13 °C").
 TEST(CliDiagnose, NarrowTemperatureBandsArePrintedWithTheirDecimals) {

@@ -241,7 +241,16 @@ TEST(PlanSetup, ADiagnosisGivesTheGroupItsSizesAndTheRecordsNoise) {
   PlanRequest rq = default_request();
   rq.separate = {file.string()};
   const PlanSetup s = plan_setup(rq);
+  // A range the diagnosis says cannot separate its group is not taken: the scenario's set points are.
+  {
+    std::ofstream out(file);
+    out << R"({"plan": {"model": "T + dT", "separate": {"T^3": 1e-6, "T^4": 1e-8},
+      "range_c": [20, 35], "range_separates": false}})";
+  }
+  const PlanSetup wide = plan_setup(rq);
   std::filesystem::remove(file);
+  EXPECT_DOUBLE_EQ(wide.limits.low_c, -40.0);  // the shipped cycle's set points
+  EXPECT_DOUBLE_EQ(wide.limits.high_c, 60.0);
   ASSERT_EQ(s.model_text, "T + dT");
   ASSERT_EQ(s.terms.size(), 4u);
   EXPECT_EQ(s.terms[2].term, "t");

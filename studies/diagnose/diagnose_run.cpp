@@ -96,11 +96,18 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   for (const ConfoundingGroup& g : d.confounded) out += fmt::format("cannot tell: {}\n", confounding_text(g));
   out += fmt::format("verdict: {}\n", verdict_text(d));
   if (const std::string next = next_command(channel.report); !next.empty()) out += fmt::format("next: {}\n", next);
-  if (channel.report.plan)
+  if (const auto& plan = channel.report.plan)
     out += fmt::format("next: to design a test that separates them: {}\n"
-                       "      (add --noise FILE, this diagnose's --json saved to FILE, for the record's own noise; "
-                       "--range is the record's temperatures rounded outward to {:g} °C: give your chamber's)\n",
-                       plan_command_text(*channel.report.plan), kPlanRangeStepC);
+                       "      (add --noise FILE, this diagnose's --json saved to FILE, for the record's own noise; {})\n",
+                       plan_command_text(*plan),
+                       plan->range_too_narrow
+                           ? fmt::format("add --range LO,HI, your chamber's, wider than the record's {:g}..{:g} °C, "
+                                         "over which they cannot be separated; without it plan takes its scenario's "
+                                         "set points",
+                                         plan->low_c, plan->high_c)
+                           : fmt::format("--range is the record's temperatures rounded outward to {:g} °C: give "
+                                         "your chamber's",
+                                         kPlanRangeStepC));
   if (!channel.plots.empty()) out += fmt::format("plots in {}/\n", channel.plots);
   return out;
 }

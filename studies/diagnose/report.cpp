@@ -110,19 +110,23 @@ std::optional<PlanSuggestion> plan_suggestion(const Diagnosis& d, const std::vec
   const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
   p.low_c = kPlanRangeStepC * std::floor(*lo / kPlanRangeStepC);
   p.high_c = std::max(p.low_c + kPlanRangeStepC, kPlanRangeStepC * std::ceil(*hi / kPlanRangeStepC));
+  for (const ConfoundingGroup& g : d.confounded)
+    if (g.holds(std::string(front.term->name)))
+      for (const ConfoundingEvidence& e : g.evidence) p.range_too_narrow |= e.reason == ConfoundingReason::narrow_range;
   return p;
 }
 
 std::string plan_command_text(const PlanSuggestion& p) {
-  const auto& [model, separate, param, low_c, high_c] = p;
+  const auto& [model, separate, param, low_c, high_c, range_too_narrow] = p;
   // Sizes for all or for none: plan takes either form.
   const bool sized = std::all_of(separate.begin(), separate.end(), [](const auto& m) { return std::isfinite(m.second); });
   std::vector<std::string> list, params;
   for (const auto& [name, size] : separate) list.push_back(sized ? fmt::format("{}={:.3g}", name, size) : name);
   for (const auto& [name, value] : param)
     params.push_back(fmt::format(" --param {}", shell_word(fmt::format("{}={:.6g}", name, value))));
-  return fmt::format("gyrotherm plan --model {} --separate {}{} --range {:g},{:g}", single_quoted(model),
-                     shell_word(fmt::format("{}", fmt::join(list, ","))), fmt::join(params, ""), low_c, high_c);
+  return fmt::format("gyrotherm plan --model {} --separate {}{}{}", single_quoted(model),
+                     shell_word(fmt::format("{}", fmt::join(list, ","))), fmt::join(params, ""),
+                     p.range_too_narrow ? std::string() : fmt::format(" --range {:g},{:g}", low_c, high_c));
 }
 
 DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnMap& columns,
@@ -257,7 +261,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
     j["plan"] = {{"model", report.plan->model},
                  {"separate", separate},
                  {"param", param},
-                 {"range_c", {report.plan->low_c, report.plan->high_c}}};
+                 {"range_c", {report.plan->low_c, report.plan->high_c}},
+                 {"range_separates", !report.plan->range_too_narrow}};
   }
   if (before) {
     j["before_after"] = {{"model_before", fit::formula_text(report.base_terms)},

@@ -21,7 +21,11 @@ struct PlanSuggestion {
   std::string model;
   std::vector<std::pair<std::string, double>> separate;  // member → size (NaN: unknown)
   std::vector<std::pair<std::string, double>> param;     // member → its fitted parameter
-  double low_c = 0, high_c = 0;                          // --range
+  double low_c = 0, high_c = 0;                          // the record's range, rounded outward
+  // The group is confounded because its powers of T are nearly proportional
+  // over that range: a test over it cannot separate them, so the command
+  // leaves --range to the user's chamber (plan then takes its scenario's).
+  bool range_too_narrow = false;
 };
 // gyrotherm plan --model … --separate … [--param …] --range …
 std::string plan_command_text(const PlanSuggestion& p);

@@ -137,7 +137,8 @@ void set_limits(const PlanRequest& rq, const std::optional<nlohmann::ordered_jso
   std::optional<std::pair<double, double>> range = rq.range_c;
   if (!range && diagnosis) {
     const nlohmann::ordered_json& d = *diagnosis;
-    if (d["plan"].contains("range_c") && d["plan"]["range_c"].is_array() &&
+    // A range the diagnosis says cannot separate the group is not taken: the scenario's set points are.
+    if (d["plan"].value("range_separates", true) && d["plan"].contains("range_c") && d["plan"]["range_c"].is_array() &&
         d["plan"]["range_c"].size() == 2 && d["plan"]["range_c"][0].is_number() && d["plan"]["range_c"][1].is_number())
       range = std::pair{d["plan"]["range_c"][0].get<double>(), d["plan"]["range_c"][1].get<double>()};
   }
