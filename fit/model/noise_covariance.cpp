@@ -213,6 +213,19 @@ double NoiseModel::allan_variance(double tau_s) const {
   return avar;
 }
 
+namespace {
+
+// A parameter's unit as the text reports write units (°/√h), from the ASCII
+// form its JSON `unit` field keeps (deg/sqrt(h)).
+std::string shown_unit(const std::string& unit) {
+  if (unit == "deg/sqrt(h)") return "°/√h";
+  if (unit == "deg/h") return "°/h";
+  if (unit == "deg/h/sqrt(h)") return "°/h/√h";
+  return unit;
+}
+
+}  // namespace
+
 std::string NoiseModel::description(std::string_view skip) const {
   std::string out = alternatives.empty() ? std::string() : "best of several the record supports alike: ";
   for (const NoiseParameter& p : parameters()) {
@@ -221,9 +234,9 @@ std::string NoiseModel::description(std::string_view skip) const {
     if (p.name == "gauss_markov_tau") {
       out += fmt::format("tau {:.3g} s [{:.3g}, {:.3g}]", p.value, p.lower, p.upper);
     } else if (p.identified) {
-      out += fmt::format("{} {:.3g} [{:.3g}, {:.3g}] {}", p.name, p.value, p.lower, p.upper, p.unit);
+      out += fmt::format("{} {:.3g} [{:.3g}, {:.3g}] {}", p.name, p.value, p.lower, p.upper, shown_unit(p.unit));
     } else {
-      out += fmt::format("{} < {:.3g} {} (not pinned down)", p.name, p.upper, p.unit);
+      out += fmt::format("{} < {:.3g} {} (not pinned down)", p.name, p.upper, shown_unit(p.unit));
     }
   }
   return out;
