@@ -74,7 +74,7 @@ TEST(PlanNoise, GyroFileNoiseHasTheSimulatorsAllanVariance) {
   EXPECT_TRUE(noise.model.present[kWhite] && noise.model.present[kFlicker] && noise.model.present[kRandomWalk]);
   EXPECT_FALSE(noise.model.present[kGaussMarkov]);
   // Known, so not a bound (an absent component still reads "< 0 … (not pinned down)").
-  EXPECT_NE(noise.model.description().find("bias_instability 0.0003 [0.0003, 0.0003] deg/h"), std::string::npos)
+  EXPECT_NE(noise.model.description().find("bias_instability 0.0003 [0.0003, 0.0003] °/h"), std::string::npos)
       << noise.model.description();
   EXPECT_DOUBLE_EQ(noise.white_factor(config.arw_temp_ref_c + 10.0), std::pow(1.0 + 100.0 * 2e-4, 2));
   EXPECT_EQ(noise.description(),
