@@ -13,7 +13,9 @@ namespace gyrotherm::app {
 void add_fit_command(CLI::App& app, Run* run) {
   add_table_command<studies::FitCommandOptions>(app, run, "fit", "Fit a bias model to measurements (CSV, PX4 ULog, ArduPilot DataFlash)",
       studies::fit_option_table(), [](const auto& o) {
-    const studies::FitRun r = studies::run_fit(studies::fit_request(o));
+    studies::FitRequest request = studies::fit_request(o);
+    request.hash_data = o.json || !o.output.empty();  // the text report alone has no use for the hash
+    const studies::FitRun r = studies::run_fit(request);
     fmt::print("{}", o.json ? r.json : studies::fit_text(r));
     return 0;
   });

@@ -13,7 +13,6 @@
 #include "fit/model/formula.h"
 #include "fit/record_support.h"
 #include "sim/util/input_error.h"
-#include "sim/util/sha256.h"
 
 namespace gyrotherm::fit {
 namespace {
@@ -38,12 +37,13 @@ double finite_number(const nlohmann::json& v, const std::string& path, std::stri
     throw InputError(fmt::format("{}: must be a finite number ({})", path, what));
   return v.get<double>();
 }
+double finite_at(const nlohmann::json& obj, const std::string& key, const std::string& path, std::string_view what) {
+  return finite_number(field_at(obj, key, path, what), path, what);
+}
 const nlohmann::json& field(const nlohmann::json& obj, const char* key, std::string_view what) {
   return field_at(obj, key, key, what);
 }
-double finite(const nlohmann::json& obj, const char* key, std::string_view what) {
-  return finite_number(field(obj, key, what), key, what);
-}
+double finite(const nlohmann::json& obj, const char* key, std::string_view what) { return finite_at(obj, key, key, what); }
 // obj[key] read by its from_json, an error of a field inside it named by its path ("columns.csv.rate_hz").
 template <class T>
 void read_object(const nlohmann::json& obj, const char* key, std::string_view what, T& out) {
@@ -284,8 +284,6 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
     const auto [lo, hi] = std::minmax_element(data.series.temp_c.begin(), data.series.temp_c.end());
     j["data"]["temp_range_c"] = {*lo, *hi};  // of the window means: where the model was fitted
   }
-  // The bytes it was fitted on, so that check can tell the same log given again.
-  if (std::error_code ec; std::filesystem::is_regular_file(data.file, ec)) j["data"]["sha256"] = sha256_file_hex(data.file);
   PipelineOptions written = pipeline;
   written.columns.units = data.units;  // the units the record was read in, each set
   j["pipeline"] = written;
@@ -323,12 +321,10 @@ void read_terms(const nlohmann::json& j, SavedFit& s) {
   s.engine = field(j, "engine", "the engine's name").get<std::string>();
   s.terms = parse_formula(field(j, "model", "the model formula").get<std::string>());  // its errors name the model
   const nlohmann::json& coefficients = field(j, "coefficients", "term -> value");
-  s.coefficients.intercept = finite_number(field_at(coefficients, "1", "coefficients.1", "the intercept"),
-                                           "coefficients.1", "the intercept");
+  s.coefficients.intercept = finite_at(coefficients, "1", "coefficients.1", "the intercept");
   for (const Term* t : s.terms) {
-    const std::string name(t->name), path = "coefficients." + name;
-    s.coefficients.b.push_back(
-        finite_number(field_at(coefficients, name, path, "a model term's coefficient"), path, "a model term's coefficient"));
+    const std::string name(t->name);
+    s.coefficients.b.push_back(finite_at(coefficients, name, "coefficients." + name, "a model term's coefficient"));
   }
   s.parameters = default_parameters(s.terms);
   for (std::size_t k = 0; k < s.terms.size(); ++k) {
@@ -336,8 +332,7 @@ void read_terms(const nlohmann::json& j, SavedFit& s) {
     const std::string name(s.terms[k]->name), parameter(s.terms[k]->parameter->name);
     const nlohmann::json& p = field_at(field(j, "parameters", "nonlinear term parameters"), name,
                                        "parameters." + name, "the term's parameter");
-    const std::string path = "parameters." + name + "." + parameter;
-    s.parameters[k] = finite_number(field_at(p, parameter, path, "the parameter value"), path, "the parameter value");
+    s.parameters[k] = finite_at(p, parameter, "parameters." + name + "." + parameter, "the parameter value");
   }
 }
 

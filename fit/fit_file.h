@@ -67,9 +67,9 @@ struct SavedFit {
   // fit files written before it was saved.
   std::optional<std::pair<double, double>> temp_range_c;
   std::string data_file;  // the data it was fitted on, as given to fit
-  std::string data_sha256;
+  std::string data_sha256;  // its bytes' SHA-256 (hex; empty for a table, or a file written before it was saved)
   // Its numbers that looked like another unit (the fit's data.cautions, worded).
-  std::vector<std::string> data_cautions;  // its bytes' SHA-256 (hex; empty for a table, or a file written before it was saved)
+  std::vector<std::string> data_cautions;
   // Per term the record it was fitted on cannot support over its range, why
   // (fit/record_support.h: too few temperature levels, too narrow a range, a
   // gap with no data; not temperature locked to time, a caution of meaning).

@@ -317,6 +317,8 @@ TEST(CliCheck, AFitFileIsCheckedAsCompensateAppliesIt) {
   // is found (by content, not name), and the text says what its PASS means.
   const nlohmann::json fit = nlohmann::json::parse(testing::slurp(dir.path() / "fit.json"));
   EXPECT_EQ(fit["channels"][0]["data"]["sha256"].get<std::string>().size(), 64u);
+  const CliResult printed = run_cli(dir, "fit run1.ulg --model 'T + T^2' --json");
+  EXPECT_EQ(nlohmann::json::parse(printed.out)["channels"][0]["data"]["sha256"], fit["channels"][0]["data"]["sha256"]);
   std::filesystem::copy_file(dir.path() / "run1.ulg", dir.path() / "copy.ulg");
   const nlohmann::json same = check_json(dir, "copy.ulg --params fit.json --max-residual 15");
   EXPECT_TRUE(fitted_log(same)) << same["findings"];

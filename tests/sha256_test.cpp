@@ -2,8 +2,13 @@
 #include "sim/util/sha256.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include "sim/util/input_error.h"
 
 namespace gyrotherm {
 namespace {
@@ -25,6 +30,21 @@ TEST(Sha256, PaddingBoundaries) {
             "b35439a4ac6f0948b6d6f9e3c6af0f5f590ce20f1bde7090ef7970686ec6738a");
   EXPECT_EQ(sha256_hex(std::string(64, 'a')),
             "ffe054fe7ae0cb6dc65c3af9b61d5209f439851db43d0ba5997337df154668eb");
+}
+
+// A file is hashed in 1 MB blocks: across block boundaries (and empty) it is
+// the digest of its bytes at once; a file that is not there is bad input.
+TEST(Sha256, AFileIsHashedBlockByBlockAsItsBytes) {
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("gyrotherm_sha256_" + std::to_string(::getpid()) + ".bin");
+  for (const std::size_t size : {std::size_t{0}, std::size_t{1} << 20, (std::size_t{5} << 19) + 7}) {
+    std::string bytes(size, '\0');
+    for (std::size_t i = 0; i < size; ++i) bytes[i] = static_cast<char>((i * 131) % 251);
+    std::ofstream(file, std::ios::binary) << bytes;
+    EXPECT_EQ(sha256_file_hex(file), sha256_hex(bytes)) << size;
+  }
+  std::filesystem::remove(file);
+  EXPECT_THROW(sha256_file_hex(file), InputError);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <functional>
 
 #include "fit/channels.h"
@@ -11,6 +12,7 @@
 #include "fit/model/formula.h"
 #include "sim/util/atomic_file.h"
 #include "sim/util/format.h"
+#include "sim/util/sha256.h"
 #include "studies/record_source.h"
 
 namespace gyrotherm::studies {
@@ -121,6 +123,12 @@ FitRun fit_record(const FitRequest& request, const RecordSource& source,
         if (c.truth) add_truth(c.json, c.result, *c.truth);
         return c;
       });
+  // The bytes fitted, hashed once for every channel (a table has no file).
+  if (std::error_code ec; request.hash_data && !run.channels.empty() &&
+                          std::filesystem::is_regular_file(run.channels.front().data.file, ec)) {
+    const std::string sha256 = sha256_file_hex(run.channels.front().data.file);
+    for (ChannelFit& c : run.channels) c.json["data"]["sha256"] = sha256;
+  }
   if (run.channels.size() == 1) {
     run.json = run.channels.front().json.dump(2) + "\n";
   } else {

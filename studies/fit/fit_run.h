@@ -24,6 +24,10 @@ struct FitRequest {
   fit::EngineSettings settings;
   fit::PipelineOptions pipeline;          // columns (gyro: the comma list of channels), units, rules
   std::string output;                     // -o FIT.json, or ""
+  // The JSON records the data file's SHA-256 (data.sha256: check knows the
+  // log fitted by it); the command's text report, which has no use for it,
+  // spares the extra pass over a large log.
+  bool hash_data = true;
 };
 
 struct ChannelFit {
