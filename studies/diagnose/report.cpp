@@ -126,7 +126,7 @@ std::string plan_command_text(const PlanSuggestion& p) {
     params.push_back(fmt::format(" --param {}", shell_word(fmt::format("{}={:.6g}", name, value))));
   return fmt::format("gyrotherm plan --model {} --separate {}{}{}", single_quoted(model),
                      shell_word(fmt::format("{}", fmt::join(list, ","))), fmt::join(params, ""),
-                     p.range_too_narrow ? std::string() : fmt::format(" --range {:g},{:g}", low_c, high_c));
+                     range_too_narrow ? std::string() : fmt::format(" --range {:g},{:g}", low_c, high_c));
 }
 
 DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnMap& columns,

@@ -9,7 +9,8 @@
 
 namespace gyrotherm::studies {
 
-std::string ardupilot_span_caution(const ExportRange& r) {
+std::optional<std::string> ardupilot_span_caution(const ExportRange& r) {
+  if (r.tmax_c - r.tmin_c >= kArduPilotSpanMinimumC) return std::nullopt;
   return fmt::format("the calibration covers {:.1f} °C ({:.1f}..{:.1f} °C), under the {:g} °C ArduPilot requires of "
                      "a temperature calibration: its polynomial says little of the curve beyond these degrees",
                      r.tmax_c - r.tmin_c, r.tmin_c, r.tmax_c, kArduPilotSpanMinimumC);
@@ -30,8 +31,7 @@ std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, const std
 )";
   for (std::size_t i = 0; i < 3; ++i)
     out += fmt::format("#   axis {}: {}\n", "XYZ"[i], axes[i].present ? axes[i].channel : "not compensated (zeros)");
-  if (r.tmax_c - r.tmin_c < kArduPilotSpanMinimumC)
-    out += fmt::format("# CAUTION: {}\n", ardupilot_span_caution(r));
+  if (const auto caution = ardupilot_span_caution(r)) out += fmt::format("# CAUTION: {}\n", *caution);
   out += fmt::format("{}ENABLE,1\n", prefix);
   out += fmt::format("{}TMIN,{}\n", prefix, as_float(r.tmin_c));
   out += fmt::format("{}TMAX,{}\n", prefix, as_float(r.tmax_c));
@@ -50,8 +50,7 @@ ExporterInfo ardupilot_exporter() {
             FirmwareFile f = firmware_file(r, fits, "ArduPilot");
             f.out.text = ardupilot_parameters(f.axes, prefix, f.header);
             f.out.lines.push_back(firmware_wrote(r, f, "ArduPilot"));
-            if (f.range.tmax_c - f.range.tmin_c < kArduPilotSpanMinimumC)
-              f.out.warnings.push_back("caution: " + ardupilot_span_caution(f.range));
+            if (const auto caution = ardupilot_span_caution(f.range)) f.out.warnings.push_back("caution: " + *caution);
             add_outcome(firmware_outcome(Firmware::ardupilot, f, r.data, r.boot_temp_c, r.data_table), &f.out);
             return f.out;
           }};

@@ -113,14 +113,15 @@ ExportRange export_range(const std::array<AxisModel, 3>& axes);
 std::array<AxisModel, 3> firmware_axes(const ExportRequest& request, const std::vector<fit::SavedFit>& fits,
                                        const std::string& format, ExportOutput* out);
 
-// What both firmware formats write: the axes, the file's header (from the
-// first axis's fit), the range, and export's lines so far (dropped terms).
 // ArduPilot's own temperature calibration refuses a span under this (its
 // AP_InertialSensor_tempcal; check's calibration_span_minimum the same).
 inline constexpr double kArduPilotSpanMinimumC = 10.0;
-// "the calibration covers 8.2 °C (15.7..23.8 °C), under the 10 °C ArduPilot requires …"
-std::string ardupilot_span_caution(const ExportRange& r);
+// "the calibration covers 8.2 °C (15.7..23.8 °C), under the 10 °C ArduPilot
+// requires …" for a range under it; nothing for one that is not.
+std::optional<std::string> ardupilot_span_caution(const ExportRange& r);
 
+// What both firmware formats write: the axes, the file's header (from the
+// first axis's fit), the range, and export's lines so far (dropped terms).
 struct FirmwareFile {
   std::array<AxisModel, 3> axes;
   ExportHeader header;

@@ -18,8 +18,6 @@ namespace {
 // Holding the samples outside the fitted range at its edge is a cause of a
 // cubic's cost where it costs more than this against not holding them.
 constexpr double kEdgeCost = 1.05;
-
-
 constexpr double kTooCostly = 1.2;  // the firmware's rule leaves more than 20 % above the model
 constexpr float kPx4HysteresisC = 1.0f;
 constexpr double kPx4PeriodS = 1.0;

@@ -97,7 +97,6 @@ PlanResult run_plan(const PlanRequest& request, const PlanProgress& progress) {
     b.met = o.met;
     b.duration_s = o.best.precision.duration_s;
     b.shortfall = o.best.shortfall;
-    b.closest_s = o.best.precision.duration_s;
     if (!o.met) {
       b.closest = o.best.precision;
       b.too_long = !o.best.fits;
@@ -213,7 +212,7 @@ nlohmann::ordered_json plan_json(const PlanResult& r) {
     baselines.push_back({{"recipe", b.recipe},
                          {"duration_s", b.met ? Json(b.duration_s) : Json(nullptr)},
                          {"about", b.about},
-                         {"closest_s", b.met ? Json(nullptr) : Json(b.closest_s)},
+                         {"closest_s", b.met ? Json(nullptr) : Json(b.closest.duration_s)},
                          {"shortfall", number(b.shortfall)},
                          {"why", baseline_why(b, r)}});
   j["baselines"] = baselines;
@@ -291,7 +290,7 @@ std::string plan_text(const PlanResult& r) {
       out += fmt::format("  {:<22} {:>9}  ({:+.0f} %)\n", b.recipe, hours(b.duration_s),
                          100.0 * (b.duration_s / r.duration_s - 1.0));
     else
-      out += fmt::format("  {:<22} {:>9}  (the closest, {}: {})\n", b.recipe, "never", hours(b.closest_s), baseline_why(b, r));
+      out += fmt::format("  {:<22} {:>9}  (the closest, {}: {})\n", b.recipe, "never", hours(b.closest.duration_s), baseline_why(b, r));
   }
   for (const TermPlan& t : r.terms)
     if (!std::isnan(t.parameter_log_se))

@@ -91,10 +91,9 @@ struct Baseline {
   bool met = false;
   double duration_s = 0;   // the shortest that meets the target (when met)
   double shortfall = 0;    // else: the closest's largest se / target
-  double closest_s = 0;    // and its length
-  // What holds the closest back when not met (baseline_why words it): its
-  // precision (a refusal, or the terms short of their targets), or a test
-  // longer than --longest.
+  // Else the closest, and what holds it back (baseline_why words it): its
+  // precision (its length; a refusal, or the terms short of their targets),
+  // or a test longer than --longest.
   Precision closest;
   bool too_long = false;
 };
