@@ -118,28 +118,28 @@ void add_listing_command(CLI::App& app, Run* run, const std::string& name, const
   });
 }
 
-std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studies::OptionInfo>& rows) {
+std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<OptionInfo>& rows) {
   struct Slot {
     CLI::Option* option = nullptr;
-    studies::OptionKind kind = studies::OptionKind::text;
+    OptionKind kind = OptionKind::text;
     bool flag = false;
     std::string text;
     std::vector<std::string> list;
   };
   auto slots = std::make_shared<std::vector<Slot>>(rows.size());  // never resized: CLI11 keeps their addresses
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const studies::OptionInfo& row = rows[i];
+    const OptionInfo& row = rows[i];
     Slot& slot = (*slots)[i];
     slot.kind = row.kind;
-    if (row.kind == studies::OptionKind::flag) {
-      slot.option = command->add_flag(row.names, slot.flag, studies::shown_help(row));
-    } else if (row.kind == studies::OptionKind::list) {
-      slot.option = command->add_option(row.names, slot.list, studies::shown_help(row));
+    if (row.kind == OptionKind::flag) {
+      slot.option = command->add_flag(row.names, slot.flag, shown_help(row));
+    } else if (row.kind == OptionKind::list) {
+      slot.option = command->add_option(row.names, slot.list, shown_help(row));
       // one value per name, so that a positional after it is never taken for one
       slot.option->allow_extra_args(row.several_per_name);
       slot.option->option_text(row.value_name + (row.required ? " REQUIRED" : ""));
     } else {
-      slot.option = command->add_option(row.names, slot.text, studies::shown_help(row))->type_name(row.value_name);
+      slot.option = command->add_option(row.names, slot.text, shown_help(row))->type_name(row.value_name);
     }
     if (row.required) slot.option->required();
   }
@@ -148,9 +148,9 @@ std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studi
     for (std::size_t i = 0; i < slots->size(); ++i) {
       const Slot& slot = (*slots)[i];
       if (slot.option->count() == 0) continue;
-      if (slot.kind == studies::OptionKind::flag)
+      if (slot.kind == OptionKind::flag)
         given.emplace_back(i, slot.flag ? "true" : "false");
-      else if (slot.kind == studies::OptionKind::list)
+      else if (slot.kind == OptionKind::list)
         for (const std::string& value : slot.list) given.emplace_back(i, value);
       else
         given.emplace_back(i, slot.text);

@@ -1,5 +1,5 @@
 #pragma once
-// A command's option table (studies/options/option_table.h) on its CLI11
+// A command's option table (sim/util/option_table.h) on its CLI11
 // subcommand: each row a positional, an option, a flag or a repeatable list,
 // required or not, with its help; when the command is chosen its options are
 // set from what was given (row.set, row by row) and handed to `work`. A value
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "app/commands.h"
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace CLI {
 class Option;
@@ -25,12 +25,12 @@ namespace gyrotherm::app {
 // (row, value) for every value given, rows in table order.
 using GivenValues = std::vector<std::pair<std::size_t, std::string>>;
 // Adds the rows to `command`; the function returned reads what was given.
-std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<studies::OptionInfo>& rows);
+std::function<GivenValues()> add_rows(CLI::App* command, const std::vector<OptionInfo>& rows);
 
 template <class Options>
-void bind_command(CLI::App* command, Run* run, const studies::OptionTable<Options>& table,
+void bind_command(CLI::App* command, Run* run, const OptionTable<Options>& table,
                   std::function<int(const Options&)> work) {
-  std::function<GivenValues()> given = add_rows(command, studies::list_options(table));
+  std::function<GivenValues()> given = add_rows(command, list_options(table));
   when_chosen(command, run, [&table, given = std::move(given), work = std::move(work)] {
     Options options;
     for (const auto& [row, value] : given()) table.rows[row].set(options, value);
@@ -41,7 +41,7 @@ void bind_command(CLI::App* command, Run* run, const studies::OptionTable<Option
 // A subcommand `name` with its option table, in one call.
 template <class Options>
 void add_table_command(CLI::App& app, Run* run, const std::string& name, const std::string& description,
-                       const studies::OptionTable<Options>& table, std::function<int(const Options&)> work) {
+                       const OptionTable<Options>& table, std::function<int(const Options&)> work) {
   bind_command<Options>(add_subcommand(app, name, description), run, table, std::move(work));
 }
 

@@ -533,13 +533,13 @@ TEST(CliAllan, BadInputExitsTwoAndSaysWhy) {
   ASSERT_EQ(run_cli(dir, "simulate " + gyrotherm::testing::source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
   const auto ci = run_cli(dir, "allan c.csv --ci 1.2");
   EXPECT_EQ(ci.exit_code, 2);
-  EXPECT_NE(ci.err.find("--ci 1.2: the confidence must be between 0 and 1"), std::string::npos) << ci.err;
+  EXPECT_NE(ci.err.find("--ci '1.2': must be > 0 and < 1"), std::string::npos) << ci.err;
   const auto tau = run_cli(dir, "allan c.csv --tau-max 1e6");
   EXPECT_EQ(tau.exit_code, 2);
   EXPECT_NE(tau.err.find("the longest τ it can give is"), std::string::npos) << tau.err;
   const auto taus = run_cli(dir, "allan c.csv --taus weekly");
   EXPECT_EQ(taus.exit_code, 2);
-  EXPECT_NE(taus.err.find("expected octave, decade or all"), std::string::npos) << taus.err;
+  EXPECT_NE(taus.err.find("--taus 'weekly': must be one of octave, decade, all"), std::string::npos) << taus.err;
   // A fit that needs a column this log lacks (grad: the far-side temperature).
   ASSERT_EQ(run_cli(dir, "fit c.csv --add grad -o grad.json").exit_code, 0);
   gyrotherm::testing::run_shell(dir, "cut -d, -f1,4,6 c.csv | grep -v '^#' | tee narrow.csv");

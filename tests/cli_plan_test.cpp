@@ -92,7 +92,7 @@ TEST_P(CliPlanBadInput, ClearMessageExitTwoNoFiles) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, CliPlanBadInput,
     ::testing::Values(
-        BadPlan{"--max-rate 0", "--max-rate 0: must be > 0 °C/min"},
+        BadPlan{"--max-rate 0", "--max-rate '0': must be > 0 °C/min"},
         BadPlan{"--range 60,-40", "the low end must be below the high end"},
         BadPlan{"--verify 1", "--verify 1: give the number of simulated tests"},
         BadPlan{"--se T=1e-9 --longest 3", "no test of at most 3.00 h at these limits"},
@@ -104,8 +104,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"--out marker", "--out marker: is a file, not a folder"},
         BadPlan{"--out marker/sub", "--out marker/sub: marker is not a folder this user can write in"},
         BadPlan{"--longest 0.1", "--longest 0.1 h: a test needs at least 8 windows"},
-        BadPlan{"--tau 0", "--tau 0: must be > 0 s"},
-        BadPlan{"--min-soak -5", "--min-soak -5: must be >= 0 s"},
+        BadPlan{"--longest 800", "--longest '800': must be > 0 and <= 720 h"},
+        BadPlan{"--tau 0", "--tau '0': must be > 0 s"},
+        BadPlan{"--min-soak -5", "--min-soak '-5': must be >= 0 s"},
         BadPlan{"--model 'T + lag' --se T=1 --param lag=10", "--param lag=10: time_constant_s must lie in [60, 14400]"},
         BadPlan{"--prior grad=0.1", "--prior grad=0.1: grad is not in the model"},
         BadPlan{"--separate grad,lag", "--separate grad: no prior value of grad's coefficient"},

@@ -168,7 +168,7 @@ TEST(CliScore, BadInputExitsTwo) {
       {"score short.toml --engines iafsa --option iafsa:fish=0", "iafsa option fish=0"},
       {"score short.toml --baseline none.json", "none.json: no such file"},
       {"score nope.toml", "nope.toml: no such file"},
-      {"score short.toml --threads 2000", "--threads 2000: must be from 1 to 1024 (0: one per core)"},
+      {"score short.toml --threads 2000", "--threads '2000': must be 0 (one per core) or a whole number from 1 to 1024"},
       {"score short.toml --trials 2 --budget 5 6", "The following argument was not expected: 6"},
   };
   for (const auto& [args, message] : cases) {

@@ -76,11 +76,21 @@ TEST(CommandOptions, FitChecksInTheCommandLinesOrder) {
   KeywordValues bad_term = bad_engine;
   bad_term.push_back({"add", "T^7"});
   refused(bad_term, "unknown term 'T^7'");
-  refused({{"option", "colour=red"}, {"deriv_span", "0"}}, "ols has no option 'colour'");
-  refused({{"budget", "-5"}, {"deriv_span", "0"}}, "--budget");
-  refused({{"deriv_span", "0"}}, "--deriv-span 0: must be a number of seconds > 0");
-  refused({{"outlier_threshold", "0"}}, "--outlier-threshold 0: must be > 0");
+  refused({{"option", "colour=red"}, {"deriv_span", "30"}}, "ols has no option 'colour'");
+  refused({{"budget", "-5"}}, "--budget");
   refused({{"gyro_unit", "deg/hr"}}, "--gyro-unit deg/hr: unknown unit");
+  // A value outside its row's rule is refused as it is read, as the command
+  // line does; the same rule holds an options struct built in code.
+  for (const auto& [keyword, message] : std::vector<std::pair<std::string, std::string>>{
+           {"deriv_span", "--deriv-span '0': must be > 0 s"},
+           {"outlier_threshold", "--outlier-threshold '0': must be > 0"},
+           {"sensor_tau", "--sensor-tau '-1': must be >= 0 s"}}) {
+    const std::string value = keyword == "sensor_tau" ? "-1" : "0";
+    expect_input_error([&] { from_keywords(fit_option_table(), {{"data", "d.csv"}, {keyword, value}}); }, {message});
+  }
+  FitCommandOptions built = from_keywords(fit_option_table(), {{"data", "d.csv"}});
+  built.data_options.pipeline.derivative_span_s = -3.0;
+  expect_input_error([&] { fit_request(built); }, {"--deriv-span '-3': must be > 0 s"});
 }
 
 TEST(CommandOptions, DiagnoseRequestKeepsTheModelAndTheAddedTermsApart) {
@@ -115,12 +125,16 @@ TEST(CommandOptions, AllanRequestChecksTheTausTheLongestTauAndTheConfidence) {
   EXPECT_EQ(r.pipeline.columns.gyro, "gx");
   EXPECT_FALSE(r.pipeline.remove_outliers);
   EXPECT_EQ(request({}).options.spacing, TauSpacing::octave);
-  expect_input_error([&] { request({{"taus", "weekly"}}); }, {"--taus weekly: expected octave, decade or all"});
-  expect_input_error([&] { request({{"tau_max", "-1"}}); }, {"--tau-max -1: expected a positive time in seconds"});
-  expect_input_error([&] { request({{"ci", "1.2"}}); }, {"--ci 1.2: the confidence must be between 0 and 1"});
-  expect_input_error([&] { request({{"deriv_span", "0"}}); }, {"--deriv-span 0"});
+  expect_input_error([&] { request({{"taus", "weekly"}}); }, {"--taus 'weekly': must be one of octave, decade, all"});
+  expect_input_error([&] { request({{"tau_max", "-1"}}); }, {"--tau-max '-1': must be >= 0 s"});
+  expect_input_error([&] { request({{"ci", "1.2"}}); }, {"--ci '1.2': must be > 0 and < 1"});
+  expect_input_error([&] { request({{"ci", "1"}}); }, {"--ci '1': must be > 0 and < 1"});
+  expect_input_error([&] { request({{"deriv_span", "0"}}); }, {"--deriv-span '0': must be > 0 s"});
+  AllanCommandOptions built = from_keywords(allan_option_table(), {{"data", "d.csv"}});
+  built.taus = "hourly";
+  expect_input_error([&] { allan_request(built); }, {"--taus 'hourly': must be one of octave, decade, all"});
   // With a fit the fit's own reading is used: the data options are not read.
-  const AllanRequest with_fit = request({{"fit", "f.json"}, {"deriv_span", "0"}});
+  const AllanRequest with_fit = request({{"fit", "f.json"}, {"deriv_span", "30"}});
   EXPECT_EQ(with_fit.fit_file, "f.json");
   EXPECT_EQ(with_fit.pipeline.derivative_span_s, fit::PipelineOptions{}.derivative_span_s);
   EXPECT_FALSE(allan_option_table().rows.empty());

@@ -128,7 +128,7 @@ TEST(DiagnoseSweep, ALagTheRecordCannotExcludeIsACautionAndADelaggedFitIsNotExpo
   for (const char* bad : {"-5", "nan"}) {
     const auto r = run_cli(dir, std::string("fit sweep.tsv --sensor-tau ") + bad + kColumns);
     EXPECT_EQ(r.exit_code, 2) << bad;
-    EXPECT_NE(r.err.find(std::string("--sensor-tau ") + bad + ": must be a number of seconds >= 0"),
+    EXPECT_NE(r.err.find(std::string("--sensor-tau '") + bad + "': must be >= 0 s"),
               std::string::npos)
         << r.err;
   }

@@ -156,21 +156,22 @@ std::string number_text(double v) { return fmt::format("{}", v); }
 TEST_P(EngineContract, EveryOptionIsRefusedOutsideItsRule) {
   const EngineInfo& e = info();
   for (const OptionInfo& o : e.options) {
-    const OptionRule& r = o.rule;
+    ASSERT_TRUE(o.rule) << o.keyword << ": an engine's option has a rule";
+    const OptionRule& r = *o.rule;
     const std::string rule = "must be " + r.text();
     if (r.kind == OptionRule::Kind::choice) {
-      expect_rejected(e, o.key, "no-such-choice", rule);
+      expect_rejected(e, o.keyword, "no-such-choice", rule);
       continue;
     }
-    expect_rejected(e, o.key, "abc", "expected a number");
+    expect_rejected(e, o.keyword, "abc", "expected a number");
     // Just below the range (at it, when the bound is open), skipping a value
     // the rule allows besides the range (0: automatic).
     const double below = r.lower_open ? r.lower : r.lower - (r.kind == OptionRule::Kind::integer ? 1.0 : 0.5);
-    if (!r.allows(below)) expect_rejected(e, o.key, number_text(below), rule);
-    if (r.upper < std::numeric_limits<double>::max()) expect_rejected(e, o.key, number_text(r.upper + 1.0), rule);
-    if (r.kind == OptionRule::Kind::integer) expect_rejected(e, o.key, number_text(r.lower + 0.5), rule);
+    if (!r.allows(below)) expect_rejected(e, o.keyword, number_text(below), rule);
+    if (r.upper < std::numeric_limits<double>::max()) expect_rejected(e, o.keyword, number_text(r.upper + 1.0), rule);
+    if (r.kind == OptionRule::Kind::integer) expect_rejected(e, o.keyword, number_text(r.lower + 0.5), rule);
     // A value with a word (auto) is written as the word, not as its number.
-    if (r.extra && !r.extra_word.empty()) expect_rejected(e, o.key, number_text(*r.extra), rule);
+    if (r.extra && !r.extra_word.empty()) expect_rejected(e, o.keyword, number_text(*r.extra), rule);
   }
   EngineSettings unknown;
   unknown.options = {{"no_such_option", "1"}};
@@ -199,10 +200,10 @@ TEST_P(EngineContract, ListedDefaultsObeyTheirRulesAndAreTheDefaultsUsed) {
   listed.seed = 1;
   listed.max_evaluations = e.stochastic ? 500 : 0;
   for (const OptionInfo& o : e.options) {
-    SCOPED_TRACE(e.name + " " + o.key + " = " + o.default_value);
+    SCOPED_TRACE(e.name + " " + o.keyword + " = " + o.default_value);
     EXPECT_FALSE(o.help.empty());
-    EXPECT_EQ(o.line().rfind(o.default_value + ": ", 0), 0u);
-    listed.options[o.key] = o.default_value;
+    EXPECT_EQ(option_line(o).rfind(o.default_value + ": ", 0), 0u);
+    listed.options[o.keyword] = o.default_value;
   }
   EngineSettings implicit = listed;
   implicit.options.clear();

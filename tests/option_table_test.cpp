@@ -337,8 +337,12 @@ void expect_defaults_from_the_struct(const OptionTable<O>& table) {
       const std::string value = row.get(defaults).value_or("");
       EXPECT_EQ(info.default_value, value.find(' ') == std::string::npos ? value : "'" + value + "'") << row.names;
     }
+    // The rule, where the row has one, after the default.
+    const std::string rule = row.rule ? "must be " + row.rule->text() : "";
     if (!info.default_value.empty()) {
-      EXPECT_EQ(shown_help(info), row.help + " (default: " + info.default_value + ")");
+      EXPECT_EQ(shown_help(info), row.help + " (default: " + info.default_value + (rule.empty() ? "" : "; " + rule) + ")");
+    } else {
+      EXPECT_EQ(shown_help(info), rule.empty() ? row.help : row.help + " (" + rule + ")");
     }
   }
 }

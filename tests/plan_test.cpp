@@ -16,6 +16,7 @@
 #include "fit/pipeline.h"
 #include "sim/config_loader.h"
 #include "sim/simulator.h"
+#include "studies/options/plan_options.h"
 #include "studies/plan/plan_files.h"
 #include "studies/plan/plan_setup.h"
 #include "studies/plan/search.h"
@@ -207,9 +208,16 @@ TEST(PlanSetup, OptionsAreCheckedAndTargetsFollowTheRules) {
   auto refused = [&](PlanRequest bad, const std::string& expected) {
     testing::expect_input_error([&] { plan_setup(bad); }, {expected});
   };
+  // A single option's range is its row's rule (studies/options/plan_options.cpp),
+  // held to a request built in code as to the command line.
   PlanRequest b = default_request();
   b.max_rate_c_per_min = 0.0;
-  refused(b, "--max-rate 0: must be > 0");
+  PlanCommandOptions command;
+  command.request = b;
+  testing::expect_input_error([&] { plan_request(command, b.scenario); }, {"--max-rate '0': must be > 0 °C/min"});
+  command.request = default_request();
+  command.request.longest_h = 721.0;
+  testing::expect_input_error([&] { plan_request(command, b.scenario); }, {"--longest '721': must be > 0 and <= 720 h"});
   b = default_request();
   b.range_c = std::pair{30.0, 10.0};
   refused(b, "the low end must be below");

@@ -21,15 +21,14 @@ using AfsaOptions = AfsaEngine::Options;
 // Every option, once: parsing, validate() and the listing read this table
 // (a function's static, so that it exists whenever the registry is built).
 const OptionTable<AfsaOptions>& afsa_option_table() {
-  static const OptionTable<AfsaOptions> table = {
-    {"fish", &AfsaOptions::fish, whole(2, 100000), "N, the swarm size"},
-    {"max_iterations", &AfsaOptions::max_iterations, whole(1, 100000000), "iteration limit"},
-    {"visual", &AfsaOptions::visual, number_above(0.0, 1.0), "Visual, fraction of the box width"},
-    {"step", &AfsaOptions::step, number_above(0.0, 1.0), "Step, fraction of the box width"},
-    {"crowding", &AfsaOptions::crowding, number_above(0.0, 1.0),
-     "δ, crowded when n_f/N ≥ δ (1: never)"},
-    {"try_number", &AfsaOptions::try_number, whole(1, 1000), "prey attempts before a random step"},
-  };
+  using O = AfsaOptions;
+  static const OptionTable<O> table = [] {
+    OptionTable<O> t{kAfsa,
+                     {ruled_row<O>("fish", "N, the swarm size", &O::fish, whole(2, 100000)),
+                      ruled_row<O>("max_iterations", "iteration limit", &O::max_iterations, whole(1, 100000000))}};
+    for (auto& row : fish_swarm::school_rows<O>("", "n_f/N")) t.rows.push_back(std::move(row));
+    return t;
+  }();
   return table;
 }
 
@@ -107,7 +106,7 @@ FitResult run_afsa(const AfsaEngine::Options& o, const LinearProblem& problem,
 }  // namespace
 
 void AfsaEngine::Options::validate() const {
-  check_options(kAfsa, afsa_option_table(), *this);
+  check_options(afsa_option_table(), *this);
   check_stopping_rules(kAfsa, max_evaluations, target_objective);
 }
 

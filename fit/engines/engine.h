@@ -201,10 +201,9 @@ void check_stopping_rules(std::string_view engine, long max_evaluations, double 
 // KEY=VALUE strings, and, for an engine that has them, the seed, the budget
 // (0 keeps the engine's default) and the target.
 template <class Options>
-Options options_from(std::string_view engine, const OptionTable<Options>& table,
-                     const EngineSettings& settings) {
+Options options_from(const OptionTable<Options>& table, const EngineSettings& settings) {
   Options o;
-  read_options(engine, table, settings.options, o);
+  read_options(table, settings.options, o);
   if constexpr (requires { o.seed; }) o.seed = settings.seed;
   if constexpr (requires { o.max_evaluations; })
     if (settings.max_evaluations != 0) o.max_evaluations = settings.max_evaluations;
@@ -222,9 +221,9 @@ EngineInfo engine_info(std::string name, std::string description, bool stochasti
   info.description = std::move(description);
   info.stochastic = stochastic;
   info.default_evaluations = default_evaluations;
-  info.options = describe_options(table());
+  info.options = list_options(table());
   info.make = [name, table](const EngineSettings& settings) -> std::unique_ptr<Engine> {
-    return std::make_unique<EngineClass>(options_from(name, table(), settings));
+    return std::make_unique<EngineClass>(options_from(table(), settings));
   };
   return info;
 }

@@ -11,7 +11,7 @@ nlohmann::ordered_json engines_json() {
   nlohmann::ordered_json j = nlohmann::ordered_json::array();
   for (const EngineInfo& e : engine_registry()) {
     nlohmann::ordered_json options = nlohmann::ordered_json::object();
-    for (const OptionInfo& o : e.options) options[o.key] = o.line();
+    for (const OptionInfo& o : e.options) options[o.keyword] = option_line(o);
     j.push_back({{"name", e.name},
                  {"description", e.description},
                  {"stochastic", e.stochastic},
@@ -25,7 +25,7 @@ std::string engines_text() {
   std::string out;
   for (const EngineInfo& e : engine_registry()) {
     out += fmt::format("{:<9} {}{}\n", e.name, e.description, e.stochastic ? " [seeded]" : "");
-    for (const OptionInfo& o : e.options) out += fmt::format("          --option {}=  {}\n", o.key, o.line());
+    for (const OptionInfo& o : e.options) out += fmt::format("          --option {}=  {}\n", o.keyword, option_line(o));
   }
   return out;
 }

@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <boost/random/uniform_real_distribution.hpp>
@@ -38,6 +39,21 @@ namespace gyrotherm::fit::fish_swarm {
 // The box's width in its own coordinates ([−1, 1]^m): Visual and Step are
 // fractions of it.
 inline constexpr double kBoxWidth = 2.0;
+
+// The options both swarms share, with their rules: Visual and Step as
+// fractions of the box width (`start`: IAFSA's are the starting values,
+// "_0"), δ of a neighbourhood's share `share` (Li's n_f/N, the paper's n/N)
+// and the prey attempts. Options has visual, step, crowding and try_number.
+template <class Options>
+std::vector<OptionRow<Options>> school_rows(const std::string& start, const std::string& share) {
+  using O = Options;
+  const std::string width = ", fraction of the box width";
+  return {ruled_row<O>("visual", "Visual" + start + width, &O::visual, number_above(0.0, 1.0)),
+          ruled_row<O>("step", "Step" + start + width, &O::step, number_above(0.0, 1.0)),
+          ruled_row<O>("crowding", "δ, crowded when " + share + " ≥ δ (1: never)", &O::crowding,
+                       number_above(0.0, 1.0)),
+          ruled_row<O>("try_number", "prey attempts before a random step", &O::try_number, whole(1, 1000))};
+}
 
 struct Fish {
   std::vector<double> x;

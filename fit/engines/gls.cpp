@@ -56,15 +56,15 @@ class GlsEngine : public Engine {
 };
 
 const OptionTable<GlsOptions>& gls_option_table() {
-  static const OptionTable<GlsOptions> table = {
-      {"covariance", &GlsOptions::covariance, one_of({"widest", "model"}),
-       "widest (each interval the widest under the noise models the record supports alike) or model (the "
-       "identified model's alone)"},
-  };
+  static const OptionTable<GlsOptions> table{"gls", {
+      ruled_row<GlsOptions>("covariance", "widest (each interval the widest under the noise models the record "
+                            "supports alike) or model (the identified model's alone)",
+                            &GlsOptions::covariance, one_of({"widest", "model"})),
+  }};
   return table;
 }
 
-void GlsOptions::validate() const { check_options("gls", gls_option_table(), *this); }
+void GlsOptions::validate() const { check_options(gls_option_table(), *this); }
 
 // The variance of each coefficient of A·y (A = (XᵀC⁻¹X)⁻¹XᵀC⁻¹ on [1, X]) under
 // each model, the widest kept.

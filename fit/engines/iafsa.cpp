@@ -22,23 +22,27 @@ using IafsaOptions = IafsaEngine::Options;
 // Every option, once: parsing, validate() and the listing read this table
 // (a function's static, so that it exists whenever the registry is built).
 const OptionTable<IafsaOptions>& iafsa_option_table() {
-  static const OptionTable<IafsaOptions> table = {
-      {"fish", &IafsaOptions::fish, whole_or_auto(2, 100000),
-       "N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms"},
-      {"max_iterations", &IafsaOptions::max_iterations, whole_or_auto(1, kMaxIterations),
-       "G_max of eq. (5), also a stopping rule; auto is 700 up to 3 terms, 700·2.5^(m − 3) for "
-       "m terms"},
-      {"visual", &IafsaOptions::visual, number_above(0.0, 1.0), "Visual_0, fraction of the box width"},
-      {"step", &IafsaOptions::step, number_above(0.0, 1.0), "Step_0, fraction of the box width"},
-      {"visual_min", &IafsaOptions::visual_min, number_in(0.0, 1.0),
-       "Visual_min of eq. (5), fraction of the box width"},
-      {"step_min", &IafsaOptions::step_min, number_in(0.0, 1.0),
-       "Step_min of eq. (5), fraction of the box width"},
-      {"crowding", &IafsaOptions::crowding, number_above(0.0, 1.0), "δ, crowded when n/N ≥ δ (1: never)"},
-      {"try_number", &IafsaOptions::try_number, whole(1, 1000), "prey attempts before a random step"},
-      {"schedule", &IafsaOptions::schedule, one_of({"compound", "initial"}),
-       "eq. (5) as an update (compound) or from Visual_0, Step_0 (initial)"},
-  };
+  using O = IafsaOptions;
+  static const OptionTable<O> table = [] {
+    OptionTable<O> t{kIafsa,
+                     {ruled_row<O>("fish", "N, the swarm size; auto is 8 up to 3 terms, 8 + 4·(m − 3) for m terms",
+                                   &O::fish, whole_or_auto(2, 100000)),
+                      ruled_row<O>("max_iterations",
+                                   "G_max of eq. (5), also a stopping rule; auto is 700 up to 3 terms, "
+                                   "700·2.5^(m − 3) for m terms",
+                                   &O::max_iterations, whole_or_auto(1, kMaxIterations))}};
+    std::vector<OptionRow<O>> school = fish_swarm::school_rows<O>("_0", "n/N");
+    // Visual_min and Step_min after Visual_0 and Step_0, the schedule last.
+    school.insert(school.begin() + 2,
+                  {ruled_row<O>("visual_min", "Visual_min of eq. (5), fraction of the box width", &O::visual_min,
+                                number_in(0.0, 1.0)),
+                   ruled_row<O>("step_min", "Step_min of eq. (5), fraction of the box width", &O::step_min,
+                                number_in(0.0, 1.0))});
+    t.rows.insert(t.rows.end(), school.begin(), school.end());
+    t.rows.push_back(ruled_row<O>("schedule", "eq. (5) as an update (compound) or from Visual_0, Step_0 (initial)",
+                                  &O::schedule, one_of({"compound", "initial"})));
+    return t;
+  }();
   return table;
 }
 
@@ -138,7 +142,7 @@ FitResult run_iafsa(const IafsaEngine::Options& o, const LinearProblem& problem,
 }  // namespace
 
 void IafsaEngine::Options::validate() const {
-  check_options(kIafsa, iafsa_option_table(), *this);
+  check_options(iafsa_option_table(), *this);
   check_stopping_rules(kIafsa, max_evaluations, target_objective);
 }
 

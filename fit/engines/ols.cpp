@@ -196,22 +196,23 @@ namespace {
 
 // Every option, once: parsing, validate() and the listing read this table.
 const OptionTable<OlsOptions>& ols_option_table() {
-  static const OptionTable<OlsOptions> table = {
-      {"intervals", &OlsOptions::intervals, one_of({"auto", "model", "bootstrap", "nw", "ewc"}),
-       "auto (bootstrap on a record of fewer than 200 windows or under random-walk-dominated "
-       "noise, else model), model (analytic, from the record's identified noise; nw where none "
-       "is identified), bootstrap (drawn from the noise models the record supports), nw "
-       "(pre-whitened Newey-West) or ewc (equal-weighted cosine)"},
-      {"draws", &OlsOptions::draws, whole(100, 100000), "bootstrap draws (intervals=bootstrap)"},
-      {"ewc_terms", &OlsOptions::ewc_terms, whole(0, 1000),
-       "cosine terms B for ewc (0: ceil(0.4 l^(2/3)))"},
-  };
+  using O = OlsOptions;
+  static const OptionTable<O> table{
+      "ols",
+      {ruled_row<O>("intervals",
+                    "auto (bootstrap on a record of fewer than 200 windows or under random-walk-dominated noise, "
+                    "else model), model (analytic, from the record's identified noise; nw where none is "
+                    "identified), bootstrap (drawn from the noise models the record supports), nw (pre-whitened "
+                    "Newey-West) or ewc (equal-weighted cosine)",
+                    &O::intervals, one_of({"auto", "model", "bootstrap", "nw", "ewc"})),
+       ruled_row<O>("draws", "bootstrap draws (intervals=bootstrap)", &O::draws, whole(100, 100000)),
+       ruled_row<O>("ewc_terms", "cosine terms B for ewc (0: ceil(0.4 l^(2/3)))", &O::ewc_terms, whole(0, 1000))}};
   return table;
 }
 
 }  // namespace
 
-void OlsOptions::validate() const { check_options("ols", ols_option_table(), *this); }
+void OlsOptions::validate() const { check_options(ols_option_table(), *this); }
 
 OlsEngine::OlsEngine(OlsOptions options) : options_(std::move(options)) { options_.validate(); }
 

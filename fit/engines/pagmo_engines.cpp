@@ -231,27 +231,28 @@ long spso_swarm(std::size_t m) {
 
 const OptionTable<PsoOptions>& pso_table() {
   using O = PsoOptions;
-  static const OptionTable<O> table = {
-      {"population", &O::population, whole_or_zero(5, kMaxPopulation, "automatic"),
-       "particles; automatic: 10 + 2 sqrt(m)"},
-      {"omega", &O::omega, number_in(0.0, 1.0), "inertia weight or constriction factor"},
-      {"eta1", &O::eta1, number_in(0.0, 4.0), "cognitive acceleration"},
-      {"eta2", &O::eta2, number_in(0.0, 4.0), "social acceleration"},
-      {"max_vel", &O::max_vel, number_above(0.0, 1.0), "largest velocity as a fraction of the box"},
-      {"variant", &O::variant, whole(1, 6), "velocity update (5 constriction, 6 fully informed)"},
-      {"topology", &O::topology, whole(1, 4), "1 gbest, 2 lbest ring, 3 von Neumann, 4 adaptive random"},
-      {"neighbours", &O::neighbours, whole(2, kMaxPopulation - 1),
-       "lbest ring neighbours / adaptive informants, at most population - 1 (11 with the "
-       "automatic swarm)"},
-  };
+  static const OptionTable<O> table{"pso", {
+      ruled_row<O>("population", "particles; automatic: 10 + 2 sqrt(m)",
+                   &O::population, whole_or_zero(5, kMaxPopulation, "automatic")),
+      ruled_row<O>("omega", "inertia weight or constriction factor", &O::omega, number_in(0.0, 1.0)),
+      ruled_row<O>("eta1", "cognitive acceleration", &O::eta1, number_in(0.0, 4.0)),
+      ruled_row<O>("eta2", "social acceleration", &O::eta2, number_in(0.0, 4.0)),
+      ruled_row<O>("max_vel", "largest velocity as a fraction of the box", &O::max_vel, number_above(0.0, 1.0)),
+      ruled_row<O>("variant", "velocity update (5 constriction, 6 fully informed)", &O::variant, whole(1, 6)),
+      ruled_row<O>("topology", "1 gbest, 2 lbest ring, 3 von Neumann, 4 adaptive random",
+                   &O::topology, whole(1, 4)),
+      ruled_row<O>("neighbours", "lbest ring neighbours / adaptive informants, at most population - 1 (11 "
+                   "with the automatic swarm)",
+                   &O::neighbours, whole(2, kMaxPopulation - 1)),
+  }};
   return table;
 }
 
 EngineInfo pso_info() {
   EngineInfo info = base_info("pso", "particle swarm optimisation (pagmo::pso)");
-  info.options = describe_options(pso_table());
+  info.options = list_options(pso_table());
   info.make = [](const EngineSettings& settings) {
-    const PsoOptions o = options_from("pso", pso_table(), settings);
+    const PsoOptions o = options_from(pso_table(), settings);
     // pagmo's ring takes neighbours/2 on each side (1 would leave none) and
     // wraps once around the swarm (more than the other particles overruns it).
     const int most = (o.population > 0 ? o.population : kSmallestAutomaticSwarm) - 1;
@@ -287,25 +288,25 @@ struct DeOptions {
 
 const OptionTable<DeOptions>& de_table() {
   using O = DeOptions;
-  static const OptionTable<O> table = {
-      {"population", &O::population, whole(5, kMaxPopulation), "individuals"},
-      {"F", &O::f, number_in(0.0, 1.0), "differential weight"},
-      {"CR", &O::cr, number_in(0.0, 1.0), "crossover probability"},
-      {"variant", &O::variant, whole(1, 10),
-       "strategy (1 best/1/exp, 2 rand/1/exp, 6 best/1/bin, 7 rand/1/bin, ...)"},
-      {"ftol", &O::ftol, number_in(0.0, std::numeric_limits<double>::max()),
-       "stop when the spread of sigma is below this, units of y (0: never)"},
-      {"xtol", &O::xtol, number_in(0.0, 2.0),
-       "stop when best and worst differ by less in the unit box"},
-  };
+  static const OptionTable<O> table{"de", {
+      ruled_row<O>("population", "individuals", &O::population, whole(5, kMaxPopulation)),
+      ruled_row<O>("F", "differential weight", &O::f, number_in(0.0, 1.0)),
+      ruled_row<O>("CR", "crossover probability", &O::cr, number_in(0.0, 1.0)),
+      ruled_row<O>("variant", "strategy (1 best/1/exp, 2 rand/1/exp, 6 best/1/bin, 7 rand/1/bin, ...)",
+                   &O::variant, whole(1, 10)),
+      ruled_row<O>("ftol", "stop when the spread of sigma is below this, units of y (0: never)",
+                   &O::ftol, number_in(0.0, std::numeric_limits<double>::max())),
+      ruled_row<O>("xtol", "stop when best and worst differ by less in the unit box",
+                   &O::xtol, number_in(0.0, 2.0)),
+  }};
   return table;
 }
 
 EngineInfo de_info() {
   EngineInfo info = base_info("de", "differential evolution (pagmo::de)");
-  info.options = describe_options(de_table());
+  info.options = list_options(de_table());
   info.make = [](const EngineSettings& settings) {
-    const DeOptions o = options_from("de", de_table(), settings);
+    const DeOptions o = options_from(de_table(), settings);
     Recipe recipe{.engine = "de",
                   .population = [o](std::size_t) { return long{o.population}; },
                   .evaluations_per_individual = 1,
@@ -336,23 +337,23 @@ long hansen_lambda(std::size_t m) {
 
 const OptionTable<CmaesOptions>& cmaes_table() {
   using O = CmaesOptions;
-  static const OptionTable<O> table = {
-      {"population", &O::population, whole_or_zero(5, kMaxPopulation, "automatic"),
-       "offspring per generation, lambda; automatic: 4 + 3 ln m"},
-      {"sigma0", &O::sigma0, number_above(0.0, 1.0), "initial step as a fraction of the box width"},
-      {"ftol", &O::ftol, number_in(0.0, std::numeric_limits<double>::max()),
-       "stop when the spread of sigma is below this, units of y (0: never)"},
-      {"xtol", &O::xtol, number_in(0.0, 2.0), "stop when a step is shorter in the unit box"},
-  };
+  static const OptionTable<O> table{"cmaes", {
+      ruled_row<O>("population", "offspring per generation, lambda; automatic: 4 + 3 ln m",
+                   &O::population, whole_or_zero(5, kMaxPopulation, "automatic")),
+      ruled_row<O>("sigma0", "initial step as a fraction of the box width", &O::sigma0, number_above(0.0, 1.0)),
+      ruled_row<O>("ftol", "stop when the spread of sigma is below this, units of y (0: never)",
+                   &O::ftol, number_in(0.0, std::numeric_limits<double>::max())),
+      ruled_row<O>("xtol", "stop when a step is shorter in the unit box", &O::xtol, number_in(0.0, 2.0)),
+  }};
   return table;
 }
 
 EngineInfo cmaes_info() {
   EngineInfo info =
       base_info("cmaes", "covariance matrix adaptation evolution strategy (pagmo::cmaes)");
-  info.options = describe_options(cmaes_table());
+  info.options = list_options(cmaes_table());
   info.make = [](const EngineSettings& settings) {
-    const CmaesOptions o = options_from("cmaes", cmaes_table(), settings);
+    const CmaesOptions o = options_from(cmaes_table(), settings);
     Recipe recipe{
         .engine = "cmaes",
         .population = [o](std::size_t m) { return o.population > 0 ? o.population : hansen_lambda(m); },
@@ -378,20 +379,20 @@ struct AbcOptions {
 
 const OptionTable<AbcOptions>& abc_table() {
   using O = AbcOptions;
-  static const OptionTable<O> table = {
-      {"population", &O::population, whole(5, kMaxPopulation),
-       "food sources; a generation costs twice this"},
-      {"limit", &O::limit, whole(0, 1000000),
-       "failed trials before a source is abandoned (0: population * m)"},
-  };
+  static const OptionTable<O> table{"abc", {
+      ruled_row<O>("population", "food sources; a generation costs twice this",
+                   &O::population, whole(5, kMaxPopulation)),
+      ruled_row<O>("limit", "failed trials before a source is abandoned (0: population * m)",
+                   &O::limit, whole(0, 1000000)),
+  }};
   return table;
 }
 
 EngineInfo abc_info() {
   EngineInfo info = base_info("abc", "artificial bee colony (pagmo::bee_colony)");
-  info.options = describe_options(abc_table());
+  info.options = list_options(abc_table());
   info.make = [](const EngineSettings& settings) {
-    const AbcOptions o = options_from("abc", abc_table(), settings);
+    const AbcOptions o = options_from(abc_table(), settings);
     Recipe recipe{
         .engine = "abc",
         .population = [o](std::size_t) { return long{o.population}; },

@@ -11,6 +11,17 @@
 namespace gyrotherm::fit {
 namespace {
 
+// Every option, once: parsing, validate() and the listing read this table.
+const OptionTable<StepwiseOptions>& stepwise_option_table() {
+  using O = StepwiseOptions;
+  static const OptionTable<O> table{
+      "stepwise",
+      {ruled_row<O>("p_enter", "a term enters when its p-value is below this", &O::p_enter, number_above(0.0, 1.0)),
+       ruled_row<O>("p_remove", "a term leaves when its p-value is above this (>= p_enter)", &O::p_remove,
+                    number_above(0.0, 1.0))}};
+  return table;
+}
+
 struct SubsetFit {
   Eigen::VectorXd beta;     // scaled coefficients of the subset, in its order
   Eigen::VectorXd p_value;  // per coefficient
@@ -141,23 +152,8 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
   return r;
 }
 
-namespace {
-
-// Every option, once: parsing, validate() and the listing read this table.
-const OptionTable<StepwiseOptions>& stepwise_option_table() {
-  static const OptionTable<StepwiseOptions> table = {
-      {"p_enter", &StepwiseOptions::p_enter, number_above(0.0, 1.0),
-       "a term enters when its p-value is below this"},
-      {"p_remove", &StepwiseOptions::p_remove, number_above(0.0, 1.0),
-       "a term leaves when its p-value is above this (>= p_enter)"},
-  };
-  return table;
-}
-
-}  // namespace
-
 void StepwiseOptions::validate() const {
-  check_options("stepwise", stepwise_option_table(), *this);
+  check_options(stepwise_option_table(), *this);
   if (p_remove < p_enter)
     throw InputError(fmt::format("stepwise options: p_remove={} must be >= p_enter={} (or a "
                                  "term could enter and leave forever)",

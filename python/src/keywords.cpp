@@ -20,16 +20,16 @@ py::list option_rows(const std::string& command) {
   if (listed == nullptr || command == "reproduce" || command == "score")
     throw InputError(fmt::format("options('{}'): expected one of fit, diagnose, allan, compensate, export, "
                                  "simulate, plan, check, report", command));
-  const std::vector<studies::OptionInfo>& rows = listed->rows;
+  const std::vector<OptionInfo>& rows = listed->rows;
   py::list out;
-  for (const studies::OptionInfo& r : rows) {
+  for (const OptionInfo& r : rows) {
     if (r.keyword == "json") continue;  // every result has to_json()
     py::dict d;
     d["keyword"] = r.keyword;
     d["flag"] = r.names;
-    d["help"] = studies::shown_help(r);
+    d["help"] = shown_help(r);
     d["default"] = r.default_value;
-    d["kind"] = std::string(studies::kind_name(r.kind));
+    d["kind"] = std::string(kind_name(r.kind));
     d["required"] = r.required;
     out.append(d);
   }

@@ -9,28 +9,28 @@
 #include <string>
 #include <string_view>
 
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::python {
 
-using Keywords = studies::KeywordValues;
+using Keywords = KeywordValues;
 
 // The command's options struct set from the keywords by its table; the rows
 // named in `optional_here` are not required (simulate's output: a Python
 // caller gets the record without a file).
 template <class Options>
-Options read_keywords(const studies::OptionTable<Options>& table, const Keywords& keywords,
+Options read_keywords(const OptionTable<Options>& table, const Keywords& keywords,
                       std::initializer_list<std::string_view> optional_here = {}) {
   Options options;
   if (optional_here.size() == 0) {
-    studies::apply_options(table, options, keywords);
+    apply_options(table, options, keywords);
     return options;
   }
-  studies::OptionTable<Options> relaxed = table;
+  OptionTable<Options> relaxed = table;
   for (auto& row : relaxed.rows)
     for (std::string_view k : optional_here)
       if (row.keyword == k) row.required = false;
-  studies::apply_options(relaxed, options, keywords);
+  apply_options(relaxed, options, keywords);
   return options;
 }
 

@@ -58,7 +58,7 @@ Keywords for_record(const Keywords& keywords, const py::object& columns) {
 // compensate): a fit given in memory is named kFitInMemory and handed over
 // read, in place of a file.
 template <class Options, class Request>
-Request with_fit(const studies::OptionTable<Options>& table, Request (*request_of)(const Options&),
+Request with_fit(const OptionTable<Options>& table, Request (*request_of)(const Options&),
                  const Keywords& keywords, const py::object& columns, const py::object& fit_json) {
   Keywords given = for_record(keywords, columns);
   std::vector<fit::SavedFit> fits = fits_of(fit_json);

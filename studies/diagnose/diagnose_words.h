@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "studies/diagnose/diagnosis.h"
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::studies {
 

@@ -1,10 +1,6 @@
 #include "studies/options/allan_options.h"
 
-#include <fmt/format.h>
-
 #include <map>
-
-#include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 namespace {
@@ -17,12 +13,15 @@ std::vector<OptionRow<O>> allan_rows() {
                  true),
       nested_row("--fit", "Also the output compensated by this saved fit (as compensate --causal), side by side",
                  &O::request, &AllanRequest::fit_file),
-      field_row<O>("--taus", "τ set: octave (1, 2, 4, … samples), decade, or all", &O::taus),
-      defaulting(field_row<O>("--tau-max", "Longest τ in seconds (it needs a gap-free stretch of 2τ)",
-                                [](O& o) -> auto& { return o.request.options.tau_max_s; }),
+      ruled_row<O>("--taus", "τ set: octave (1, 2, 4, … samples), decade, or all", &O::taus,
+                   one_of({"octave", "decade", "all"})),
+      defaulting(ruled_row<O>("--tau-max", "Longest τ in seconds (it needs a gap-free stretch of 2τ)",
+                              [](O& o) -> auto& { return o.request.options.tau_max_s; }, number_in(0.0, kNoBound, "s")),
                  "a quarter of the record"),
-      field_row<O>("--ci", "Confidence of the intervals, between 0 and 1 (0.6827: ±1σ)",
-                   [](O& o) -> auto& { return o.request.options.confidence; }),
+      ruled_row<O>("--ci", "Confidence of the intervals (0.6827: ±1σ)",
+                   [](O& o) -> auto& { return o.request.options.confidence; },
+                   OptionRule{.kind = OptionRule::Kind::real, .lower = 0.0, .upper = 1.0, .lower_open = true,
+                              .upper_open = true}),
       nested_row("--plot", "Write the log-log figure (PNG) with bands and the coefficients read", &O::request,
                  &AllanRequest::plot),
       field_row<O>("--json", "Print one JSON object", &O::json)};
@@ -41,16 +40,10 @@ const OptionTable<AllanCommandOptions>& allan_option_table() {
 AllanRequest allan_request(const AllanCommandOptions& o) {
   static const std::map<std::string, TauSpacing> kSpacing = {
       {"octave", TauSpacing::octave}, {"decade", TauSpacing::decade}, {"all", TauSpacing::all}};
-  const auto spacing = kSpacing.find(o.taus);
-  if (spacing == kSpacing.end()) throw InputError(fmt::format("--taus {}: expected octave, decade or all", o.taus));
+  check_rules(allan_option_table(), o);  // --taus, --tau-max, --ci
   AllanRequest request = o.request;
   AllanOptions& options = request.options;
-  options.spacing = spacing->second;
-  if (options.tau_max_s < 0.0)
-    throw InputError(fmt::format("--tau-max {}: expected a positive time in seconds", options.tau_max_s));
-  if (!(options.confidence > 0.0 && options.confidence < 1.0))
-    throw InputError(
-        fmt::format("--ci {}: the confidence must be between 0 and 1 (e.g. 0.68 or 0.95)", options.confidence));
+  options.spacing = kSpacing.at(o.taus);
   if (request.fit_file.empty()) {
     DataOptions data = o.data_options;
     data.pipeline.columns = fit::ColumnMap{}.with(data.pipeline.columns);

@@ -1,5 +1,5 @@
 #pragma once
-// `gyrotherm allan`'s options (studies/options/option_table.h) and the request
+// `gyrotherm allan`'s options (sim/util/option_table.h) and the request
 // they make (studies/allan/allan_study.h).
 
 #include <string>

@@ -1,9 +1,9 @@
 #pragma once
-// `gyrotherm check`'s options (studies/options/option_table.h) and the
+// `gyrotherm check`'s options (sim/util/option_table.h) and the
 // request they make (studies/check/check_run.h).
 
 #include "studies/check/check_run.h"
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::studies {
 

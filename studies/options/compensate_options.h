@@ -1,9 +1,9 @@
 #pragma once
-// `gyrotherm compensate`'s options (studies/options/option_table.h) and the
+// `gyrotherm compensate`'s options (sim/util/option_table.h) and the
 // request they make (studies/fit/compensate_run.h).
 
 #include "studies/fit/compensate_run.h"
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::studies {
 

@@ -1,5 +1,5 @@
 #pragma once
-// `gyrotherm diagnose`'s options (studies/options/option_table.h) and the
+// `gyrotherm diagnose`'s options (sim/util/option_table.h) and the
 // request they make (studies/diagnose/diagnose_run.h).
 
 #include <string>

@@ -1,9 +1,9 @@
 #pragma once
-// `gyrotherm export`'s options (studies/options/option_table.h) and the
+// `gyrotherm export`'s options (sim/util/option_table.h) and the
 // request they make (studies/export/exporter.h).
 
 #include "studies/export/exporter.h"
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::studies {
 

@@ -1,5 +1,5 @@
 #pragma once
-// `gyrotherm fit`'s options (studies/options/option_table.h) and the request
+// `gyrotherm fit`'s options (sim/util/option_table.h) and the request
 // they make (studies/fit/fit_run.h).
 
 #include <string>

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "fit/engines/engine.h"
 #include "studies/options/allan_options.h"
 #include "studies/options/check_options.h"
 #include "studies/options/compensate_options.h"
@@ -59,16 +60,26 @@ std::string options_markdown() {
       "rewrites it after a table changes. `gyrotherm COMMAND --help` shows the\n"
       "same rows; docs/contracts.md says what each command does with them.\n";
   for (const CommandOptions& c : every_command_options()) {
-    out += fmt::format("\n## {}\n\n| option | value | default | what it is |\n|---|---|---|---|\n", c.command);
+    out += fmt::format("\n## {}\n\n| option | value | default | must be | what it is |\n|---|---|---|---|---|\n",
+                       c.command);
     for (const OptionInfo& r : c.rows) {
       const bool positional = !r.names.starts_with('-');
       std::string value = r.kind == OptionKind::flag ? std::string() : r.value_name;
       if (r.kind == OptionKind::list && !r.several_per_name) value += " (repeatable)";
       std::string dflt = r.required ? "required" : r.default_value;
-      out += fmt::format("| {} | {} | {} | {} |\n", positional ? r.names : "`" + r.names + "`", cell(value),
-                         cell(dflt), cell(r.help));
+      out += fmt::format("| {} | {} | {} | {} | {} |\n", positional ? r.names : "`" + r.names + "`", cell(value),
+                         cell(dflt), cell(r.rule ? r.rule->text() : ""), cell(r.help));
     }
   }
+  out +=
+      "\n## engine options\n\n"
+      "Each engine's `--option KEY=VALUE` (fit, diagnose, score's `ENGINE:KEY=VALUE`), from the same kind of\n"
+      "table in the engine's file; `gyrotherm engines` lists them too.\n\n"
+      "| engine | key | default | must be | what it is |\n|---|---|---|---|---|\n";
+  for (const fit::EngineInfo& e : fit::engine_registry())
+    for (const OptionInfo& r : e.options)
+      out += fmt::format("| {} | `{}` | {} | {} | {} |\n", e.name, r.keyword, cell(r.default_value),
+                         cell(r.rule ? r.rule->text() : ""), cell(r.help));
   return out;
 }
 

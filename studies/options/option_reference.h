@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::studies {
 

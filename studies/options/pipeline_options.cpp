@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
@@ -14,16 +12,9 @@ fit::PipelineOptions DataOptions::resolved() const {
   if (keep_outliers && outlier_threshold)
     throw InputError("--keep-outliers and --outlier-threshold contradict each other: keep the "
                      "glitches, or set the rule that removes them, not both");
-  if (outlier_threshold) {
-    if (!(*outlier_threshold > 0.0))
-      throw InputError(fmt::format("--outlier-threshold {}: must be > 0 (robust sigmas)", *outlier_threshold));
-    p.outliers.threshold = *outlier_threshold;
-  }
-  if (!(p.derivative_span_s > 0.0) || !std::isfinite(p.derivative_span_s))
-    throw InputError(fmt::format("--deriv-span {}: must be a number of seconds > 0", p.derivative_span_s));
-  if (!(p.sensor_tau_s >= 0.0) || !std::isfinite(p.sensor_tau_s))
-    throw InputError(fmt::format("--sensor-tau {}: must be a number of seconds >= 0 (0: the sensors do not lag)",
-                                 p.sensor_tau_s));
+  // --deriv-span, --sensor-tau, --outlier-threshold: their rows' rules.
+  check_rules(OptionTable<DataOptions>{"", data_option_rows(true)}, *this);
+  if (outlier_threshold) p.outliers.threshold = *outlier_threshold;
   if (causal) p.derivative = fit::DerivativeMode::causal;
   if (keep_outliers) p.remove_outliers = false;
   return p;
@@ -77,21 +68,21 @@ std::vector<OptionRow<DataOptions>> data_option_rows(bool with_avg) {
   if (with_avg)
     rows.push_back(field_row<D>("--avg", "Averaging window in seconds (the paper's 100 s averages)",
                                 [](D& o) -> auto& { return o.pipeline.averaging.window_s; }));
-  rows.push_back(field_row<D>("--deriv-span",
+  rows.push_back(ruled_row<D>("--deriv-span",
                               "Longest time between two window centres that dT/dt and d2T/dt2 may span, "
                               "across a gap or not",
-                              [](D& o) -> auto& { return o.pipeline.derivative_span_s; }));
-  rows.push_back(field_row<D>("--sensor-tau",
+                              [](D& o) -> auto& { return o.pipeline.derivative_span_s; }, number_above(0.0, kNoBound, "s")));
+  rows.push_back(ruled_row<D>("--sensor-tau",
                               "Time constant in s of the temperature sensors' lag behind the gyro's temperature: "
                               "temperatures are read as T + tau dT/dt (0: no lag)",
-                              [](D& o) -> auto& { return o.pipeline.sensor_tau_s; }));
+                              [](D& o) -> auto& { return o.pipeline.sensor_tau_s; }, number_in(0.0, kNoBound, "s")));
   rows.push_back(field_row<D>("--causal", "Backward differences for dT/dt and d2T (a real-time compensator) rather than central ones",
                               &D::causal));
   rows.push_back(field_row<D>("--keep-outliers", "Do not remove counting glitches", &D::keep_outliers));
   // (Unset until given: the glitch rule's own threshold applies.)
-  rows.push_back(defaulting(field_row<D>("--outlier-threshold",
+  rows.push_back(defaulting(ruled_row<D>("--outlier-threshold",
                                          "Glitch rule: deviation from the moving median in robust sigmas",
-                                         &D::outlier_threshold),
+                                         &D::outlier_threshold, number_above(0.0, kNoBound)),
                             detail::number_text(fit::OutlierOptions{}.threshold)));
   append_rows(rows, column_option_rows(false), [](D& o) -> auto& { return o.pipeline.columns; });
   return rows;

@@ -2,7 +2,7 @@
 // The options shared by the commands that read measurements (fit, diagnose,
 // allan; compensate the columns alone): column mapping, units, averaging
 // window, derivative mode, outlier rule; and the model options of fit and
-// diagnose. Their rows (studies/options/option_table.h) go into each
+// diagnose. Their rows (sim/util/option_table.h) go into each
 // command's table.
 
 #include <cstdint>
@@ -13,7 +13,7 @@
 
 #include "fit/model/formula.h"
 #include "fit/pipeline.h"
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::studies {
 

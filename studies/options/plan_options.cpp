@@ -47,12 +47,14 @@ std::vector<OptionRow<O>> plan_rows() {
       row("--rig", "Rig file instead of the scenario's", &R::rig),
       row("--gyro", "Gyro file (truth, priors and noise) instead of the scenario's", &R::gyro),
       row("--noise", "The noise (and priors) of a fit, diagnose or allan --json", &R::noise),
-      row("--tau", "A first-order thermal path of TAU s from chamber to sensor instead of a rig", &R::tau_s),
+      with_rule(row("--tau", "A first-order thermal path of TAU s from chamber to sensor instead of a rig", &R::tau_s),
+                number_above(0.0, kNoBound, "s")),
       defaulting(row("--range", "Chamber range LO,HI in °C", &O::range),
                  "the scenario's set points"),
-      defaulting(row("--max-rate", "Fastest ramp, °C/min", &R::max_rate_c_per_min), "the scenario's fastest"),
-      row("--min-soak", "Shortest soak, s", &R::min_soak_s),
-      row("--longest", "Longest test considered, h", &R::longest_h),
+      with_rule(defaulting(row("--max-rate", "Fastest ramp, °C/min", &R::max_rate_c_per_min), "the scenario's fastest"),
+                number_above(0.0, kNoBound, "°C/min")),
+      with_rule(row("--min-soak", "Shortest soak, s", &R::min_soak_s), number_in(0.0, kNoBound, "s")),
+      with_rule(row("--longest", "Longest test considered, h", &R::longest_h), number_above(0.0, 720.0, "h")),
       row("--out", "Folder for plan.toml, rig.toml, gyro.toml, plan_setpoint.csv, plan.png", &R::out),
       row("--verify", "Simulate and fit the planned test N times; report achieved errors", &R::verify),
       defaulting(row("--seed", "First seed of --verify", &R::seed), "the scenario's"),
@@ -67,6 +69,7 @@ const OptionTable<PlanCommandOptions>& plan_option_table() {
 }
 
 plan::PlanRequest plan_request(const PlanCommandOptions& o, const std::string& default_scenario) {
+  check_rules(plan_option_table(), o);  // --tau, --max-rate, --min-soak, --longest
   plan::PlanRequest request = o.request;
   if (request.scenario.empty()) request.scenario = default_scenario;
   if (!o.range.empty()) {

@@ -1,12 +1,12 @@
 #pragma once
-// `gyrotherm plan`'s options (studies/options/option_table.h) and the request
+// `gyrotherm plan`'s options (sim/util/option_table.h) and the request
 // they make (studies/plan/plan.h; run_plan checks the values before it
 // searches).
 
 #include <string>
 #include <vector>
 
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 #include "studies/plan/plan.h"
 
 namespace gyrotherm::studies {

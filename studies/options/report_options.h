@@ -1,8 +1,8 @@
 #pragma once
-// `gyrotherm report`'s options (studies/options/option_table.h) and the
+// `gyrotherm report`'s options (sim/util/option_table.h) and the
 // request they make (studies/report/report.h).
 
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 #include "studies/report/report.h"
 
 namespace gyrotherm::studies {

@@ -1,11 +1,11 @@
 #pragma once
-// `gyrotherm reproduce`'s options (studies/options/option_table.h) and the
+// `gyrotherm reproduce`'s options (sim/util/option_table.h) and the
 // run they make (studies/reproduce/reproduce.h).
 
 #include <cstdint>
 #include <string>
 
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 #include "studies/reproduce/reproduce.h"
 
 namespace gyrotherm::studies {

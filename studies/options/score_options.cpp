@@ -1,9 +1,6 @@
 #include "studies/options/score_options.h"
 
-#include <fmt/format.h>
-
 #include "sim/util/comma_list.h"
-#include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
 
@@ -16,7 +13,8 @@ const OptionTable<ScoreCommandOptions>& score_option_table() {
        defaulting(field_row<O>("--engines", "Comma-separated engines", &O::engines),
                   "every engine that minimises σ (all but gls)"),
        field_row<O>("--trials", "Number of trials N", &O::trials),
-       defaulting(field_row<O>("--threads", "Threads per process (0: one per core)", &O::threads),
+       defaulting(ruled_row<O>("--threads", "Threads per process", &O::threads,
+                               whole_or_zero(1, 1024, "one per core")),
                   "one per core; 1 under mpirun"),
        defaulting(field_row<O>("--seed", "Campaign seed S; trial k uses S + k", &O::seed), "the scenario's seed"),
        field_row<O>("--model", "Model formula", &O::model),
@@ -37,8 +35,7 @@ const OptionTable<ScoreCommandOptions>& score_option_table() {
 }
 
 ScoreOptions score_request(const ScoreCommandOptions& o) {
-  if (o.threads < 0 || o.threads > 1024)
-    throw InputError(fmt::format("--threads {}: must be from 1 to 1024 (0: one per core)", o.threads));
+  check_rules(score_option_table(), o);  // --threads
   ScoreOptions s;
   s.scenario = o.scenario;
   s.engines = split_commas(o.engines);

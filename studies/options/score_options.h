@@ -1,5 +1,5 @@
 #pragma once
-// `gyrotherm score`'s options (studies/options/option_table.h) and the
+// `gyrotherm score`'s options (sim/util/option_table.h) and the
 // campaign they make (studies/score/campaign.h).
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 #include "studies/score/campaign.h"
 
 namespace gyrotherm::studies {

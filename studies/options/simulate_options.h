@@ -1,9 +1,9 @@
 #pragma once
-// `gyrotherm simulate`'s options (studies/options/option_table.h) and the
+// `gyrotherm simulate`'s options (sim/util/option_table.h) and the
 // request they make (sim/simulation_run.h).
 
 #include "sim/simulation_run.h"
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 namespace gyrotherm::studies {
 

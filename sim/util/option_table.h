@@ -1,6 +1,7 @@
 #pragma once
-// The options of a command, declared once (docs/architecture.md, "Where the
-// options live"). A command's table lists per option the names the command
+// Options, declared once (docs/architecture.md, "Where the options live"):
+// a command's (`gyrotherm fit --avg 100`) and an engine's (`--option
+// fish=30`) are the same table. A command's table lists per option the names the command
 // line takes ("--avg", "-o,--output", or a positional "data"), the keyword a
 // Python caller writes ("avg", "output", "data"), the help the command line
 // shows (it states the default and the unit), the option's kind, whether it
@@ -16,8 +17,12 @@
 // expected a number"); the checks that need several options are in each
 // command's request function (e.g. studies/options/fit_options.h).
 //
-// (fit::OptionTable, in fit/engines/engine_options.h, is the other kind of
-// table: an engine's KEY=VALUE options, given to --option.)
+// A row may carry a rule (OptionRule: a range, a whole number, a list of
+// words): its setter refuses a value that breaks it ("--longest '800': must
+// be > 0 and <= 720 h"), check_rules holds an options struct built in code to
+// the same rules, and the help shows it. An engine's table names its rows by
+// the KEY of --option KEY=VALUE (fit/engines/engine_options.h reads them with
+// the engine's own messages).
 
 #include <charconv>
 #include <concepts>
@@ -31,7 +36,55 @@
 #include <utility>
 #include <vector>
 
-namespace gyrotherm::studies {
+namespace gyrotherm {
+
+// What a value must be.
+struct OptionRule {
+  enum class Kind { integer, real, choice };
+  Kind kind = Kind::real;
+  double lower = 0.0;       // integer and real: lower ≤ value ≤ upper (an infinite upper: no bound)
+  double upper = 0.0;
+  bool lower_open = false;  // real: lower < value
+  bool upper_open = false;  // real: value < upper
+  // integer: one more value outside [lower, upper] that is allowed, how a
+  // user writes it ("auto": only as that word; empty: as the number) and
+  // what it means ("automatic").
+  std::optional<double> extra;
+  std::string_view extra_word;
+  std::string_view extra_meaning;
+  std::vector<std::string_view> choices;  // choice: the allowed words
+  std::string_view unit;                  // "h", "s", "°C/min": after the bounds
+
+  bool allows(double value) const;
+  bool allows_word(std::string_view word) const;  // choice
+  // "a whole number from 2 to 100000 (or auto)", "> 0 and <= 1", "> 0 s", "one of nw, ewc".
+  std::string text() const;
+};
+
+// Rules, for the tables; kNoBound as an upper bound: none.
+inline constexpr double kNoBound = std::numeric_limits<double>::infinity();
+inline OptionRule whole(double lower, double upper) {
+  return {.kind = OptionRule::Kind::integer, .lower = lower, .upper = upper};
+}
+inline OptionRule whole_or_auto(double lower, double upper) {
+  return {.kind = OptionRule::Kind::integer, .lower = lower, .upper = upper, .extra = 0.0,
+          .extra_word = "auto", .extra_meaning = "automatic"};
+}
+inline OptionRule whole_or_zero(double lower, double upper, std::string_view meaning) {
+  return {.kind = OptionRule::Kind::integer, .lower = lower, .upper = upper, .extra = 0.0,
+          .extra_meaning = meaning};
+}
+inline OptionRule number_in(double lower, double upper, std::string_view unit = {}) {
+  return {.kind = OptionRule::Kind::real, .lower = lower, .upper = upper, .unit = unit};
+}
+inline OptionRule number_above(double lower, double upper, std::string_view unit = {}) {
+  return {.kind = OptionRule::Kind::real, .lower = lower, .upper = upper, .lower_open = true, .unit = unit};
+}
+inline OptionRule one_of(std::vector<std::string_view> choices) {
+  return {.kind = OptionRule::Kind::choice, .choices = std::move(choices)};
+}
+// A default as a user would write it: 0.25, 20000, auto, nw.
+std::string option_value_text(double value, const OptionRule& rule);
 
 // list: repeatable, one value each time (on the command line one value per
 // name: `--add a --add b`, so that a positional after it is never taken for
@@ -64,6 +117,12 @@ struct OptionRow {
   // every other list one per name.
   bool several_per_name = false;
   std::string default_note;
+  // What the value must be, where the option has a rule (with_rule).
+  std::optional<OptionRule> rule;
+  // A number or whole-number row: its field as a number (nothing for an
+  // optional not set), and setting it from one.
+  std::function<std::optional<double>(const Options&)> number;
+  std::function<void(Options&, double)> set_number;
 };
 
 
@@ -90,8 +149,10 @@ struct OptionInfo {
   // default-constructed Options holds (a text, number or whole number that is
   // not empty; a flag is off and a list empty by default); "" for none.
   std::string default_value;
+  std::optional<OptionRule> rule;
 };
-// The help with its default: "Averaging window in seconds (default: 100)".
+// The help with its default and rule: "Averaging window in seconds (default:
+// 100)", "Longest test considered, h (default: 48; must be > 0 and <= 720 h)".
 std::string shown_help(const OptionInfo& row);
 // The value `defaults` hold for a text, number or whole-number row that is
 // not required, as a user would write it; "" for any other row and an unset
@@ -100,6 +161,8 @@ template <class Options>
 std::string value_default(const OptionRow<Options>& r, const Options& defaults) {
   const bool valued = r.kind == OptionKind::text || r.kind == OptionKind::number || r.kind == OptionKind::integer;
   if (!valued || !r.get || r.required) return {};
+  if (r.rule && r.number)
+    if (const std::optional<double> x = r.number(defaults)) return option_value_text(*x, *r.rule);
   return detail::quoted_if_spaced(r.get(defaults).value_or(""));
 }
 template <class Options>
@@ -107,7 +170,8 @@ std::vector<OptionInfo> list_options(const OptionTable<Options>& table) {
   const Options defaults{};
   std::vector<OptionInfo> out;
   for (const OptionRow<Options>& r : table.rows) {
-    OptionInfo info{r.names, r.keyword, r.help, r.kind, r.required, r.value_name, r.several_per_name, r.default_note};
+    OptionInfo info{r.names, r.keyword,          r.help,         r.kind,
+                    r.required, r.value_name, r.several_per_name, r.default_note, r.rule};
     if (info.default_value.empty()) info.default_value = value_default(r, defaults);
     out.push_back(std::move(info));
   }
@@ -238,7 +302,71 @@ OptionRow<Options> field_row(std::string names, std::string help, Field field, b
     row.value_name = std::is_unsigned_v<Value> ? "UINT" : "INT";
     row.set = [field, name](Options& o, const std::string& v) { std::invoke(field, o) = parse_whole<Value>(name, v); };
   }
+  if constexpr (std::is_arithmetic_v<Value> && !std::is_same_v<Value, bool>) {
+    row.number = [field](const Options& o) -> std::optional<double> {
+      const T& v = std::invoke(field, const_cast<Options&>(o));  // read only
+      if constexpr (std::is_same_v<T, Value>) {
+        return static_cast<double>(v);
+      } else {
+        if (!v) return std::nullopt;
+        return static_cast<double>(*v);
+      }
+    };
+    row.set_number = [field](Options& o, double v) { std::invoke(field, o) = static_cast<Value>(v); };
+  }
   return row;
+}
+
+// "--longest '800': must be > 0 and <= 720 h" (engines word it their own way).
+[[noreturn]] void reject_rule(std::string_view option, const std::string& text, const OptionRule& rule);
+
+// The row with a rule: its setter refuses a value that breaks it (a choice
+// before it is set, a number once parsed).
+template <class Options>
+OptionRow<Options> with_rule(OptionRow<Options> row, OptionRule rule) {
+  row.rule = rule;
+  row.set = [set = std::move(row.set), number = row.number, rule, name = display_name(row.names)](
+                Options& o, const std::string& v) {
+    if (rule.kind == OptionRule::Kind::choice && !rule.allows_word(v)) reject_rule(name, v, rule);
+    set(o, v);
+    if (number)
+      if (const std::optional<double> x = number(o); x && !rule.allows(*x)) reject_rule(name, v, rule);
+  };
+  return row;
+}
+
+// A row of one field with its rule, as engines declare theirs:
+// ruled_row<O>("fish", "N, the swarm size", &O::fish, whole(2, 100000)).
+template <class Options, class Field>
+OptionRow<Options> ruled_row(std::string names, std::string help, Field field, OptionRule rule) {
+  return with_rule(field_row<Options>(std::move(names), std::move(help), field), std::move(rule));
+}
+
+// The first row whose value breaks its rule in `options` (built in code):
+// its index, and the value as a user would write it.
+template <class Options>
+std::optional<std::pair<std::size_t, std::string>> broken_rule(const OptionTable<Options>& table,
+                                                               const Options& options) {
+  for (std::size_t k = 0; k < table.rows.size(); ++k) {
+    const OptionRow<Options>& r = table.rows[k];
+    if (!r.rule) continue;
+    if (r.number) {
+      if (const std::optional<double> x = r.number(options); x && !r.rule->allows(*x))
+        return std::pair{k, option_value_text(*x, *r.rule)};
+    } else if (r.rule->kind == OptionRule::Kind::choice && r.get) {
+      const std::string word = r.get(options).value_or("");
+      if (!r.rule->allows_word(word)) return std::pair{k, word};
+    }
+  }
+  return std::nullopt;
+}
+
+// Refuses, as the command line would, the first value in `options` (built in
+// code, e.g. by a Python caller) that breaks its row's rule.
+template <class Options>
+void check_rules(const OptionTable<Options>& table, const Options& options) {
+  if (const auto broken = broken_rule(table, options))
+    reject_rule(display_name(table.rows[broken->first].names), broken->second, *table.rows[broken->first].rule);
 }
 
 // The row with its default in words, where it is not a value the struct holds.
@@ -262,13 +390,17 @@ OptionRow<Options> nested_row(std::string names, std::string help, Outer Options
 template <class Whole, class Part, class Get>
 void append_rows(std::vector<OptionRow<Whole>>& rows, const std::vector<OptionRow<Part>>& part_rows, Get part) {
   for (const OptionRow<Part>& r : part_rows) {
-    OptionRow<Whole> w{r.names, r.keyword, r.help, r.kind, r.required, {}, r.value_name, {}, r.several_per_name,
-                       r.default_note};
+    OptionRow<Whole> w{r.names,          r.keyword,      r.help, r.kind, r.required, {}, r.value_name, {},
+                       r.several_per_name, r.default_note, r.rule};
     w.set = [set = r.set, part](Whole& o, const std::string& v) { set(std::invoke(part, o), v); };
     if (r.get)
       w.get = [get = r.get, part](const Whole& o) { return get(std::invoke(part, const_cast<Whole&>(o))); };
+    if (r.number) {
+      w.number = [number = r.number, part](const Whole& o) { return number(std::invoke(part, const_cast<Whole&>(o))); };
+      w.set_number = [set = r.set_number, part](Whole& o, double v) { set(std::invoke(part, o), v); };
+    }
     rows.push_back(std::move(w));
   }
 }
 
-}  // namespace gyrotherm::studies
+}  // namespace gyrotherm

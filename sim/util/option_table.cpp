@@ -1,17 +1,63 @@
-#include "studies/options/option_table.h"
+#include "sim/util/option_table.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "sim/util/comma_list.h"
 #include "sim/util/input_error.h"
 
-namespace gyrotherm::studies {
+namespace gyrotherm {
+
+bool OptionRule::allows(double value) const {
+  if (kind == Kind::choice) return false;
+  if (!std::isfinite(value)) return false;
+  if (extra && value == *extra) return true;
+  if (kind == Kind::integer && value != std::floor(value)) return false;
+  if (lower_open ? value <= lower : value < lower) return false;
+  return upper_open ? value < upper : value <= upper;
+}
+
+bool OptionRule::allows_word(std::string_view word) const {
+  return std::find(choices.begin(), choices.end(), word) != choices.end();
+}
+
+std::string OptionRule::text() const {
+  const std::string after = unit.empty() ? std::string() : fmt::format(" {}", unit);
+  switch (kind) {
+    case Kind::integer: {
+      const std::string range = std::isinf(upper) ? fmt::format("a whole number >= {}{}", lower, after)
+                                                  : fmt::format("a whole number from {} to {}{}", lower, upper, after);
+      if (!extra) return range;
+      if (!extra_word.empty()) return fmt::format("{} (or {})", range, extra_word);
+      return fmt::format("{} ({}) or {}", *extra, extra_meaning, range);
+    }
+    case Kind::real: {
+      const std::string low = fmt::format("{} {}", lower_open ? ">" : ">=", lower);
+      if (std::isinf(upper)) return low + after;
+      return fmt::format("{} and {} {}{}", low, upper_open ? "<" : "<=", upper, after);
+    }
+    case Kind::choice: return fmt::format("one of {}", fmt::join(choices, ", "));
+  }
+  return "";
+}
+
+std::string option_value_text(double value, const OptionRule& rule) {
+  if (rule.extra && value == *rule.extra && !rule.extra_word.empty()) return std::string(rule.extra_word);
+  return fmt::format("{}", value);
+}
+
+void reject_rule(std::string_view option, const std::string& text, const OptionRule& rule) {
+  throw InputError(fmt::format("{} '{}': must be {}", option, text, rule.text()));
+}
 
 std::string shown_help(const OptionInfo& row) {
-  return row.default_value.empty() ? row.help : fmt::format("{} (default: {})", row.help, row.default_value);
+  std::string within;
+  if (!row.default_value.empty()) within = "default: " + row.default_value;
+  if (row.rule) within += (within.empty() ? "must be " : "; must be ") + row.rule->text();
+  return within.empty() ? row.help : fmt::format("{} ({})", row.help, within);
 }
 
 std::string_view kind_name(OptionKind kind) {
@@ -92,4 +138,4 @@ void reject_whole_number(std::string_view option, const std::string& text, bool 
   throw InputError(fmt::format("{} '{}': expected a whole number{}", option, text, is_unsigned ? " >= 0" : ""));
 }
 
-}  // namespace gyrotherm::studies
+}  // namespace gyrotherm
