@@ -1,7 +1,6 @@
 #include "fit/fit_file.h"
 
 #include <algorithm>
-#include <cctype>
 
 #include <fmt/format.h>
 
@@ -13,49 +12,18 @@
 #include "fit/model/formula.h"
 #include "fit/record_support.h"
 #include "sim/util/input_error.h"
+#include "sim/util/json_fields.h"
 
 namespace gyrotherm::fit {
 namespace {
 
 using Json = nlohmann::ordered_json;
-
-}  // namespace
-
-namespace {
-
-// A field of one of the fit file's objects, named in an error by its path
-// from there ("coefficients.T^2"): InputError "PATH: missing (WHAT)" or
-// "PATH: must be a finite number (WHAT)"; read_object puts the path of the
-// object it reads before it.
-const nlohmann::json& field_at(const nlohmann::json& obj, const std::string& key, const std::string& path,
-                               std::string_view what) {
-  if (!obj.is_object() || !obj.contains(key)) throw InputError(fmt::format("{}: missing ({})", path, what));
-  return obj[key];
-}
-double finite_number(const nlohmann::json& v, const std::string& path, std::string_view what) {
-  if (!v.is_number() || !std::isfinite(v.get<double>()))
-    throw InputError(fmt::format("{}: must be a finite number ({})", path, what));
-  return v.get<double>();
-}
-double finite_at(const nlohmann::json& obj, const std::string& key, const std::string& path, std::string_view what) {
-  return finite_number(field_at(obj, key, path, what), path, what);
-}
-const nlohmann::json& field(const nlohmann::json& obj, const char* key, std::string_view what) {
-  return field_at(obj, key, key, what);
-}
-double finite(const nlohmann::json& obj, const char* key, std::string_view what) { return finite_at(obj, key, key, what); }
-// obj[key] read by its from_json, an error of a field inside it named by its path ("columns.csv.rate_hz").
-template <class T>
-void read_object(const nlohmann::json& obj, const char* key, std::string_view what, T& out) {
-  const nlohmann::json& v = field(obj, key, what);
-  try {
-    from_json(v, out);
-  } catch (const InputError& e) {
-    const std::string_view inner = e.what();
-    const bool path = !inner.empty() && (std::islower(static_cast<unsigned char>(inner[0])) || inner[0] == '_');
-    throw InputError(fmt::format("{}{}{}", key, path ? "." : ": ", inner));
-  }
-}
+using json_fields::field;
+using json_fields::field_at;
+using json_fields::finite;
+using json_fields::finite_at;
+using json_fields::finite_number;
+using json_fields::read_object;
 
 }  // namespace
 

@@ -21,6 +21,7 @@
 
 #include "cli_runner.h"
 #include "expect_input_error.h"
+#include "fit/engines/engine.h"
 #include "studies/options/allan_options.h"
 #include "studies/options/check_options.h"
 #include "studies/options/compensate_options.h"
@@ -399,10 +400,22 @@ TEST(OptionTable, TheOptionsReferenceIsGenerated) {
   // Every command's every option is in it, with its default.
   for (const CommandOptions& c : every_command_options()) {
     EXPECT_NE(written.find("\n## " + c.command + "\n"), std::string::npos) << c.command;
-    for (const OptionInfo& row : c.rows)
-      if (!row.default_value.empty())
+    for (const OptionInfo& row : c.rows) {
+      if (!row.default_value.empty()) {
         EXPECT_NE(written.find(" | " + row.default_value), std::string::npos) << c.command << " " << row.names;
+      }
+      if (row.rule) {
+        EXPECT_NE(written.find(" | " + row.rule->text() + " | "), std::string::npos) << row.names;
+      }
+    }
   }
+  // And every engine's every option, with its default and rule.
+  for (const fit::EngineInfo& e : fit::engine_registry())
+    for (const OptionInfo& row : e.options)
+      EXPECT_NE(written.find(fmt::format("| {} | `{}` | {} | {} |", e.name, row.keyword, row.default_value,
+                                         row.rule->text())),
+                std::string::npos)
+          << e.name << " " << row.keyword;
 }
 
 // A repeatable option takes one value per name, so that the positional after

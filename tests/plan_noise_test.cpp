@@ -299,7 +299,11 @@ TEST(PlanNoise, BadJsonIsRefusedNamingTheFileAndField) {
   expect_input_error([&] { noise_of_json(with({{"noise_model", nullptr}})); },
                      {file.string(), "noise_model is null", "nothing to plan against"});
   expect_input_error([&] { noise_of_json(with({{"noise_model", {{"method", "REML"}}}})); },
-                     {file.string(), "noise_model.components: expected an object"});
+                     {file.string(), "noise_model.components: missing (an object {arw, bias_instability"});
+  expect_input_error([&] { noise_of_json(with({{"noise_model", {{"components", 3}}}})); },
+                     {file.string(), "noise_model.components: expected an object {arw, bias_instability"});
+  expect_input_error([&] { noise_of_json(with({{"noise_model", {{"components", {{"rrw", 2}}}}}})); },
+                     {file.string(), "noise_model.components.rrw = 2: expected {\"value\": a number >= 0 in °/h/√h"});
   const auto arw = [&](const nlohmann::ordered_json& value) {
     return with({{"noise_model", {{"components", {{"arw", {{"value", value}}}}}}}});
   };

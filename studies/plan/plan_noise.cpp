@@ -16,6 +16,7 @@
 #include "sim/noise.h"
 #include "sim/util/format.h"
 #include "sim/util/input_error.h"
+#include "sim/util/json_fields.h"
 
 namespace gyrotherm::studies::plan {
 
@@ -82,6 +83,36 @@ double rounded(double v) { return std::strtod(fmt::format("{:.15g}", v).c_str(),
 std::string shown(const Json& v) {
   std::string text = v.dump();
   return text.size() > 40 ? text.substr(0, 37) + "..." : text;
+}
+
+// A noise_model's components: each {"value": a number >= 0, …} in its unit,
+// an absent one 0.
+struct NoiseComponents {
+  double arw = 0.0;               // °/√h
+  double bias_instability = 0.0;  // °/h
+  double gauss_markov = 0.0;      // °/h
+  double gauss_markov_tau = 0.0;  // s
+  double rrw = 0.0;               // °/h/√h
+};
+
+void from_json(const Json& j, NoiseComponents& c) {
+  if (!j.is_object())
+    throw InputError("expected an object {arw, bias_instability, gauss_markov, gauss_markov_tau, rrw}");
+  const auto read = [&j](const char* name, const char* unit, double& out) {
+    if (!j.contains(name)) return;
+    const Json& v = j[name];
+    if (!v.is_object() || !v.contains("value"))
+      throw InputError(fmt::format("{} = {}: expected {{\"value\": a number >= 0 in {}, ...}}", name, shown(v), unit));
+    const Json& x = v["value"];
+    if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < 0.0)
+      throw InputError(fmt::format("{}.value = {}: expected a number >= 0 ({})", name, shown(x), unit));
+    out = x.get<double>();
+  };
+  read("arw", "°/√h", c.arw);
+  read("bias_instability", "°/h", c.bias_instability);
+  read("gauss_markov", "°/h", c.gauss_markov);
+  read("gauss_markov_tau", "s", c.gauss_markov_tau);
+  read("rrw", "°/h/√h", c.rrw);
 }
 
 // Reads a JSON's noise_model (plan_noise.h): where it is, and its components.
@@ -152,22 +183,17 @@ class NoiseModelReader {
            "(series[].noise_model); a record too short to identify its noise has none");
   }
 
-  // components.NAME.value: absent is 0; else a finite number ≥ 0.
-  double component(const Json& model, const char* name, const char* unit) const {
-    const std::string where = path_ + ".components";
-    if (!model.contains("components") || !model["components"].is_object())
-      refuse(fmt::format("{}: expected an object {{arw, bias_instability, gauss_markov, gauss_markov_tau, rrw}}",
-                         where));
-    const Json& components = model["components"];
-    if (!components.contains(name)) return 0.0;
-    const Json& c = components[name];
-    if (!c.is_object() || !c.contains("value"))
-      refuse(fmt::format("{}.{} = {}: expected {{\"value\": a number >= 0 in {}, ...}}", where, name, shown(c),
-                         unit));
-    const Json& v = c["value"];
-    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0.0)
-      refuse(fmt::format("{}.{}.value = {}: expected a number >= 0 ({})", where, name, shown(v), unit));
-    return v.get<double>();
+  // The model's components (from_json below), an error inside named by its
+  // path from the file's top ("noise_model.components.arw.value = …").
+  NoiseComponents components(const Json& model) const {
+    NoiseComponents c;
+    try {
+      json_fields::read_object(model, "components",
+                               "an object {arw, bias_instability, gauss_markov, gauss_markov_tau, rrw}", c);
+    } catch (const InputError& e) {
+      refuse(json_fields::inside(path_, e).what());
+    }
+    return c;
   }
 
   const std::string& path() const { return path_; }
@@ -211,13 +237,10 @@ PlanNoise noise_of_json(const std::filesystem::path& file) {
   NoiseModelReader reader(file);
   const Json root = reader.parse();
   const Json& json = reader.locate(root);
-  const double arw = reader.component(json, "arw", "°/√h");
-  const double floor = reader.component(json, "bias_instability", "°/h");
-  const double gm = reader.component(json, "gauss_markov", "°/h");
-  const double rrw = reader.component(json, "rrw", "°/h/√h");
-  double gm_tau = 0.0;
+  const NoiseComponents c = reader.components(json);
+  const double arw = c.arw, floor = c.bias_instability, gm = c.gauss_markov, rrw = c.rrw;
+  const double gm_tau = gm > 0.0 ? c.gauss_markov_tau : 0.0;
   if (gm > 0.0) {
-    gm_tau = reader.component(json, "gauss_markov_tau", "s");
     if (!(gm_tau > 0.0))
       reader.refuse(fmt::format("{}.components.gauss_markov_tau.value: expected the correlation time (s, > 0) of "
                                 "gauss_markov = {} °/h",
