@@ -38,7 +38,7 @@
 namespace gyrotherm::fit {
 
 inline constexpr std::size_t kPrefixRows = std::size_t{1} << 18;  // 262 144
-inline constexpr std::size_t kBatchRows = 8192;
+inline constexpr std::size_t kBatchRows = 32768;
 inline constexpr std::size_t kBatchesInFlight = 4;
 
 // Throws InputError (naming the file and line) on bad input, as prepare_data.
