@@ -26,8 +26,10 @@
 // filtering overlap on two cores.
 //
 // Memory: the prefix (kPrefixRows × 32 bytes, 8 MB), the filter's window, the
-// batches (1 MB) and the averaged series; nothing grows with the record but
-// the series, the gaps and the glitch times.
+// batches (4 MB: large ones mean fewer hand-offs between the cores, each a
+// wake-up; with 8192 rows a batch `fit` read 583 MB in 1.22 s, with 32768 in
+// 1.0-1.1 s) and the averaged series; nothing grows with the record but the
+// series, the gaps and the glitch times.
 
 #include <cstddef>
 #include <filesystem>
