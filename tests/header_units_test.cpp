@@ -157,6 +157,9 @@ TEST(HeaderUnits, NumbersThatLookLikeAnotherUnitAreCautioned) {
   const nlohmann::json k = fit_json(dir, "rad.csv" + cols + " --temp-unit K --gyro-unit rad/s");
   ASSERT_EQ(k["data"]["cautions"].size(), 1u) << k["data"]["cautions"];
   EXPECT_NE(k["data"]["cautions"][0].get<std::string>().find("below -100 °C"), std::string::npos);
+  EXPECT_NE(k["data"]["cautions"][0].get<std::string>().find("°C read as kelvin (give --temp-unit C)"),
+            std::string::npos)
+      << k["data"]["cautions"][0];
   // A 2 h test read as 83 days.
   const nlohmann::json t = fit_json(dir, "ms.csv --avg 20000" + cols);
   ASSERT_GE(t["data"]["cautions"].size(), 1u);

@@ -20,7 +20,10 @@ std::string out_of_range(Role role, double v) {
   switch (role) {
     case kTemp:
     case kTemp2:
-      if (v < -273.15 || v > 1000.0) return fmt::format("{:g} is not a temperature in °C (expected -273.15..1000)", v);
+      if (v < -273.15 || v > 1000.0)
+        return fmt::format("{:g} is not a temperature in °C (expected -273.15..1000; if the column holds raw counts, "
+                           "give --temp-scale and --temp-offset: temperature = A x column + B)",
+                           v);
       return {};
     case kGyro:
       if (std::abs(v) > 1e9)

@@ -99,11 +99,21 @@ std::string caution_text(const UnitCaution& c) {
           "the record spans {:.0f} days, {}: if the test was shorter, the time column is in another unit "
           "(ms or us?); give --time-unit",
           r.span_s / 86400.0, read_in);
-    case CautionKind::temperature_outside:
+    case CautionKind::temperature_outside: {
+      // The unit the numbers look like: kelvin read as °C sit near 250..350
+      // "°C"; °C read as kelvin near −273 + (−60..150) °C.
+      const bool kelvin_as_celsius = c.unit == "C" && r.temp_min_c > 200.0 && r.temp_max_c < 400.0;
+      const bool celsius_as_kelvin = c.unit == "K" && r.temp_min_c > -340.0 && r.temp_max_c < -100.0;
+      const bool guessed = kelvin_as_celsius || celsius_as_kelvin;
+      const std::string unit = kelvin_as_celsius   ? "the numbers look like kelvin read as °C (give --temp-unit K)"
+                               : celsius_as_kelvin ? "the numbers look like °C read as kelvin (give --temp-unit C)"
+                                                   : "is the column in another unit (give --temp-unit)";
       return fmt::format(
-          "every temperature is {} ({:.4g}..{:.4g} °C, {}): is the column in another unit (°C read as K?) or "
-          "raw counts (give --temp-scale and --temp-offset)?",
-          r.temp_max_c < kColdestC ? "below -100 °C" : "above 200 °C", r.temp_min_c, r.temp_max_c, read_in);
+          "every temperature is {} ({:.4g}..{:.4g} °C, {}): {} or raw counts (give --temp-scale and "
+          "--temp-offset: temperature = A x column + B){}",
+          r.temp_max_c < kColdestC ? "below -100 °C" : "above 200 °C", r.temp_min_c, r.temp_max_c, read_in, unit,
+          guessed ? "" : "?");
+    }
   }
   return {};
 }
@@ -114,9 +124,12 @@ std::vector<std::string> caution_texts(const std::vector<UnitCaution>& cautions)
   return out;
 }
 
-std::string units_text(const Units& units, const std::vector<UnitCaution>& cautions) {
-  std::string out = fmt::format("  units: {}{}\n", units.used(),
-                                units.identity() ? std::string() : "; converted: " + units.description());
+std::string units_read(const Units& units) {
+  return units.used() + (units.identity() ? std::string() : "; converted: " + units.description());
+}
+
+std::string units_text(const Units& units, const std::vector<UnitCaution>& cautions, bool with_units) {
+  std::string out = with_units ? fmt::format("  units: {}\n", units_read(units)) : std::string();
   for (const UnitCaution& c : cautions) out += "  caution: " + caution_text(c) + "\n";
   return out;
 }

@@ -77,8 +77,21 @@ std::vector<std::string> caution_texts(const std::vector<UnitCaution>& cautions)
 // The cautions for a record read in `units` (empty when all looks right).
 std::vector<UnitCaution> unit_cautions(const Units& units, const ReadSummary& read);
 
-// "  units: time ms (header 'time (ms)'), …\n" and a "  caution: …" line each.
-std::string units_text(const Units& units, const std::vector<UnitCaution>& cautions);
+// "time ms (header 'time (ms)'), …; converted: …": the units read and what chose them.
+std::string units_read(const Units& units);
+// "  units: {units_read}\n" (unless with_units is false: a report of several
+// channels read alike says it once) and a "  caution: …" line each.
+std::string units_text(const Units& units, const std::vector<UnitCaution>& cautions, bool with_units = true);
+// A multi-channel report's one units line: "units (every channel): …\n" when
+// every channel was read in the same units, else "".
+template <class Channels, class UnitsOf>
+std::string shared_units_text(const Channels& channels, UnitsOf units_of) {
+  if (channels.size() < 2) return {};
+  const std::string first = units_read(units_of(channels.front()));
+  for (const auto& c : channels)
+    if (units_read(units_of(c)) != first) return {};
+  return "units (every channel): " + first + "\n";
+}
 
 // The summary and cautions of a whole measurement (allan reads one directly).
 std::vector<UnitCaution> measurement_cautions(const Measurement& m);

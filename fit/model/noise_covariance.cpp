@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fmt/format.h>
 
 #include "fit/model/noise_model.h"
@@ -31,11 +32,19 @@ void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen:
   y += weight * w.diagonal * x;
   if (w.off == 0.0 || n < 2) return;
   // decay[i] = e^{−(t_{i+1} − t_i)/τ}; the recursions run down each column
-  // (contiguous in memory), Σ_{j<i} forward and Σ_{j>i} backward.
+  // (contiguous in memory), Σ_{j<i} forward and Σ_{j>i} backward. Most
+  // windows are one spacing apart: exp runs again only where the spacing
+  // differs from the previous one (exactly: the same number, the same decay).
   std::vector<double> decay(static_cast<std::size_t>(n - 1));
-  for (Eigen::Index i = 0; i + 1 < n; ++i)
-    decay[static_cast<std::size_t>(i)] =
-        std::exp(-(g.time_s[static_cast<std::size_t>(i + 1)] - g.time_s[static_cast<std::size_t>(i)]) / tau);
+  double last_spacing = std::numeric_limits<double>::quiet_NaN(), last_decay = 0.0;
+  for (Eigen::Index i = 0; i + 1 < n; ++i) {
+    const double spacing = g.time_s[static_cast<std::size_t>(i + 1)] - g.time_s[static_cast<std::size_t>(i)];
+    if (spacing != last_spacing) {
+      last_spacing = spacing;
+      last_decay = std::exp(-spacing / tau);
+    }
+    decay[static_cast<std::size_t>(i)] = last_decay;
+  }
   const double scale = weight * w.off;
   for (Eigen::Index c = 0; c < x.cols(); ++c) {
     const double* xc = x.col(c).data();

@@ -21,7 +21,7 @@
 namespace gyrotherm::studies {
 namespace {
 
-std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel) {
+std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel, bool units_said) {
   const fit::PipelineOptions& pipeline = channel.pipeline;
   const fit::PreparedData& data = channel.data;
   const Diagnosis& d = channel.report.diagnosis;
@@ -29,7 +29,7 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   std::string out = fmt::format("diagnose {}: model B = b0 + {} ({}), {}, {} removed\n", run.request.data,
                                 fit::formula_text(run.request.terms), run.request.engine,
                                 fit::describe_windows(data, pipeline), counted(data.outliers.removed, "glitch", "glitches"));
-  out += fit::units_text(data.units, data.cautions);
+  out += fit::units_text(data.units, data.cautions, !units_said);
   if (channel.streamed)
     out += fmt::format(
         "   (over {} MB: read in one pass without holding the samples; the log's other columns are not tried as "
@@ -202,9 +202,12 @@ nlohmann::ordered_json diagnose_json(const DiagnoseRun& run) {
 std::string diagnose_text(const DiagnoseRun& run) {
   std::string out;
   const std::size_t n = run.channels.size();
+  out += fit::shared_units_text(run.channels,
+                                [](const ChannelDiagnosis& c) -> const fit::Units& { return c.data.units; });
+  const bool units_said = !out.empty();
   for (std::size_t i = 0; i < n; ++i) {
     if (n > 1) out += fmt::format("{}== channel {} ==\n", i ? "\n" : "", run.channels[i].channel);
-    out += channel_text(run, run.channels[i]);
+    out += channel_text(run, run.channels[i], units_said);
   }
   if (n < 2) return out;
   out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));

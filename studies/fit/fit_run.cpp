@@ -18,7 +18,7 @@
 namespace gyrotherm::studies {
 namespace {
 
-std::string channel_text(const ChannelFit& c, const FitRun& run) {
+std::string channel_text(const ChannelFit& c, const FitRun& run, bool units_said) {
   const std::vector<const fit::Term*>& terms = run.request.terms;
   const fit::PreparedData& data = c.data;
   const fit::ModelFit& result = c.result;
@@ -27,7 +27,7 @@ std::string channel_text(const ChannelFit& c, const FitRun& run) {
                                 data.averaging.sample_interval_s, counted(data.outliers.removed, "glitch", "glitches"),
                                 counted(data.averaging.gaps.size(), "gap"),
                                 fit::describe_windows(data, c.pipeline));
-  out += fit::units_text(data.units, data.cautions);
+  out += fit::units_text(data.units, data.cautions, !units_said);
   if (!data.outliers.times_s.empty()) {
     std::string times;
     for (std::size_t k = 0; k < data.outliers.times_s.size() && k < 8; ++k)
@@ -153,9 +153,11 @@ FitRun run_fit(const FitRequest& request, const fit::Table& table, std::optional
 std::string fit_text(const FitRun& run) {
   std::string out;
   const std::size_t n = run.channels.size();
+  out += fit::shared_units_text(run.channels, [](const ChannelFit& c) -> const fit::Units& { return c.data.units; });
+  const bool units_said = !out.empty();
   for (const ChannelFit& c : run.channels) {
     if (n > 1) out += fmt::format("== channel {} ==\n", c.channel);
-    out += channel_text(c, run);
+    out += channel_text(c, run, units_said);
   }
   if (n > 1) {
     out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));
