@@ -125,6 +125,27 @@ TEST(CliDiagnose, APlanForAGroupTheRangeCannotSeparateLeavesTheRangeToTheChamber
   EXPECT_NE(text.out.find("add --range LO,HI, your chamber's, wider than the record's"), std::string::npos) << text.out;
 }
 
+// T and a lagged temperature confounded: the record's rates, not its range,
+// decide (a lag differs from T by about τ·dT/dt), and the advice says so.
+TEST(CliDiagnose, ALagConfoundedWithTemperatureIsToldApartByFasterRampsNotARange) {
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", "", "c.csv");
+  const auto j = nlohmann::json::parse(run_cli(dir, "diagnose c.csv --json").out);
+  bool seen = false;
+  for (const auto& g : j["confounded_groups"]) {
+    const auto& m = g["members"];
+    if (std::find(m.begin(), m.end(), "lag") == m.end()) continue;
+    seen = true;
+    ASSERT_EQ(g["evidence"][0]["reason"], "lag_follows_temperature") << g;
+    const double fastest = g["evidence"][0]["fastest_rate_c_per_min"].get<double>();
+    EXPECT_GT(fastest, 0.1) << g;  // the cycle ramps at 1 °C/min and less
+    EXPECT_LT(fastest, 5.0) << g;
+    EXPECT_NE(g["text"].get<std::string>().find("faster ramps"), std::string::npos) << g;
+    EXPECT_EQ(g["text"].get<std::string>().find("wider temperature range"), std::string::npos) << g;
+  }
+  EXPECT_TRUE(seen) << j["confounded_groups"];
+}
+
 // Bands and segments narrower than a degree are printed with the decimals
 // that show them (not "13..13 °C").
 TEST(CliDiagnose, NarrowTemperatureBandsArePrintedWithTheirDecimals) {

@@ -101,7 +101,7 @@ std::vector<ConfoundingGroup> find_confounding(const fit::DerivedSeries& derived
   for (const auto& group : members) {
     if (group.size() < 2) continue;
     ConfoundingGroup g;
-    bool has_time = false, has_temp = false, has_rate = false, has_offset = false;
+    bool has_time = false, has_temp = false, has_rate = false, has_offset = false, has_state = false;
     for (std::size_t i : group) {
       g.members.push_back(i == n ? std::string("1") : std::string(terms[i]->name));
       if (i == n) {
@@ -110,6 +110,7 @@ std::vector<ConfoundingGroup> find_confounding(const fit::DerivedSeries& derived
       }
       has_time |= terms[i]->family == effects::Family::time;
       has_temp |= is_temperature(*terms[i]);
+      has_state |= terms[i]->family == effects::Family::temperature_state;
       has_rate |= is_rate(*terms[i]);
     }
     ConfoundingEvidence e;
@@ -124,6 +125,11 @@ std::vector<ConfoundingGroup> find_confounding(const fit::DerivedSeries& derived
       e.rate_c_per_h = rate_mean / static_cast<double>(derived.size()) * 3600.0;
     } else if (has_temp && has_rate) {
       e.reason = ConfoundingReason::settling_curve;
+    } else if (has_state) {
+      // A lagged temperature differs from T by about τ·dT/dt: the record's
+      // rates, not its range, decide whether they can be told apart.
+      e.reason = ConfoundingReason::lag_follows_temperature;
+      for (double r : derived.rate_c_per_s) e.fastest_rate_c_per_min = std::max(e.fastest_rate_c_per_min, std::abs(r) * 60.0);
     } else if (has_temp) {
       const auto [lo, hi] = std::minmax_element(derived.temp_c.begin(), derived.temp_c.end());
       e.reason = ConfoundingReason::narrow_range;

@@ -40,9 +40,14 @@ std::pair<std::string, std::string> why_and_test(const ConfoundingEvidence& e) {
               "temperature and rate effects look alike",
               "a test with ramps at several rates and soaks would separate them"};
     case ConfoundingReason::narrow_range:
-      return {fmt::format("over the record's {}..{} °C their regressors are nearly proportional", human(e.temp_min_c),
-                          human(e.temp_max_c)),
+      return {fmt::format("over the record's {:.1f}..{:.1f} °C their regressors are nearly proportional", e.temp_min_c,
+                          e.temp_max_c),
               "a wider temperature range would separate them"};
+    case ConfoundingReason::lag_follows_temperature:
+      return {fmt::format("a lagged temperature differs from the temperature by about the lag times dT/dt, and this "
+                          "record changes its temperature at {} °C/min at the fastest",
+                          human(e.fastest_rate_c_per_min)),
+              "faster ramps (or a step of the chamber's temperature) would separate them"};
     case ConfoundingReason::proportional:
       return {"their regressors are nearly proportional over this record",
               "a test with another profile would separate them"};

@@ -180,6 +180,7 @@ enum class ConfoundingReason {
   constant_rate,             // the rate hardly changes: a rate effect acts as an offset (rate_c_per_h)
   settling_curve,            // temperature settles along one curve: temperature and rate look alike
   narrow_range,              // temperature powers nearly proportional over the range (temp_min_c..temp_max_c)
+  lag_follows_temperature,   // a lagged temperature moves with T at this record's rates (fastest_rate_c_per_min)
   proportional,              // regressors nearly proportional over this record
   same_part,                 // fitted together, neither adds significantly (a, b with their intervals)
   encompasses,               // a encompasses b on this record, but did not pass the test alone
@@ -191,6 +192,7 @@ struct ConfoundingEvidence {
   Direction direction = Direction::both;
   double rate_c_per_h = 0;           // constant_rate
   double temp_min_c = 0, temp_max_c = 0;  // narrow_range
+  double fastest_rate_c_per_min = 0;      // lag_follows_temperature: the largest |dT/dt| of the windows
   std::string a, b;                  // same_part, encompasses
   fit::Interval interval_a, interval_b;   // same_part: 95 %, fitted together
 };

@@ -37,6 +37,7 @@ const char* reason_name(ConfoundingReason r) {
     case ConfoundingReason::constant_rate: return "constant_rate";
     case ConfoundingReason::settling_curve: return "settling_curve";
     case ConfoundingReason::narrow_range: return "narrow_range";
+    case ConfoundingReason::lag_follows_temperature: return "lag_follows_temperature";
     case ConfoundingReason::proportional: return "proportional";
     case ConfoundingReason::same_part: return "same_part";
     case ConfoundingReason::encompasses: return "encompasses";
@@ -65,6 +66,7 @@ nlohmann::ordered_json group_json(const ConfoundingGroup& g) {
         break;
       case ConfoundingReason::constant_rate: j["rate_c_per_h"] = e.rate_c_per_h; break;
       case ConfoundingReason::narrow_range: j["temp_range_c"] = {e.temp_min_c, e.temp_max_c}; break;
+      case ConfoundingReason::lag_follows_temperature: j["fastest_rate_c_per_min"] = e.fastest_rate_c_per_min; break;
       case ConfoundingReason::same_part:
         j["intervals_95"] = {{e.a, {e.interval_a.lower, e.interval_a.upper}}, {e.b, {e.interval_b.lower, e.interval_b.upper}}};
         [[fallthrough]];
