@@ -235,6 +235,12 @@ TEST(CliReport, ARefusedLogOrRequestLeavesNothing) {
   write_text(dir / "fit.json", "{}");
   expect_refused(dir, "report short.csv --fit fit.json --model T -o r.html", "--fit brings its own model");
   EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
+  // The page's JSON twin beside the fit file of the same name would replace
+  // it: refused, and the fit file is as it was.
+  expect_refused(dir, "report short.csv --fit fit.json -o fit.html", "fit.json would be written over fit.json (--fit)");
+  expect_refused(dir, "report short.csv --params ./fit.json -o fit.html", "(--params)");
+  EXPECT_EQ(slurp(dir / "fit.json"), "{}");
+  EXPECT_FALSE(std::filesystem::exists(dir / "fit.html"));
 }
 
 }  // namespace

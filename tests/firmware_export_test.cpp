@@ -195,6 +195,11 @@ TEST(CliExport, BadInputExitsTwoAndWritesNothing) {
   gyrotherm::testing::write_text(dir / "bad.json", bad.dump());
   expect_refused(dir, "export bad.json --format px4 -o out.txt",
                  "bad.json: record.reasons.T: expected a list of narrow_range, few_levels, gap, time_locked");
+  // --channel narrows a C export; a firmware file holds every axis, so it
+  // would narrow only what is checked.
+  for (const char* format : {"px4", "ardupilot"})
+    expect_refused(dir, std::string("export fit.json --format ") + format + " --channel gyro_dph -o out.txt",
+                   "a " + std::string(format) + " file holds every axis (choose and order them with --axes");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.txt"));
 }
 

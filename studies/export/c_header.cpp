@@ -360,7 +360,7 @@ ExporterInfo c_exporter() {
             warn_if_little_compensation(f, f.instability_after_dph, &out);
             return out;
           },
-          "//"};
+          "//", true};
 }
 
 }  // namespace gyrotherm::studies

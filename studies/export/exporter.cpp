@@ -117,6 +117,12 @@ void refuse_unless_accepted(const ExportRequest& request, const std::vector<std:
 
 ExportOutput run_export(const ExportRequest& request) {
   const ExporterInfo& exporter = find_exporter(request.format);
+  // A file of every axis is checked and written for every axis: --channel
+  // would narrow what is checked, not what is written.
+  if (!request.channel.empty() && !exporter.one_channel)
+    throw InputError(fmt::format("--channel {}: a {} file holds every axis (choose and order them with --axes "
+                                 "X,Y,Z, '-' for none); --channel picks the one channel of a C export",
+                                 request.channel, request.format));
   const std::vector<fit::SavedFit> fits = fit::load_fits(request.fit_file);
   // A fit made on de-lagged temperatures (--sensor-tau) holds for them: a
   // firmware, and the C compensator, read the sensor as it is.

@@ -80,6 +80,8 @@ struct ExporterInfo {
   std::string description;  // for --help
   std::function<ExportOutput(const ExportRequest&, const std::vector<fit::SavedFit>&)> write;
   std::string comment = "#";  // how the format starts a comment line
+  // One channel (--channel picks it), or every axis (--axes orders them).
+  bool one_channel = false;
 };
 
 const std::vector<ExporterInfo>& exporter_registry();

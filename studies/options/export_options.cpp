@@ -13,7 +13,7 @@ const OptionTable<ExportCommandOptions>& export_option_table() {
       {row("fit", "Fit saved by 'gyrotherm fit -o'", &R::fit_file, true),
        row("--format", "The format: " + exporter_descriptions(), &R::format, true),
        defaulting(row("--axes", "The fit's channels for the X, Y and Z axes, '-' for none", &R::axes), "the channels in order"),
-       row("--channel", "The channel to export in C (--format c)", &R::channel),
+       row("--channel", "The channel to export in C (--format c; px4 and ardupilot take every axis: --axes)", &R::channel),
        row("--prefix", "Prefix of the C names (--format c)", &R::prefix),
        defaulting(row("--instance",
            "Gyro instance: PX4's TC_G0..3, ArduPilot's IMU 1..5 (INS_TCAL1..3_, INS4/5_TCAL_)",

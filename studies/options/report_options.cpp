@@ -1,7 +1,13 @@
 #include "studies/options/report_options.h"
 
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <utility>
+
 #include "sim/util/input_error.h"
 #include "studies/options/pipeline_options.h"
+#include "studies/report/report.h"
 #include "studies/report/report_page.h"
 
 #include <algorithm>
@@ -46,6 +52,17 @@ ReportRequest report_request(const ReportCommandOptions& options) {
                      "give it with --params");
   if (r.output.size() < 6 || r.output.substr(r.output.size() - 5) != ".html")
     throw InputError("report -o " + r.output + ": the page is HTML; name it FILE.html (its JSON twin is FILE.json)");
+  // The page and its twin never replace an input (-o cal.html beside the fit
+  // cal.json would write the twin over the fit).
+  const std::string twin = report_twin_file(r.output);
+  for (const auto& [option, input] : {std::pair{"the log", r.data}, {"--fit", r.fit_file}, {"--params", r.params}}) {
+    std::error_code error;
+    for (const std::string& written : {r.output, twin})
+      if (!input.empty() && std::filesystem::equivalent(input, written, error))
+        throw InputError(fmt::format("report -o {}: {} would be written over {} ({}); name the page otherwise "
+                                     "(its JSON twin is the page's name with .json)",
+                                     r.output, written, input, option));
+  }
   return r;
 }
 
