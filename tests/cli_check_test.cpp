@@ -18,6 +18,7 @@
 #include "cli_runner.h"
 #include "imu_logs.h"
 #include "parameter_files.h"
+#include "studies/check/check_run.h"
 
 namespace gyrotherm::testing {
 namespace {
@@ -240,7 +241,29 @@ TEST(CliCheck, EachFailureModeIsFoundOnALogMadeForItAndNotOnACleanOne) {
              "INS_TCAL1_GYR2_X,0\nINS_TCAL1_GYR3_X,0\nINS_GYR_ID,2753028\n");
   write_dataflash(dir / "clean.bin", run_samples({20.0, 50.0, 7}));
   const nlohmann::json clean = check_json(dir, "clean.bin --params narrow.parm");
-  EXPECT_EQ(issues_of(clean), (std::vector<std::string>{"calibration_span_minimum", "outside_range"}));
+  // A hand-written set, not this gyro's: it takes little off any axis (Y and Z: nothing).
+  EXPECT_EQ(issues_of(clean), (std::vector<std::string>{"calibration_span_minimum", "outside_range", "little_gain",
+                                                        "little_gain", "little_gain"}));
+  for (const auto& f : clean["findings"])
+    if (f["issue"] == "little_gain") {
+      EXPECT_GT(f["value"].get<double>(), studies::kLittleGain) << f;
+      EXPECT_LE(f["value"].get<double>(), studies::kMadeWorse) << f;
+    }
+  // One that adds a slope of 1e-3 rad/s per °C (206 °/h per °C) over the whole run: worse
+  // than no calibration, and not a pass however loose the residual limit.
+  write_text(dir / "wrong.parm",
+             "INS_TCAL1_ENABLE 1\nINS_TCAL1_TMIN 20.0\nINS_TCAL1_TMAX 50.0\n"
+             "INS_TCAL1_GYR1_X 1000.0\nINS_TCAL1_GYR2_X 0.0\nINS_TCAL1_GYR3_X 0.0\n");
+  const nlohmann::json wrong = check_json(dir, "clean.bin --params wrong.parm --max-residual 1e6", 1);
+  EXPECT_EQ(wrong["passed"], false) << wrong["findings"];
+  bool worse = false;
+  for (const auto& f : wrong["findings"])
+    if (f["issue"] == "made_worse") {
+      worse = true;
+      EXPECT_EQ(f["name"], "X") << f;
+      EXPECT_GT(f["value"].get<double>(), 10.0) << f;
+    }
+  EXPECT_TRUE(worse) << wrong["findings"];
   EXPECT_TRUE(has(issues_of(check_json(dir, "clean.bin --params mid.parm")), "calibration_span_advice"));
   write_dataflash(dir / "enabled.bin", run_samples({20.0, 50.0, 7}), {{"INS_TCAL1_ENABLE", 1.0f}, {"INS_GYR_ID", 2753029.0f}});
   const std::vector<std::string> enabled = issues_of(check_json(dir, "enabled.bin --params mid.parm"));

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
@@ -79,6 +80,14 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
       return fmt::format("axis {}: no {:g} °C temperature bin holds the {:.0f} samples a residual needs: this log cannot "
                          "show the residual against temperature{}",
                          f.name, f.limit, f.value, r.limit_dph ? ", so it does not pass --max-residual" : "");
+    case CheckIssue::made_worse:
+      return fmt::format("axis {}: the calibration leaves the instability at {:.2f} times the uncompensated log's: it "
+                         "makes this log worse (another gyro's calibration, a sign or unit wrong?){}",
+                         f.name, f.value, r.limit_dph ? ", so it does not pass --max-residual" : "");
+    case CheckIssue::little_gain:
+      return fmt::format("axis {}: the calibration takes only {:.0f} % off the instability on this log: the log has "
+                         "little thermal drift to remove (it spans {:.1f} °C), or the calibration does not fit this gyro",
+                         f.name, std::max(0.0, 100.0 * (1.0 - f.value)), r.log_temp_max_c - r.log_temp_min_c);
     case CheckIssue::fitted_log:
       return fmt::format("this log is the one the calibration was fitted on ({}, the same SHA-256): the residual is "
                          "the fit's own, and says nothing of how the calibration holds on another test; check it on "
@@ -114,7 +123,8 @@ nlohmann::ordered_json check_json(const CheckResult& r) {
                          {"instance", d.instance >= 0 ? nlohmann::ordered_json(d.instance) : nlohmann::ordered_json()},
                          {"parameter", d.parameter.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(d.parameter)}});
     findings.push_back({{"issue", check_issue_name(f.issue)}, {"value", f.value}, {"limit", f.limit},
-                        {"name", f.devices.empty() ? f.name : devices_text(f.devices)}, {"devices", devices}});
+                        {"name", f.devices.empty() ? f.name : devices_text(f.devices)}, {"devices", devices},
+                        {"text", finding_text(f, r)}});
   }
   nlohmann::ordered_json out = {{"log", r.request.log},
                                 {"log_format", r.log_format},

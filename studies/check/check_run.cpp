@@ -326,9 +326,21 @@ void add_findings(const Applied& a, CheckResult* r) {
   if (outside > 0.0) r->findings.push_back({CheckIssue::outside_range, outside, 0.0, ""});
   for (const AxisCheck& x : r->axes)
     if (std::isnan(x.residual_dph)) r->findings.push_back({CheckIssue::no_residual, static_cast<double>(kBinSamples), r->bin_c, x.axis});
+  // What the calibration does to the instability (the windows' spread), beside the residual against temperature.
+  for (const AxisCheck& x : r->axes) {
+    const double left = x.after_dph / x.before_dph;
+    if (!(x.before_dph > 0.0) || !std::isfinite(left)) continue;
+    if (left > kMadeWorse)
+      r->findings.push_back({CheckIssue::made_worse, left, kMadeWorse, x.axis});
+    else if (left > kLittleGain)
+      r->findings.push_back({CheckIssue::little_gain, left, kLittleGain, x.axis});
+  }
   if (r->limit_dph) {
-    // An axis whose residual cannot be shown does not pass: the log cannot say it is within the limit.
+    // An axis whose residual cannot be shown does not pass: the log cannot say it is within the limit;
+    // nor does one the calibration makes worse.
     r->passed = true;
+    for (const AxisCheck& x : r->axes)
+      if (x.after_dph > kMadeWorse * x.before_dph) r->passed = false;
     for (const AxisCheck& x : r->axes)
       if (!(x.residual_dph <= *r->limit_dph)) {
         r->passed = false;
@@ -361,6 +373,8 @@ std::string_view check_issue_name(CheckIssue issue) {
     case CheckIssue::residual_over_limit: return "residual_over_limit";
     case CheckIssue::fitted_log: return "fitted_log";
     case CheckIssue::no_residual: return "no_residual";
+    case CheckIssue::made_worse: return "made_worse";
+    case CheckIssue::little_gain: return "little_gain";
   }
   return "";
 }

@@ -60,7 +60,14 @@ enum class CheckIssue {
   residual_over_limit,       // --max-residual exceeded
   fitted_log,                // the log is the one the fit was made on (same SHA-256): no second test
   no_residual,               // no temperature bin has enough samples: the residual cannot be shown (`name` the axis)
+  made_worse,                // the calibration leaves an axis's instability above the uncompensated (value: after/before)
+  little_gain,               // it takes under 20 % off an axis's instability on this log (value: after/before)
 };
+// An axis whose instability the calibration leaves above this many times the
+// uncompensated is made worse (and fails --max-residual); one left above
+// kLittleGain (under 20 % off, as export's kLittleCompensation) gains little.
+inline constexpr double kMadeWorse = 1.05;
+inline constexpr double kLittleGain = 0.8;
 // "calibration_span_minimum", …
 std::string_view check_issue_name(CheckIssue issue);
 

@@ -371,7 +371,9 @@ std::string check_html(const Json& twin) {
                      cell(twin, p + "/after_dph"), cell(twin, p + "/residual_dph"), cell(twin, p + "/outside_share"));
   }
   h += "</table>\n";
-  for (const Json& f : (*check)["findings"]) h += fmt::format("<p class=\"caution\">finding: {}</p>\n", escape(f["issue"].get<std::string>()));
+  for (const Json& f : (*check)["findings"])
+    h += fmt::format("<p class=\"caution\">finding ({}): {}</p>\n", escape(f["issue"].get<std::string>()),
+                     escape(f.value("text", std::string())));
   return h + "</section>\n";
 }
 
