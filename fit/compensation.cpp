@@ -1,6 +1,7 @@
 #include "fit/compensation.h"
 
 #include "fit/causal_compensator.h"
+#include "fit/data/header_units.h"
 #include "fit/data/plausibility.h"
 #include "fit/data/streaming.h"
 #include "fit/model/formula.h"
@@ -243,13 +244,34 @@ void write_compensated_csv(const std::filesystem::path& file, const Compensation
   write_file_atomically(file, text);
 }
 
+namespace {
+
+// The columns' name for a channel: the channel's own, but without a unit it
+// states that is not °/h ("gyrox rad/s" -> "gyrox_dph"): the file holds °/h,
+// and a name saying rad/s would be read back as rad/s.
+std::pair<std::string, std::string> channel_columns(const std::string& name) {
+  const HeaderUnit stated = unit_in_header(Quantity::gyro, name);
+  if (stated.said.empty() || (stated.unit != nullptr && stated.unit->name == "dph"))
+    return {name, name};
+  std::string base = name.substr(0, name.rfind(stated.said));
+  while (!base.empty() && std::string_view(" _([").find(base.back()) != std::string_view::npos) base.pop_back();
+  if (base.empty()) base = "gyro";
+  return {base + "_dph", base};
+}
+
+}  // namespace
+
 void write_compensated_csv(const std::filesystem::path& file,
                            const std::vector<std::pair<std::string, Compensation>>& channels) {
   fmt::memory_buffer out;
-  fmt::format_to(std::back_inserter(out), "# gyrotherm compensate: NAME_compensated_dph = NAME - NAME_model_dph, per channel\n");
+  fmt::format_to(std::back_inserter(out),
+                 "# gyrotherm compensate: NAME_compensated_dph = NAME - NAME_model_dph, per channel, all in deg/h "
+                 "(a channel named with another unit is written as its name without it, _dph)\n");
   fmt::format_to(std::back_inserter(out), "time_s,temp_c");
-  for (const auto& [name, c] : channels)
-    fmt::format_to(std::back_inserter(out), ",{0},{0}_model_dph,{0}_compensated_dph,{0}_outlier", name);
+  for (const auto& [name, c] : channels) {
+    const auto [raw, stem] = channel_columns(name);
+    fmt::format_to(std::back_inserter(out), ",{0},{1}_model_dph,{1}_compensated_dph,{1}_outlier", raw, stem);
+  }
   fmt::format_to(std::back_inserter(out), "\n");
   const Compensation& first = channels.front().second;
   for (std::size_t k = 0; k < first.time_s.size(); ++k) {
