@@ -142,7 +142,11 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   ASSERT_EQ(d_json["cautions"].size(), 1u) << d_json["cautions"];
   EXPECT_NE(d_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-unit K)"), std::string::npos);
   EXPECT_NE(d_json["units"].get<std::string>().find("temperature C"), std::string::npos) << d_json["units"];
-  const auto exported = run_cli(dir, "export fit.json --format px4 --data kelvin.csv --json -o k.params");
+  // --data must be the log the fit was made on: another one is refused, not mixed in.
+  expect_refused(dir, "export fit.json --format px4 --data kelvin.csv -o k.params",
+                 "--data kelvin.csv: not the log fit.json was fitted on (its SHA-256 differs");
+  ASSERT_EQ(run_cli(dir, "fit kelvin.csv --model T -o kfit.json").exit_code, 0);
+  const auto exported = run_cli(dir, "export kfit.json --format px4 --data kelvin.csv --accept-caution --json -o k.params");
   ASSERT_EQ(exported.exit_code, 0) << exported.err;
   EXPECT_NE(exported.err.find("caution: kelvin.csv: every temperature is above 200 °C"), std::string::npos) << exported.err;
   EXPECT_NE(nlohmann::json::parse(exported.out)["warnings"].dump().find("kelvin read as °C (give --temp-unit K)"), std::string::npos);
@@ -153,7 +157,6 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   EXPECT_NE(c_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-unit K)"), std::string::npos);
   // A fit made on it carries the caution into its file, and export stops on
   // it: a firmware would clamp every real temperature to a TMIN near 300 °C.
-  ASSERT_EQ(run_cli(dir, "fit kelvin.csv --model T -o kfit.json").exit_code, 0);
   const auto refused = run_cli(dir, "export kfit.json --format px4 -o kfit.params");
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("look read in another unit"), std::string::npos) << refused.err;

@@ -10,6 +10,8 @@
 #include "sim/util/input_error.h"
 #include "sim/util/sha256.h"
 
+#include <filesystem>
+
 namespace gyrotherm::studies {
 namespace {
 
@@ -124,6 +126,15 @@ ExportOutput run_export(const ExportRequest& request) {
                                  "X,Y,Z, '-' for none); --channel picks the one channel of a C export",
                                  request.channel, request.format));
   const std::vector<fit::SavedFit> fits = fit::load_fits(request.fit_file);
+  // --data is the log the fit was made on (the outcome compares the two): where
+  // the fit knows its data's bytes, another log is refused, not mixed in.
+  if (!request.data.empty() && !fits.empty() && !fits.front().data_sha256.empty() &&
+      std::filesystem::is_regular_file(request.data) && sha256_file_hex(request.data) != fits.front().data_sha256)
+    throw InputError(fmt::format(
+        "--data {}: not the log {} was fitted on (its SHA-256 differs from the fit's data.sha256, the bytes of {}): "
+        "what the firmware achieves would mix two logs; give that log, or leave --data out to use the fit's own "
+        "(to try the calibration on another log, use 'gyrotherm check')",
+        request.data, request.fit_file, fits.front().data_file));
   // A fit made on de-lagged temperatures (--sensor-tau) holds for them: a
   // firmware, and the C compensator, read the sensor as it is.
   for (const fit::SavedFit& f : fits)
