@@ -44,9 +44,8 @@ std::pair<std::string, std::string> why_and_test(const ConfoundingEvidence& e) {
                           e.temp_max_c),
               "a wider temperature range would separate them"};
     case ConfoundingReason::lag_follows_temperature:
-      return {fmt::format("a lagged temperature differs from the temperature by about the lag times dT/dt, and this "
-                          "record changes its temperature at {} °C/min at the fastest",
-                          human(e.fastest_rate_c_per_min)),
+      return {fmt::format("a lagged temperature differs from the temperature by about the lag times dT/dt, and the "
+                          "fastest change on this record is {:.2g} °C/min", e.fastest_rate_c_per_min),
               "faster ramps (or a step of the chamber's temperature) would separate them"};
     case ConfoundingReason::proportional:
       return {"their regressors are nearly proportional over this record",
