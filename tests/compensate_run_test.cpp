@@ -118,7 +118,7 @@ TEST(CompensateRun, OutsideTheFittedRangeTheModelIsHeldAtTheEdgeAndSaysSo) {
   ASSERT_EQ(kelvin.exit_code, 0) << kelvin.err;
   const nlohmann::json k_json = nlohmann::json::parse(kelvin.out);
   ASSERT_EQ(k_json["cautions"].size(), 1u) << kelvin.out;
-  EXPECT_NE(k_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-unit K)"), std::string::npos);
+  EXPECT_NE(k_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-offset -273.15: the column's name says °C)"), std::string::npos);
   EXPECT_DOUBLE_EQ(k_json["share_outside_range"].get<double>(), 1.0);
   const auto k_text = run_cli(dir, "compensate kelvin.csv --fit fit.json");
   EXPECT_NE(k_text.out.find("caution: every temperature is above 200 °C"), std::string::npos) << k_text.out;
@@ -140,7 +140,7 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   ASSERT_EQ(diagnosed.exit_code, 0) << diagnosed.err;
   const nlohmann::json d_json = nlohmann::json::parse(diagnosed.out);
   ASSERT_EQ(d_json["cautions"].size(), 1u) << d_json["cautions"];
-  EXPECT_NE(d_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-unit K)"), std::string::npos);
+  EXPECT_NE(d_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-offset -273.15: the column's name says °C)"), std::string::npos);
   EXPECT_NE(d_json["units"].get<std::string>().find("temperature C"), std::string::npos) << d_json["units"];
   // --data must be the log the fit was made on: another one is refused, not mixed in.
   expect_refused(dir, "export fit.json --format px4 --data kelvin.csv -o k.params",
@@ -149,18 +149,18 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   const auto exported = run_cli(dir, "export kfit.json --format px4 --data kelvin.csv --accept-caution --json -o k.params");
   ASSERT_EQ(exported.exit_code, 0) << exported.err;
   EXPECT_NE(exported.err.find("caution: kelvin.csv: every temperature is above 200 °C"), std::string::npos) << exported.err;
-  EXPECT_NE(nlohmann::json::parse(exported.out)["warnings"].dump().find("kelvin read as °C (give --temp-unit K)"), std::string::npos);
+  EXPECT_NE(nlohmann::json::parse(exported.out)["warnings"].dump().find("kelvin read as °C (give --temp-offset -273.15: the column's name says °C)"), std::string::npos);
   const auto checked = run_cli(dir, "check kelvin.csv --params k.params --gyro-col gyro_dph --json");
   ASSERT_EQ(checked.exit_code, 0) << checked.err;
   const nlohmann::json c_json = nlohmann::json::parse(checked.out);
   ASSERT_EQ(c_json["cautions"].size(), 1u) << checked.out;
-  EXPECT_NE(c_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-unit K)"), std::string::npos);
+  EXPECT_NE(c_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-offset -273.15: the column's name says °C)"), std::string::npos);
   // A fit made on it carries the caution into its file, and export stops on
   // it: a firmware would clamp every real temperature to a TMIN near 300 °C.
   const auto refused = run_cli(dir, "export kfit.json --format px4 -o kfit.params");
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("look read in another unit"), std::string::npos) << refused.err;
-  EXPECT_NE(refused.err.find("kelvin read as °C (give --temp-unit K)"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("kelvin read as °C (give --temp-offset -273.15: the column's name says °C)"), std::string::npos) << refused.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "kfit.params"));
   const auto accepted = run_cli(dir, "export kfit.json --format px4 --accept-caution -o kfit.params");
   ASSERT_EQ(accepted.exit_code, 0) << accepted.err;

@@ -160,6 +160,13 @@ TEST(HeaderUnits, NumbersThatLookLikeAnotherUnitAreCautioned) {
   EXPECT_NE(k["data"]["cautions"][0].get<std::string>().find("°C read as kelvin (give --temp-unit C)"),
             std::string::npos)
       << k["data"]["cautions"][0];
+  // Kelvin under a name that says °C: --temp-unit K contradicts the name, and
+  // the refusal names the offset that reads them.
+  write_text(dir / "kc.csv", "time_s,temp_c,gyro_dph\n0,293.15,1\n1,293.2,1\n2,293.3,1\n");
+  testing::expect_refused(dir, "fit kc.csv --temp-unit K",
+                 "column 'temp_c' states its unit as C (degrees Celsius), but --temp-unit gives K (kelvin)");
+  testing::expect_refused(dir, "fit kc.csv --temp-unit K",
+                 "if the numbers are kelvin under a name that says °C, give --temp-offset -273.15 instead");
   // A 2 h test read as 83 days.
   const nlohmann::json t = fit_json(dir, "ms.csv --avg 20000" + cols);
   ASSERT_GE(t["data"]["cautions"].size(), 1u);

@@ -158,11 +158,19 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
     if (c.given) {
       const Unit& u = find_unit(c.quantity, *c.unit, c.option);
       if (c.from->empty()) *c.from = std::string(c.option);
-      if (h.unit != nullptr && h.unit != &u)
+      if (h.unit != nullptr && h.unit != &u) {
+        // Numbers in another unit than the name says (kelvin under temp_c): an
+        // offset or a scale reads them without renaming the column.
+        std::string instead;
+        if (c.quantity == Quantity::temperature && h.unit->name == "C" && u.name == "K")
+          instead = "; if the numbers are kelvin under a name that says °C, give --temp-offset -273.15 instead";
+        else if (c.quantity == Quantity::temperature && h.unit->name == "K" && u.name == "C")
+          instead = "; if the numbers are °C under a name that says K, give --temp-offset 273.15 instead";
         throw InputError(fmt::format(
             "column '{}' states its unit as {} ({}), but {} gives {} ({}): the numbers cannot be "
-            "in both; correct the one that is wrong",
-            c.name, h.unit->name, h.unit->meaning, *c.from, u.name, u.meaning));
+            "in both; correct the one that is wrong{}",
+            c.name, h.unit->name, h.unit->meaning, *c.from, u.name, u.meaning, instead));
+      }
       continue;
     }
     if (h.unknown())

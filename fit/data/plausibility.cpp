@@ -105,9 +105,17 @@ std::string caution_text(const UnitCaution& c) {
       const bool kelvin_as_celsius = c.unit == "C" && r.temp_min_c > 200.0 && r.temp_max_c < 400.0;
       const bool celsius_as_kelvin = c.unit == "K" && r.temp_min_c > -340.0 && r.temp_max_c < -100.0;
       const bool guessed = kelvin_as_celsius || celsius_as_kelvin;
-      const std::string unit = kelvin_as_celsius   ? "the numbers look like kelvin read as °C (give --temp-unit K)"
-                               : celsius_as_kelvin ? "the numbers look like °C read as kelvin (give --temp-unit C)"
-                                                   : "is the column in another unit (give --temp-unit)";
+      // A unit the column's name states cannot be overruled by --temp-unit;
+      // an offset reads the numbers under the name.
+      const bool named = source.starts_with("header");
+      const std::string unit =
+          kelvin_as_celsius
+              ? fmt::format("the numbers look like kelvin read as °C (give {})",
+                            named ? "--temp-offset -273.15: the column's name says °C" : "--temp-unit K")
+          : celsius_as_kelvin
+              ? fmt::format("the numbers look like °C read as kelvin (give {})",
+                            named ? "--temp-offset 273.15: the column's name says K" : "--temp-unit C")
+              : std::string("is the column in another unit (give --temp-unit)");
       return fmt::format(
           "every temperature is {} ({:.4g}..{:.4g} °C, {}): {} or raw counts (give --temp-scale and "
           "--temp-offset: temperature = A x column + B){}",
