@@ -239,7 +239,15 @@ std::string coefficients_html(const Json& twin, std::size_t k) {
       h += fmt::format("<tr><td>{}</td>{}{}{}</tr>\n", escape(term), cell(twin, base + "/coefficients/" + key),
                        cell(twin, base + "/intervals_95/" + key + "/0"), cell(twin, base + "/intervals_95/" + key + "/1"));
     }
-  h += "</table>\n<table><tr><th>instability before (°/h)</th><th>after (°/h)</th><th>ratio</th></tr><tr>";
+  // Two logs where the fit was made on another: this one, compensated with
+  // the fit, and the fit's own data; each row names its log.
+  const std::string this_log = fmt::format("/channels/{}/compensate", k);
+  const Json* fitted_on = at(twin, base + "/data/file");
+  h += "</table>\n<table><tr><th>instability</th><th>before (°/h)</th><th>after (°/h)</th><th>ratio</th></tr>\n"
+       "<tr><td>this log, compensated with the fit</td>";
+  for (const char* f : {"/instability_before_dph", "/instability_after_dph", "/ratio"}) h += cell(twin, this_log + f);
+  h += fmt::format("</tr>\n<tr><td>the data the fit was made on ({})</td>",
+                   escape(fitted_on != nullptr && fitted_on->is_string() ? fitted_on->get<std::string>() : "?"));
   for (const char* f : {"/instability_before_dph", "/instability_after_dph", "/ratio"}) h += cell(twin, base + f);
   h += "</tr></table>\n";
   if (const Json* flags = at(twin, base + "/record/flags"); flags != nullptr && flags->is_object())
