@@ -154,6 +154,16 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   ASSERT_EQ(checked.exit_code, 0) << checked.err;
   const nlohmann::json c_json = nlohmann::json::parse(checked.out);
   ASSERT_EQ(c_json["cautions"].size(), 1u) << checked.out;
+  // The file's own "# CAUTION" block (export --accept-caution) is a finding, with its indented lines.
+  bool carried = false;
+  for (const auto& f : c_json["findings"])
+    if (f["issue"] == "calibration_caution" &&
+        f["name"].get<std::string>().find("CAUTION (exported with --accept-caution)") != std::string::npos) {
+      carried = true;
+      EXPECT_NE(f["name"].get<std::string>().find("every temperature is above 200 °C"), std::string::npos) << f;
+      EXPECT_NE(f["text"].get<std::string>().find("the calibration file says: CAUTION"), std::string::npos) << f;
+    }
+  EXPECT_TRUE(carried) << c_json["findings"];
   EXPECT_NE(c_json["cautions"][0].get<std::string>().find("kelvin read as °C (give --temp-offset -273.15: the column's name says °C)"), std::string::npos);
   // A fit made on it carries the caution into its file, and export stops on
   // it: a firmware would clamp every real temperature to a TMIN near 300 °C.

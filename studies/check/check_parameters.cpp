@@ -173,8 +173,18 @@ ParameterFile read_parameter_file(const std::string& file) {
   std::optional<bool> qgc;
   std::istringstream lines(all);
   std::string line;
+  bool in_caution = false;
   for (std::size_t line_no = 1; std::getline(lines, line); ++line_no) {
-    if (const std::size_t hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    const std::size_t hash = line.find('#');
+    const std::string_view note =
+        hash == std::string::npos ? std::string_view() : fit::trim(std::string_view(line).substr(hash + 1));
+    const bool indented = hash != std::string::npos && line.compare(hash + 1, 3, "   ") == 0;
+    if (note.starts_with("CAUTION"))
+      p.cautions.emplace_back(note);
+    else if (in_caution && indented && !note.empty())
+      p.cautions.back() += fmt::format(" {}", note);
+    in_caution = note.starts_with("CAUTION") || (in_caution && indented);
+    if (hash != std::string::npos) line.erase(hash);
     const std::string_view trimmed = fit::trim(std::string_view(line).substr(0, line.find_last_not_of("\r") + 1));
     if (!trimmed.empty()) read_line(file, line_no, trimmed, &qgc, &p.values);
   }

@@ -38,6 +38,9 @@ struct ParameterFile {
   ParameterFormat format = ParameterFormat::fit;
   std::map<std::string, double, std::less<>> values;  // PX4 / ArduPilot, by name
   std::vector<fit::SavedFit> fits;                     // a fit file's channels
+  // PX4 / ArduPilot: the file's "# CAUTION …" comments (export --accept-caution,
+  // a narrow span), each with its indented lines joined.
+  std::vector<std::string> cautions;
   std::optional<double> value(std::string_view name) const;
 };
 

@@ -88,6 +88,8 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
       return fmt::format("axis {}: the calibration takes only {:.0f} % off the instability on this log: the log has "
                          "little thermal drift to remove (it spans {:.1f} °C), or the calibration does not fit this gyro",
                          f.name, std::max(0.0, 100.0 * (1.0 - f.value)), r.log_temp_max_c - r.log_temp_min_c);
+    case CheckIssue::calibration_caution:
+      return fmt::format("the calibration file says: {}", f.name);
     case CheckIssue::fitted_log:
       return fmt::format("this log is the one the calibration was fitted on ({}, the same SHA-256): the residual is "
                          "the fit's own, and says nothing of how the calibration holds on another test; check it on "

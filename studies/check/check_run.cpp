@@ -375,6 +375,7 @@ std::string_view check_issue_name(CheckIssue issue) {
     case CheckIssue::no_residual: return "no_residual";
     case CheckIssue::made_worse: return "made_worse";
     case CheckIssue::little_gain: return "little_gain";
+    case CheckIssue::calibration_caution: return "calibration_caution";
   }
   return "";
 }
@@ -402,6 +403,7 @@ CheckResult run_check(const CheckRequest& o) {
   r.window_s = std::max(std::min(o.avg_s, r.span_s / 10.0), 2.0 * steps[steps.size() / 2]);
   r.bin_c = std::max(1.0, (r.log_temp_max_c - r.log_temp_min_c) / kMaxBins);
   for (std::size_t k = 0; k < a.axis.size(); ++k) r.axes.push_back(judge_axis(a, k, r));
+  for (const std::string& caution : p.cautions) r.findings.push_back({CheckIssue::calibration_caution, 0.0, 0.0, caution});
   add_findings(a, &r);
   return r;
 }

@@ -62,6 +62,7 @@ enum class CheckIssue {
   no_residual,               // no temperature bin has enough samples: the residual cannot be shown (`name` the axis)
   made_worse,                // the calibration leaves an axis's instability above the uncompensated (value: after/before)
   little_gain,               // it takes under 20 % off an axis's instability on this log (value: after/before)
+  calibration_caution,       // the parameter file carries a caution of its export (`name` its text)
 };
 // An axis whose instability the calibration leaves above this many times the
 // uncompensated is made worse (and fails --max-residual); one left above
