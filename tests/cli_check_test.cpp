@@ -144,6 +144,11 @@ TEST(CliCheck, Px4ParametersOnASecondUlogAreAppliedAsPx4AppliesThem) {
   // The file's own caution (temperature follows time on the fitted run) is carried, and nothing else is found.
   EXPECT_EQ(issues_of(j), (std::vector<std::string>{"calibration_caution"})) << j["findings"].dump();
   EXPECT_NE(j["findings"][0]["name"].get<std::string>().find("gyro_x: T: temperature follows time"), std::string::npos);
+  // The run it was fitted on, given again: the file's provenance names it by its SHA-256.
+  EXPECT_NE(slurp(dir / "cal.params").find("#   fitted on run1.ulg SHA-256 "), std::string::npos);
+  const nlohmann::json own = check_json(dir, "run1.ulg --params cal.params");
+  EXPECT_TRUE(has(issues_of(own), "fitted_log")) << own["findings"].dump();
+  EXPECT_FALSE(has(issues_of(j), "fitted_log"));
   const std::map<std::string, float> p = read_qgc(slurp(dir / "cal.params"));
   const Logged l = logged(second);
   const double w = j["window_s"];

@@ -404,6 +404,10 @@ CheckResult run_check(const CheckRequest& o) {
   r.bin_c = std::max(1.0, (r.log_temp_max_c - r.log_temp_min_c) / kMaxBins);
   for (std::size_t k = 0; k < a.axis.size(); ++k) r.axes.push_back(judge_axis(a, k, r));
   for (const std::string& caution : p.cautions) r.findings.push_back({CheckIssue::calibration_caution, 0.0, 0.0, caution});
+  // A firmware file's provenance names the log it was fitted on: that log, given again, is no second test.
+  if (std::error_code ec; !p.fitted_sha256.empty() && std::filesystem::is_regular_file(o.log, ec) &&
+                          sha256_file_hex(o.log) == p.fitted_sha256)
+    r.findings.push_back({CheckIssue::fitted_log, 0.0, 0.0, p.fitted_file});
   add_findings(a, &r);
   return r;
 }

@@ -52,7 +52,8 @@ const ExporterInfo& find_exporter(std::string_view name) {
 std::string channel_name(const fit::SavedFit& f) { return f.channel.empty() ? f.pipeline.columns.gyro : f.channel; }
 
 ExportHeader export_header(const ExportRequest& r, const fit::SavedFit& f) {
-  return {r.fit_file, sha256_file_hex(r.fit_file), f.engine, fit::formula_text(f.terms), utc_now()};
+  return {r.fit_file, sha256_file_hex(r.fit_file), f.engine, fit::formula_text(f.terms), utc_now(), f.data_file,
+          f.data_sha256};
 }
 
 const fit::SavedFit& chosen_channel(const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {

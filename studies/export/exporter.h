@@ -73,6 +73,9 @@ void warn_if_little_compensation(const fit::SavedFit& fit, double after_dph, Exp
 // Where the exported file came from (the file's opening comment).
 struct ExportHeader {
   std::string fit_file, fit_sha256, engine, model_text, date_utc;
+  // The log the fit was made on and its bytes' SHA-256 (empty where the fit
+  // does not record it): check finds that log given again by it.
+  std::string data_file, data_sha256;
 };
 
 struct ExporterInfo {

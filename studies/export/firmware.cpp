@@ -123,11 +123,14 @@ long long px4_device_id(long long id) {
 std::string as_float(double v) { return fmt::format("{:.9g}", static_cast<float>(v)); }
 
 std::string provenance(const ExportHeader& h, const char* comment) {
-  return fmt::format(
+  std::string out = fmt::format(
       "{0} gyrotherm export: gyro thermal compensation from {1}\n"
       "{0}   fit file SHA-256 {2}\n"
       "{0}   engine {3}, model B = b0 + {4} (°/h, T in °C), exported {5}\n",
       comment, h.fit_file, h.fit_sha256, h.engine, h.model_text, h.date_utc);
+  if (!h.data_sha256.empty())
+    out += fmt::format("{}   {}{} SHA-256 {}\n", comment, kFittedOn, h.data_file, h.data_sha256);
+  return out;
 }
 
 double CubicModel::evaluate(double t) const { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }

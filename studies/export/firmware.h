@@ -165,5 +165,8 @@ FittedData fitted_data(const fit::SavedFit& fit, const std::string& option, cons
 std::string as_float(double v);
 // The file's opening comment lines, each after `comment`.
 std::string provenance(const ExportHeader& header, const char* comment);
+// Its line naming the log the fit was made on, where the fit records it:
+// "#   fitted on FILE SHA-256 HEX" (check reads it back: read_parameter_file).
+inline constexpr std::string_view kFittedOn = "fitted on ";
 
 }  // namespace gyrotherm::studies
