@@ -306,7 +306,7 @@ std::string c_header(const fit::SavedFit& fit, const fit::CausalSettings& settin
       " */\n",
       header.fit_file, header.fit_sha256, header.engine, header.date_utc, fit::formula_text(fit.terms),
       number(fit.coefficients.intercept), coefficients, range, a.window_s, a.gap_factor,
-      number(settings.sample_interval_s), a.window_s, settings.bursts ? "half" : fmt::format("{:g} %", 100.0 * a.min_fill),
+      fmt::format("{:.6g}", settings.sample_interval_s), a.window_s, settings.bursts ? "half" : fmt::format("{:g} %", 100.0 * a.min_fill),
       fit.pipeline.derivative_span_s, settings.bursts ? "bursts (each gap-free run one window), " : "",
       fit.pipeline.remove_outliers
           ? fmt::format("trailing {} s, {} robust sigmas, floor {} °/h", fit.pipeline.outliers.window_s,
