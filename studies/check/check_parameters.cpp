@@ -168,6 +168,11 @@ ParameterFile read_parameter_file(const std::string& file) {
   if (const std::size_t first = all.find_first_not_of(" \t\r\n"); first != std::string::npos && all[first] == '{') {
     p.format = ParameterFormat::fit;
     p.fits = fit::load_fits(file);
+    for (const fit::SavedFit& f : p.fits)
+      if (p.fitted_sha256.empty() && !f.data_sha256.empty()) {
+        p.fitted_file = f.data_file;
+        p.fitted_sha256 = f.data_sha256;
+      }
     return p;
   }
   std::optional<bool> qgc;
@@ -184,9 +189,10 @@ ParameterFile read_parameter_file(const std::string& file) {
     else if (in_caution && indented && !note.empty())
       p.cautions.back() += fmt::format(" {}", note);
     in_caution = note.starts_with("CAUTION") || (in_caution && indented);
-    if (const std::size_t sha = note.rfind(" SHA-256 "); note.starts_with(kFittedOn) && sha != std::string_view::npos) {
+    constexpr std::string_view kSha = " SHA-256 ";
+    if (const std::size_t sha = note.rfind(kSha); note.starts_with(kFittedOn) && sha != std::string_view::npos) {
       p.fitted_file = std::string(note.substr(kFittedOn.size(), sha - kFittedOn.size()));
-      p.fitted_sha256 = std::string(note.substr(sha + 9));
+      p.fitted_sha256 = std::string(note.substr(sha + kSha.size()));
     }
     if (hash != std::string::npos) line.erase(hash);
     const std::string_view trimmed = fit::trim(std::string_view(line).substr(0, line.find_last_not_of("\r") + 1));

@@ -41,8 +41,9 @@ struct ParameterFile {
   // PX4 / ArduPilot: the file's "# CAUTION …" comments (export --accept-caution,
   // a narrow span), each with its indented lines joined.
   std::vector<std::string> cautions;
-  // PX4 / ArduPilot: the log the fit was made on and its SHA-256, where the
-  // file's provenance names them ("#   fitted on FILE SHA-256 HEX").
+  // The log the fit was made on and its SHA-256, where the file records them:
+  // a fit file's data (the first channel that has it), a PX4 / ArduPilot
+  // file's provenance ("#   fitted on FILE SHA-256 HEX").
   std::string fitted_file, fitted_sha256;
   std::optional<double> value(std::string_view name) const;
 };

@@ -172,11 +172,6 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
     a.contents = format->read(o.log, -1, {});
     r->log_format = a.contents.format;
   }
-  // The log the fit was made on, given again: its residual is the fit's own.
-  const auto fitted_here = std::find_if(p.fits.begin(), p.fits.end(), [](const fit::SavedFit& f) { return !f.data_sha256.empty(); });
-  if (std::error_code ec; fitted_here != p.fits.end() && std::filesystem::is_regular_file(o.log, ec) &&
-                          sha256_file_hex(o.log) == fitted_here->data_sha256)
-    r->findings.push_back({CheckIssue::fitted_log, 0.0, 0.0, fitted_here->data_file});
   bool first = true;
   for (std::size_t k = 0; k < run.channels.size(); ++k) {
     const fit::Compensation& c = run.channels[k];
@@ -338,9 +333,8 @@ void add_findings(const Applied& a, CheckResult* r) {
   if (r->limit_dph) {
     // An axis whose residual cannot be shown does not pass: the log cannot say it is within the limit;
     // nor does one the calibration makes worse.
-    r->passed = true;
-    for (const AxisCheck& x : r->axes)
-      if (x.after_dph > kMadeWorse * x.before_dph) r->passed = false;
+    r->passed = std::none_of(r->findings.begin(), r->findings.end(),
+                             [](const CheckFinding& f) { return f.issue == CheckIssue::made_worse; });
     for (const AxisCheck& x : r->axes)
       if (!(x.residual_dph <= *r->limit_dph)) {
         r->passed = false;
@@ -404,7 +398,8 @@ CheckResult run_check(const CheckRequest& o) {
   r.bin_c = std::max(1.0, (r.log_temp_max_c - r.log_temp_min_c) / kMaxBins);
   for (std::size_t k = 0; k < a.axis.size(); ++k) r.axes.push_back(judge_axis(a, k, r));
   for (const std::string& caution : p.cautions) r.findings.push_back({CheckIssue::calibration_caution, 0.0, 0.0, caution});
-  // A firmware file's provenance names the log it was fitted on: that log, given again, is no second test.
+  // The log the calibration was fitted on (a fit file's data, a firmware file's provenance), given again: its
+  // residual is the fit's own, no second test.
   if (std::error_code ec; !p.fitted_sha256.empty() && std::filesystem::is_regular_file(o.log, ec) &&
                           sha256_file_hex(o.log) == p.fitted_sha256)
     r.findings.push_back({CheckIssue::fitted_log, 0.0, 0.0, p.fitted_file});

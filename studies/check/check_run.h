@@ -31,6 +31,7 @@
 #include "fit/data/measurement.h"
 #include "fit/data/plausibility.h"
 #include "studies/check/check_parameters.h"
+#include "studies/export/exporter.h"
 
 namespace gyrotherm::studies {
 
@@ -66,9 +67,9 @@ enum class CheckIssue {
 };
 // An axis whose instability the calibration leaves above this many times the
 // uncompensated is made worse (and fails --max-residual); one left above
-// kLittleGain (under 20 % off, as export's kLittleCompensation) gains little.
+// kLittleGain (under 20 % off: export's kLittleCompensation) gains little.
 inline constexpr double kMadeWorse = 1.05;
-inline constexpr double kLittleGain = 0.8;
+inline constexpr double kLittleGain = kLittleCompensation;
 // "calibration_span_minimum", …
 std::string_view check_issue_name(CheckIssue issue);
 

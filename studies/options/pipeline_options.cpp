@@ -13,7 +13,8 @@ fit::PipelineOptions DataOptions::resolved() const {
     throw InputError("--keep-outliers and --outlier-threshold contradict each other: keep the "
                      "glitches, or set the rule that removes them, not both");
   // --deriv-span, --sensor-tau, --outlier-threshold: their rows' rules.
-  check_rules(OptionTable<DataOptions>{"", data_option_rows(true)}, *this);
+  static const OptionTable<DataOptions> rows{"", data_option_rows(true)};
+  check_rules(rows, *this);
   if (outlier_threshold) p.outliers.threshold = *outlier_threshold;
   if (causal) p.derivative = fit::DerivativeMode::causal;
   if (keep_outliers) p.remove_outliers = false;

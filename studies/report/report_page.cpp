@@ -241,15 +241,19 @@ std::string coefficients_html(const Json& twin, std::size_t k) {
     }
   // Two logs where the fit was made on another: this one, compensated with
   // the fit, and the fit's own data; each row names its log.
-  const std::string this_log = fmt::format("/channels/{}/compensate", k);
+  const auto instability_row = [&](const std::string& label, const std::string& from) {
+    std::string row = "<tr><td>" + label + "</td>";
+    for (const char* f : {"/instability_before_dph", "/instability_after_dph", "/ratio"}) row += cell(twin, from + f);
+    return row + "</tr>";
+  };
   const Json* fitted_on = at(twin, base + "/data/file");
-  h += "</table>\n<table><tr><th>instability</th><th>before (°/h)</th><th>after (°/h)</th><th>ratio</th></tr>\n"
-       "<tr><td>this log, compensated with the fit</td>";
-  for (const char* f : {"/instability_before_dph", "/instability_after_dph", "/ratio"}) h += cell(twin, this_log + f);
-  h += fmt::format("</tr>\n<tr><td>the data the fit was made on ({})</td>",
-                   escape(fitted_on != nullptr && fitted_on->is_string() ? fitted_on->get<std::string>() : "?"));
-  for (const char* f : {"/instability_before_dph", "/instability_after_dph", "/ratio"}) h += cell(twin, base + f);
-  h += "</tr></table>\n";
+  h += "</table>\n<table><tr><th>instability</th><th>before (°/h)</th><th>after (°/h)</th><th>ratio</th></tr>\n" +
+       instability_row("this log, compensated with the fit", fmt::format("/channels/{}/compensate", k)) + "\n" +
+       instability_row(fmt::format("the data the fit was made on ({})",
+                                   escape(fitted_on != nullptr && fitted_on->is_string() ? fitted_on->get<std::string>()
+                                                                                         : "?")),
+                       base) +
+       "</table>\n";
   if (const Json* flags = at(twin, base + "/record/flags"); flags != nullptr && flags->is_object())
     for (const auto& [term, why] : flags->items())
       h += fmt::format("<p class=\"caution\">caution, {}: {}</p>\n", escape(term), escape(why.is_string() ? why.get<std::string>() : why.dump()));
