@@ -189,7 +189,7 @@ void ColumnReader::reserve(Measurement& m, std::size_t rows) const {
 void ColumnReader::take_values(std::size_t row, Measurement& m) {
   std::array<double, kRoles> value{};
   for (const Extra& e : extras_)
-    if (e.numeric && !sink_) m.extra[e.name].push_back(values_[e.column]);
+    if (e.numeric && !streaming()) m.extra[e.name].push_back(values_[e.column]);
   for (const auto [column, role] : needed_) {
     const auto r = static_cast<std::size_t>(role);
     if (r >= kRoles) continue;  // never: needed_ holds roles (g++ cannot tell)
@@ -211,7 +211,10 @@ void ColumnReader::take_values(std::size_t row, Measurement& m) {
                           m.columns[column_of_[kTime]], value[kTime], last_time_, row_name(previous_row_),
                           iso_time_ ? "; read as seconds since the first row's timestamp" : ""));
   last_time_ = value[kTime];
-  if (sink_) {
+  if (batch_sink_) {
+    batch_.push_back({value[kTime], value[kTemp], value[kGyro], has_temp2_ ? value[kTemp2] : 0.0});
+    if (batch_.size() >= batch_rows_) flush_batch();
+  } else if (sink_) {
     sink_(value[kTime], value[kTemp], value[kGyro], has_temp2_ ? value[kTemp2] : 0.0);
   } else {
     m.time_s.push_back(value[kTime]);

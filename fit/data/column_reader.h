@@ -17,6 +17,7 @@
 // line ("data.csv:57: …"), a log's sample ("log.ulg: sample 57 of …: …") or
 // a table's index from 0 ("arrays: index 56: …").
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -66,6 +67,16 @@ class ColumnReader {
 
   // Streaming: every row goes to `sink` instead of being stored.
   void set_sink(RowSink sink) { sink_ = std::move(sink); }
+  // Or in batches of `rows` rows (flush_batch hands on the last).
+  void set_batch_sink(BatchSink sink, std::size_t rows) {
+    batch_sink_ = std::move(sink);
+    batch_rows_ = std::max<std::size_t>(rows, 1);
+    batch_.reserve(batch_rows_);
+  }
+  void flush_batch() {
+    if (!batch_.empty()) batch_sink_(batch_);
+    batch_.clear();
+  }
   void set_header_sink(HeaderSink sink) { header_sink_ = std::move(sink); }
   bool has_temp2() const { return has_temp2_; }
   std::size_t rows() const { return rows_; }
@@ -149,7 +160,12 @@ class ColumnReader {
   std::size_t header_row_ = 0, first_row_ = 0, previous_row_ = 0;
   double last_time_ = 0.0;
   RowSink sink_;
+  BatchSink batch_sink_;
+  std::size_t batch_rows_ = 0;
+  std::vector<RowValues> batch_;
   HeaderSink header_sink_;
+  // Rows go to a sink rather than into the Measurement.
+  bool streaming() const { return sink_ || batch_sink_; }
 
  private:
   // "on line 5", "at index 5": a row as the message names it.

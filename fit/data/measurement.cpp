@@ -3,6 +3,7 @@
 #include "fit/data/autopilot_log.h"
 #include "fit/data/column_reader.h"
 #include "fit/data/csv_dialect.h"
+#include "fit/data/csv_parser.h"
 
 #include <fmt/format.h>
 
@@ -17,6 +18,7 @@
 #include <memory>
 #include <string_view>
 #include <system_error>
+#include <thread>
 #include <tuple>
 
 #include "sim/util/input_error.h"
@@ -30,108 +32,12 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-namespace {
+namespace csv_parsing {
 
 namespace fs = std::filesystem;
-
-// Reads a file in fixed blocks and hands out one line at a time (without its
-// LF), so a file of any size costs one block of memory plus the longest line.
-// std::getline into a std::string would also work, but a block scan with
-// memchr is several times faster and lets us count the bytes consumed.
-class LineReader {
- public:
-  static constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
-
-  explicit LineReader(std::FILE* file) : file_(file), buffer_(kBlockBytes) {}
-
-  // False at the end of the file. The view is valid until the next call.
-  bool next(std::string_view& line) {
-    for (;;) {
-      const char* first = buffer_.data() + begin_;
-      const std::size_t available = end_ - begin_;
-      if (const void* lf = std::memchr(first, '\n', available)) {
-        const auto length = static_cast<std::size_t>(static_cast<const char*>(lf) - first);
-        line = std::string_view(first, length);
-        begin_ += length + 1;
-        consumed_ += length + 1;
-        return true;
-      }
-      if (at_end_) {
-        if (available == 0) return false;
-        line = std::string_view(first, available);  // a last line without LF
-        begin_ = end_;
-        consumed_ += available;
-        return true;
-      }
-      refill();
-    }
-  }
-
-  bool failed() const { return std::ferror(file_) != 0; }
-  std::size_t consumed_bytes() const { return consumed_; }
-
- private:
-  // Keeps the partial line at the front, grows the buffer only for a line
-  // longer than a block, and reads what fits.
-  void refill() {
-    if (begin_ > 0) {
-      std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
-      end_ -= begin_;
-      begin_ = 0;
-    }
-    if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);
-    const std::size_t got = std::fread(buffer_.data() + end_, 1, buffer_.size() - end_, file_);
-    end_ += got;
-    if (got == 0) at_end_ = true;
-  }
-
-  std::FILE* file_;
-  std::vector<char> buffer_;
-  std::size_t begin_ = 0, end_ = 0, consumed_ = 0;
-  bool at_end_ = false;
-};
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-
-bool is_blank(std::string_view line) { return trim(line).empty(); }
-
 using namespace column_rules;
 
-// A CSV's lines (or an autopilot log's samples) read by the column rules.
-class CsvParser : public ColumnReader {
- public:
-  CsvParser(const fs::path& file, const ColumnMap& map) : ColumnReader(file.string(), map, RowNaming::line) {}
-
-  Measurement read(const fs::path& file);
-
- private:
-  void parse_header(std::string_view line, std::size_t line_number, Measurement& m);
-  void parse_row(std::string_view line, std::size_t line_number, Measurement& m);
-  // The row read field by field without copies (csv_dialect.h's scan_*): true
-  // when taken; false, having taken nothing, for a row it leaves to the
-  // general path (split_fields, parse_csv_number), which reads it to the same
-  // values or says what is wrong. Not the first row (it fixes the time's form).
-  bool parse_row_fast(std::string_view line, std::size_t line_number, Measurement& m);
-  // What the fast path does with each column, from the roles, the extras still
-  // read and the time's form (after each row the general path reads).
-  enum class Take : unsigned char { skip, number, iso_time };
-  void plan_fast_rows();
-  // An autopilot log (fit/data/autopilot_log.h) read as the table
-  // time_s, temp_c, gyro_x, gyro_y, gyro_z (s, °C, rad/s) of one gyro.
-  void read_log(const fs::path& file, const LogFormat& format, Measurement& m);
-  // The time field of a row, in the file's unit or as an ISO 8601 timestamp
-  // (seconds since the first row's): "" on success, else what is wrong.
-  std::string read_time(std::string_view field, Measurement& m, double& value);
-  void reserve_for_file(Measurement& m, std::size_t line_bytes) const;
-
-  char delimiter_ = ',';
-  std::vector<std::string_view> fields_;  // of the row being read
-  Timestamp time_origin_;                 // the first row's, when the time is ISO 8601
-  std::vector<Take> take_;                // plan_fast_rows
-  std::uintmax_t file_bytes_ = 0, header_end_bytes_ = 0;
-};
+bool is_blank(std::string_view line) { return trim(line).empty(); }
 
 void CsvParser::parse_header(std::string_view line, std::size_t line_number, Measurement& m) {
   try {
@@ -257,27 +163,31 @@ void CsvParser::plan_fast_rows() {
   if (iso_time_) take_[column_of_[kTime]] = Take::iso_time;
 }
 
-bool CsvParser::parse_row_fast(std::string_view line, std::size_t line_number, Measurement& m) {
+bool CsvParser::scan_fields(std::string_view line, const std::vector<Take>& plan, double* values) const {
   const char* p = line.data();
   const char* const end = p + line.size();
-  for (std::size_t column = 0; column < take_.size(); ++column) {
+  for (std::size_t column = 0; column < plan.size(); ++column) {
     if (column > 0) {
       if (p == end) return false;  // fewer fields than the header
       ++p;                         // the delimiter
     }
-    switch (take_[column]) {
+    switch (plan[column]) {
       case Take::skip: p = skip_csv_field(p, end, delimiter_); break;
-      case Take::number: p = scan_csv_number(p, end, delimiter_, csv_.decimal_comma, values_[column]); break;
+      case Take::number: p = scan_csv_number(p, end, delimiter_, csv_.decimal_comma, values[column]); break;
       case Take::iso_time: {
         Timestamp t;
         p = scan_iso8601_field(p, end, delimiter_, t);
-        values_[column] = static_cast<double>(t.seconds - time_origin_.seconds) + (t.fraction - time_origin_.fraction);
+        values[column] = static_cast<double>(t.seconds - time_origin_.seconds) + (t.fraction - time_origin_.fraction);
         break;
       }
     }
     if (p == nullptr) return false;
   }
-  if (p != end) return false;  // more fields than the header
+  return p == end;  // else more fields than the header
+}
+
+bool CsvParser::parse_row_fast(std::string_view line, std::size_t line_number, Measurement& m) {
+  if (!scan_fields(line, take_, values_.data())) return false;
   take_values(line_number, m);
   return true;
 }
@@ -349,8 +259,12 @@ Measurement CsvParser::read(const fs::path& file) {
       header_end_bytes_ = reader.consumed_bytes();
       continue;
     }
-    if (rows_ == 0 && !sink_) reserve_for_file(m, line.size());
+    if (rows_ == 0 && !streaming()) reserve_for_file(m, line.size());
     parse_row(line, line_number, m);
+    if (rows_ == 1 && blocks_possible()) {
+      line_number = read_blocks(reader, handle.get(), line_number, m);
+      break;
+    }
   }
   if (reader.failed()) throw InputError(located(name_, line_number, "cannot read (read error)"));
 
@@ -367,18 +281,17 @@ Measurement CsvParser::read(const fs::path& file) {
   return m;
 }
 
-}  // namespace
+}  // namespace csv_parsing
+
+using csv_parsing::CsvParser;
 
 Measurement read_measurement_csv(const std::filesystem::path& file, const ColumnMap& columns) {
   return CsvParser(file, columns).read(file);
 }
 
-CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
-                       const RowSink& sink, const HeaderSink& on_header) {
-  CsvParser parser(file, columns);
-  parser.set_sink(sink);
-  parser.set_header_sink(on_header);
-  const Measurement header_only = parser.read(file);
+namespace {
+
+CsvHeader header_of(const Measurement& header_only, const CsvParser& parser) {
   CsvHeader h;
   h.file = header_only.file;
   h.units = header_only.units;
@@ -386,6 +299,29 @@ CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& colum
   h.has_temp2 = parser.has_temp2();
   h.rows = parser.rows();
   return h;
+}
+
+}  // namespace
+
+CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
+                       const RowSink& sink, const HeaderSink& on_header) {
+  CsvParser parser(file, columns);
+  parser.set_sink(sink);
+  parser.set_header_sink(on_header);
+  const Measurement header_only = parser.read(file);
+  return header_of(header_only, parser);
+}
+
+CsvHeader for_each_batch(const std::filesystem::path& file, const ColumnMap& columns, std::size_t batch_rows,
+                         const BatchSink& sink, const HeaderSink& on_header, unsigned threads,
+                         std::size_t block_bytes) {
+  CsvParser parser(file, columns);
+  parser.set_batch_sink(sink, batch_rows);
+  parser.set_header_sink(on_header);
+  parser.read_in_blocks(threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency()), block_bytes);
+  const Measurement header_only = parser.read(file);
+  parser.flush_batch();
+  return header_of(header_only, parser);
 }
 
 }  // namespace gyrotherm::fit

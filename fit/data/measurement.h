@@ -162,4 +162,20 @@ using HeaderSink = std::function<void(const CsvHeader& header)>;
 CsvHeader for_each_row(const std::filesystem::path& file, const ColumnMap& columns,
                        const RowSink& sink, const HeaderSink& on_header = {});
 
+// The same, a batch of rows at a time: `sink` takes the rows in `batch` (it
+// may swap in an empty vector with room) and is called on the calling thread,
+// in the file's order. A CSV's rows after the first are parsed in blocks of
+// `block_bytes` (0: a megabyte; tests take small ones to cross many block
+// boundaries) on `threads` more threads (0: one per core) while the batches
+// are handed on; a row the block parse does not take (quotes, an error, time
+// not increasing) is read again line by line, so every value and every
+// message is for_each_row's.
+struct RowValues {
+  double t, temp, gyro, temp2;  // s, °C, °/h, °C (0 without that column)
+};
+using BatchSink = std::function<void(std::vector<RowValues>& batch)>;
+CsvHeader for_each_batch(const std::filesystem::path& file, const ColumnMap& columns, std::size_t batch_rows,
+                         const BatchSink& sink, const HeaderSink& on_header = {}, unsigned threads = 0,
+                         std::size_t block_bytes = 0);
+
 }  // namespace gyrotherm::fit

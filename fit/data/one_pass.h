@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fit/data/hampel.h"
+#include "fit/data/measurement.h"
 #include "fit/data/plausibility.h"
 #include "fit/data/prepare.h"
 #include "fit/data/streaming.h"
@@ -17,9 +18,7 @@ namespace gyrotherm::fit::one_pass {
 
 // One row, after the units are applied: time s, temp °C, gyro °/h, temp2 °C
 // (0 without that column).
-struct Row {
-  double t, temp, gyro, temp2;
-};
+using Row = RowValues;
 
 // What the prefix fixes for the rest of the record.
 struct RecordRules {

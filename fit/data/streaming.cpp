@@ -109,18 +109,10 @@ PreparedData prepare_data_streaming(const std::filesystem::path& csv, const Pipe
   BatchQueue queue;
   std::thread reader([&] {
     try {
-      std::vector<Row> batch = queue.empty_batch();
-      for_each_row(
-          csv, o.columns,
-          [&](double t, double temp, double gyro, double temp2) {
-            batch.push_back({t, temp, gyro, temp2});
-            if (batch.size() == kBatchRows) {
-              queue.push(std::move(batch));
-              batch = queue.empty_batch();
-            }
-          },
+      for_each_batch(
+          csv, o.columns, kBatchRows,
+          [&](std::vector<Row>& batch) { queue.push(std::exchange(batch, queue.empty_batch())); },
           [&](const CsvHeader& header) { queue.set_header(header); });
-      if (!batch.empty()) queue.push(std::move(batch));
       queue.close();
     } catch (const BatchQueue::Cancelled&) {
       queue.close();

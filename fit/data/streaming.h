@@ -21,9 +21,10 @@
 //     prefix (as in memory), over every 1000th sample of a longer one.
 //  3. Averaging. Judged samples go straight into the window averager.
 //
-// Reading and parsing run on a second thread, which hands the rows over in
-// batches (at most kBatchesInFlight of kBatchRows rows), so parsing and
-// filtering overlap on two cores.
+// Reading and parsing run on other threads (for_each_batch,
+// fit/data/measurement.h: a CSV's blocks parsed on one thread per core, in
+// the file's order), which hand the rows over in batches (at most
+// kBatchesInFlight), so parsing and filtering overlap.
 //
 // Memory: the prefix (kPrefixRows × 32 bytes, 8 MB), the filter's window, the
 // batches (4 MB: large ones mean fewer hand-offs between the cores, each a

@@ -38,7 +38,7 @@ class TableReader : public ColumnReader {
     }
     resolve_columns(std::move(names), 0, std::string(), m);
     const std::size_t rows = check_lengths();
-    if (!sink_) reserve(m, rows);
+    if (!streaming()) reserve(m, rows);
     for (std::size_t i = 0; i < rows; ++i)
       read_row(i, m, [&](std::size_t column, double& value) {
         value = table_.columns[column].values[i];

@@ -2,26 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <pagmo/algorithm.hpp>
-#include <pagmo/algorithms/bee_colony.hpp>
-#include <pagmo/algorithms/cmaes.hpp>
-#include <pagmo/algorithms/de.hpp>
-#include <pagmo/algorithms/pso.hpp>
-#include <pagmo/population.hpp>
-#include <pagmo/problem.hpp>
-#include <pagmo/threading.hpp>
-#include <pagmo/types.hpp>
-
-// pagmo::cmaes holds Eigen matrices that libpagmo allocates and this file
-// frees (its destructor is inline), so Eigen must allocate here as it did
-// when libpagmo was built: plain malloc, 16-byte alignment. Otherwise the
-// first cmaes run corrupts the heap.
-#if !EIGEN_MALLOC_ALREADY_ALIGNED || EIGEN_DEFAULT_ALIGN_BYTES > 16
-#error "fit/engines/pagmo_engines.cpp must use Eigen's malloc-aligned 16-byte storage, as libpagmo does: build it without -march=native/-mavx; under AddressSanitizer add -DEIGEN_MALLOC_ALREADY_ALIGNED=1"
-#endif
-
 #include <algorithm>
 #include <cassert>
+#include <cstdlib>
+#include <dlfcn.h>
+#include <filesystem>
+#include <stdexcept>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -31,6 +17,7 @@
 #include <string>
 #include <utility>
 
+#include "fit/engines/pagmo_evolve.h"
 #include "sim/util/input_error.h"
 #include "sim/util/random.h"
 
@@ -56,67 +43,43 @@ struct RunState {
 // catches those can swallow it.
 struct StopRun {};
 
-class EvaluatorProblem {
- public:
-  EvaluatorProblem() = default;  // pagmo requires it (serialisation)
-  EvaluatorProblem(RunState* run, std::size_t dimension) : run_(run), dimension_(dimension) {}
-
-  pagmo::vector_double fitness(const pagmo::vector_double& z) const {
-    assert(run_ != nullptr && z.size() == dimension_);
-    RunState& run = *run_;
-    Evaluator& evaluator = *run.evaluator;
-    // Never evaluate past the budget or the target (the throw below normally
-    // ends the run first; this guards a second call).
-    if (evaluator.done()) throw StopRun{};
-    // σ of a NaN point would read as 0 (std::max(0, NaN) in the Gram form)
-    // and become the best; stop instead.
-    if (!std::all_of(z.begin(), z.end(), [](double v) { return std::isfinite(v); })) {
-      run.non_finite = true;
+// The Evaluator as pagmo's fitness: the run's counting and stopping.
+double fitness(RunState& run, const std::vector<double>& z, std::size_t dimension) {
+  assert(z.size() == dimension);
+  (void)dimension;
+  Evaluator& evaluator = *run.evaluator;
+  // Never evaluate past the budget or the target (the throw below normally
+  // ends the run first; this guards a second call).
+  if (evaluator.done()) throw StopRun{};
+  // σ of a NaN point would read as 0 (std::max(0, NaN) in the Gram form)
+  // and become the best; stop instead.
+  if (!std::all_of(z.begin(), z.end(), [](double v) { return std::isfinite(v); })) {
+    run.non_finite = true;
+    throw StopRun{};
+  }
+  const double f = evaluator(z);
+  const long since_start = evaluator.evaluations() - run.initial;
+  if (since_start > 0 && since_start % run.per_generation == 0) {
+    ++run.generations;
+    if (run.observer != nullptr &&
+        !run.observer->on_iteration(run.generations, evaluator.evaluations(), evaluator.best())) {
+      run.observer_stopped = true;
       throw StopRun{};
     }
-    const double f = evaluator(z);
-    const long since_start = evaluator.evaluations() - run.initial;
-    if (since_start > 0 && since_start % run.per_generation == 0) {
-      ++run.generations;
-      if (run.observer != nullptr &&
-          !run.observer->on_iteration(run.generations, evaluator.evaluations(), evaluator.best())) {
-        run.observer_stopped = true;
-        throw StopRun{};
-      }
-    }
-    if (evaluator.done()) throw StopRun{};
-    return {f};
   }
-
-  std::pair<pagmo::vector_double, pagmo::vector_double> get_bounds() const {
-    return {pagmo::vector_double(dimension_, -1.0), pagmo::vector_double(dimension_, 1.0)};
-  }
-  // The run state is not shared safely between threads.
-  pagmo::thread_safety get_thread_safety() const { return pagmo::thread_safety::none; }
-  std::string get_name() const { return "gyrotherm sigma(z) on the unit box"; }
-
- private:
-  RunState* run_ = nullptr;
-  std::size_t dimension_ = 1;
-};
+  if (evaluator.done()) throw StopRun{};
+  return f;
+}
 
 // ---------------------------------------------------------------------------
 // The generic engine.
-
-// What a recipe needs to build its algorithm for one run.
-struct RunPlan {
-  std::size_t dimension = 0;  // m
-  long population = 0;        // resolved for m
-  unsigned generations = 0;   // enough to spend the budget
-  unsigned seed = 0;          // the algorithm's own
-};
 
 // How to run one pagmo algorithm.
 struct Recipe {
   std::string engine;
   std::function<long(std::size_t dimension)> population;
   long evaluations_per_individual = 1;  // per generation
-  std::function<pagmo::algorithm(const RunPlan&)> make_algorithm;
+  pagmo_evolve::Algorithm algorithm;
 };
 
 class PagmoEngine final : public Engine {
@@ -149,14 +112,16 @@ class PagmoEngine final : public Engine {
     Termination fallback = Termination::max_iterations;
     std::string why;
     try {
-      // 1. Random initial population (evaluated through the Evaluator).
-      pagmo::population population(EvaluatorProblem(&run, m),
-                                   static_cast<pagmo::population::size_type>(size), population_seed);
-      // 2. Evolve until the budget, the target or the observer throws StopRun,
-      //    or the algorithm ends by itself.
-      const pagmo::algorithm algorithm = recipe_.make_algorithm(
-          {.dimension = m, .population = size, .generations = generations, .seed = algorithm_seed});
-      population = algorithm.evolve(population);
+      // A random initial population (evaluated through the Evaluator), then
+      // evolved until the budget, the target or the observer throws StopRun,
+      // or the algorithm ends by itself.
+      pagmo_evolve::evolve({.algorithm = recipe_.algorithm,
+                            .dimension = m,
+                            .population = size,
+                            .generations = generations,
+                            .population_seed = population_seed,
+                            .algorithm_seed = algorithm_seed,
+                            .fitness = [&](const std::vector<double>& z) { return fitness(run, z, m); }});
       if (run.generations < static_cast<long>(generations)) {
         fallback = Termination::converged;
         why = "population collapsed (xtol/ftol)";
@@ -211,16 +176,7 @@ EngineInfo base_info(std::string name, std::string description) {
 // ---------------------------------------------------------------------------
 // pso
 
-struct PsoOptions {
-  int population = 0;     // particles (0: 10 + ⌊2√m⌋, SPSO 2007)
-  double omega = 0.7298;  // inertia weight, or constriction factor (variants 5, 6)
-  double eta1 = 2.05;     // cognitive (own best) acceleration
-  double eta2 = 2.05;     // social (neighbours' best) acceleration
-  double max_vel = 0.5;   // largest velocity, as a fraction of the box width
-  int variant = 5;        // pagmo's velocity update 1..6 (5: constriction)
-  int topology = 2;       // 1 gbest, 2 lbest ring, 3 von Neumann, 4 adaptive random
-  int neighbours = 4;     // lbest: neighbours in the ring; adaptive: informants
-};
+using pagmo_evolve::PsoOptions;
 
 // The automatic swarm is never smaller than this (m = 1).
 constexpr int kSmallestAutomaticSwarm = 12;
@@ -262,13 +218,7 @@ EngineInfo pso_info() {
         .engine = "pso",
         .population = [o](std::size_t m) { return o.population > 0 ? o.population : spso_swarm(m); },
         .evaluations_per_individual = 1,
-        .make_algorithm = [o](const RunPlan& plan) {
-          return pagmo::algorithm(pagmo::pso(plan.generations, o.omega, o.eta1, o.eta2, o.max_vel,
-                                             static_cast<unsigned>(o.variant),
-                                             static_cast<unsigned>(o.topology),
-                                             static_cast<unsigned>(o.neighbours),
-                                             /*memory=*/false, plan.seed));
-        }};
+        .algorithm = o};
     return make_engine(std::move(recipe), settings);
   };
   return info;
@@ -277,14 +227,7 @@ EngineInfo pso_info() {
 // ---------------------------------------------------------------------------
 // de
 
-struct DeOptions {
-  int population = 20;  // individuals
-  double f = 0.8;       // F, differential weight
-  double cr = 0.9;      // CR, crossover probability
-  int variant = 2;      // pagmo's mutation/crossover 1..10 (2: rand/1/exp)
-  double ftol = 0.0;    // stop when the population's σ spread is below (0: never)
-  double xtol = 1e-12;  // stop when best and worst differ by less (L1, unit box)
-};
+using pagmo_evolve::DeOptions;
 
 const OptionTable<DeOptions>& de_table() {
   using O = DeOptions;
@@ -310,11 +253,7 @@ EngineInfo de_info() {
     Recipe recipe{.engine = "de",
                   .population = [o](std::size_t) { return long{o.population}; },
                   .evaluations_per_individual = 1,
-                  .make_algorithm = [o](const RunPlan& plan) {
-                    return pagmo::algorithm(pagmo::de(plan.generations, o.f, o.cr,
-                                                      static_cast<unsigned>(o.variant), o.ftol,
-                                                      o.xtol, plan.seed));
-                  }};
+                  .algorithm = o};
     return make_engine(std::move(recipe), settings);
   };
   return info;
@@ -323,12 +262,7 @@ EngineInfo de_info() {
 // ---------------------------------------------------------------------------
 // cmaes
 
-struct CmaesOptions {
-  int population = 0;   // λ (0: 4 + ⌊3 ln m⌋, Hansen's default)
-  double sigma0 = 0.5;  // initial step, as a fraction of the box width
-  double ftol = 0.0;    // stop when the population's σ spread is below (0: never)
-  double xtol = 1e-12;  // stop when a step is shorter (unit box)
-};
+using pagmo_evolve::CmaesOptions;
 
 long hansen_lambda(std::size_t m) {
   // At least 5: pagmo's cmaes refuses smaller populations (m = 1 would give 4).
@@ -358,12 +292,7 @@ EngineInfo cmaes_info() {
         .engine = "cmaes",
         .population = [o](std::size_t m) { return o.population > 0 ? o.population : hansen_lambda(m); },
         .evaluations_per_individual = 1,
-        .make_algorithm = [o](const RunPlan& plan) {
-          // cc, cs, c1, cmu = -1: Hansen's settings for λ and m.
-          return pagmo::algorithm(pagmo::cmaes(plan.generations, -1, -1, -1, -1, o.sigma0, o.ftol,
-                                               o.xtol, /*memory=*/false, /*force_bounds=*/true,
-                                               plan.seed));
-        }};
+        .algorithm = o};
     return make_engine(std::move(recipe), settings);
   };
   return info;
@@ -372,10 +301,7 @@ EngineInfo cmaes_info() {
 // ---------------------------------------------------------------------------
 // abc
 
-struct AbcOptions {
-  int population = 20;  // food sources (employed bees = onlooker bees)
-  int limit = 0;        // failed trials before a source is abandoned (0: population·m)
-};
+using pagmo_evolve::AbcOptions;
 
 const OptionTable<AbcOptions>& abc_table() {
   using O = AbcOptions;
@@ -397,20 +323,61 @@ EngineInfo abc_info() {
         .engine = "abc",
         .population = [o](std::size_t) { return long{o.population}; },
         .evaluations_per_individual = 2,  // employed and onlooker phases
-        .make_algorithm = [o](const RunPlan& plan) {
-          // Karaboga & Basturk's limit = SN·D (food sources × dimension).
-          const long limit = o.limit > 0 ? o.limit : plan.population * static_cast<long>(plan.dimension);
-          return pagmo::algorithm(pagmo::bee_colony(
-              plan.generations,
-              static_cast<unsigned>(std::min<long>(limit, std::numeric_limits<unsigned>::max())),
-              plan.seed));
-        }};
+        .algorithm = o};
     return make_engine(std::move(recipe), settings);
   };
   return info;
 }
 
 }  // namespace
+
+namespace pagmo_evolve {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The module's entry, loaded once (see pagmo_evolve.h for where it is looked for).
+Entry load_entry() {
+  std::vector<fs::path> candidates;
+  const char* chosen = std::getenv("GYROTHERM_PAGMO_MODULE");
+  if (chosen != nullptr && *chosen != '\0') {
+    candidates.emplace_back(chosen);
+  } else {
+    Dl_info self{};
+    if (dladdr(reinterpret_cast<const void*>(&load_entry), &self) != 0 && self.dli_fname != nullptr)
+      candidates.push_back(fs::path(self.dli_fname).parent_path() / kModuleFile);
+#ifdef GYROTHERM_PAGMO_MODULE_BUILT
+    candidates.emplace_back(GYROTHERM_PAGMO_MODULE_BUILT);
+#endif
+  }
+  std::string tried;
+  for (const fs::path& path : candidates) {
+    std::error_code ec;
+    if (candidates.size() > 1 && !fs::exists(path, ec)) {
+      tried += fmt::format("{}{} (absent)", tried.empty() ? "" : ", ", path.string());
+      continue;
+    }
+    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    const char* problem = module == nullptr ? dlerror() : nullptr;
+    if (module != nullptr)
+      if (void* entry = dlsym(module, kEntryName); entry != nullptr) return reinterpret_cast<Entry>(entry);
+    tried += fmt::format("{}{} ({})", tried.empty() ? "" : ", ", path.string(),
+                         problem != nullptr ? problem : "no entry " + std::string(kEntryName));
+  }
+  throw std::runtime_error(fmt::format("the pagmo engines (pso, de, cmaes, abc) need the module {}, which could not "
+                                       "be loaded: tried {}; build the target gyrotherm_pagmo, or set "
+                                       "GYROTHERM_PAGMO_MODULE to its path",
+                                       kModuleFile, tried));
+}
+
+}  // namespace
+
+void evolve(const Run& run) {
+  static const Entry entry = load_entry();
+  entry(run);
+}
+
+}  // namespace pagmo_evolve
 
 std::vector<EngineInfo> pagmo_engine_infos() {
   return {pso_info(), de_info(), cmaes_info(), abc_info()};

@@ -3,6 +3,7 @@
 // sandwich: fit/model/noise_model.h. The identification is noise_model.cpp.
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <fmt/format.h>
@@ -45,19 +46,41 @@ void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen:
     }
     decay[static_cast<std::size_t>(i)] = last_decay;
   }
+  // Each recursion is a chain of dependent multiply-adds; four columns at a
+  // time run four chains side by side (a fifth of the noise model's time on a
+  // 8760-window record went into one chain at a time).
   const double scale = weight * w.off;
-  for (Eigen::Index c = 0; c < x.cols(); ++c) {
-    const double* xc = x.col(c).data();
-    double* yc = y.col(c).data();
-    double f = 0.0;
-    for (Eigen::Index i = 1; i < n; ++i) {
-      f = decay[static_cast<std::size_t>(i - 1)] * (f + xc[i - 1]);
-      yc[i] += scale * f;
+  constexpr Eigen::Index kLanes = 4;
+  for (Eigen::Index c0 = 0; c0 < x.cols(); c0 += kLanes) {
+    const Eigen::Index lanes = std::min(kLanes, x.cols() - c0);
+    std::array<const double*, kLanes> xc{};
+    std::array<double*, kLanes> yc{};
+    for (Eigen::Index l = 0; l < lanes; ++l) {
+      xc[static_cast<std::size_t>(l)] = x.col(c0 + l).data();
+      yc[static_cast<std::size_t>(l)] = y.col(c0 + l).data();
     }
-    f = 0.0;
+    const auto sweep = [&](auto each_lane) {
+      if (lanes == kLanes) {
+        for (std::size_t l = 0; l < kLanes; ++l) each_lane(l);
+      } else {
+        for (std::size_t l = 0; l < static_cast<std::size_t>(lanes); ++l) each_lane(l);
+      }
+    };
+    std::array<double, kLanes> f{};
+    for (Eigen::Index i = 1; i < n; ++i) {
+      const double d = decay[static_cast<std::size_t>(i - 1)];
+      sweep([&](std::size_t l) {
+        f[l] = d * (f[l] + xc[l][i - 1]);
+        yc[l][i] += scale * f[l];
+      });
+    }
+    f.fill(0.0);
     for (Eigen::Index i = n - 2; i >= 0; --i) {
-      f = decay[static_cast<std::size_t>(i)] * (f + xc[i + 1]);
-      yc[i] += scale * f;
+      const double d = decay[static_cast<std::size_t>(i)];
+      sweep([&](std::size_t l) {
+        f[l] = d * (f[l] + xc[l][i + 1]);
+        yc[l][i] += scale * f[l];
+      });
     }
   }
 }
