@@ -66,8 +66,24 @@ void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen:
         for (std::size_t l = 0; l < static_cast<std::size_t>(lanes); ++l) each_lane(l);
       }
     };
+    // Rows before a column's first non-zero (after its last) add exactly 0
+    // to the forward (backward) sums: they are skipped. The block means'
+    // covariance applies the kernel to columns that are zero outside one
+    // block each, so this halves the work there.
+    Eigen::Index first = n, last = -1;
+    for (Eigen::Index l = 0; l < lanes; ++l) {
+      const double* column = xc[static_cast<std::size_t>(l)];
+      Eigen::Index a = 0, b = n - 1;
+      while (a < n && column[a] == 0.0) ++a;
+      while (b > a && column[b] == 0.0) --b;
+      if (a < n) {
+        first = std::min(first, a);
+        last = std::max(last, b);
+      }
+    }
+    if (last < 0) continue;  // all zero
     std::array<double, kLanes> f{};
-    for (Eigen::Index i = 1; i < n; ++i) {
+    for (Eigen::Index i = first + 1; i < n; ++i) {
       const double d = decay[static_cast<std::size_t>(i - 1)];
       sweep([&](std::size_t l) {
         f[l] = d * (f[l] + xc[l][i - 1]);
@@ -75,7 +91,7 @@ void add_exp_kernel(const WindowGrid& g, double tau, double weight, const Eigen:
       });
     }
     f.fill(0.0);
-    for (Eigen::Index i = n - 2; i >= 0; --i) {
+    for (Eigen::Index i = last - 1; i >= 0; --i) {
       const double d = decay[static_cast<std::size_t>(i)];
       sweep([&](std::size_t l) {
         f[l] = d * (f[l] + xc[l][i + 1]);

@@ -234,14 +234,18 @@ NoiseModel identify_noise(const WindowGrid& grid, const Eigen::MatrixXd& design,
   const Eigen::Index per_pass = std::clamp<Eigen::Index>(
       static_cast<Eigen::Index>(kBlockCovBytes / (2 * sizeof(double) * static_cast<std::size_t>(n))), 1, nb);
   Eigen::MatrixXd a_t, c_a_t;  // columns first … of Aᵀ, and C times them
+  Eigen::Index a_t_first = -1;  // the first column a_t holds (built once when one pass takes all)
   auto block_cov = [&](const NoiseModel& unit, int kind) {
     Eigen::MatrixXd out(nb, nb);
     for (Eigen::Index first = 0; first < nb; first += per_pass) {
       const Eigen::Index count = std::min(per_pass, nb - first);
-      a_t.setZero(n, count);
-      for (Eigen::Index b = first; b < first + count; ++b) {
-        const auto [i, j] = blocks[static_cast<std::size_t>(b)];
-        a_t.block(i, b - first, j - i, 1).setConstant(1.0 / static_cast<double>(j - i));
+      if (a_t_first != first || a_t.cols() != count) {
+        a_t.setZero(n, count);
+        for (Eigen::Index b = first; b < first + count; ++b) {
+          const auto [i, j] = blocks[static_cast<std::size_t>(b)];
+          a_t.block(i, b - first, j - i, 1).setConstant(1.0 / static_cast<double>(j - i));
+        }
+        a_t_first = first;
       }
       unit.apply(grid, a_t, c_a_t, kind);
       out.middleCols(first, count) = aggregate(blocks, c_a_t);
