@@ -177,7 +177,7 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
   j["iterations"] = fit.engine.iterations;
   j["seconds"] = fit.engine.seconds;
   j["termination"] = to_string(fit.engine.termination);
-  j["message"] = fit.engine.message;
+  j["message"] = run_text(fit.engine);
   j["seed"] = settings.seed;
   j["warnings"] = fit_warnings(fit);
   Json history = Json::array();

@@ -131,7 +131,8 @@ TEST(GlsEngine, WithoutAnIdentifiedNoiseItIsLeastSquaresAndSaysSo) {
   const FitResult o = OlsEngine().fit(problem);
   EXPECT_EQ(g.z, o.z);
   EXPECT_EQ(g.engine, "gls");
-  EXPECT_NE(g.message.find("no noise model identified"), std::string::npos) << g.message;
+  EXPECT_EQ(g.detail.kind, RunDetail::Kind::gls_without_noise);
+  EXPECT_NE(run_text(g).find("no noise model identified"), std::string::npos) << run_text(g);
 }
 
 TEST(GlsEngine, RefusesAnUnknownCovariance) {

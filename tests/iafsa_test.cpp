@@ -92,7 +92,8 @@ TEST(Iafsa, AutoSizesTheSwarmAndTheScheduleByTheNumberOfTerms) {
     settings.seed = seed;
     const FitResult r = run(problem, settings);
     EXPECT_LE(sigma_at(problem, r), optimum * (1.0 + 1e-6)) << "seed " << seed;
-    EXPECT_NE(r.message.find("20 fish"), std::string::npos) << r.message;
+    EXPECT_EQ(r.detail.fish, 20);
+    EXPECT_NE(run_text(r).find("20 fish"), std::string::npos) << run_text(r);
     settings.options = {{"fish", "8"}, {"max_iterations", "700"}};
     if (sigma_at(problem, run(problem, settings)) > optimum * (1.0 + 1e-6)) ++fixed_short;
   }
@@ -128,8 +129,10 @@ TEST(Iafsa, ShrinksVisualAndStepByEquationFive) {
     }
     const FitResult r = run(problem, settings);
     EXPECT_EQ(r.termination, Termination::max_iterations);
-    EXPECT_NE(r.message.find(fmt::format("Visual {:.3g}, Step {:.3g}", v, s)), std::string::npos)
-        << "schedule " << schedule << ": " << r.message;
+    EXPECT_NEAR(r.detail.visual, v, 1e-12 * v) << "schedule " << schedule;
+    EXPECT_NEAR(r.detail.step, s, 1e-12 * s) << "schedule " << schedule;
+    EXPECT_NE(run_text(r).find(fmt::format("Visual {:.3g}, Step {:.3g}", v, s)), std::string::npos)
+        << "schedule " << schedule << ": " << run_text(r);
   }
 }
 

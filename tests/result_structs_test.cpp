@@ -75,11 +75,13 @@ TEST(ResultStructs, TheDiagnosisHoldsNamesNotSentences) {
 
 // The fit's summary as an engine returns it (fit/engines/engine.h): how its
 // intervals were computed is an IntervalMethod (a kind and its numbers),
-// rendered by interval_method_text(); no member holds that sentence.
+// rendered by interval_method_text(), and how the run went a RunDetail,
+// rendered by run_text(); no member holds a sentence.
 TEST(ResultStructs, TheFitResultHoldsItsIntervalMethodAsData) {
   const std::map<std::string, std::string> names = {
       {"engine", "FitResult: the engine's registry name"},
-      {"message", "FitResult: the engine's own status line (as an exception's what())"},
+      {"term", "RunDetail::Step: a term name"},
+      {"kept", "RunDetail: term names"},
       {"scope", "KeyValue: an engine name"},
       {"key", "KeyValue: an option name"},
       {"value", "KeyValue: an option value as given"},
@@ -87,7 +89,8 @@ TEST(ResultStructs, TheFitResultHoldsItsIntervalMethodAsData) {
       {"description", "EngineInfo: the registry's one-line description of the engine"},
   };
   expect_text_members("fit/engines/engine.h", names,
-                      "how a result was computed is data (IntervalMethod), its words are interval_method_text()'s");
+                      "how a result was computed is data (IntervalMethod, RunDetail), its words are "
+                      "interval_method_text()'s and run_text()'s");
 }
 
 // The Allan coefficients (studies/allan/noise_coefficients.h): how each was

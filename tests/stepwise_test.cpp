@@ -34,7 +34,7 @@ TEST(Stepwise, KeepsTheTrueTermsAndDropsTheSpuriousOne) {
     const LinearProblem problem = problem_with_spurious_term(seed);
     const FitResult r = StepwiseEngine({}).fit(problem);
     ASSERT_EQ(r.inference.kept.size(), 4u);
-    EXPECT_TRUE(r.inference.kept[0] && r.inference.kept[1] && r.inference.kept[2]) << r.message;
+    EXPECT_TRUE(r.inference.kept[0] && r.inference.kept[1] && r.inference.kept[2]) << run_text(r);
     dropped += !r.inference.kept[3];
     if (!r.inference.kept[3]) {
       EXPECT_EQ(r.z[3], 0.0);

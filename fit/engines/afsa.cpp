@@ -45,10 +45,12 @@ FitResult run_afsa(const AfsaEngine::Options& o, const LinearProblem& problem,
   const std::size_t n = static_cast<std::size_t>(o.fish);
   const std::size_t m = school.dimension();
   const auto finish = [&](long iterations, Termination fallback) {
-    return school.evaluator().result(
-        kAfsa, iterations, fallback,
-        fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
-                    iterations, o.max_iterations, o.visual, o.step));
+    return school.evaluator().result(kAfsa, iterations, fallback,
+                                     {.kind = RunDetail::Kind::fish_swarm,
+                                      .fish = static_cast<long>(n),
+                                      .iteration_limit = o.max_iterations,
+                                      .visual = o.visual,
+                                      .step = o.step});
   };
 
   // Scatter the swarm over the box; the evaluator's best point is the

@@ -1,6 +1,7 @@
 #include "fit/engines/engine.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -102,9 +103,43 @@ std::string interval_method_text(const IntervalMethod& m, const NoiseModel* nois
   return out;
 }
 
+std::string run_text(const FitResult& r) {
+  const RunDetail& d = r.detail;
+  switch (d.kind) {
+    case RunDetail::Kind::qr: return "least squares by column-pivoting QR";
+    case RunDetail::Kind::gls: return "generalised least squares by the noise's semi-separable Cholesky factor";
+    case RunDetail::Kind::gls_without_noise:
+      return "no noise model identified on this record (too few windows for the terms): ordinary least squares";
+    case RunDetail::Kind::stepwise: {
+      std::string steps;
+      for (const RunDetail::Step& s : d.steps)
+        steps += s.entered ? fmt::format("{}+{}", steps.empty() ? "" : ", ", s.term) : fmt::format(", -{}", s.term);
+      return fmt::format("kept {} (steps: {})", d.kept.empty() ? "no terms" : fmt::format("{}", fmt::join(d.kept, ", ")),
+                         steps.empty() ? "none" : steps);
+    }
+    case RunDetail::Kind::fish_swarm:
+      return fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", d.fish,
+                         r.iterations, d.iteration_limit, d.visual, d.step);
+    case RunDetail::Kind::pagmo: {
+      std::string text = fmt::format("pagmo {}, population {}, seed {}", r.engine, d.population, d.seed);
+      switch (d.end) {
+        case RunDetail::End::budget_or_target: break;
+        case RunDetail::End::generation_limit: text += fmt::format("; generation limit {}", d.generation_limit); break;
+        case RunDetail::End::collapsed: text += "; population collapsed (xtol/ftol)"; break;
+        case RunDetail::End::non_finite:
+          text += "; the algorithm proposed a non-finite point (step size underflow)";
+          break;
+        case RunDetail::End::observer: text += "; stopped by the observer"; break;
+      }
+      return text;
+    }
+  }
+  return {};
+}
+
 std::string FitResult::brief_report() const {
   return fmt::format("{}: sigma {:.6g}, {} evaluations, {} iterations, {:.3g} s, {} ({})", engine,
-                     objective, evaluations, iterations, seconds, to_string(termination), message);
+                     objective, evaluations, iterations, seconds, to_string(termination), run_text(*this));
 }
 
 Evaluator::Evaluator(const LinearProblem& problem, long max_evaluations, double target_objective)
@@ -126,8 +161,7 @@ double Evaluator::operator()(std::span<const double> z) {
   return f;
 }
 
-FitResult Evaluator::result(std::string engine, long iterations, Termination fallback,
-                            std::string message) const {
+FitResult Evaluator::result(std::string engine, long iterations, Termination fallback, RunDetail detail) const {
   FitResult r;
   r.engine = std::move(engine);
   r.z = best_z_;
@@ -142,7 +176,7 @@ FitResult Evaluator::result(std::string engine, long iterations, Termination fal
     r.termination = Termination::budget_exhausted;
   else
     r.termination = fallback;
-  r.message = std::move(message);
+  r.detail = std::move(detail);
   return r;
 }
 

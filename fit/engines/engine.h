@@ -81,6 +81,35 @@ struct TermInference {
   std::vector<bool> kept;           // stepwise: which terms are in the model; empty: every one
 };
 
+// How an engine's run went, as data: the method, and what the engine adds
+// (stepwise's steps, a school's or population's size and seed, why a pagmo
+// run ended before its budget). run_text() words it: the reports' engine
+// line and the fit file's "message".
+struct RunDetail {
+  enum class Kind {
+    qr,                 // ols: least squares by column-pivoting QR
+    gls,                // gls by the noise's semi-separable Cholesky factor
+    gls_without_noise,  // gls where no noise model was identified: ordinary least squares
+    stepwise,           // steps and the terms kept
+    fish_swarm,         // afsa, iafsa: fish, iterations of the limit, Visual and Step
+    pagmo,              // pso, de, cmaes, abc: population, seed, end
+  };
+  Kind kind = Kind::qr;
+  struct Step {
+    std::string term;
+    bool entered = true;  // else left
+  };
+  std::vector<Step> steps;        // stepwise, in order
+  std::vector<std::string> kept;  // stepwise: the terms kept
+  long fish = 0, iteration_limit = 0;
+  double visual = 0.0, step = 0.0;  // fish_swarm: box widths
+  long population = 0;              // pagmo
+  std::uint64_t seed = 0;           // pagmo
+  enum class End { budget_or_target, generation_limit, collapsed, non_finite, observer };
+  End end = End::budget_or_target;  // pagmo
+  unsigned generation_limit = 0;    // pagmo, End::generation_limit
+};
+
 struct FitResult {
   std::string engine;
   std::vector<double> z;              // best point in the unit box
@@ -89,13 +118,15 @@ struct FitResult {
   long iterations = 0;
   double seconds = 0.0;
   Termination termination = Termination::budget_exhausted;
-  std::string message;
+  RunDetail detail;
   std::vector<HistoryPoint> history;  // best σ each time it improved
   // What a statistical engine says of each term besides its value; empty for
   // the search engines (afsa, iafsa, pagmo's), which give a point alone.
   TermInference inference;
   std::string brief_report() const;
 };
+// The engine's own line for its run (brief_report's parenthesis).
+std::string run_text(const FitResult& r);
 
 struct NoiseModel;
 // "least-squares covariance under the identified noise (…); Student t …":
@@ -154,8 +185,7 @@ class Evaluator {
   // Fills the common fields of a result (z, objective, evaluations, history,
   // seconds since construction) and chooses the termination when the
   // evaluator decided it (target or budget); otherwise uses `fallback`.
-  FitResult result(std::string engine, long iterations, Termination fallback,
-                   std::string message) const;
+  FitResult result(std::string engine, long iterations, Termination fallback, RunDetail detail) const;
 
  private:
   const LinearProblem& problem_;

@@ -84,7 +84,7 @@ FitResult GlsEngine::fit(const LinearProblem& problem, FitObserver* observer) co
   if (!problem.noise()) {
     FitResult r = OlsEngine{}.fit(problem, observer);
     r.engine = "gls";
-    r.message = "no noise model identified on this record (too few windows for the terms): ordinary least squares";
+    r.detail.kind = RunDetail::Kind::gls_without_noise;
     return r;
   }
   const auto started = std::chrono::steady_clock::now();
@@ -126,7 +126,7 @@ FitResult GlsEngine::fit(const LinearProblem& problem, FitObserver* observer) co
   r.inference.interval_method.kind = IntervalKind::gls;
   r.inference.interval_method.widest_of = options_.covariance == "widest" ? models.size() : 0;
   r.inference.interval_method.dof = *std::min_element(dofs.begin(), dofs.end());
-  r.message = "generalised least squares by the noise's semi-separable Cholesky factor";
+  r.detail.kind = RunDetail::Kind::gls;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

@@ -72,11 +72,12 @@ FitResult run_iafsa(const IafsaEngine::Options& o, const LinearProblem& problem,
   const long g_last =
       o.max_iterations == IafsaEngine::kAuto ? IafsaEngine::auto_iterations(m) : o.max_iterations;
   const auto finish = [&](long iterations, Termination fallback) {
-    return eval.result(
-        kIafsa, iterations, fallback,
-        fmt::format("{} fish, {} of {} iterations; Visual {:.3g}, Step {:.3g} (box widths)", n,
-                    iterations, g_last, school.visual / fish_swarm::kBoxWidth,
-                    school.step / fish_swarm::kBoxWidth));
+    return eval.result(kIafsa, iterations, fallback,
+                       {.kind = RunDetail::Kind::fish_swarm,
+                        .fish = static_cast<long>(n),
+                        .iteration_limit = g_last,
+                        .visual = school.visual / fish_swarm::kBoxWidth,
+                        .step = school.step / fish_swarm::kBoxWidth});
   };
 
   // (2) Scatter the swarm over the box; (3) the evaluator's best point is the

@@ -187,7 +187,7 @@ FitResult OlsEngine::fit(const LinearProblem& problem, FitObserver*) const {
   }
   method.has_lag1 = true;
   method.lag1_autocorrelation = rho;
-  r.message = "least squares by column-pivoting QR";
+  r.detail.kind = RunDetail::Kind::qr;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

@@ -110,7 +110,7 @@ class PagmoEngine final : public Engine {
                  .initial = size,
                  .per_generation = per_generation};
     Termination fallback = Termination::max_iterations;
-    std::string why;
+    RunDetail detail{.kind = RunDetail::Kind::pagmo, .population = size, .seed = settings_.seed};
     try {
       // A random initial population (evaluated through the Evaluator), then
       // evolved until the budget, the target or the observer throws StopRun,
@@ -124,23 +124,21 @@ class PagmoEngine final : public Engine {
                             .fitness = [&](const std::vector<double>& z) { return fitness(run, z, m); }});
       if (run.generations < static_cast<long>(generations)) {
         fallback = Termination::converged;
-        why = "population collapsed (xtol/ftol)";
+        detail.end = RunDetail::End::collapsed;
       } else {
-        why = fmt::format("generation limit {}", generations);
+        detail.end = RunDetail::End::generation_limit;
+        detail.generation_limit = generations;
       }
     } catch (const StopRun&) {
       if (run.non_finite) {
         fallback = Termination::converged;
-        why = "the algorithm proposed a non-finite point (step size underflow)";
+        detail.end = RunDetail::End::non_finite;
       } else if (run.observer_stopped) {
         fallback = Termination::stopped;
-        why = "stopped by the observer";
+        detail.end = RunDetail::End::observer;
       }
     }
-    std::string message = fmt::format("pagmo {}, population {}, seed {}", recipe_.engine, size,
-                                      settings_.seed);
-    if (!why.empty()) message += "; " + why;
-    return evaluator.result(recipe_.engine, run.generations, fallback, std::move(message));
+    return evaluator.result(recipe_.engine, run.generations, fallback, std::move(detail));
   }
 
  private:

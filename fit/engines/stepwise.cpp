@@ -62,7 +62,7 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
   const auto m = static_cast<Eigen::Index>(problem.dimension());
   std::vector<bool> in(static_cast<std::size_t>(m), false);
   long fits = 0, steps = 0;
-  std::string log;
+  std::vector<RunDetail::Step> steps_taken;
   auto subset_of = [&](Eigen::Index extra) {
     std::vector<Eigen::Index> s;
     for (Eigen::Index j = 0; j < m; ++j)
@@ -89,7 +89,7 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
     }
     if (best >= 0) {
       in[static_cast<std::size_t>(best)] = true;
-      log += fmt::format("{}+{}", log.empty() ? "" : ", ", problem.term_names()[static_cast<std::size_t>(best)]);
+      steps_taken.push_back({problem.term_names()[static_cast<std::size_t>(best)], true});
     } else {
       // 3. The worst term to remove.
       const std::vector<Eigen::Index> s = subset_of(-1);
@@ -105,7 +105,7 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
         }
       if (worst < 0) break;  // 4. nothing to add or remove
       in[static_cast<std::size_t>(worst)] = false;
-      log += fmt::format(", -{}", problem.term_names()[static_cast<std::size_t>(worst)]);
+      steps_taken.push_back({problem.term_names()[static_cast<std::size_t>(worst)], false});
     }
     if (observer != nullptr && !observer->on_iteration(steps + 1, fits, NAN)) {
       stopped = true;
@@ -143,11 +143,10 @@ FitResult StepwiseEngine::fit(const LinearProblem& problem, FitObserver* observe
   r.termination = stopped ? Termination::stopped
                   : steps >= max_steps ? Termination::max_iterations
                                        : Termination::converged;
-  std::string kept;
+  r.detail.kind = RunDetail::Kind::stepwise;
+  r.detail.steps = std::move(steps_taken);
   for (Eigen::Index j = 0; j < m; ++j)
-    if (in[static_cast<std::size_t>(j)]) kept += (kept.empty() ? "" : ", ") + problem.term_names()[static_cast<std::size_t>(j)];
-  r.message = fmt::format("kept {} (steps: {})", kept.empty() ? "no terms" : kept,
-                          log.empty() ? "none" : log);
+    if (in[static_cast<std::size_t>(j)]) r.detail.kept.push_back(problem.term_names()[static_cast<std::size_t>(j)]);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
