@@ -12,9 +12,9 @@
 // cache, one iteration each, so the distance of `fit` to each limit shows:
 //  BM_LargeLog_Read: the bytes read in 1 MB blocks, nothing done with them;
 //  BM_LargeLog_Parse: fit::for_each_row on one thread, the rows summed;
-//  BM_LargeLog_Prepare: fit::prepare_csv alone (one pass, two threads,
-//    fit/data/streaming.h: parse on one, glitch filter and windows on the other);
-//  BM_LargeLog_Filter: the second thread's work alone, on the rows already
+//  BM_LargeLog_Prepare: fit::prepare_csv alone (one pass, fit/data/streaming.h:
+//    blocks parsed on one thread per core, glitch filter and windows on another);
+//  BM_LargeLog_Filter: the preparing thread's work alone, on the rows already
 //    parsed into arrays (fit::prepare_table, the same one-pass preparer);
 //  BM_LargeLog_Fit: what `gyrotherm fit` does, fit::prepare_csv and the ols
 //    fit of T + T^2 + dT (its intervals as the command's, a bootstrap where
