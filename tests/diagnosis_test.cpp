@@ -306,5 +306,17 @@ TEST(Diagnosis, ASharePastTheFloorIsAllOfTheExcess) {
   EXPECT_EQ(excess_share_text(103.0), "all of the excess (103 %, below the estimated floor)");
 }
 
+TEST(Diagnosis, APValueIsNeverShownEqualToTheLevelItWasTestedAgainst) {
+  // A p just below the level passed, one just above did not: rounded alike
+  // they read as the same number, so more digits are shown.
+  EXPECT_EQ(p_text(0.0496, 0.05), "0.0496");
+  EXPECT_EQ(p_text(0.0504, 0.05), "0.0504");
+  EXPECT_EQ(p_text(0.049996, 0.05), "0.049996");
+  EXPECT_EQ(p_text(0.0012, 0.05), "0.0012");  // far from it: two digits
+  EXPECT_EQ(p_text(0.05, 0.05), "0.05");      // equal is equal
+  EXPECT_EQ(p_text(0.0125, 0.0125), "0.013");
+  EXPECT_EQ(p_text(0.01249, 0.0125), "0.012");  // 0.012 beside 0.013: told apart already
+}
+
 }  // namespace
 }  // namespace gyrotherm::studies

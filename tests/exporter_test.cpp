@@ -33,7 +33,8 @@ TEST(Exporters, EveryEntryIsCompleteAndFoundByName) {
 
 // Every format on the paper's cubic-free model of the cycle: C writes it, the
 // firmware formats refuse dT by name and write nothing; with
-// --drop-unsupported they write it and say what dropping costs.
+// --drop-unsupported they write it and say what dropping costs, on the
+// console and in the file.
 TEST(Exporters, EveryFormatWritesOrRefusesWholly) {
   ScratchDir dir;
   simulate_shipped(dir, "cycle", "", "d.csv");
@@ -51,6 +52,9 @@ TEST(Exporters, EveryFormatWritesOrRefusesWholly) {
     EXPECT_EQ(dropped.exit_code, 0) << dropped.err;
     EXPECT_NE(dropped.out.find("dropped dT"), std::string::npos) << dropped.out;
     EXPECT_GT(std::filesystem::file_size(dir / out), 100u);
+    // The file itself says its model is not the fit's (it outlives the console).
+    const std::string text = slurp(dir / out);
+    EXPECT_NE(text.find("without dT (--drop-unsupported:"), std::string::npos) << text.substr(0, 1500);
   }
 }
 

@@ -68,8 +68,8 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   out += "3. missing effects (share of the excess removed; p under the record's noise, and the level it must reach; "
          "meaning (coefficient as added)):\n";
   for (const CandidateReport& c : d.candidates)
-    out += fmt::format("   {} {:<12} {:>7}  p = {:<8.2g} (< {:<7.2g}) {:<12} {} ({:.3g} {})\n", c.passed() ? "*" : " ",
-                       c.term->name, share_cell(c.reduction_pct), c.p_value, c.level,
+    out += fmt::format("   {} {:<12} {:>7}  p = {:<8} (< {:<7.2g}) {:<12} {} ({:.3g} {})\n", c.passed() ? "*" : " ",
+                       c.term->name, share_cell(c.reduction_pct), p_text(c.p_value, c.level), c.level,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
                        c.term->meaning, c.coefficient, c.term->coefficient_unit());
   if (!d.columns_tried.empty())

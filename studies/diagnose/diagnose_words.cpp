@@ -67,6 +67,13 @@ std::pair<std::string, std::string> why_and_test(const ConfoundingEvidence& e) {
 
 std::string hours_text(double seconds) { return fmt::format("{:.2f} h", seconds / 3600.0); }
 
+std::string p_text(double p, double level) {
+  std::string text = fmt::format("{:.2g}", p);
+  for (int digits = 3; digits <= 6 && p != level && text == fmt::format("{:.{}g}", level, digits - 1); ++digits)
+    text = fmt::format("{:.{}g}", p, digits);
+  return text;
+}
+
 std::string floor_description(const NoiseFloor& f) {
   if (f.method == FloorMethod::hadamard)
     return fmt::format("robust Hadamard deviation of the window means, {}", counted(f.triples, "triple"));
@@ -162,19 +169,19 @@ std::string verdict_text(const Diagnosis& d) {
       const CandidateReport& c = d.candidates.front();
       std::vector<std::string> members = {std::string(c.term->name)};
       for (const std::string& m : c.confounded_with) members.push_back(m);
-      verdict = fmt::format("one of {} is missing, and this record cannot tell which: {} ({}) removes {} (p = {:.2g})",
+      verdict = fmt::format("one of {} is missing, and this record cannot tell which: {} ({}) removes {} (p = {})",
                             member_list(members, " or "), c.term->name, c.term->meaning,
-                            excess_share_text(c.reduction_pct), c.p_value);
+                            excess_share_text(c.reduction_pct), p_text(c.p_value, c.level));
       break;
     }
     case VerdictKind::found: {
       std::vector<std::string> parts;
       for (std::size_t i : v.found) {
         const CandidateReport& c = d.candidates[i];
-        parts.push_back(fmt::format("{} ({}): {:.3g} {} (95 % [{:.3g}, {:.3g}]), removes {} (p = {:.2g})",
+        parts.push_back(fmt::format("{} ({}): {:.3g} {} (95 % [{:.3g}, {:.3g}]), removes {} (p = {})",
                                     c.term->name, c.term->meaning, c.coefficient, c.term->coefficient_unit(),
                                     c.coefficient_interval.lower, c.coefficient_interval.upper,
-                                    excess_share_text(c.reduction_pct), c.p_value));
+                                    excess_share_text(c.reduction_pct), p_text(c.p_value, c.level)));
       }
       verdict = fmt::format("add {}", fmt::join(parts, "; then "));
       break;

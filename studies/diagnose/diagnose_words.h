@@ -45,5 +45,8 @@ std::string next_step_text(const std::string& record, const std::vector<const fi
 std::string significance_text(const DiagnosisOptions& options);
 // "0.01 h", times since the record's start.
 std::string hours_text(double seconds);
+// A p-value to 2 significant digits, or to as many more (up to 6) as tell it
+// from the level it was tested against: "0.0496" beside 0.05, not "0.05".
+std::string p_text(double p, double level);
 
 }  // namespace gyrotherm::studies

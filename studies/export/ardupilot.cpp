@@ -29,8 +29,7 @@ std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, const std
 #   constant error all flight. MAVProxy's param load skips a value within 1e-6 of the vehicle's: use
 #   Mission Planner, or param set each. Axes are the IMU's sensor frame, before AHRS_ORIENTATION.
 )";
-  for (std::size_t i = 0; i < 3; ++i)
-    out += fmt::format("#   axis {}: {}\n", "XYZ"[i], axes[i].present ? axes[i].channel : "not compensated (zeros)");
+  for (std::size_t i = 0; i < 3; ++i) out += axis_comment(axes[i], std::string(1, "XYZ"[i]), "ArduPilot");
   if (const auto caution = ardupilot_span_caution(r)) out += fmt::format("# CAUTION: {}\n", *caution);
   out += fmt::format("{}ENABLE,1\n", prefix);
   out += fmt::format("{}TMIN,{}\n", prefix, as_float(r.tmin_c));

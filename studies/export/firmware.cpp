@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "fit/compensation.h"
 #include "fit/engines/engine.h"
@@ -131,6 +132,13 @@ std::string provenance(const ExportHeader& h, const char* comment) {
   if (!h.data_sha256.empty())
     out += fmt::format("{}   {}{} SHA-256 {}\n", comment, kFittedOn, h.data_file, h.data_sha256);
   return out;
+}
+
+std::string axis_comment(const AxisModel& axis, std::string_view name, std::string_view firmware) {
+  if (!axis.present) return fmt::format("#   axis {}: not compensated (zeros)\n", name);
+  if (axis.model.dropped.empty()) return fmt::format("#   axis {}: {}\n", name, axis.channel);
+  return fmt::format("#   axis {}: {}, without {} (--drop-unsupported: {} cannot express {})\n", name, axis.channel,
+                     fmt::join(axis.model.dropped, ", "), firmware, axis.model.dropped.size() == 1 ? "it" : "them");
 }
 
 double CubicModel::evaluate(double t) const { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }

@@ -165,6 +165,10 @@ FittedData fitted_data(const fit::SavedFit& fit, const std::string& option, cons
 std::string as_float(double v);
 // The file's opening comment lines, each after `comment`.
 std::string provenance(const ExportHeader& header, const char* comment);
+// A firmware file's line for one of its axes: "#   axis NAME: CHANNEL", with
+// the terms left out (--drop-unsupported) that `firmware` cannot express, so
+// that the file says its model is not the fit's.
+std::string axis_comment(const AxisModel& axis, std::string_view name, std::string_view firmware);
 // Its line naming the log the fit was made on, where the fit records it:
 // "#   fitted on FILE SHA-256 HEX" (check reads it back: read_parameter_file).
 inline constexpr std::string_view kFittedOn = "fitted on ";

@@ -24,9 +24,7 @@ std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, l
       "#   within 1e-6 of the vehicle's: tiny X2/X3 never load that way (use QGroundControl, or param set each).\n"
       "#   Axes are the gyro's sensor frame, before the board rotation (SENS_BOARD_ROT).\n",
       instance, device_id == 0 ? "; it is 0 here: set it, or pass --device-id" : "");
-  for (std::size_t i = 0; i < 3; ++i)
-    out += fmt::format("#   axis {}: {}{}\n", i, axes[i].present ? axes[i].channel : "not compensated (zeros)",
-                       axes[i].present && !axes[i].model.dropped.empty() ? " (dropped: see export's report)" : "");
+  for (std::size_t i = 0; i < 3; ++i) out += axis_comment(axes[i], std::to_string(i), "PX4");
   out += "#\n# Vehicle-Id\tComponent-Id\tName\tValue\tType\n";
   const auto line = [&](const std::string& name, const std::string& value, int type) {
     out += fmt::format("1\t1\t{}\t{}\t{}\n", name, value, type);
