@@ -184,7 +184,7 @@ std::string check_text(const CheckResult& r) {
     out += fmt::format("verdict: PASS (every axis's residual against temperature within {:.4g} °/h)\n", *r.limit_dph);
   else if (r.passed)
     out += fmt::format("verdict: FAIL (not every axis's residual against temperature is shown within {:.4g} °/h: the "
-                       "findings name the axis)\n",
+                       "findings say which, or why this log cannot show it)\n",
                        *r.limit_dph);
   return out;
 }

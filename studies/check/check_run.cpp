@@ -332,9 +332,10 @@ void add_findings(const Applied& a, CheckResult* r) {
   }
   if (r->limit_dph) {
     // An axis whose residual cannot be shown does not pass: the log cannot say it is within the limit;
-    // nor does one the calibration makes worse.
-    r->passed = std::none_of(r->findings.begin(), r->findings.end(),
-                             [](const CheckFinding& f) { return f.issue == CheckIssue::made_worse; });
+    // nor does one the calibration makes worse, nor any on the log it was fitted on (no second test).
+    r->passed = std::none_of(r->findings.begin(), r->findings.end(), [](const CheckFinding& f) {
+      return f.issue == CheckIssue::made_worse || f.issue == CheckIssue::fitted_log;
+    });
     for (const AxisCheck& x : r->axes)
       if (!(x.residual_dph <= *r->limit_dph)) {
         r->passed = false;
