@@ -11,6 +11,8 @@
 #include <boost/random/mersenne_twister.hpp>
 #include <boost/random/normal_distribution.hpp>
 #include <cmath>
+#include <fmt/format.h>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -526,6 +528,33 @@ TEST(CliAllan, CompensationLowersTheBiasInstabilityAndKeepsTheAngleRandomWalk) {
   ASSERT_EQ(human.exit_code, 0) << human.err;
   for (const char* fragment : {"95 % intervals", "angle random walk", "noise model of compensated (REML)"})
     EXPECT_NE(human.out.find(fragment), std::string::npos) << fragment << "\n" << human.out;
+}
+
+TEST(CliAllan, ARawSeriesWhoseTemperatureMovedIsSaidToHoldItsDrift) {
+  // Without --fit, the raw series' noise model reads a thermal drift as slow
+  // noise (on the cycle its white part's bound fell below the Allan ARW):
+  // the text and the JSON say so where the temperature moved, and not on a
+  // record held at one temperature.
+  ScratchDir dir;
+  ASSERT_EQ(run_cli(dir, "simulate " + gyrotherm::testing::source_path("scenarios/cycle.toml") + " -o c.csv").exit_code, 0);
+  const auto moved = run_cli(dir, "allan c.csv");
+  ASSERT_EQ(moved.exit_code, 0) << moved.err;
+  const std::size_t raw_line = moved.out.find("noise model of raw (REML)");
+  ASSERT_NE(raw_line, std::string::npos) << moved.out;
+  EXPECT_NE(moved.out.find("the raw series holds the gyro's thermal drift", raw_line), std::string::npos) << moved.out;
+  const Json j = Json::parse(run_cli(dir, "allan c.csv --json").out);
+  EXPECT_TRUE(j["raw_holds_thermal_drift"].get<bool>());
+  EXPECT_GT(j["temp_span_c"].get<double>(), 40.0);
+
+  const std::vector<double> t = seconds(20000);
+  const std::vector<double> y = white(20000, 0.02, 5);
+  std::string csv = "time_s,temp_c,gyro_dph\n";
+  for (std::size_t i = 0; i < t.size(); ++i) csv += fmt::format("{},{:.2f},{:.6f}\n", t[i], 25.0 + 0.2 * std::sin(1e-3 * t[i]), y[i]);
+  std::ofstream(dir / "steady.csv") << csv;
+  const auto steady = run_cli(dir, "allan steady.csv");
+  ASSERT_EQ(steady.exit_code, 0) << steady.err;
+  EXPECT_EQ(steady.out.find("thermal drift"), std::string::npos) << steady.out;
+  EXPECT_FALSE(Json::parse(run_cli(dir, "allan steady.csv --json").out)["raw_holds_thermal_drift"].get<bool>());
 }
 
 TEST(CliAllan, BadInputExitsTwoAndSaysWhy) {

@@ -2,6 +2,7 @@
 
 #include "fit/data/plausibility.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -70,6 +71,10 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
   s.units = m.units;
   s.cautions = fit::measurement_cautions(m);
   s.series.push_back(allan_series(m.time_s, m.gyro_dph, options, "raw"));
+  if (!m.temp_c.empty()) {
+    const auto [lo, hi] = std::minmax_element(m.temp_c.begin(), m.temp_c.end());
+    s.temp_span_c = *hi - *lo;
+  }
   if (fit) {
     s.fit_file = fit->file.string();
     s.channel = fit->channel;
@@ -86,6 +91,8 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
   return s;
 }
 
+bool AllanStudy::raw_holds_thermal_drift() const { return temp_span_c >= kThermalDriftSpanC; }
+
 nlohmann::ordered_json allan_json(const AllanStudy& study) {
   nlohmann::ordered_json j;
   j["data"] = study.data_file;
@@ -94,6 +101,8 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
   j["fit"] = study.fit_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(study.fit_file);
   if (!study.channel.empty()) j["channel"] = study.channel;
   j["confidence"] = study.series.front().curve.confidence;
+  j["temp_span_c"] = study.temp_span_c;
+  j["raw_holds_thermal_drift"] = study.raw_holds_thermal_drift();
   j["series"] = nlohmann::ordered_json::array();
   for (const AllanSeries& s : study.series) {
     const AllanCurve& c = s.curve;
@@ -198,16 +207,25 @@ std::string allan_text(const AllanStudy& study) {
          "noise model's flicker floor)\n";
   // Bias instability is in the table above, once. Beside a compensated
   // series, the raw one still holds the thermal drift the fit removes: its
-  // model reads that drift as slow noise, so it is no model of the gyro's noise.
+  // model reads that drift as slow noise, so it is no model of the gyro's noise;
+  // without a fit, so is a raw series whose temperature moved.
   const bool compensated = study.series.size() > 1;
+  const auto raw_caveat = [&] {
+    if (compensated)
+      return std::string(" (the raw series holds the thermal drift the fit removes, read here as slow noise: "
+                         "the compensated series' model is the gyro's)");
+    if (study.raw_holds_thermal_drift())
+      return fmt::format(" (the temperature moved {:.1f} °C on this record: the raw series holds the gyro's thermal "
+                         "drift, read here as slow noise, and the white part may be understated; --fit FILE gives the "
+                         "noise a compensation leaves)",
+                         study.temp_span_c);
+    return std::string();
+  };
   for (const AllanSeries& s : study.series)
     if (s.noise)
       out += fmt::format("noise model of {} (REML): {}; bias instability in the table above{}\n", s.curve.name,
                          s.noise->description("bias_instability"),
-                         compensated && &s == &study.series.front()
-                             ? " (the raw series holds the thermal drift the fit removes, read here as slow noise: "
-                               "the compensated series' model is the gyro's)"
-                             : "");
+                         &s == &study.series.front() ? raw_caveat() : std::string());
   if (const auto ratio = study.bias_instability_ratio())
     out += fmt::format("bias instability raw / compensated: {:.3g}\n", *ratio);
   return out;

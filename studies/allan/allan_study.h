@@ -38,12 +38,20 @@ struct AllanSeries {
 AllanSeries allan_series(std::span<const double> time_s, std::span<const double> rate_dph,
                          AllanOptions options, std::string name);
 
+// A record whose temperature moves this much or more carries the gyro's
+// thermal drift in its raw rate (°C).
+inline constexpr double kThermalDriftSpanC = 2.0;
+
 struct AllanStudy {
   fit::Units units;                   // the log's columns were read in these
   std::vector<fit::UnitCaution> cautions;  // numbers that look like another unit
   std::string data_file, fit_file, channel;
   std::vector<AllanSeries> series;  // "raw", then "compensated" with a fit
   std::size_t outliers = 0;         // samples the fit's glitch rule flagged (kept in both series)
+  double temp_span_c = 0.0;         // the record's temperature, highest less lowest sample
+  // Whether the raw series' noise model also reads the bias's thermal drift
+  // as slow noise: the temperature moved by kThermalDriftSpanC or more.
+  bool raw_holds_thermal_drift() const;
   std::string plot;                 // the figure written for it (run_allan with a plot), or ""
   // Raw over compensated bias instability, when both are shown.
   std::optional<double> bias_instability_ratio() const;
