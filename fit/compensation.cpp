@@ -74,10 +74,16 @@ double model_at(const AveragedSeries& s, const std::vector<double>& model, doubl
 }
 
 std::string csv_head(const Compensation& c) {
+  // The figure is the prepared windows', which leave the glitches out; a
+  // user averaging the compensated column would keep them unless told.
+  const std::size_t removed = c.data.outliers.removed;
   return fmt::format(
       "# gyrotherm compensate: compensated_dph = gyro_dph - model_dph; instability "
-      "{:.6g} -> {:.6g} deg/h\ntime_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n",
-      c.before_dph, c.after_dph);
+      "{:.6g} -> {:.6g} deg/h{}\ntime_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n",
+      c.before_dph, c.after_dph,
+      removed == 0 ? std::string()
+                   : fmt::format(" (window averages without {} glitch{}; the outlier column marks the samples flagged)",
+                                 removed, removed == 1 ? "" : "es"));
 }
 
 // One output row, the digits of "{:.10g},{:.6f},{:.6f},{:.9f},{:.9f},{}",

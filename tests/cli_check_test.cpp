@@ -11,6 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <sstream>
+#include <map>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -357,6 +360,57 @@ TEST(CliCheck, AFitFileIsCheckedAsCompensateAppliesIt) {
   const CliResult text = run_cli(dir, "check copy.ulg --params fit.json");
   EXPECT_NE(text.out.find("finding: this log is the one the calibration was fitted on (run1.ulg"), std::string::npos)
       << text.out;
+}
+
+// One glitch moves a 100 s instability by a quarter on the cycle: check
+// keeps it (as a firmware would), compensate's figure leaves it out. Both say
+// so, and each figure is what its own samples give.
+TEST(CliCheck, CheckAndCompensateSayHowTheirInstabilitiesTreatGlitches) {
+  ScratchDir dir;
+  simulate_shipped(dir, "cycle", "--seed 7", "c.csv");
+  ASSERT_EQ(run_cli(dir, "fit c.csv -o fit.json").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "compensate c.csv --fit fit.json -o comp.csv").exit_code, 0);
+  // The compensated file's samples, 100 s means with and without the rows marked outlier.
+  const std::string text = slurp(dir / "comp.csv");
+  std::istringstream lines(text);
+  std::string head, line;
+  std::getline(lines, head);
+  std::getline(lines, line);  // the column names
+  std::map<long, std::pair<double, int>> all, clean;
+  std::size_t flagged = 0;
+  while (std::getline(lines, line)) {
+    double t = 0, temp = 0, gyro = 0, model = 0, comp = 0;
+    int outlier = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%d", &t, &temp, &gyro, &model, &comp, &outlier), 6) << line;
+    const long w = static_cast<long>(std::floor(t / 100.0));
+    all[w].first += comp;
+    ++all[w].second;
+    if (outlier == 0) {
+      clean[w].first += comp;
+      ++clean[w].second;
+    }
+    flagged += outlier != 0;
+  }
+  const auto instability = [](const std::map<long, std::pair<double, int>>& windows) {
+    std::vector<double> means;
+    for (const auto& [w, sum] : windows) means.push_back(sum.first / sum.second);
+    double mean = 0, var = 0;
+    for (double m : means) mean += m / static_cast<double>(means.size());
+    for (double m : means) var += (m - mean) * (m - mean) / static_cast<double>(means.size() - 1);
+    return std::sqrt(var);
+  };
+  ASSERT_GT(flagged, 0u) << "the seed should give the cycle a glitch";
+  EXPECT_NE(head.find(fmt::format("(window averages without {} glitch", flagged)), std::string::npos) << head;
+  const nlohmann::json fit = nlohmann::json::parse(run_cli(dir, "compensate c.csv --fit fit.json --json").out);
+  // (The figure is of the window means less the model at the window; the file's rows hold the model
+  // interpolated to each sample: the two agree to a few parts in 10⁴.)
+  EXPECT_NEAR(instability(clean), fit["instability_after_dph"].get<double>(), 1e-3 * instability(clean));
+  const nlohmann::json j = check_json(dir, "c.csv --params fit.json");
+  EXPECT_EQ(j["glitches_flagged"], flagged);
+  EXPECT_NEAR(instability(all), j["axes"][0]["after_dph"].get<double>(), 1e-3 * instability(all));
+  EXPECT_GT(instability(all), 1.01 * instability(clean));  // the glitch's part, well beyond the tolerance
+  const CliResult said = run_cli(dir, "check c.csv --params fit.json");
+  EXPECT_NE(said.out.find(fmt::format("the {} the fit's glitch rule flags too", flagged)), std::string::npos) << said.out;
 }
 
 TEST(CliCheck, BadParameterFilesAreRefusedNamingTheLine) {

@@ -141,6 +141,7 @@ nlohmann::ordered_json check_json(const CheckResult& r) {
                                 {"span_s", r.span_s},
                                 {"log_temp_range_c", {r.log_temp_min_c, r.log_temp_max_c}},
                                 {"window_s", r.window_s},
+                                {"glitches_flagged", r.glitches_flagged},
                                 {"bin_c", r.bin_c},
                                 {"axes", axes},
                                 {"findings", findings},
@@ -155,8 +156,13 @@ std::string check_text(const CheckResult& r) {
                                 r.log_instance >= 0 ? fmt::format(", gyro instance {}, device {}", r.log_instance, r.log_device_id) : "",
                                 r.request.parameters, parameter_format_name(r.format), r.calibration, r.tmin_c, r.tmax_c);
   out += "  applied by " + rule_text(r) + "\n";
-  out += fmt::format("  log: {} samples over {:.0f} s, {:.1f}..{:.1f} °C; instability = std of {:g} s means\n",
-                     r.samples, r.span_s, r.log_temp_min_c, r.log_temp_max_c, r.window_s);
+  out += fmt::format("  log: {} samples over {:.0f} s, {:.1f}..{:.1f} °C; instability = std of {:g} s means{}\n",
+                     r.samples, r.span_s, r.log_temp_min_c, r.log_temp_max_c, r.window_s,
+                     r.glitches_flagged == 0
+                         ? std::string()
+                         : fmt::format(" of every sample, the {} the fit's glitch rule flags too (compensate's "
+                                       "figure leaves {} out, as a firmware cannot)",
+                                       r.glitches_flagged, r.glitches_flagged == 1 ? "it" : "them"));
   out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11} {:>22} {:>9}\n", "axis", "raw °/h", "comp. °/h", "ratio",
                      "offset °/h", "residual °/h (at °C)", "outside");
   const auto number = [](double v, const char* spec) { return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : "n/a"; };

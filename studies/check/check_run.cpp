@@ -173,6 +173,7 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
     r->log_format = a.contents.format;
   }
   bool first = true;
+  std::vector<bool> flagged;
   for (std::size_t k = 0; k < run.channels.size(); ++k) {
     const fit::Compensation& c = run.channels[k];
     const bool full = !c.time_s.empty();
@@ -187,7 +188,10 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
     for (const fit::UnitCaution& caution : c.data.cautions) add_caution(*r, caution);
     a.raw_dph.push_back(full ? c.gyro_dph : c.data.series.gyro_dph);
     a.subtracted_dph.push_back(full ? c.model_dph : c.window_model_dph);
+    if (full) flagged.resize(c.outlier.size(), false);
+    for (std::size_t i = 0; full && i < c.outlier.size(); ++i) flagged[i] = flagged[i] || c.outlier[i];
   }
+  r->glitches_flagged = static_cast<std::size_t>(std::count(flagged.begin(), flagged.end(), true));
   return a;
 }
 

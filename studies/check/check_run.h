@@ -122,6 +122,9 @@ struct CheckResult {
   std::size_t samples = 0;
   double window_s = 0.0;
   double bin_c = 0.0;
+  // A fit file: the samples its glitch rule flags (any channel). check keeps
+  // them, as a firmware would; compensate's figure leaves them out.
+  std::size_t glitches_flagged = 0;
   std::vector<AxisCheck> axes;
   std::vector<CheckFinding> findings;
   // The log's units checked as fit checks them (a CSV's; a fit file's channels), each worded once.
