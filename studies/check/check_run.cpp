@@ -336,10 +336,9 @@ void add_findings(const Applied& a, CheckResult* r) {
   }
   if (r->limit_dph) {
     // An axis whose residual cannot be shown does not pass: the log cannot say it is within the limit;
-    // nor does one the calibration makes worse, nor any on the log it was fitted on (no second test).
-    r->passed = std::none_of(r->findings.begin(), r->findings.end(), [](const CheckFinding& f) {
-      return f.issue == CheckIssue::made_worse || f.issue == CheckIssue::fitted_log;
-    });
+    // nor does one the calibration makes worse, nor any where this log cannot test the calibration.
+    r->passed = std::none_of(r->findings.begin(), r->findings.end(),
+                             [](const CheckFinding& f) { return blocks_a_pass(f.issue); });
     for (const AxisCheck& x : r->axes)
       if (!(x.residual_dph <= *r->limit_dph)) {
         r->passed = false;
@@ -358,6 +357,18 @@ void check_request(const CheckRequest& o) {
 }
 
 }  // namespace
+
+bool blocks_a_pass(CheckIssue issue) {
+  switch (issue) {
+    case CheckIssue::made_worse:       // worse than no calibration
+    case CheckIssue::fitted_log:       // the fit's own residual, no second test
+    case CheckIssue::moving:           // the rates hold the vehicle's motion, not only the gyro's bias
+    case CheckIssue::already_enabled:  // the log's rates are corrected already: applied again, twice
+    case CheckIssue::device_mismatch:  // the firmware would apply the set to another gyro, or none
+      return true;
+    default: return false;
+  }
+}
 
 std::string_view check_issue_name(CheckIssue issue) {
   switch (issue) {

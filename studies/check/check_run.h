@@ -72,6 +72,10 @@ inline constexpr double kMadeWorse = 1.05;
 inline constexpr double kLittleGain = kLittleCompensation;
 // "calibration_span_minimum", …
 std::string_view check_issue_name(CheckIssue issue);
+// Whether a finding means this log cannot pass the calibration under
+// --max-residual (made_worse, fitted_log, moving, already_enabled,
+// device_mismatch); the others are advice.
+bool blocks_a_pass(CheckIssue issue);
 
 // A gyro of the log by its device id: a ULog sensor_gyro instance, or the
 // DataFlash parameter that records it (instance −1 there).
