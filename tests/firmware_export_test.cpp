@@ -244,5 +244,29 @@ TEST(CliExport, AFitOnTwoPlateausIsRefusedUnlessTheCautionIsAccepted) {
   }
 }
 
+// A fit on temperatures in kelvin read as °C, exported with --accept-caution
+// and its own log as --data: the caution is said once (the fit's, by
+// channel), not again for the log read a second time.
+TEST(CliExport, AUnitCautionTheFitRecordedIsSaidOnceWithItsData) {
+  ScratchDir dir;
+  std::string csv = "time_s,temp_c,gyro_dph\n";
+  for (int k = 0; k < 6 * 3600; ++k) {
+    const double temp = 293.15 + 20.0 * std::sin(2.0 * M_PI * k / (6 * 3600.0));
+    csv += fmt::format("{},{:.3f},{:.6f}\n", k, temp, 2.0 + 0.05 * (temp - 273.15) + 0.01 * std::sin(0.37 * k));
+  }
+  gyrotherm::testing::write_text(dir / "kelvin.csv", csv);
+  ASSERT_EQ(run_cli(dir, "fit kelvin.csv --model T -o fit.json").exit_code, 0);
+  const auto exported =
+      run_cli(dir, "export fit.json --format px4 --data kelvin.csv --accept-caution --json -o out.params");
+  ASSERT_EQ(exported.exit_code, 0) << exported.err;
+  const auto count = [](const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count(exported.err, "look like kelvin"), 1u) << exported.err;
+  EXPECT_EQ(count(nlohmann::json::parse(exported.out).dump(), "look like kelvin"), 1u) << exported.out;
+}
+
 }  // namespace
 }  // namespace gyrotherm::studies

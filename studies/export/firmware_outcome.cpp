@@ -102,12 +102,17 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
     o.data = data.name;
     const fit::PipelineOptions pipeline = fit::reading_columns_of(a.fit->pipeline, a.fit->terms);
     const fit::Measurement m = data.read(pipeline.columns);
-    // The record's units checked as fit checks them, each caution once.
+    // The record's units checked as fit checks them, each caution once: not
+    // again where the fit recorded it (export words those, by channel).
     for (const fit::UnitCaution& c : fit::measurement_cautions(m)) {
+      const std::string text = fit::caution_text(c);
       const auto worded_alike = [&](const RecordCaution& had) {
-        return had.data == data.name && fit::caution_text(had.caution) == fit::caution_text(c);
+        return had.data == data.name && fit::caution_text(had.caution) == text;
       };
-      if (std::none_of(o.cautions.begin(), o.cautions.end(), worded_alike)) o.cautions.push_back({data.name, c});
+      const auto& recorded = a.fit->data_cautions;
+      if (std::none_of(o.cautions.begin(), o.cautions.end(), worded_alike) &&
+          std::find(recorded.begin(), recorded.end(), text) == recorded.end())
+        o.cautions.push_back({data.name, c});
     }
     AxisOutcome out;
     out.axis = "XYZ"[i];
