@@ -47,7 +47,7 @@ struct CsvParser::Block {
   void reserve(std::size_t bytes) {
     if (bytes <= capacity) return;
     auto grown = std::make_unique_for_overwrite<char[]>(bytes);
-    std::memcpy(grown.get(), text.get(), size);
+    if (size > 0) std::memcpy(grown.get(), text.get(), size);  // (not from null: the first buffer)
     text = std::move(grown);
     capacity = bytes;
   }
