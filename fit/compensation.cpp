@@ -259,7 +259,14 @@ std::pair<std::string, std::string> channel_columns(const std::string& name) {
   const HeaderUnit stated = unit_in_header(Quantity::gyro, name);
   if (stated.said.empty() || (stated.unit != nullptr && stated.unit->name == "dph"))
     return {name, name};
-  std::string base = name.substr(0, name.rfind(stated.said));
+  // The unit as the name writes it: "rad/s", or "rad_s" where the name joins with underscores.
+  std::string written = stated.said;
+  std::size_t at = name.rfind(written);
+  if (at == std::string::npos) {
+    std::replace(written.begin(), written.end(), '/', '_');
+    at = name.rfind(written);
+  }
+  std::string base = name.substr(0, at);
   while (!base.empty() && std::string_view(" _([").find(base.back()) != std::string_view::npos) base.pop_back();
   if (base.empty()) base = "gyro";
   return {base + "_dph", base};

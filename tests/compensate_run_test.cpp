@@ -209,6 +209,13 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   const auto back = run_cli(dir, "fit named_out.csv --model T --gyro-col gyro_b_dph");
   ASSERT_EQ(back.exit_code, 0) << back.err;
   EXPECT_NE(back.out.find("gyro dph (header 'gyro_b_dph')"), std::string::npos) << back.out;
+  // The same unit joined by underscores ("gyro_b_rad_s") is dropped too: not "gyro_b_rad_s_dph".
+  ASSERT_EQ(run_shell(dir, "sed 's/,gyro_b$/,gyro_b_rad_s/' two.csv | tee joined.csv").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "fit joined.csv --model T --gyro-col gyro_dph,gyro_b_rad_s -o joined.json").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "compensate joined.csv --fit joined.json -o joined_out.csv").exit_code, 0);
+  const std::string joined = testing::slurp(dir / "joined_out.csv");
+  EXPECT_NE(joined.find(",gyro_b_dph,gyro_b_model_dph,gyro_b_compensated_dph,gyro_b_outlier"), std::string::npos)
+      << joined.substr(0, 400);
 }
 
 }  // namespace
