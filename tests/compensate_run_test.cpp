@@ -197,25 +197,27 @@ TEST(CompensateRun, EveryCommandThatReadsTheRecordChecksItsUnits) {
   const auto clean = run_cli(dir, "export two.json --format c --channel gyro_dph -o a.h");
   ASSERT_EQ(clean.exit_code, 0) << clean.err;
   EXPECT_EQ(testing::slurp(dir / "a.h").find("gyro_b"), std::string::npos);
-  // The compensated file of a channel named in rad/s ("gyro_b rad/s") holds
-  // °/h: its columns drop the unit the name states, and read back as °/h.
-  ASSERT_EQ(run_shell(dir, "sed 's/,gyro_b$/,gyro_b rad\\/s/' two.csv | tee named.csv").exit_code, 0);
-  ASSERT_EQ(run_cli(dir, "fit named.csv --model T --gyro-col 'gyro_dph,gyro_b rad/s' -o named.json").exit_code, 0);
-  ASSERT_EQ(run_cli(dir, "compensate named.csv --fit named.json -o named_out.csv").exit_code, 0);
-  const std::string out = testing::slurp(dir / "named_out.csv");
-  EXPECT_NE(out.find(",gyro_b_dph,gyro_b_model_dph,gyro_b_compensated_dph,gyro_b_outlier"), std::string::npos)
-      << out.substr(0, 400);
-  EXPECT_NE(out.find("time_s,temp_c,gyro_dph,gyro_dph_model_dph,"), std::string::npos) << out.substr(0, 400);
+  // The compensated file of a channel named in rad/s holds °/h: its columns
+  // drop the unit the name states ("gyro_b rad/s", or joined by underscores,
+  // "gyro_b_rad_s"), and read back as °/h.
+  const auto compensated_columns = [&](const std::string& column, const std::string& stem) {
+    std::string in_sed;  // the name with its slash escaped for sed
+    for (const char c : column) in_sed += c == '/' ? std::string("\\/") : std::string(1, c);
+    ASSERT_EQ(run_shell(dir, "sed 's/,gyro_b$/," + in_sed + "/' two.csv | tee " + stem + ".csv").exit_code, 0);
+    ASSERT_EQ(run_cli(dir, "fit " + stem + ".csv --model T --gyro-col 'gyro_dph," + column + "' -o " + stem + ".json")
+                  .exit_code,
+              0);
+    ASSERT_EQ(run_cli(dir, "compensate " + stem + ".csv --fit " + stem + ".json -o " + stem + "_out.csv").exit_code, 0);
+    const std::string out = testing::slurp(dir / (stem + "_out.csv"));
+    EXPECT_NE(out.find(",gyro_b_dph,gyro_b_model_dph,gyro_b_compensated_dph,gyro_b_outlier"), std::string::npos)
+        << column << ": " << out.substr(0, 400);
+    EXPECT_NE(out.find("time_s,temp_c,gyro_dph,gyro_dph_model_dph,"), std::string::npos) << out.substr(0, 400);
+  };
+  compensated_columns("gyro_b rad/s", "named");
+  compensated_columns("gyro_b_rad_s", "joined");
   const auto back = run_cli(dir, "fit named_out.csv --model T --gyro-col gyro_b_dph");
   ASSERT_EQ(back.exit_code, 0) << back.err;
   EXPECT_NE(back.out.find("gyro dph (header 'gyro_b_dph')"), std::string::npos) << back.out;
-  // The same unit joined by underscores ("gyro_b_rad_s") is dropped too: not "gyro_b_rad_s_dph".
-  ASSERT_EQ(run_shell(dir, "sed 's/,gyro_b$/,gyro_b_rad_s/' two.csv | tee joined.csv").exit_code, 0);
-  ASSERT_EQ(run_cli(dir, "fit joined.csv --model T --gyro-col gyro_dph,gyro_b_rad_s -o joined.json").exit_code, 0);
-  ASSERT_EQ(run_cli(dir, "compensate joined.csv --fit joined.json -o joined_out.csv").exit_code, 0);
-  const std::string joined = testing::slurp(dir / "joined_out.csv");
-  EXPECT_NE(joined.find(",gyro_b_dph,gyro_b_model_dph,gyro_b_compensated_dph,gyro_b_outlier"), std::string::npos)
-      << joined.substr(0, 400);
 }
 
 }  // namespace
