@@ -327,9 +327,9 @@ TEST(CliCheck, EachFailureModeIsFoundOnALogMadeForItAndNotOnACleanOne) {
   EXPECT_EQ(px4["axes"][0]["after_dph"], px4["axes"][0]["before_dph"]);  // no X parameters: X left as it is
   // A log that cannot test the calibration (moving, corrected already, another gyro) does not pass,
   // however loose the limit; the advice alone (a narrow span, a flat log) leaves the verdict to the residual.
-  for (const std::string& log : {"spun.ulg --params other.params", "enabled.bin --params mid.parm",
-                                  "tilted.bin --params narrow.parm"}) {
-    const nlohmann::json judged = check_json(dir, log + " --max-residual 1e6", 1);
+  for (const char* log : {"spun.ulg --params other.params", "enabled.bin --params mid.parm",
+                          "tilted.bin --params narrow.parm"}) {
+    const nlohmann::json judged = check_json(dir, std::string(log) + " --max-residual 1e6", 1);
     EXPECT_EQ(judged["passed"], false) << log << ": " << judged["findings"];
   }
   EXPECT_EQ(check_json(dir, "flat.bin --params narrow.parm --max-residual 1e6")["passed"], true);

@@ -27,6 +27,17 @@ namespace {
 
 constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 
+// The line of `text` from `at` (without its LF, or a CR before it, as read()
+// takes a line), `at` moved past it.
+std::string_view next_line(std::string_view text, std::size_t& at) {
+  const std::size_t lf = text.find('\n', at);
+  const std::size_t end = lf == std::string_view::npos ? text.size() : lf;
+  std::string_view line = text.substr(at, end - at);
+  at = lf == std::string_view::npos ? text.size() : lf + 1;
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
 }  // namespace
 
 struct CsvParser::Block {
@@ -35,10 +46,9 @@ struct CsvParser::Block {
   std::unique_ptr<char[]> text;
   std::size_t size = 0, capacity = 0;
   std::vector<RowValues> rows;   // the rows the parse took
-  std::size_t lines = 0;         // the block's lines, when the parse took them all
+  std::size_t lines = 0;         // the lines the parse went through (all, or those before left_at)
   std::size_t last_row_line = 0; // the line of the last row taken, from 1 in the block
   std::size_t left_at = kNone;   // the offset of the first line the parse left
-  std::size_t left_line = 0;     // the lines before it
   std::size_t index = 0;         // in the file
   bool ready = false;
   std::exception_ptr error;
@@ -88,31 +98,23 @@ bool CsvParser::general_fields(std::string_view line, double* values, std::vecto
 
 void CsvParser::parse_block(Block& b, const std::vector<Take>& plan) const {
   b.rows.clear();
-  b.lines = b.last_row_line = b.left_line = 0;
+  b.lines = b.last_row_line = 0;
   b.left_at = kNone;
   std::vector<double> values(plan.size(), 0.0);
   std::vector<std::string_view> fields;
   const std::string_view text = b.view();
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const std::size_t lf = text.find('\n', at);
-    const std::size_t next = lf == std::string_view::npos ? text.size() : lf + 1;
-    std::string_view line = text.substr(at, (lf == std::string_view::npos ? text.size() : lf) - at);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (!is_blank(line)) {
-      RowValues row{};
-      if (!(scan_fields(line, plan, values.data()) || general_fields(line, values.data(), fields)) ||
-          !converted(values.data(), row) ||
-          (!b.rows.empty() && !(row.t > b.rows.back().t))) {
-        b.left_at = at;
-        b.left_line = b.lines;
-        return;
-      }
-      b.rows.push_back(row);
-      b.last_row_line = b.lines + 1;
+  for (std::size_t at = 0; at < text.size(); ++b.lines) {
+    const std::size_t start = at;
+    const std::string_view line = next_line(text, at);
+    if (is_blank(line)) continue;
+    RowValues row{};
+    if (!(scan_fields(line, plan, values.data()) || general_fields(line, values.data(), fields)) ||
+        !converted(values.data(), row) || (!b.rows.empty() && !(row.t > b.rows.back().t))) {
+      b.left_at = start;
+      return;
     }
-    ++b.lines;
-    at = next;
+    b.rows.push_back(row);
+    b.last_row_line = b.lines + 1;
   }
 }
 
@@ -120,7 +122,7 @@ std::size_t CsvParser::take_block(Block& b, std::size_t line, Measurement& m) {
   if (!b.rows.empty() && !(b.rows.front().t > last_time_)) {  // not after the block before: line by line
     b.rows.clear();
     b.left_at = 0;
-    b.left_line = 0;
+    b.lines = 0;
   }
   if (!b.rows.empty()) {
     flush_batch();
@@ -129,16 +131,13 @@ std::size_t CsvParser::take_block(Block& b, std::size_t line, Measurement& m) {
     previous_row_ = line + b.last_row_line;
     batch_sink_(b.rows);
   }
-  if (b.left_at == kNone) return line + b.lines;
-  line += b.left_line;
-  std::string_view rest = b.view().substr(b.left_at);
-  while (!rest.empty()) {
-    const std::size_t lf = rest.find('\n');
-    std::string_view text = rest.substr(0, lf);
-    rest.remove_prefix(lf == std::string_view::npos ? rest.size() : lf + 1);
+  line += b.lines;
+  if (b.left_at == kNone) return line;
+  const std::string_view text = b.view();
+  for (std::size_t at = b.left_at; at < text.size();) {
+    const std::string_view rest_line = next_line(text, at);
     ++line;
-    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
-    if (!is_blank(text)) parse_row(text, line, m);
+    if (!is_blank(rest_line)) parse_row(rest_line, line, m);
   }
   return line;
 }
@@ -204,7 +203,6 @@ std::size_t CsvParser::read_blocks(LineReader& reader, std::FILE* file, std::siz
   for (std::size_t i = 0; i < in_flight; ++i) blocks.push_back(std::make_unique<Block>());
   std::vector<Block*> spare;
   for (auto& b : blocks) spare.push_back(b.get());
-  const auto slot = [&](std::size_t index) -> Block*& { return source.slot(index); };
 
   const auto work = [&] {
     for (;;) {
@@ -233,7 +231,7 @@ std::size_t CsvParser::read_blocks(LineReader& reader, std::FILE* file, std::siz
           return;
         }
         b->index = source.next++;
-        slot(b->index) = b;
+        source.slot(b->index) = b;
       }
       if (!b->error) try {
           parse_block(*b, plan);
@@ -266,17 +264,17 @@ std::size_t CsvParser::read_blocks(LineReader& reader, std::FILE* file, std::siz
     {
       std::unique_lock lock(source.mutex);
       source.changed.wait(lock, [&] {
-        const Block* s = slot(source.consumed);
+        const Block* s = source.slot(source.consumed);
         return (s != nullptr && s->index == source.consumed && s->ready) ||
                (source.exhausted && source.consumed == source.next);
       });
-      b = slot(source.consumed);
+      b = source.slot(source.consumed);
       if (b == nullptr || b->index != source.consumed || !b->ready) break;  // the end of the file
     }
     if (b->error) std::rethrow_exception(b->error);
     line_number = take_block(*b, line_number, m);
     std::unique_lock lock(source.mutex);
-    slot(b->index) = nullptr;
+    source.slot(b->index) = nullptr;
     spare.push_back(b);
     ++source.consumed;
     source.changed.notify_all();

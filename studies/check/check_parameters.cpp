@@ -189,10 +189,9 @@ ParameterFile read_parameter_file(const std::string& file) {
     else if (in_caution && indented && !note.empty())
       p.cautions.back() += fmt::format(" {}", note);
     in_caution = note.starts_with("CAUTION") || (in_caution && indented);
-    constexpr std::string_view kSha = " SHA-256 ";
-    if (const std::size_t sha = note.rfind(kSha); note.starts_with(kFittedOn) && sha != std::string_view::npos) {
+    if (const std::size_t sha = note.rfind(kFittedSha); note.starts_with(kFittedOn) && sha != std::string_view::npos) {
       p.fitted_file = std::string(note.substr(kFittedOn.size(), sha - kFittedOn.size()));
-      p.fitted_sha256 = std::string(note.substr(sha + kSha.size()));
+      p.fitted_sha256 = std::string(note.substr(sha + kFittedSha.size()));
     }
     if (hash != std::string::npos) line.erase(hash);
     const std::string_view trimmed = fit::trim(std::string_view(line).substr(0, line.find_last_not_of("\r") + 1));

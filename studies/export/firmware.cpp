@@ -130,7 +130,7 @@ std::string provenance(const ExportHeader& h, const char* comment) {
       "{0}   engine {3}, model B = b0 + {4} (°/h, T in °C), exported {5}\n",
       comment, h.fit_file, h.fit_sha256, h.engine, h.model_text, h.date_utc);
   if (!h.data_sha256.empty())
-    out += fmt::format("{}   {}{} SHA-256 {}\n", comment, kFittedOn, h.data_file, h.data_sha256);
+    out += fmt::format("{}   {}{}{}{}\n", comment, kFittedOn, h.data_file, kFittedSha, h.data_sha256);
   return out;
 }
 

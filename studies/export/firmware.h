@@ -172,5 +172,6 @@ std::string axis_comment(const AxisModel& axis, std::string_view name, std::stri
 // Its line naming the log the fit was made on, where the fit records it:
 // "#   fitted on FILE SHA-256 HEX" (check reads it back: read_parameter_file).
 inline constexpr std::string_view kFittedOn = "fitted on ";
+inline constexpr std::string_view kFittedSha = " SHA-256 ";  // between FILE and HEX
 
 }  // namespace gyrotherm::studies
