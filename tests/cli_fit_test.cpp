@@ -325,5 +325,22 @@ TEST(CliFit, LargeLogPathsGiveTheInMemoryResults) {
       << bad.err;
 }
 
+// The pagmo engines load libpagmo through a module at their first fit; a
+// GYROTHERM_PAGMO_MODULE that names no module is the user's setting, refused
+// naming it (exit 2, no output), and the engines without pagmo never load it.
+TEST(CliFit, AWrongPagmoModulePathIsRefusedNamingIt) {
+  testing::ScratchDir dir;
+  testing::simulate_shipped(dir, "cycle", "", "c.csv");
+  const std::string cli = std::string("GYROTHERM_PAGMO_MODULE=/nowhere/libgyrotherm_pagmo.so '") + GYROTHERM_CLI + "' ";
+  const testing::CliResult refused = testing::run_shell(dir, cli + "fit c.csv --engine de -o de.json");
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("GYROTHERM_PAGMO_MODULE=/nowhere/libgyrotherm_pagmo.so: the pagmo engines (pso, de, "
+                             "cmaes, abc) cannot load it"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "de.json"));
+  EXPECT_EQ(testing::run_shell(dir, cli + "fit c.csv --engine ols").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace gyrotherm

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cassert>
 #include <cstdlib>
 #include <dlfcn.h>
 #include <filesystem>
@@ -44,9 +43,7 @@ struct RunState {
 struct StopRun {};
 
 // The Evaluator as pagmo's fitness: the run's counting and stopping.
-double fitness(RunState& run, const std::vector<double>& z, std::size_t dimension) {
-  assert(z.size() == dimension);
-  (void)dimension;
+double fitness(RunState& run, const std::vector<double>& z) {
   Evaluator& evaluator = *run.evaluator;
   // Never evaluate past the budget or the target (the throw below normally
   // ends the run first; this guards a second call).
@@ -121,7 +118,7 @@ class PagmoEngine final : public Engine {
                             .generations = generations,
                             .population_seed = population_seed,
                             .algorithm_seed = algorithm_seed,
-                            .fitness = [&](const std::vector<double>& z) { return fitness(run, z, m); }});
+                            .fitness = [&](const std::vector<double>& z) { return fitness(run, z); }});
       if (run.generations < static_cast<long>(generations)) {
         fallback = Termination::converged;
         detail.end = RunDetail::End::collapsed;
@@ -362,6 +359,11 @@ Entry load_entry() {
     tried += fmt::format("{}{} ({})", tried.empty() ? "" : ", ", path.string(),
                          problem != nullptr ? problem : "no entry " + std::string(kEntryName));
   }
+  // A path the user set is their input (exit 2); a build without the module is the program's fault.
+  if (chosen != nullptr && *chosen != '\0')
+    throw InputError(fmt::format("GYROTHERM_PAGMO_MODULE={}: the pagmo engines (pso, de, cmaes, abc) cannot load it: "
+                                 "{}; give the path of the {} the build writes, or unset it",
+                                 chosen, tried, kModuleFile));
   throw std::runtime_error(fmt::format("the pagmo engines (pso, de, cmaes, abc) need the module {}, which could not "
                                        "be loaded: tried {}; build the target gyrotherm_pagmo, or set "
                                        "GYROTHERM_PAGMO_MODULE to its path",
