@@ -11,9 +11,11 @@
 #include "app/commands.h"
 #include "sim/cvode_solver.h"
 #include "sim/util/atomic_file.h"
+#include "sim/util/huge_pages.h"
 #include "sim/util/input_error.h"
 
 int main(int argc, char** argv) {
+  gyrotherm::prefer_huge_pages();
   gyrotherm::app::Run run;
   if (const int code = gyrotherm::app::parse_command_line(argc, argv, &run); code >= 0) return code;
 

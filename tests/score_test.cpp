@@ -9,6 +9,7 @@
 #include "studies/score/spread.h"
 
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
