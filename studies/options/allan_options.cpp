@@ -3,7 +3,8 @@
 #include <map>
 
 namespace gyrotherm::studies {
-namespace {
+// Named so that the unity batches can join the option files (each has its O).
+namespace allan_rows_of {
 
 using O = AllanCommandOptions;
 
@@ -30,10 +31,10 @@ std::vector<OptionRow<O>> allan_rows() {
   return rows;
 }
 
-}  // namespace
+}  // namespace allan_rows_of
 
 const OptionTable<AllanCommandOptions>& allan_option_table() {
-  static const OptionTable<O> table{"allan", allan_rows()};
+  static const OptionTable<AllanCommandOptions> table{"allan", allan_rows_of::allan_rows()};
   return table;
 }
 

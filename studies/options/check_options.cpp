@@ -3,7 +3,8 @@
 #include "studies/options/pipeline_options.h"
 
 namespace gyrotherm::studies {
-namespace {
+// Named so that the unity batches can join the option files (each has its O).
+namespace check_rows_of {
 
 using O = CheckCommandOptions;
 using R = CheckRequest;
@@ -33,12 +34,12 @@ std::vector<OptionRow<O>> check_rows() {
   return rows;
 }
 
-}  // namespace
+}  // namespace check_rows_of
 
 CheckRequest check_request(const CheckCommandOptions& options) { return options.request; }
 
 const OptionTable<CheckCommandOptions>& check_option_table() {
-  static const OptionTable<O> table{"check", check_rows()};
+  static const OptionTable<CheckCommandOptions> table{"check", check_rows_of::check_rows()};
   return table;
 }
 

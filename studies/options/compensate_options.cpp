@@ -3,7 +3,8 @@
 #include "studies/options/pipeline_options.h"
 
 namespace gyrotherm::studies {
-namespace {
+// Named so that the unity batches can join the option files (each has its O).
+namespace compensate_rows_of {
 
 using O = CompensateCommandOptions;
 using R = CompensateRequest;
@@ -24,10 +25,10 @@ std::vector<OptionRow<O>> compensate_rows() {
   return rows;
 }
 
-}  // namespace
+}  // namespace compensate_rows_of
 
 const OptionTable<CompensateCommandOptions>& compensate_option_table() {
-  static const OptionTable<O> table{"compensate", compensate_rows()};
+  static const OptionTable<CompensateCommandOptions> table{"compensate", compensate_rows_of::compensate_rows()};
   return table;
 }
 

@@ -7,7 +7,8 @@
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::studies {
-namespace {
+// Named so that the unity batches can join the option files (each has its O).
+namespace plan_rows_of {
 
 using O = PlanCommandOptions;
 using R = plan::PlanRequest;
@@ -61,10 +62,10 @@ std::vector<OptionRow<O>> plan_rows() {
       field_row<O>("--json", "Print one JSON object", &O::json)};
 }
 
-}  // namespace
+}  // namespace plan_rows_of
 
 const OptionTable<PlanCommandOptions>& plan_option_table() {
-  static const OptionTable<O> table{"plan", plan_rows()};
+  static const OptionTable<PlanCommandOptions> table{"plan", plan_rows_of::plan_rows()};
   return table;
 }
 

@@ -13,7 +13,8 @@
 #include <algorithm>
 
 namespace gyrotherm::studies {
-namespace {
+// Named so that the unity batches can join the option files (each has its O).
+namespace report_rows_of {
 
 using O = ReportCommandOptions;
 using R = ReportRequest;
@@ -40,7 +41,7 @@ std::vector<OptionRow<O>> report_rows() {
   return rows;
 }
 
-}  // namespace
+}  // namespace report_rows_of
 
 ReportRequest report_request(const ReportCommandOptions& options) {
   const ReportRequest& r = options.request;
@@ -67,7 +68,7 @@ ReportRequest report_request(const ReportCommandOptions& options) {
 }
 
 const OptionTable<ReportCommandOptions>& report_option_table() {
-  static const OptionTable<O> table{"report", report_rows()};
+  static const OptionTable<ReportCommandOptions> table{"report", report_rows_of::report_rows()};
   return table;
 }
 
