@@ -49,11 +49,13 @@ void to_json(nlohmann::ordered_json& j, const Units& u) {
        {"temp_offset", u.temp_offset},
        {"conversion", u.description()},
        {"from", {{"time", u.time_from}, {"gyro", u.gyro_from}, {"temp", u.temp_from}}}};
+  if (!u.kind().is_gyro) j["sensor"] = u.kind().name;  // (a gyro's fit file is as it was)
 }
 
 void from_json(const nlohmann::json& j, Units& u) {
+  u.sensor = j.contains("sensor") ? field(j, "sensor", sensor_kind_names()).get<std::string>() : std::string();
   u.time = field(j, "time", unit_names(Quantity::time, " or ")).get<std::string>();
-  u.gyro = field(j, "gyro", unit_names(Quantity::gyro, " or ")).get<std::string>();
+  u.gyro = field(j, "gyro", unit_names(u.kind().quantity, " or ")).get<std::string>();
   u.temp = field(j, "temp", unit_names(Quantity::temperature, " or ")).get<std::string>();
   u.gyro_scale = finite(j, "gyro_scale", "a number");
   u.temp_scale = finite(j, "temp_scale", "a number");
@@ -150,6 +152,12 @@ nlohmann::ordered_json fit_json(const ModelFit& fit, const PreparedData& data,
   Json j;
   j["engine"] = fit.engine.engine;
   j["model"] = formula_text(fit.terms);
+  if (const SensorKind& kind = data.units.kind(); !kind.is_gyro) {
+    // Another sensor's fit: the coefficients and the *_dph fields are in its
+    // base unit, named here (a gyro's file is as it always was).
+    j["sensor"] = kind.name;
+    j["unit"] = kind.unit;
+  }
   Json coefficients;
   coefficients["1"] = fit.coefficients.intercept;
   for (std::size_t k = 0; k < fit.terms.size(); ++k)
@@ -379,6 +387,10 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: pipeline.columns.units: {}", file.string(), e.what()));
     }
+    if (!units.kind().is_gyro)
+      throw InputError(fmt::format("{}: pipeline.columns.units.sensor is {} (the {}'s fit): compensate, check, "
+                                   "export, report and allan --fit take a gyro's fit only, so far",
+                                   file.string(), units.kind().name, units.kind().noun));
   }
   return s;
 }

@@ -179,7 +179,9 @@ std::shared_ptr<const NoiseContext> identify_record_noise(const PreparedData& da
   const WindowGrid grid = window_grid(data);
   if (grid.size() < problem.dimension() + 5 || !(grid.window_s > 0.0)) return nullptr;
   try {
-    return std::make_shared<const NoiseContext>(NoiseContext{identify_noise(grid, problem.design(), problem.y()), grid});
+    NoiseModel model = identify_noise(grid, problem.design(), problem.y());
+    model.sensor = &data.units.kind();  // the components' names and units
+    return std::make_shared<const NoiseContext>(NoiseContext{std::move(model), grid});
   } catch (const FitError&) {
     return nullptr;  // nothing to trust: ols falls back to Newey–West
   }

@@ -31,11 +31,17 @@ const Unit& unit_or_base(Quantity q, const std::string& name, std::string_view o
 }  // namespace
 
 const Unit& Units::time_unit() const { return unit_or_base(Quantity::time, time, "--time-unit"); }
-const Unit& Units::gyro_unit() const { return unit_or_base(Quantity::gyro, gyro, "--gyro-unit"); }
+const SensorKind& Units::kind() const { return sensor_kind(sensor); }
+const Unit& Units::gyro_unit() const { return unit_or_base(kind().quantity, gyro, "--gyro-unit"); }
 const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
 
 ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns) {
+  if (log_format_of(file) != nullptr && !columns.units.kind().is_gyro)
+    throw InputError(fmt::format("{}: --sensor {}: an autopilot log's {} is not read yet (its gyros are); give "
+                                 "the samples as a CSV",
+                                 file.string(), columns.units.kind().name, columns.units.kind().noun));
   if (columns.gyro == ColumnMap{}.gyro && log_format_of(file) != nullptr) columns.gyro = "gyro_x,gyro_y,gyro_z";
+  else if (columns.gyro == ColumnMap{}.gyro) columns.gyro = std::string(columns.units.kind().column);
   return columns;
 }
 
@@ -50,7 +56,8 @@ ColumnMap ColumnMap::with(const ColumnMap& given) const {
   ColumnMap c = *this;
   for (auto [mine, theirs] : {std::pair{&c.time, &given.time}, {&c.temp, &given.temp}, {&c.gyro, &given.gyro},
                               {&c.temp2, &given.temp2}, {&c.units.time, &given.units.time},
-                              {&c.units.gyro, &given.units.gyro}, {&c.units.temp, &given.units.temp}})
+                              {&c.units.gyro, &given.units.gyro}, {&c.units.temp, &given.units.temp},
+                              {&c.units.sensor, &given.units.sensor}})
     if (!theirs->empty()) *mine = *theirs;
   // A unit given anew comes from the option, not from where this map had it.
   if (!given.units.time.empty()) c.units.time_from.clear(), c.units.time_weak = false;
@@ -70,7 +77,7 @@ std::string Units::used() const {
   auto one = [](std::string_view what, const Unit& u, const std::string& from) {
     return fmt::format("{} {}{}", what, u.name, from.empty() ? std::string() : " (" + from + ")");
   };
-  return one("time", time_unit(), time_from) + ", " + one("gyro", gyro_unit(), gyro_from) + ", " +
+  return one("time", time_unit(), time_from) + ", " + one(kind().name, gyro_unit(), gyro_from) + ", " +
          one("temperature", temp_unit(), temp_from) + (layout.empty() ? "" : "; " + layout);
 }
 
@@ -86,6 +93,7 @@ void Units::set_from_fit(const std::string& file) {
 bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyro_from.starts_with(kFromFitInMemory); }
 
 void Units::validate() const {
+  kind();
   time_unit();
   gyro_unit();
   temp_unit();
@@ -115,9 +123,9 @@ std::string Units::description() const {
   std::vector<std::string> parts;
   if (!time_unit().is_base()) parts.push_back(fmt::format("time {} → s (× {:g})", time_unit().name, time_unit().factor));
   if (!gyro_unit().is_base() || gyro_scale != 1.0)
-    parts.push_back(fmt::format("gyro {}{} → °/h (× {:.9g})",
+    parts.push_back(fmt::format("{} {}{} → {} (× {:.9g})", kind().name,
                                 gyro_scale != 1.0 ? fmt::format("{:g} × ", gyro_scale) : "", gyro_unit().name,
-                                gyro_scale * gyro_unit().factor));
+                                kind().unit, gyro_scale * gyro_unit().factor));
   if (!temp_unit().is_base() || temp_scale != 1.0 || temp_offset != 0.0) {
     std::string raw = temp_scale != 1.0 ? fmt::format("{:g} × column", temp_scale) : "column";
     if (temp_offset != 0.0) raw += fmt::format(" {} {:g}", temp_offset < 0 ? "−" : "+", std::abs(temp_offset));

@@ -123,8 +123,19 @@ void ColumnReader::resolve_columns(std::vector<std::string> names_given, std::si
       std::string near;
       for (const std::string& n : names)
         if (!n.empty() && folded(n) == folded(name)) near = fmt::format(" (did you mean '{}'?)", n);
-      fail_names(fmt::format("no column '{}'{} ({} has: {}); name the {} column with {}", name, near, holder,
-                             joined(names), kWhatOf[role], kOptionOf[role]));
+      // A gyro wanted where the columns are another sensor's (by the unit their names state).
+      std::string other_sensor;
+      const SensorKind& kind = map_.units.kind();
+      if (role == kGyro)
+        for (const SensorKind* k : sensor_kinds())
+          for (const std::string& n : names)
+            if (const Unit* u = unit_in_header(k->quantity, n).unit; other_sensor.empty() && k != &kind && u)
+              other_sensor = fmt::format("; column '{}' is in {}, the unit of the {}: to fit it, give --sensor {} "
+                                         "--gyro-col '{}'",
+                                         n, u->meaning, k->noun, k->name, n);
+      fail_names(fmt::format("no column '{}'{} ({} has: {}); name the {} column with {}{}", name, near, holder,
+                             joined(names), role == kGyro ? std::string(kind.noun) : std::string(kWhatOf[role]),
+                             kOptionOf[role], other_sensor));
     }
     const auto column = static_cast<std::size_t>(it - names.begin());
     if (const int other = role_of_column_[column]; other != kNoRole) {

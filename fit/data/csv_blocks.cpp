@@ -43,11 +43,16 @@ std::string_view next_line(std::string_view text, std::size_t& at) {
 }
 
 
+}  // namespace
+
 // A buffer in whole huge pages where the system gives them (2 MB aligned,
 // MADV_HUGEPAGE): its first touch faults once rather than 512 times.
 struct FreeBytes {
   void operator()(char* p) const { std::free(p); }
 };
+
+namespace {
+
 std::unique_ptr<char[], FreeBytes> huge_buffer(std::size_t& bytes) {
   constexpr std::size_t kHuge = std::size_t{2} << 20;
   bytes = (bytes + kHuge - 1) / kHuge * kHuge;

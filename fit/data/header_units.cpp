@@ -12,7 +12,7 @@
 namespace gyrotherm::fit {
 namespace {
 
-// Lower case, "°"/"º" → "deg", "µ"/"μ" → "u", spaces dropped.
+// Lower case, "°"/"º" → "deg", "µ"/"μ" → "u", "²" → "2", spaces dropped.
 std::string normalised(std::string_view text) {
   std::string out;
   for (std::size_t i = 0; i < text.size(); ++i) {
@@ -23,6 +23,9 @@ std::string normalised(std::string_view text) {
       ++i;
     } else if (rest.starts_with("\xC2\xB5") || rest.starts_with("\xCE\xBC")) {
       out += 'u';
+      ++i;
+    } else if (rest.starts_with("\xC2\xB2")) {  // "m/s²" → "m/s2"
+      out += '2';
       ++i;
     } else if (!std::isspace(c)) {
       out += static_cast<char>(std::tolower(c));
@@ -124,13 +127,26 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
   const bool temp_scaled = r.temp_scale != 1.0 || r.temp_offset != 0.0;
   std::vector<Column> columns = {
       {Quantity::time, &r.time, &r.time_from, time_column, "--time-unit", "time", "", false, !r.time.empty(), r.time_weak},
-      {Quantity::gyro, &r.gyro, &r.gyro_from, gyro_column, "--gyro-unit", "gyro", "--gyro-scale",
+      {r.kind().quantity, &r.gyro, &r.gyro_from, gyro_column, "--gyro-unit", r.kind().noun, "--gyro-scale",
        r.gyro_scale != 1.0, !r.gyro.empty(), r.gyro_weak},
       {Quantity::temperature, &r.temp, &r.temp_from, temp_column, "--temp-unit", "temperature",
        "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty(), r.temp_weak}};
   if (!temp2_column.empty())
     columns.push_back({Quantity::temperature, &r.temp, &r.temp_from, temp2_column, "--temp-unit",
                        "temperature", "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty(), r.temp_weak});
+  // The measured column's name stating another sensor kind's unit (gyro_dph
+  // read as an accelerometer, accel_mps2 as a gyro): its numbers are that
+  // sensor's, whatever unit of this one they would be read in.
+  if (unit_in_header(r.kind().quantity, gyro_column).unit == nullptr)
+    for (const SensorKind* other : sensor_kinds()) {
+      const HeaderUnit h = other == &r.kind() ? HeaderUnit{} : unit_in_header(other->quantity, gyro_column);
+      if (h.unit != nullptr && h.said.size() > 1)  // (not a lone "g")
+        throw InputError(fmt::format(
+            "column '{}' states {} ({}), a unit of the {}, but it is read as the {}'s (--sensor {}): give --sensor "
+            "{}, or name the {}'s column with --gyro-col",
+            gyro_column, h.unit->name, h.unit->meaning, other->noun, r.kind().noun, r.kind().name, other->name,
+            r.kind().noun));
+    }
   std::vector<const std::string*> header_set;  // units a header set in this loop
   for (const Column& c : columns) {
     const HeaderUnit h = unit_in_header(c.quantity, c.name);

@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "fit/data/csv_dialect.h"
+#include "fit/data/sensor_kind.h"
 #include "fit/data/units.h"
 
 namespace gyrotherm::fit {
@@ -60,6 +61,10 @@ inline constexpr const char* kFitInMemory = "fit (in memory)";
 
 struct Units {
   std::string time, gyro, temp;
+  // The kind of sensor the measured ("gyro") column is (--sensor; empty: a
+  // gyro): its quantity is the one `gyro` names a unit of.
+  std::string sensor;
+  const SensorKind& kind() const;
   std::string time_from, gyro_from, temp_from;
   // A unit a saved fit brings that its own record's header (or the default)
   // gave, not an option: a record whose header states another unit is read

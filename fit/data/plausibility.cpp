@@ -50,13 +50,15 @@ std::vector<UnitCaution> unit_cautions(const Units& u, const ReadSummary& r) {
   };
   const double n = r.arw_deg_per_sqrt_h;
   const std::string_view gyro = u.gyro_unit().name;
-  if (n > 0.0 && n < kQuietestArw) caution(CautionKind::gyro_too_quiet, gyro, u.gyro_from);
-  if (n > kNoisiestArw && stated_by_log_format(u.gyro_from))  // the format states the unit: the gyro turned
-    caution(CautionKind::vehicle_turned, gyro, u.gyro_from);
-  else if (r.moving_share > kMovingShare)  // smooth turns: large rates, small sample-to-sample changes
-    caution(CautionKind::gyro_turning, gyro, u.gyro_from);
-  else if (n > kNoisiestArw)
-    caution(CautionKind::gyro_too_noisy, gyro, u.gyro_from);
+  if (u.kind().is_gyro) {  // (the rate and angle-random-walk limits are a gyro's)
+    if (n > 0.0 && n < kQuietestArw) caution(CautionKind::gyro_too_quiet, gyro, u.gyro_from);
+    if (n > kNoisiestArw && stated_by_log_format(u.gyro_from))  // the format states the unit: the gyro turned
+      caution(CautionKind::vehicle_turned, gyro, u.gyro_from);
+    else if (r.moving_share > kMovingShare)  // smooth turns: large rates, small sample-to-sample changes
+      caution(CautionKind::gyro_turning, gyro, u.gyro_from);
+    else if (n > kNoisiestArw)
+      caution(CautionKind::gyro_too_noisy, gyro, u.gyro_from);
+  }
   if (r.span_s > kLongestSpanS) caution(CautionKind::span_too_long, u.time_unit().name, u.time_from);
   if (r.temp_max_c < kColdestC || r.temp_min_c > kHottestC)
     caution(CautionKind::temperature_outside, u.temp_unit().name, u.temp_from);

@@ -10,6 +10,7 @@ namespace gyrotherm::fit {
 namespace {
 
 constexpr double kDegPerRad = 57.29577951308232;
+constexpr double kStandardGravity = 9.80665;  // m/s² (CGPM 1901)
 
 double from_kelvin(double k) { return k - 273.15; }
 double from_fahrenheit(double f) { return (f - 32.0) * 5.0 / 9.0; }
@@ -33,6 +34,14 @@ constexpr Unit kUnits[] = {
   {Q::temperature, "C", "degrees Celsius", 1.0, nullptr, "c degc deg_c celsius"},
   {Q::temperature, "K", "kelvin", 1.0, &from_kelvin, "k kelvin"},
   {Q::temperature, "F", "degrees Fahrenheit", 1.0, &from_fahrenheit, "f degf deg_f fahrenheit"},
+  {Q::accel, "mps2", "metres per second squared", 1.0, nullptr, "mps2 m/s^2 m/s2 m_s2 m/s/s ms2 mpss m_s_2"},
+  {Q::accel, "g", "standard gravities (9.80665 m/s²)", kStandardGravity, nullptr, "g gee"},
+  {Q::accel, "mg", "milli-g", 1e-3 * kStandardGravity, nullptr, "mg milli_g millig"},
+  {Q::accel, "ug", "micro-g", 1e-6 * kStandardGravity, nullptr, "ug micro_g microg"},
+  {Q::pressure, "Pa", "pascals", 1.0, nullptr, "pa pascal pascals"},
+  {Q::pressure, "hPa", "hectopascals", 100.0, nullptr, "hpa hectopascal hectopascals"},
+  {Q::pressure, "mbar", "millibars", 100.0, nullptr, "mbar millibar millibars mb"},
+  {Q::pressure, "kPa", "kilopascals", 1000.0, nullptr, "kpa kilopascal kilopascals"},
 };
 // clang-format on
 

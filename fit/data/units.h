@@ -1,6 +1,7 @@
 #pragma once
 // The units a log's columns may be written in: one table (fit/data/units.cpp),
-// one line a unit. Every report, JSON and fit works in s, °/h and °C; a
+// one line a unit. Every report, JSON and fit works in s, °C and the sensor's
+// base unit (°/h for a gyro, m/s² for an accelerometer, Pa for a barometer); a
 // column in another unit is converted as it is read (fit/data/measurement.h,
 // Units), by the entry's factor, or for a temperature scale with an offset by
 // its affine map. The command line's help, the error messages and the fit
@@ -15,13 +16,16 @@
 
 namespace gyrotherm::fit {
 
-enum class Quantity { time, gyro, temperature };
+// gyro: a rate (°/h); accel: a specific force (m/s²); pressure: a
+// barometer's (Pa). The sensor kinds (fit/data/sensor_kind.h) name which one
+// a record's measured channel is.
+enum class Quantity { time, gyro, temperature, accel, pressure };
 
 struct Unit {
   Quantity quantity;
   std::string_view name;     // as --time-unit, --gyro-unit, --temp-unit take it and a fit saves it
   std::string_view meaning;  // "milliseconds"
-  double factor = 1.0;                  // base = factor · value (s, °/h, °C)
+  double factor = 1.0;                  // base = factor · value (s, °/h, °C, m/s², Pa)
   double (*affine)(double) = nullptr;   // instead, for a scale with an offset (K, °F)
   // How column names write it (fit/data/header_units.h): lower case, spaces
   // between, "°" written "deg" and "µ" "u" ("deg/s dps degps deg_s").

@@ -176,10 +176,10 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
   std::vector<NoiseParameter> out;
   const double z = kZ95;
   // value = factor · amplitude^power, an interval from the log-amplitude's sd.
-  auto add = [&](const char* name, const char* unit, int k, int p, double factor, double power) {
+  auto add = [&](std::string_view name, std::string_view unit, int k, int p, double factor, double power) {
     NoiseParameter q;
-    q.name = name;
-    q.unit = unit;
+    q.name = std::string(name);
+    q.unit = std::string(unit);
     const double v = amplitude[static_cast<std::size_t>(k)];
     q.value = v > 0.0 ? factor * std::pow(v, power) : 0.0;
     q.identified = identified[static_cast<std::size_t>(k)];
@@ -193,9 +193,13 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
     }
     out.push_back(q);
   };
-  add("arw", "deg/sqrt(h)", kWhite, 0, 1.0 / 60.0, 0.5);
-  add("bias_instability", "deg/h", kFlicker, 1, flicker_floor_per_s, 0.5);
-  add("gauss_markov", "deg/h", kGaussMarkov, 2, 1.0, 0.5);
+  const std::array<NoiseName, 4>& names = (sensor != nullptr ? *sensor : gyro_sensor()).noise;
+  const auto named = [&](const NoiseName& n, int k, int p, double factor) {
+    add(n.name, n.unit, k, p, factor, 0.5);
+  };
+  named(names[kWhite], kWhite, 0, names[kWhite].factor);
+  named(names[kFlicker], kFlicker, 1, flicker_floor_per_s);
+  named(names[kGaussMarkov], kGaussMarkov, 2, 1.0);
   if (present[kGaussMarkov]) {
     NoiseParameter q{"gauss_markov_tau", "s", gm_tau_s, 0, 0, identified[kGaussMarkov]};
     const double sd = std::sqrt(std::max(0.0, covariance(3, 3)));
@@ -203,7 +207,7 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
     q.upper = gm_tau_s * std::exp(z * sd);
     out.push_back(q);
   }
-  add("rrw", "deg/h/sqrt(h)", kRandomWalk, 4, 60.0, 0.5);
+  named(names[kRandomWalk], kRandomWalk, 4, names[kRandomWalk].factor);
   return out;
 }
 
@@ -269,6 +273,11 @@ std::string shown_unit(const std::string& unit) {
   if (unit == "deg/sqrt(h)") return "°/√h";
   if (unit == "deg/h") return "°/h";
   if (unit == "deg/h/sqrt(h)") return "°/h/√h";
+  if (unit == "m/s/sqrt(h)") return "m/s/√h";
+  if (unit == "m/s^2") return "m/s²";
+  if (unit == "m/s^2/sqrt(h)") return "m/s²/√h";
+  if (unit == "Pa*sqrt(s)") return "Pa·√s";
+  if (unit == "Pa/sqrt(h)") return "Pa/√h";
   return unit;
 }
 

@@ -51,6 +51,8 @@
 #include <string_view>
 #include <vector>
 
+#include "fit/data/sensor_kind.h"
+
 namespace gyrotherm::fit {
 
 // The windows as the noise sees them.
@@ -97,6 +99,9 @@ struct NoiseModel {
   std::vector<NoiseModel> alternatives;
   std::size_t blocks = 0;  // block means the identification used
   double block_s = 0;      // their typical length
+  // The sensor whose noise this is (null: a gyro): the names and units of
+  // parameters() and description(); the amplitudes are in its base unit.
+  const SensorKind* sensor = nullptr;
 
   std::vector<NoiseParameter> parameters() const;
   // "white N = 3.1e-04 °/√h [2.8e-04, 3.4e-04]; flicker B = …; no random walk (K < …)"

@@ -141,7 +141,8 @@ struct Effect {
   bool needs_temp2() const { return (columns & kTemp2) != 0; }
   bool hidden() const { return truth_key.empty(); }
   // "°/h per °C", or "°/h" for a dimensionless regressor.
-  std::string coefficient_unit() const;
+  // "°/h per °C": the bias's unit (a gyro's, or `measured`: "m/s²", "Pa") per the term's.
+  std::string coefficient_unit(std::string_view measured = "°/h") const;
   // "temp_c, temp2_c": the columns it reads, by their default names.
   std::string column_names() const;
 };

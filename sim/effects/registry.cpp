@@ -41,8 +41,8 @@ std::string join(bool hidden_only) {
 std::string names() { return join(false); }
 std::string hidden_names() { return join(true); }
 
-std::string Effect::coefficient_unit() const {
-  return unit == "1" ? std::string("°/h") : "°/h per " + std::string(unit);
+std::string Effect::coefficient_unit(std::string_view measured) const {
+  return unit == "1" ? std::string(measured) : std::string(measured) + " per " + std::string(unit);
 }
 
 std::string Effect::column_names() const {

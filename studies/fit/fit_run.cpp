@@ -55,9 +55,10 @@ std::string channel_text(const ChannelFit& c, const FitRun& run, bool units_said
     }
     out += fmt::format("  {:<7} {:>13.6g} {:<14}{}\n", name, value, unit, extra);
   };
-  row("1", result.coefficients.intercept, "°/h", std::size_t(-1));
+  const fit::SensorKind& kind = data.units.kind();
+  row("1", result.coefficients.intercept, std::string(kind.unit), std::size_t(-1));
   for (std::size_t k = 0; k < terms.size(); ++k) {
-    row(std::string(terms[k]->name), result.coefficients.b[k], terms[k]->coefficient_unit(), k);
+    row(std::string(terms[k]->name), result.coefficients.b[k], terms[k]->coefficient_unit(kind.unit), k);
     if (!terms[k]->parameter) continue;
     std::string extra;
     if (const auto& i = result.parameter_intervals[k]) extra += fmt::format("  95% [{:.6g}, {:.6g}]", i->lower, i->upper);
@@ -71,16 +72,16 @@ std::string channel_text(const ChannelFit& c, const FitRun& run, bool units_said
   out += fmt::format("record: {}\n", fit::describe_support(result.support));
   for (std::size_t k = 0; k < terms.size() && k < result.support.flags.size(); ++k)
     if (!result.support.flags[k].empty())
-      out += fmt::format("  caution, {}: {}; its number is not a property of the gyro alone\n",
-                         terms[k]->name, result.support.flags[k]);
+      out += fmt::format("  caution, {}: {}; its number is not a property of the {} alone\n",
+                         terms[k]->name, result.support.flags[k], kind.noun);
   for (const fit::LagSensitivity& l : result.lag_sensitivity)
     if (l.lag_s < fit::kPlausibleSensorLagS)
-      out += fmt::format("  caution, {}: a temperature sensor lagging the gyro by {:.3g} s (which this record cannot "
+      out += fmt::format("  caution, {}: a temperature sensor lagging the {} by {:.3g} s (which this record cannot "
                          "exclude) would move it by its 95 % half-width; give the sensor's time constant with "
                          "--sensor-tau if it is known\n",
-                         terms[l.term]->name, l.lag_s);
-  out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n", fit::averages_name(data, c.pipeline),
-                     result.instability_before_dph, result.instability_after_dph, result.ratio());
+                         terms[l.term]->name, kind.noun, l.lag_s);
+  out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} {} ({:.2f}x)\n", fit::averages_name(data, c.pipeline),
+                     result.instability_before_dph, result.instability_after_dph, kind.unit, result.ratio());
   out += fmt::format("engine: {}\n", result.engine.brief_report());
   for (const std::string& w : fit::fit_warnings(result)) out += fmt::format("warning: {}\n", w);
   out += fmt::format("gap to the least-squares optimum: {:.3g} (relative)\n",
@@ -161,7 +162,9 @@ std::string fit_text(const FitRun& run) {
   }
   if (n > 1) {
     out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));
-    std::string header = fmt::format("  {:<14} {:>12} {:>12} {:>8}", "channel", "before °/h", "after °/h", "ratio");
+    const std::string_view unit = run.channels.front().data.units.kind().unit;
+    std::string header = fmt::format("  {:<14} {:>12} {:>12} {:>8}", "channel", fmt::format("before {}", unit),
+                                     fmt::format("after {}", unit), "ratio");
     for (const fit::Term* t : run.request.terms) header += fmt::format(" {:>12}", t->name);
     out += header + "\n";
     for (const ChannelFit& c : run.channels) {

@@ -32,6 +32,9 @@ const OptionTable<CompensateCommandOptions>& compensate_option_table() {
   return table;
 }
 
-CompensateRequest compensate_request(const CompensateCommandOptions& options) { return options.request; }
+CompensateRequest compensate_request(const CompensateCommandOptions& options) {
+  require_gyro(options.request.columns, "compensate");
+  return options.request;
+}
 
 }  // namespace gyrotherm::studies

@@ -21,6 +21,14 @@ fit::PipelineOptions DataOptions::resolved() const {
   return p;
 }
 
+void require_gyro(const fit::ColumnMap& columns, std::string_view command) {
+  const fit::SensorKind& kind = columns.units.kind();
+  if (!kind.is_gyro)
+    throw InputError(fmt::format("--sensor {}: {} reads a gyro only, so far; `gyrotherm fit --sensor {}` fits the {}'s "
+                                 "channel",
+                                 kind.name, command, kind.name, kind.noun));
+}
+
 std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
   using C = fit::ColumnMap;
   using fit::Quantity;
@@ -40,10 +48,23 @@ std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
   return {
       note(field_row<C>("--time-col", "Name of the time column", &C::time)),
       note(field_row<C>("--temp-col", "Name of the gyro temperature column", &C::temp)),
-      note(field_row<C>("--gyro-col", "Name of the gyro output column, or several A,B,C", &C::gyro)),
+      note(field_row<C>("--gyro-col", "Name of the gyro output column, or several A,B,C", &C::gyro),
+           "gyro_dph (accel_mps2, baro_pa with --sensor)"),
       note(field_row<C>("--temp2-col", "Name of the far-side temperature column, for the grad term", &C::temp2)),
       unit_row("--time-unit", "time column", Quantity::time, "time (ms)", "s", &fit::Units::time),
-      unit_row("--gyro-unit", "gyro column", Quantity::gyro, "gyro [rad/s]", "dph", &fit::Units::gyro),
+      note(nested_row("--sensor",
+                      fmt::format("The kind of sensor the gyro column is: {} (an accelerometer's column in "
+                                  "m/s² or a barometer's in Pa; --gyro-col, --gyro-unit and --gyro-scale then "
+                                  "name its column, unit and scale)",
+                                  fit::sensor_kind_names()),
+                      &C::units, &fit::Units::sensor),
+           "gyro"),
+      note(nested_row("--gyro-unit",
+                      fmt::format("Unit of the gyro column: {}; of an accelerometer's: {}; of a barometer's: {}",
+                                  fit::unit_names(Quantity::gyro, " or "), fit::unit_names(Quantity::accel, " or "),
+                                  fit::unit_names(Quantity::pressure, " or ")),
+                      &C::units, &fit::Units::gyro),
+           "the unit the column's name states, e.g. 'gyro [rad/s]', else dph (mps2, Pa)"),
       unit_row("--temp-unit", "temperature columns", Quantity::temperature, "temp (K)", "C", &fit::Units::temp),
       note(nested_row("--gyro-scale", "Multiply the gyro column by K before its unit (raw counts, a logger's scale)",
                       &C::units, &fit::Units::gyro_scale)),

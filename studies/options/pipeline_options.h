@@ -27,6 +27,10 @@ struct DataOptions {
   fit::PipelineOptions resolved() const;
 };
 
+// Refuses a sensor other than a gyro (--sensor) for `command`: only `fit`
+// reads an accelerometer's or a barometer's channel so far.
+void require_gyro(const fit::ColumnMap& columns, std::string_view command);
+
 // --avg (with_avg), --deriv-span, --causal, --keep-outliers,
 // --outlier-threshold and the column options.
 std::vector<OptionRow<DataOptions>> data_option_rows(bool with_avg = true);

@@ -45,6 +45,7 @@ std::vector<OptionRow<O>> report_rows() {
 
 ReportRequest report_request(const ReportCommandOptions& options) {
   const ReportRequest& r = options.request;
+  require_gyro(r.data_options.pipeline.columns, "report");
   if (!r.fit_file.empty() && (r.model.model != ModelOptions().model || !r.model.add.empty()))
     throw InputError("report: --fit brings its own model; give --model (and --add) only without --fit");
   const std::vector<ReportLimit> limits = parse_limits(r.limits, r.max_residual_dph);  // refused here, before any work

@@ -1,0 +1,56 @@
+#pragma once
+// The kinds of sensor whose bias a record's measured channel holds: a gyro
+// (a rate, °/h), an accelerometer (a specific force, m/s²) or a barometer (a
+// pressure, Pa). The thermal model, the fit and its intervals are the same
+// for each; what differs is the quantity and its units, the default column,
+// the names the noise components go by (a gyro's white noise is an angle
+// random walk in °/√h, an accelerometer's a velocity random walk in m/s/√h),
+// and the checks that only make sense for a gyro (a rate at rest).
+//
+// Adding a kind: its file fit/data/sensor_NAME.cpp defining
+// `const SensorKind& NAME_sensor()`, one line SENSOR_KIND(NAME) in
+// fit/data/sensor_kinds.def, and its test in tests/sensor_kind_test.cpp.
+
+#include <array>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "fit/data/units.h"
+
+namespace gyrotherm::fit {
+
+// A noise component's name and unit as a fit reports it (the unit in ASCII
+// as the JSON keeps it; the text report writes it with °, √ and ²), and for
+// the white noise and the random walk the factor from the square root of the
+// model's amplitude (q_w in base²·s, q_r in base²/s) to the reported value.
+struct NoiseName {
+  std::string_view name;
+  std::string_view unit;
+  double factor = 1.0;
+};
+
+struct SensorKind {
+  std::string_view name;     // as --sensor takes it: gyro, accel, baro
+  std::string_view noun;     // "gyro", "accelerometer", "barometer"
+  Quantity quantity;         // its units in fit/data/units.cpp
+  std::string_view unit;     // the base unit as reports write it: "°/h", "m/s²", "Pa"
+  std::string_view column;   // the default column of a CSV: gyro_dph, accel_mps2, baro_pa
+  // White noise, bias instability (flicker), Gauss–Markov, random walk.
+  std::array<NoiseName, 4> noise;
+  bool is_gyro = false;      // the rate checks (a rate at rest, an implausible angle random walk)
+};
+
+// Every kind, in the registry's order (gyro first).
+std::span<const SensorKind* const> sensor_kinds();
+// The kind named `name` (empty: the gyro); throws InputError naming
+// --sensor and the known names.
+const SensorKind& sensor_kind(std::string_view name);
+// "gyro, accel or baro".
+std::string sensor_kind_names();
+
+#define SENSOR_KIND(name) const SensorKind& name##_sensor();
+#include "fit/data/sensor_kinds.def"
+#undef SENSOR_KIND
+
+}  // namespace gyrotherm::fit
