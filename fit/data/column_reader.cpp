@@ -39,6 +39,28 @@ std::string out_of_range(Role role, double v) {
   }
 }
 
+std::string sensor_columns_hint(const std::vector<std::string>& names, const SensorKind& wanted) {
+  // The columns each kind's role or unit names (imu.acc.x, AccX, accel_x_mps2,
+  // press (hPa)): the measured column(s) the user may have meant.
+  std::string out;
+  std::vector<const SensorKind*> kinds{&wanted};  // its own first, then the others
+  for (const SensorKind* k : sensor_kinds())
+    if (k != &wanted) kinds.push_back(k);
+  for (const SensorKind* k : kinds) {
+    std::vector<std::string> found;
+    for (const std::string& n : names)
+      if (unit_in_header(k->quantity, n).unit != nullptr || names_sensor(n, *k)) found.push_back(n);
+    if (found.empty()) continue;
+    const std::string list = joined(found), quoted = fmt::format("'{}'", fmt::join(found, ","));
+    if (k == &wanted)
+      out += fmt::format("; {} may be the {}'s: give --gyro-col {}", list, k->noun, quoted);
+    else
+      out += fmt::format("; {} may be the {}'s: to fit {}, give --sensor {} --gyro-col {}", list, k->noun,
+                         found.size() == 1 ? "it" : "them", k->name, quoted);
+  }
+  return out;
+}
+
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names) {
@@ -123,19 +145,10 @@ void ColumnReader::resolve_columns(std::vector<std::string> names_given, std::si
       std::string near;
       for (const std::string& n : names)
         if (!n.empty() && folded(n) == folded(name)) near = fmt::format(" (did you mean '{}'?)", n);
-      // A gyro wanted where the columns are another sensor's (by the unit their names state).
-      std::string other_sensor;
       const SensorKind& kind = map_.units.kind();
-      if (role == kGyro)
-        for (const SensorKind* k : sensor_kinds())
-          for (const std::string& n : names)
-            if (const Unit* u = unit_in_header(k->quantity, n).unit; other_sensor.empty() && k != &kind && u)
-              other_sensor = fmt::format("; column '{}' is in {}, the unit of the {}: to fit it, give --sensor {} "
-                                         "--gyro-col '{}'",
-                                         n, u->meaning, k->noun, k->name, n);
       fail_names(fmt::format("no column '{}'{} ({} has: {}); name the {} column with {}{}", name, near, holder,
                              joined(names), role == kGyro ? std::string(kind.noun) : std::string(kWhatOf[role]),
-                             kOptionOf[role], other_sensor));
+                             kOptionOf[role], role == kGyro ? sensor_columns_hint(names, kind) : std::string()));
     }
     const auto column = static_cast<std::size_t>(it - names.begin());
     if (const int other = role_of_column_[column]; other != kNoRole) {

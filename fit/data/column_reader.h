@@ -52,6 +52,10 @@ std::string out_of_range(Role role, double v);
 
 // "a, b, ''": column names for a message.
 std::string joined(const std::vector<std::string>& names);
+// "; 'imu.acc.x', 'imu.acc.y' may be the accelerometer's: give --sensor accel
+// --gyro-col …": the columns whose name says a sensor kind's role or unit,
+// for the error of a measured column not found (empty when none does).
+std::string sensor_columns_hint(const std::vector<std::string>& names, const SensorKind& wanted);
 
 // How a source numbers its rows in messages.
 enum class RowNaming {

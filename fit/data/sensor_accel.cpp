@@ -14,6 +14,7 @@ const SensorKind& accel_sensor() {
       .quantity = Quantity::accel,
       .unit = "m/s²",
       .column = "accel_mps2",
+      .words = "acc",
       .noise = {{{"vrw", "m/s/sqrt(h)", 60.0},
                  {"bias_instability", "m/s^2", 1.0},
                  {"gauss_markov", "m/s^2", 1.0},

@@ -14,6 +14,7 @@ const SensorKind& baro_sensor() {
       .quantity = Quantity::pressure,
       .unit = "Pa",
       .column = "baro_pa",
+      .words = "baro press",
       .noise = {{{"white_noise", "Pa*sqrt(s)", 1.0},
                  {"bias_instability", "Pa", 1.0},
                  {"gauss_markov", "Pa", 1.0},

@@ -12,6 +12,7 @@ const SensorKind& gyro_sensor() {
       .quantity = Quantity::gyro,
       .unit = "°/h",
       .column = "gyro_dph",
+      .words = "gyr omega",
       .noise = {{{"arw", "deg/sqrt(h)", 1.0 / 60.0},
                  {"bias_instability", "deg/h", 1.0},
                  {"gauss_markov", "deg/h", 1.0},

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "fit/data/column_role.h"
 #include "sim/util/input_error.h"
 
 namespace gyrotherm::fit {
@@ -22,6 +23,21 @@ std::string sensor_kind_names() {
   for (std::size_t k = 0; k < std::size(kKinds); ++k)
     out += std::string(k == 0 ? "" : k + 1 == std::size(kKinds) ? " or " : ", ") + std::string(kKinds[k]->name);
   return out;
+}
+
+bool names_sensor(std::string_view name, const SensorKind& kind) {
+  bool named = false;
+  for (const std::string& word : column_words(name)) {
+    if (word.starts_with("temp")) return false;
+    std::string_view prefixes = kind.words;
+    while (!prefixes.empty()) {
+      const std::size_t space = prefixes.find(' ');
+      if (word.starts_with(prefixes.substr(0, space))) named = true;
+      if (space == std::string_view::npos) break;
+      prefixes.remove_prefix(space + 1);
+    }
+  }
+  return named;
 }
 
 const SensorKind& sensor_kind(std::string_view name) {

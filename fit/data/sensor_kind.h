@@ -36,6 +36,9 @@ struct SensorKind {
   Quantity quantity;         // its units in fit/data/units.cpp
   std::string_view unit;     // the base unit as reports write it: "°/h", "m/s²", "Pa"
   std::string_view column;   // the default column of a CSV: gyro_dph, accel_mps2, baro_pa
+  // How loggers name its columns: a word of the name starting with one of
+  // these ("gyr": GyrX, gyro_z; "acc": imu.acc.x, AccX; "baro press": BARO.Press).
+  std::string_view words;
   // White noise, bias instability (flicker), Gauss–Markov, random walk.
   std::array<NoiseName, 4> noise;
   bool is_gyro = false;      // the rate checks (a rate at rest, an implausible angle random walk)
@@ -48,6 +51,10 @@ std::span<const SensorKind* const> sensor_kinds();
 const SensorKind& sensor_kind(std::string_view name);
 // "gyro, accel or baro".
 std::string sensor_kind_names();
+// Whether column `name`'s words (fit/data/column_role.h) name `kind`: one
+// starts with one of kind.words, and none with "temp" (a sensor's
+// temperature column).
+bool names_sensor(std::string_view name, const SensorKind& kind);
 
 #define SENSOR_KIND(name) const SensorKind& name##_sensor();
 #include "fit/data/sensor_kinds.def"
