@@ -122,7 +122,7 @@ void expect_rows(const OptionTable<O>& table, const std::vector<RowCase<O>>& cas
 std::vector<RowCase<fit::ColumnMap>> column_cases() {
   return {{"time_col", "t", FIELD(time)}, {"temp_col", "temp", FIELD(temp)}, {"gyro_col", "gx,gy", FIELD(gyro)},
           {"temp2_col", "far", FIELD(temp2)}, {"time_unit", "ms", FIELD(units.time)},
-          {"gyro_unit", "dps", FIELD(units.gyro)}, {"temp_unit", "K", FIELD(units.temp)},
+          {"gyro_unit", "dps", FIELD(units.gyro)}, {"sensor", "accel", FIELD(units.sensor)}, {"temp_unit", "K", FIELD(units.temp)},
           {"gyro_scale", "0.5", FIELD(units.gyro_scale)}, {"temp_scale", "2", FIELD(units.temp_scale)},
           {"temp_offset", "-3.5", FIELD(units.temp_offset)}, {"delimiter", "semicolon", FIELD(csv.delimiter)},
           {"decimal_comma", "true", FIELD(csv.decimal_comma)}, {"imu", "2", FIELD(imu)},

@@ -1,0 +1,199 @@
+// The sensor kinds (fit/data/sensor_kind.h): the registry, their units and
+// how column names state them, and `fit --sensor` on an accelerometer's and a
+// barometer's CSV channel, with every refusal.
+
+#include "fit/data/sensor_kind.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "fit/data/header_units.h"
+#include "sim/util/input_error.h"
+
+namespace gyrotherm::fit {
+namespace {
+
+using testing::CliResult;
+using testing::expect_refused;
+using testing::run_cli;
+using testing::run_shell;
+using testing::ScratchDir;
+
+TEST(SensorKind, EachKindIsNamedOnceWithABaseUnitItsDefaultColumnStates) {
+  std::set<std::string_view> names;
+  for (const SensorKind* k : sensor_kinds()) {
+    EXPECT_TRUE(names.insert(k->name).second) << k->name;
+    const std::string_view base = base_unit(k->quantity);
+    ASSERT_FALSE(base.empty()) << k->name;
+    const HeaderUnit stated = unit_in_header(k->quantity, k->column);
+    ASSERT_NE(stated.unit, nullptr) << k->column;
+    EXPECT_EQ(stated.unit->name, base) << k->column;
+    EXPECT_TRUE(names_sensor(k->column, *k) || stated.unit != nullptr);
+  }
+  EXPECT_EQ(&sensor_kind(""), &gyro_sensor());
+  EXPECT_EQ(&sensor_kind("accel"), &accel_sensor());
+  EXPECT_EQ(sensor_kind_names(), "gyro, accel or baro");
+  try {
+    sensor_kind("mag");
+    ADD_FAILURE() << "--sensor mag was taken";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--sensor 'mag': must be gyro, accel or baro");
+  }
+}
+
+TEST(SensorKind, NoiseFactorsTurnTheAmplitudesIntoTheNamedUnits) {
+  // q_w in base²·s: √q_w is base·√s, and √s = √h/60. A gyro's °/h·√s is
+  // °/√h ÷ 60; an accelerometer's m/s²·√s is m/s/√s = 60 m/s/√h; a
+  // barometer's is given in Pa·√s as it is. q_r in base²/s: √q_r base/√s =
+  // 60 base/√h for each.
+  const double per_sqrt_h = std::sqrt(3600.0);
+  EXPECT_DOUBLE_EQ(gyro_sensor().noise[0].factor, 1.0 / per_sqrt_h);
+  EXPECT_EQ(gyro_sensor().noise[0].name, "arw");
+  EXPECT_DOUBLE_EQ(accel_sensor().noise[0].factor, per_sqrt_h);
+  EXPECT_EQ(accel_sensor().noise[0].name, "vrw");
+  EXPECT_EQ(accel_sensor().noise[0].unit, "m/s/sqrt(h)");
+  EXPECT_DOUBLE_EQ(baro_sensor().noise[0].factor, 1.0);
+  for (const SensorKind* k : sensor_kinds()) EXPECT_DOUBLE_EQ(k->noise[3].factor, per_sqrt_h) << k->name;
+}
+
+TEST(SensorKind, ColumnNamesStateAccelerometerAndPressureUnits) {
+  const auto stated = [](Quantity q, const char* column) {
+    const Unit* u = unit_in_header(q, column).unit;
+    return u == nullptr ? std::string("none") : std::string(u->name);
+  };
+  EXPECT_EQ(stated(Quantity::accel, "accel_x_mps2"), "mps2");
+  EXPECT_EQ(stated(Quantity::accel, "ax [m/s^2]"), "mps2");
+  EXPECT_EQ(stated(Quantity::accel, "ax [m/s²]"), "mps2");
+  EXPECT_EQ(stated(Quantity::accel, "acc (g)"), "g");
+  EXPECT_EQ(stated(Quantity::accel, "acc_z_mg"), "mg");
+  EXPECT_EQ(stated(Quantity::accel, "AccX"), "none");
+  EXPECT_EQ(stated(Quantity::accel, "imu.acc.x"), "none");
+  EXPECT_EQ(stated(Quantity::pressure, "press (hPa)"), "hPa");
+  EXPECT_EQ(stated(Quantity::pressure, "baro_pa"), "Pa");
+  EXPECT_EQ(stated(Quantity::pressure, "pressure [mbar]"), "mbar");
+  EXPECT_EQ(stated(Quantity::gyro, "press (hPa)"), "none");
+  EXPECT_DOUBLE_EQ(find_unit(Quantity::accel, "g", "--gyro-unit").factor, 9.80665);
+  EXPECT_DOUBLE_EQ(find_unit(Quantity::accel, "mg", "--gyro-unit").factor, 9.80665e-3);
+  EXPECT_DOUBLE_EQ(find_unit(Quantity::pressure, "hPa", "--gyro-unit").factor, 100.0);
+  EXPECT_DOUBLE_EQ(find_unit(Quantity::pressure, "mbar", "--gyro-unit").factor, 100.0);
+  EXPECT_DOUBLE_EQ(find_unit(Quantity::pressure, "kPa", "--gyro-unit").factor, 1000.0);
+}
+
+TEST(SensorKind, LoggersColumnNamesSayTheirSensor) {
+  EXPECT_TRUE(names_sensor("imu.acc.x", accel_sensor()));
+  EXPECT_TRUE(names_sensor("AccX", accel_sensor()));
+  EXPECT_TRUE(names_sensor("accel_x_mps2", accel_sensor()));
+  EXPECT_FALSE(names_sensor("accel_temp", accel_sensor()));  // its temperature
+  EXPECT_FALSE(names_sensor("GyrX", accel_sensor()));
+  EXPECT_TRUE(names_sensor("GyrX", gyro_sensor()));
+  EXPECT_TRUE(names_sensor("BARO.Press", baro_sensor()));
+  EXPECT_FALSE(names_sensor("time_s", baro_sensor()));
+}
+
+// A 1 Hz, 2 h ramp 0 → 40 °C: an accelerometer axis of 0.3 m/s² + 0.002
+// m/s²/°C · T with 0.01 m/s² of white noise, in column `column`, its numbers
+// divided by `divide` (the unit's factor).
+void write_accel_log(const ScratchDir& dir, const std::string& file, const std::string& column, double divide) {
+  const CliResult r = run_shell(
+      dir, "awk -v d=" + std::to_string(divide) + " 'BEGIN { srand(7); print \"time_s,temp_c," + column +
+               "\"; for (k = 0; k < 7200; k++) { t = 40 * k / 7200; u = rand() + rand() + rand() - 1.5; "
+               "printf \"%d,%.6f,%.9g\\n\", k, t, (0.3 + 0.002 * t + 0.02 * u) / d } }' | tee " + file);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
+nlohmann::json fit_json(const ScratchDir& dir, const std::string& args) {
+  const CliResult r = run_cli(dir, "fit " + args + " --json");
+  EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+  return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
+}
+
+TEST(CliSensor, AnAccelerometerIsFittedInItsUnitsWhateverTheLoggerWrote) {
+  ScratchDir dir;
+  write_accel_log(dir, "si.csv", "imu.acc.x", 1.0);
+  write_accel_log(dir, "g.csv", "ax [g]", 9.80665);
+  const nlohmann::json si = fit_json(dir, "si.csv --sensor accel --gyro-col imu.acc.x --model 'T'");
+  const nlohmann::json g = fit_json(dir, "g.csv --sensor accel --gyro-col 'ax [g]' --model 'T'");
+  ASSERT_TRUE(si.contains("coefficients") && g.contains("coefficients"));
+  EXPECT_EQ(si["sensor"], "accel");
+  EXPECT_EQ(si["unit"], "m/s²");
+  EXPECT_EQ(si["pipeline"]["columns"]["units"]["sensor"], "accel");
+  EXPECT_EQ(g["pipeline"]["columns"]["units"]["gyro"], "g");
+  // The slope in m/s² per °C, near the truth, and the same from the numbers written in g.
+  const double slope = si["coefficients"]["T"].get<double>();
+  EXPECT_NEAR(slope, 0.002, 2e-4);
+  EXPECT_NEAR(g["coefficients"]["T"].get<double>(), slope, 1e-6 * std::abs(slope));
+  EXPECT_NEAR(g["coefficients"]["1"].get<double>(), si["coefficients"]["1"].get<double>(), 1e-6);
+  // The noise by an accelerometer's names and units.
+  const nlohmann::json& components = si["noise_model"]["components"];
+  ASSERT_TRUE(components.contains("vrw")) << components.dump();
+  EXPECT_EQ(components["vrw"]["unit"], "m/s/sqrt(h)");
+  EXPECT_FALSE(components.contains("arw"));
+
+  const CliResult text = run_cli(dir, "fit si.csv --sensor accel --gyro-col imu.acc.x --model T");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("accel mps2 (default)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("m/s² per °C"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("vrw "), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("°/h"), std::string::npos) << text.out;
+}
+
+TEST(CliSensor, ABarometerInHectopascalsIsFittedInPascals) {
+  ScratchDir dir;
+  write_accel_log(dir, "pa.csv", "baro_pa", 1.0);
+  write_accel_log(dir, "hpa.csv", "press (hPa)", 100.0);
+  const nlohmann::json pa = fit_json(dir, "pa.csv --sensor baro --model T");
+  const nlohmann::json hpa = fit_json(dir, "hpa.csv --sensor baro --gyro-col 'press (hPa)' --model T");
+  ASSERT_TRUE(pa.contains("coefficients") && hpa.contains("coefficients"));
+  EXPECT_EQ(pa["unit"], "Pa");
+  const double slope = pa["coefficients"]["T"].get<double>();
+  EXPECT_NEAR(hpa["coefficients"]["T"].get<double>(), slope, 1e-6 * std::abs(slope));
+}
+
+TEST(CliSensor, AGyroFitIsAsItWas) {
+  ScratchDir dir;
+  testing::write_ramp_log(dir / "g.csv", "gyro_dph", {0.5}, 2.0, 0.0, 40.0, 3);
+  const nlohmann::json j = fit_json(dir, "g.csv --model T");
+  EXPECT_FALSE(j.contains("sensor"));
+  EXPECT_FALSE(j.contains("unit"));
+  EXPECT_FALSE(j["pipeline"]["columns"]["units"].contains("sensor"));
+  EXPECT_TRUE(j["noise_model"]["components"].contains("arw"));
+}
+
+TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
+  ScratchDir dir;
+  write_accel_log(dir, "a.csv", "accel_x_mps2", 1.0);
+  testing::write_ramp_log(dir / "g.csv", "rate_dph", {0.5}, 2.0, 0.0, 40.0, 3);
+  expect_refused(dir, "fit a.csv --sensor mag", "--sensor 'mag': must be gyro, accel or baro");
+  // A unit that is not the sensor's.
+  expect_refused(dir, "fit a.csv --sensor accel --gyro-col accel_x_mps2 --gyro-unit dph",
+                 "--gyro-unit dph: unknown unit (expected one of mps2, g, mg, ug)");
+  // A column whose name states another sensor's unit: never read in this one's.
+  expect_refused(dir, "fit a.csv --gyro-col accel_x_mps2",
+                 "column 'accel_x_mps2' states mps2 (metres per second squared), a unit of the accelerometer, "
+                 "but it is read as the gyro's (--sensor gyro): give --sensor accel");
+  expect_refused(dir, "fit g.csv --sensor accel --gyro-col rate_dph", "a unit of the gyro");
+  // The default column absent: the error names the columns that look like the sensor's.
+  expect_refused(dir, "fit a.csv",
+                 "accel_x_mps2 may be the accelerometer's: to fit it, give --sensor accel --gyro-col 'accel_x_mps2'");
+  expect_refused(dir, "fit a.csv --sensor accel", "accel_x_mps2 may be the accelerometer's: give --gyro-col");
+  // The other commands read a gyro only, so far.
+  for (const char* command : {"diagnose", "allan", "compensate", "check"})
+    expect_refused(dir, std::string(command) + " a.csv --sensor accel --gyro-col accel_x_mps2" +
+                            (std::string(command) == "compensate" ? " --fit x.json" : "") +
+                            (std::string(command) == "check" ? " --params x.params" : ""),
+                   std::string("--sensor accel: ") + command + " reads a gyro only, so far");
+  // An accelerometer's fit file is not applied as a gyro's.
+  ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --gyro-col accel_x_mps2 --model T -o a_fit.json").exit_code, 0);
+  expect_refused(dir, "compensate a.csv --fit a_fit.json -o out.csv",
+                 "pipeline.columns.units.sensor is accel (the accelerometer's fit)");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+}
+
+}  // namespace
+}  // namespace gyrotherm::fit
