@@ -36,8 +36,8 @@ TEST(SensorKind, EachKindIsNamedOnceWithABaseUnitItsDefaultColumnStates) {
     EXPECT_EQ(stated.unit->name, base) << k->column;
     EXPECT_TRUE(names_sensor(k->column, *k) || stated.unit != nullptr);
   }
-  EXPECT_EQ(&sensor_kind(""), &gyro_sensor());
-  EXPECT_EQ(&sensor_kind("accel"), &accel_sensor());
+  EXPECT_EQ(&sensor_kind(""), &sensor_kind("gyro"));
+  EXPECT_EQ(&sensor_kind("accel"), &sensor_kind("accel"));
   EXPECT_EQ(sensor_kind_names(), "gyro, accel or baro");
   try {
     sensor_kind("mag");
@@ -53,12 +53,12 @@ TEST(SensorKind, NoiseFactorsTurnTheAmplitudesIntoTheNamedUnits) {
   // barometer's is given in Pa·√s as it is. q_r in base²/s: √q_r base/√s =
   // 60 base/√h for each.
   const double per_sqrt_h = std::sqrt(3600.0);
-  EXPECT_DOUBLE_EQ(gyro_sensor().noise[0].factor, 1.0 / per_sqrt_h);
-  EXPECT_EQ(gyro_sensor().noise[0].name, "arw");
-  EXPECT_DOUBLE_EQ(accel_sensor().noise[0].factor, per_sqrt_h);
-  EXPECT_EQ(accel_sensor().noise[0].name, "vrw");
-  EXPECT_EQ(accel_sensor().noise[0].unit, "m/s/sqrt(h)");
-  EXPECT_DOUBLE_EQ(baro_sensor().noise[0].factor, 1.0);
+  EXPECT_DOUBLE_EQ(sensor_kind("gyro").noise[0].factor, 1.0 / per_sqrt_h);
+  EXPECT_EQ(sensor_kind("gyro").noise[0].name, "arw");
+  EXPECT_DOUBLE_EQ(sensor_kind("accel").noise[0].factor, per_sqrt_h);
+  EXPECT_EQ(sensor_kind("accel").noise[0].name, "vrw");
+  EXPECT_EQ(sensor_kind("accel").noise[0].unit, "m/s/sqrt(h)");
+  EXPECT_DOUBLE_EQ(sensor_kind("baro").noise[0].factor, 1.0);
   for (const SensorKind* k : sensor_kinds()) EXPECT_DOUBLE_EQ(k->noise[3].factor, per_sqrt_h) << k->name;
 }
 
@@ -86,14 +86,14 @@ TEST(SensorKind, ColumnNamesStateAccelerometerAndPressureUnits) {
 }
 
 TEST(SensorKind, LoggersColumnNamesSayTheirSensor) {
-  EXPECT_TRUE(names_sensor("imu.acc.x", accel_sensor()));
-  EXPECT_TRUE(names_sensor("AccX", accel_sensor()));
-  EXPECT_TRUE(names_sensor("accel_x_mps2", accel_sensor()));
-  EXPECT_FALSE(names_sensor("accel_temp", accel_sensor()));  // its temperature
-  EXPECT_FALSE(names_sensor("GyrX", accel_sensor()));
-  EXPECT_TRUE(names_sensor("GyrX", gyro_sensor()));
-  EXPECT_TRUE(names_sensor("BARO.Press", baro_sensor()));
-  EXPECT_FALSE(names_sensor("time_s", baro_sensor()));
+  EXPECT_TRUE(names_sensor("imu.acc.x", sensor_kind("accel")));
+  EXPECT_TRUE(names_sensor("AccX", sensor_kind("accel")));
+  EXPECT_TRUE(names_sensor("accel_x_mps2", sensor_kind("accel")));
+  EXPECT_FALSE(names_sensor("accel_temp", sensor_kind("accel")));  // its temperature
+  EXPECT_FALSE(names_sensor("GyrX", sensor_kind("accel")));
+  EXPECT_TRUE(names_sensor("GyrX", sensor_kind("gyro")));
+  EXPECT_TRUE(names_sensor("BARO.Press", sensor_kind("baro")));
+  EXPECT_FALSE(names_sensor("time_s", sensor_kind("baro")));
 }
 
 // A 1 Hz, 2 h ramp 0 → 40 °C: an accelerometer axis of 0.3 m/s² + 0.002
@@ -113,29 +113,40 @@ nlohmann::json fit_json(const ScratchDir& dir, const std::string& args) {
   return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
 }
 
+// The same log written in the base unit (column `base`) and in another
+// (`other`, its numbers divided by `factor`), each fitted with `args`: the
+// two fits, whose coefficients must agree (the numbers are written to 9 digits).
+std::pair<nlohmann::json, nlohmann::json> fit_both(const ScratchDir& dir, const std::string& base,
+                                                   const std::string& other, double factor, const std::string& args) {
+  write_accel_log(dir, "base.csv", base, 1.0);
+  write_accel_log(dir, "other.csv", other, factor);
+  const nlohmann::json a = fit_json(dir, "base.csv --gyro-col '" + base + "' --model T " + args);
+  const nlohmann::json b = fit_json(dir, "other.csv --gyro-col '" + other + "' --model T " + args);
+  EXPECT_TRUE(a.contains("coefficients") && b.contains("coefficients"));
+  if (a.contains("coefficients") && b.contains("coefficients")) {
+    const double slope = a["coefficients"]["T"].get<double>();
+    EXPECT_NEAR(slope, 0.002, 2e-4);  // the truth, in the base unit per °C
+    EXPECT_NEAR(b["coefficients"]["T"].get<double>(), slope, 1e-6 * std::abs(slope));
+    EXPECT_NEAR(b["coefficients"]["1"].get<double>(), a["coefficients"]["1"].get<double>(), 1e-6);
+  }
+  return {a, b};
+}
+
 TEST(CliSensor, AnAccelerometerIsFittedInItsUnitsWhateverTheLoggerWrote) {
   ScratchDir dir;
-  write_accel_log(dir, "si.csv", "imu.acc.x", 1.0);
-  write_accel_log(dir, "g.csv", "ax [g]", 9.80665);
-  const nlohmann::json si = fit_json(dir, "si.csv --sensor accel --gyro-col imu.acc.x --model 'T'");
-  const nlohmann::json g = fit_json(dir, "g.csv --sensor accel --gyro-col 'ax [g]' --model 'T'");
-  ASSERT_TRUE(si.contains("coefficients") && g.contains("coefficients"));
+  const auto [si, g] = fit_both(dir, "imu.acc.x", "ax [g]", 9.80665, "--sensor accel");
+  ASSERT_TRUE(si.contains("noise_model"));
   EXPECT_EQ(si["sensor"], "accel");
   EXPECT_EQ(si["unit"], "m/s²");
   EXPECT_EQ(si["pipeline"]["columns"]["units"]["sensor"], "accel");
   EXPECT_EQ(g["pipeline"]["columns"]["units"]["gyro"], "g");
-  // The slope in m/s² per °C, near the truth, and the same from the numbers written in g.
-  const double slope = si["coefficients"]["T"].get<double>();
-  EXPECT_NEAR(slope, 0.002, 2e-4);
-  EXPECT_NEAR(g["coefficients"]["T"].get<double>(), slope, 1e-6 * std::abs(slope));
-  EXPECT_NEAR(g["coefficients"]["1"].get<double>(), si["coefficients"]["1"].get<double>(), 1e-6);
   // The noise by an accelerometer's names and units.
   const nlohmann::json& components = si["noise_model"]["components"];
   ASSERT_TRUE(components.contains("vrw")) << components.dump();
   EXPECT_EQ(components["vrw"]["unit"], "m/s/sqrt(h)");
   EXPECT_FALSE(components.contains("arw"));
 
-  const CliResult text = run_cli(dir, "fit si.csv --sensor accel --gyro-col imu.acc.x --model T");
+  const CliResult text = run_cli(dir, "fit base.csv --sensor accel --gyro-col imu.acc.x --model T");
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("accel mps2 (default)"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("m/s² per °C"), std::string::npos) << text.out;
@@ -145,14 +156,9 @@ TEST(CliSensor, AnAccelerometerIsFittedInItsUnitsWhateverTheLoggerWrote) {
 
 TEST(CliSensor, ABarometerInHectopascalsIsFittedInPascals) {
   ScratchDir dir;
-  write_accel_log(dir, "pa.csv", "baro_pa", 1.0);
-  write_accel_log(dir, "hpa.csv", "press (hPa)", 100.0);
-  const nlohmann::json pa = fit_json(dir, "pa.csv --sensor baro --model T");
-  const nlohmann::json hpa = fit_json(dir, "hpa.csv --sensor baro --gyro-col 'press (hPa)' --model T");
-  ASSERT_TRUE(pa.contains("coefficients") && hpa.contains("coefficients"));
+  const auto [pa, hpa] = fit_both(dir, "baro_pa", "press (hPa)", 100.0, "--sensor baro");
   EXPECT_EQ(pa["unit"], "Pa");
-  const double slope = pa["coefficients"]["T"].get<double>();
-  EXPECT_NEAR(hpa["coefficients"]["T"].get<double>(), slope, 1e-6 * std::abs(slope));
+  EXPECT_EQ(hpa["pipeline"]["columns"]["units"]["gyro"], "hPa");
 }
 
 TEST(CliSensor, AGyroFitIsAsItWas) {

@@ -1,3 +1,4 @@
+// The sensor kinds (fit/data/sensor_kind.h): one entry each.
 #include "fit/data/sensor_kind.h"
 
 #include <fmt/format.h>
@@ -8,20 +9,41 @@
 namespace gyrotherm::fit {
 namespace {
 
-#define SENSOR_KIND(name) &name##_sensor(),
-const SensorKind* const kKinds[] = {
-#include "fit/data/sensor_kinds.def"
+// The white noise's factor turns √q_w (base·√s) into the unit named, with
+// √s = √h/60; the random walk's turns √q_r (base/√s) into base/√h: × 60.
+//
+// gyro: a rate in °/h. White noise: the angle random walk (°/√h = √q_w/60);
+//   random walk: the rate random walk (°/h/√h).
+// accel: a specific force in m/s² (gravity included: the bias the thermal
+//   model fits sits on the constant the attitude gives). White noise: the
+//   velocity random walk (m/s/√h = 60·√q_w); random walk: the acceleration
+//   random walk (m/s²/√h); IEEE Std 1293 names them so.
+// baro: a static pressure in Pa. In a chamber at constant pressure its
+//   change with temperature is the sensor's offset; outside one, the weather
+//   moves it too (a fit cannot tell the two apart). White noise as a density
+//   (Pa·√s = √q_w); random walk in Pa/√h.
+// clang-format off
+const SensorKind kKinds[] = {
+  {"gyro", "gyro", Quantity::gyro, "°/h", "gyro_dph", "gyr omega",
+   {{{"arw", "deg/sqrt(h)", 1.0 / 60.0}, {"bias_instability", "deg/h", 1.0}, {"gauss_markov", "deg/h", 1.0}, {"rrw", "deg/h/sqrt(h)", 60.0}}}, true},
+  {"accel", "accelerometer", Quantity::accel, "m/s²", "accel_mps2", "acc",
+   {{{"vrw", "m/s/sqrt(h)", 60.0}, {"bias_instability", "m/s^2", 1.0}, {"gauss_markov", "m/s^2", 1.0}, {"accel_random_walk", "m/s^2/sqrt(h)", 60.0}}}, false},
+  {"baro", "barometer", Quantity::pressure, "Pa", "baro_pa", "baro press",
+   {{{"white_noise", "Pa*sqrt(s)", 1.0}, {"bias_instability", "Pa", 1.0}, {"gauss_markov", "Pa", 1.0}, {"pressure_random_walk", "Pa/sqrt(h)", 60.0}}}, false},
 };
-#undef SENSOR_KIND
+// clang-format on
+
+const SensorKind* const kKindList[] = {&kKinds[0], &kKinds[1], &kKinds[2]};
+static_assert(std::size(kKindList) == std::size(kKinds));
 
 }  // namespace
 
-std::span<const SensorKind* const> sensor_kinds() { return kKinds; }
+std::span<const SensorKind* const> sensor_kinds() { return kKindList; }
 
 std::string sensor_kind_names() {
   std::string out;
-  for (std::size_t k = 0; k < std::size(kKinds); ++k)
-    out += std::string(k == 0 ? "" : k + 1 == std::size(kKinds) ? " or " : ", ") + std::string(kKinds[k]->name);
+  for (std::size_t k = 0; k < std::size(kKindList); ++k)
+    out += std::string(k == 0 ? "" : k + 1 == std::size(kKindList) ? " or " : ", ") + std::string(kKindList[k]->name);
   return out;
 }
 
@@ -41,8 +63,8 @@ bool names_sensor(std::string_view name, const SensorKind& kind) {
 }
 
 const SensorKind& sensor_kind(std::string_view name) {
-  if (name.empty()) return *kKinds[0];
-  for (const SensorKind* k : kKinds)
+  if (name.empty()) return kKinds[0];
+  for (const SensorKind* k : kKindList)
     if (k->name == name) return *k;
   throw InputError(fmt::format("--sensor '{}': must be {}", name, sensor_kind_names()));
 }

@@ -7,9 +7,9 @@
 // random walk in °/√h, an accelerometer's a velocity random walk in m/s/√h),
 // and the checks that only make sense for a gyro (a rate at rest).
 //
-// Adding a kind: its file fit/data/sensor_NAME.cpp defining
-// `const SensorKind& NAME_sensor()`, one line SENSOR_KIND(NAME) in
-// fit/data/sensor_kinds.def, and its test in tests/sensor_kind_test.cpp.
+// Adding a kind: its entry (and its physics in words) in the table in
+// fit/data/sensor_kind.cpp, as a unit is a line in units.cpp, and its test
+// in tests/sensor_kind_test.cpp.
 
 #include <array>
 #include <span>
@@ -55,9 +55,5 @@ std::string sensor_kind_names();
 // starts with one of kind.words, and none with "temp" (a sensor's
 // temperature column).
 bool names_sensor(std::string_view name, const SensorKind& kind);
-
-#define SENSOR_KIND(name) const SensorKind& name##_sensor();
-#include "fit/data/sensor_kinds.def"
-#undef SENSOR_KIND
 
 }  // namespace gyrotherm::fit

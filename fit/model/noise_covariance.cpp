@@ -193,7 +193,7 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
     }
     out.push_back(q);
   };
-  const std::array<NoiseName, 4>& names = (sensor != nullptr ? *sensor : gyro_sensor()).noise;
+  const std::array<NoiseName, 4>& names = (sensor != nullptr ? *sensor : sensor_kind("")).noise;
   const auto named = [&](const NoiseName& n, int k, int p, double factor) {
     add(n.name, n.unit, k, p, factor, 0.5);
   };

@@ -36,10 +36,7 @@ std::vector<OptionRow<O>> check_rows() {
 
 }  // namespace check_rows_of
 
-CheckRequest check_request(const CheckCommandOptions& options) {
-  require_gyro(options.request.columns, "check");
-  return options.request;
-}
+CheckRequest check_request(const CheckCommandOptions& options) { return gyro_only(options.request, "check"); }
 
 const OptionTable<CheckCommandOptions>& check_option_table() {
   static const OptionTable<CheckCommandOptions> table{"check", check_rows_of::check_rows()};

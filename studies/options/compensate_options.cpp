@@ -32,9 +32,6 @@ const OptionTable<CompensateCommandOptions>& compensate_option_table() {
   return table;
 }
 
-CompensateRequest compensate_request(const CompensateCommandOptions& options) {
-  require_gyro(options.request.columns, "compensate");
-  return options.request;
-}
+CompensateRequest compensate_request(const CompensateCommandOptions& o) { return gyro_only(o.request, "compensate"); }
 
 }  // namespace gyrotherm::studies
