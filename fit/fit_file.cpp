@@ -139,8 +139,10 @@ nlohmann::ordered_json noise_model_json(const NoiseModel& n) {
                           {"interval_95", {q.lower, q.upper}},
                           {"identified", q.identified},
                           {"unit", q.unit}};
-  return {{"method", "REML on the fit's residual: white + flicker + rate random walk, a "
-                     "Gauss-Markov process where it pays"},
+  const bool gyro = n.sensor == nullptr || n.sensor->is_gyro;
+  return {{"method", fmt::format("REML on the fit's residual: white + flicker + {} random walk, a "
+                                 "Gauss-Markov process where it pays",
+                                 gyro ? "rate" : "bias")},
           {"blocks", n.blocks},
           {"block_s", n.block_s},
           {"alternatives", n.alternatives.size()},
@@ -379,6 +381,10 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
   }
   // The units read are the fit's: said so where a report says where a unit
   // came from, before where it came from when fitting.
+  if (j.contains("sensor") && j["sensor"] != "gyro" && !j["pipeline"]["columns"].contains("units"))
+    throw InputError(fmt::format("{}: the fit of a sensor of kind {} (its \"sensor\"): compensate, check, export, "
+                                 "report and allan --fit take a gyro's fit only, so far",
+                                 file.string(), j["sensor"].dump()));
   if (j["pipeline"]["columns"].contains("units")) {
     Units& units = s.pipeline.columns.units;
     units.set_from_fit(file.string());
@@ -387,7 +393,7 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: pipeline.columns.units: {}", file.string(), e.what()));
     }
-    if (!units.kind().is_gyro)
+    if (!units.kind().is_gyro || (j.contains("sensor") && j["sensor"] != "gyro"))
       throw InputError(fmt::format("{}: pipeline.columns.units.sensor is {} (the {}'s fit): compensate, check, "
                                    "export, report and allan --fit take a gyro's fit only, so far",
                                    file.string(), units.kind().name, units.kind().noun));

@@ -38,12 +38,12 @@ TEST(SensorKind, EachKindIsNamedOnceWithABaseUnitItsDefaultColumnStates) {
   }
   EXPECT_EQ(&sensor_kind(""), &sensor_kind("gyro"));
   EXPECT_EQ(&sensor_kind("accel"), &sensor_kind("accel"));
-  EXPECT_EQ(sensor_kind_names(), "gyro, accel or baro");
+  EXPECT_EQ(sensor_kind_names(), "gyro, accel, baro or mag");
   try {
-    sensor_kind("mag");
-    ADD_FAILURE() << "--sensor mag was taken";
+    sensor_kind("compass");
+    ADD_FAILURE() << "--sensor compass was taken";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "--sensor 'mag': must be gyro, accel or baro");
+    EXPECT_EQ(std::string(e.what()), "--sensor 'compass': must be gyro, accel, baro or mag");
   }
 }
 
@@ -78,6 +78,12 @@ TEST(SensorKind, ColumnNamesStateAccelerometerAndPressureUnits) {
   EXPECT_EQ(stated(Quantity::pressure, "baro_pa"), "Pa");
   EXPECT_EQ(stated(Quantity::pressure, "pressure [mbar]"), "mbar");
   EXPECT_EQ(stated(Quantity::gyro, "press (hPa)"), "none");
+  EXPECT_EQ(stated(Quantity::magnetic, "mag1x [T]"), "T");
+  EXPECT_EQ(stated(Quantity::magnetic, "field_uT"), "uT");
+  EXPECT_EQ(stated(Quantity::magnetic, "mag_x_mG"), "mgauss");
+  EXPECT_EQ(stated(Quantity::magnetic, "mag (G)"), "gauss");
+  EXPECT_DOUBLE_EQ(find_unit(Quantity::magnetic, "T", "--gyro-unit").factor, 1e4);  // gauss
+  EXPECT_DOUBLE_EQ(find_unit(Quantity::magnetic, "uT", "--gyro-unit").factor, 1e-2);
   EXPECT_DOUBLE_EQ(find_unit(Quantity::accel, "g", "--gyro-unit").factor, 9.80665);
   EXPECT_DOUBLE_EQ(find_unit(Quantity::accel, "mg", "--gyro-unit").factor, 9.80665e-3);
   EXPECT_DOUBLE_EQ(find_unit(Quantity::pressure, "hPa", "--gyro-unit").factor, 100.0);
@@ -94,6 +100,7 @@ TEST(SensorKind, LoggersColumnNamesSayTheirSensor) {
   EXPECT_TRUE(names_sensor("GyrX", sensor_kind("gyro")));
   EXPECT_TRUE(names_sensor("BARO.Press", sensor_kind("baro")));
   EXPECT_FALSE(names_sensor("time_s", sensor_kind("baro")));
+  EXPECT_TRUE(names_sensor("mag1x [T]", sensor_kind("mag")));
 }
 
 // A 1 Hz, 2 h ramp 0 → 40 °C: an accelerometer axis of 0.3 m/s² + 0.002
@@ -175,15 +182,25 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
   ScratchDir dir;
   write_accel_log(dir, "a.csv", "accel_x_mps2", 1.0);
   testing::write_ramp_log(dir / "g.csv", "rate_dph", {0.5}, 2.0, 0.0, 40.0, 3);
-  expect_refused(dir, "fit a.csv --sensor mag", "--sensor 'mag': must be gyro, accel or baro");
+  expect_refused(dir, "fit a.csv --sensor compass", "--sensor 'compass': must be gyro, accel, baro or mag");
   // A unit that is not the sensor's.
   expect_refused(dir, "fit a.csv --sensor accel --gyro-col accel_x_mps2 --gyro-unit dph",
-                 "--gyro-unit dph: unknown unit (expected one of mps2, g, mg, ug)");
+                 "--gyro-unit dph: degrees per hour, a unit of the gyro, but the column is read as the "
+                 "accelerometer's (--sensor accel); give --sensor gyro, or one of mps2, g, mg or ug");
   // A column whose name states another sensor's unit: never read in this one's.
   expect_refused(dir, "fit a.csv --gyro-col accel_x_mps2",
                  "column 'accel_x_mps2' states mps2 (metres per second squared), a unit of the accelerometer, "
                  "but it is read as the gyro's (--sensor gyro): give --sensor accel");
   expect_refused(dir, "fit g.csv --sensor accel --gyro-col rate_dph", "a unit of the gyro");
+  // A column named as another kind's, by its words: refused unless --gyro-unit states it.
+  write_accel_log(dir, "x.csv", "AccX", 1.0);
+  expect_refused(dir, "fit x.csv --gyro-col AccX",
+                 "column 'AccX' is named as the accelerometer's, but it is read as the gyro's (--sensor gyro)");
+  EXPECT_EQ(run_cli(dir, "fit x.csv --gyro-col AccX --gyro-unit dph --model T").exit_code, 0);
+  // A unit of another kind.
+  expect_refused(dir, "fit a.csv --gyro-col accel_x_mps2 --gyro-unit mps2",
+                 "--gyro-unit mps2: metres per second squared, a unit of the accelerometer, but the column is read "
+                 "as the gyro's (--sensor gyro); give --sensor accel");
   // The default column absent: the error names the columns that look like the sensor's.
   expect_refused(dir, "fit a.csv",
                  "accel_x_mps2 may be the accelerometer's: to fit it, give --sensor accel --gyro-col 'accel_x_mps2'");
@@ -194,11 +211,57 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
                             (std::string(command) == "compensate" ? " --fit x.json" : "") +
                             (std::string(command) == "check" ? " --params x.params" : ""),
                    std::string("--sensor accel: ") + command + " reads a gyro only, so far");
-  // An accelerometer's fit file is not applied as a gyro's.
+  // An accelerometer's fit file is not applied as a gyro's, nor its noise planned with.
   ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --gyro-col accel_x_mps2 --model T -o a_fit.json").exit_code, 0);
+  expect_refused(dir, "plan --noise a_fit.json --model T", "plan designs a gyro's test only, so far");
   expect_refused(dir, "compensate a.csv --fit a_fit.json -o out.csv",
                  "pipeline.columns.units.sensor is accel (the accelerometer's fit)");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+}
+
+// Numbers that look like another unit than they are read in get a caution:
+// an atmosphere in hPa read as Pa, a field in µT read as gauss.
+TEST(CliSensor, ReadingsOutsideTheSensorsRangeAreCautioned) {
+  ScratchDir dir;
+  const CliResult made = run_shell(dir,
+                                   "awk 'BEGIN { srand(3); print \"time_s,temp_c,pressure,field\"; for (k = 0; k < 7200; "
+                                   "k++) { t = 40 * k / 7200; print k \",\" t \",\" 1013 + 0.01 * t + 0.05 * rand() "
+                                   "\",\" 45 + 0.001 * t + 0.01 * rand() } }' | tee p.csv");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const nlohmann::json hpa = fit_json(dir, "p.csv --sensor baro --gyro-col pressure --model T");
+  ASSERT_TRUE(hpa.contains("data"));
+  ASSERT_EQ(hpa["data"]["cautions"].size(), 1u) << hpa["data"]["cautions"].dump();
+  EXPECT_NE(hpa["data"]["cautions"][0].get<std::string>().find("an atmosphere written in hPa or mbar read as Pa?"),
+            std::string::npos);
+  const nlohmann::json right = fit_json(dir, "p.csv --sensor baro --gyro-col pressure --gyro-unit hPa --model T");
+  EXPECT_TRUE(right["data"]["cautions"].empty()) << right["data"]["cautions"].dump();
+  const nlohmann::json ut = fit_json(dir, "p.csv --sensor mag --gyro-col field --model T");
+  ASSERT_EQ(ut["data"]["cautions"].size(), 1u);
+  EXPECT_NE(ut["data"]["cautions"][0].get<std::string>().find("milligauss, uT or nT read as gauss?"), std::string::npos);
+  EXPECT_TRUE(fit_json(dir, "p.csv --sensor mag --gyro-col field --gyro-unit uT --model T")["data"]["cautions"].empty());
+}
+
+// A real magnetometer (the PAN cubesat's, in a thermal-vacuum chamber, its
+// field in tesla): read in gauss, where the Earth's field and a board's are
+// well under 1 gauss. Skipped without the log (../shared/data/real/pan_tvac/).
+TEST(CliSensor, ARealMagnetometerInTeslaIsFittedInGauss) {
+  const std::filesystem::path log =
+      std::filesystem::path(GYROTHERM_SOURCE_DIR) / ".." / "shared" / "data" / "real" / "pan_tvac" / "TVCtest3_7_20.csv";
+  if (!std::filesystem::exists(log)) GTEST_SKIP() << "no " << log.string();
+  ScratchDir dir;
+  const std::string args = "'" + log.string() +
+                           "' --sensor mag --gyro-col 'mag1x [T]' --time-col 'time (ms)' --temp-col temp "
+                           "--temp-scale 0.00390625 --temp-offset -231 --model T";
+  const nlohmann::json j = fit_json(dir, args);
+  ASSERT_TRUE(j.contains("coefficients"));
+  EXPECT_EQ(j["unit"], "gauss");
+  EXPECT_EQ(j["pipeline"]["columns"]["units"]["gyro"], "T");
+  const double offset = j["coefficients"]["1"].get<double>();
+  EXPECT_LT(std::abs(offset), 1.0) << "gauss";
+  EXPECT_GT(std::abs(offset), 1e-3) << "gauss: the tesla read as gauss would be 1e4 times smaller";
+  const CliResult text = run_cli(dir, "fit " + args);
+  EXPECT_NE(text.out.find("mag T (header 'mag1x [T]')"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("gauss per °C"), std::string::npos) << text.out;
 }
 
 }  // namespace

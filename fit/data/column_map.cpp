@@ -93,7 +93,16 @@ void Units::set_from_fit(const std::string& file) {
 bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyro_from.starts_with(kFromFitInMemory); }
 
 void Units::validate() const {
-  kind();
+  // A unit of another sensor kind (--gyro-unit mps2 for a gyro): said so.
+  if (!gyro.empty())
+    for (const SensorKind* other : sensor_kinds())
+      for (const Unit& u : unit_table())
+        if (other != &kind() && u.quantity == other->quantity && u.name == gyro &&
+            u.quantity != kind().quantity)
+          throw InputError(fmt::format("--gyro-unit {}: {}, a unit of the {}, but the column is read as the {}'s "
+                                       "(--sensor {}); give --sensor {}, or one of {}",
+                                       gyro, u.meaning, other->noun, kind().noun, kind().name, other->name,
+                                       unit_names(kind().quantity, " or ")));
   time_unit();
   gyro_unit();
   temp_unit();

@@ -15,7 +15,7 @@
 
 namespace gyrotherm::fit::column_rules {
 
-std::string out_of_range(Role role, double v) {
+std::string out_of_range(Role role, double v, const SensorKind& kind) {
   if (in_range(role, v)) return {};
   switch (role) {
     case kTemp:
@@ -27,9 +27,9 @@ std::string out_of_range(Role role, double v) {
       return {};
     case kGyro:
       if (std::abs(v) > 1e9)
-        return fmt::format("{:g} °/h is beyond any gyro's range (|value| <= 1e9 °/h expected; "
+        return fmt::format("{:g} {} is beyond any {}'s range (|value| <= 1e9 {} expected; "
                            "is the unit right?)",
-                           v);
+                           v, kind.unit, kind.noun, kind.unit);
       return {};
     case kTime:
       if (std::abs(v) > 1e12) return fmt::format("{:g} s is not a plausible time (|value| <= 1e12 s expected)", v);
@@ -220,7 +220,7 @@ void ColumnReader::take_values(std::size_t row, Measurement& m) {
     const double read = values_[column];
     value[r] = convert(role, read);
     if (!in_range(role, value[r]))
-      fail(row, fmt::format("column {}: {}{}", m.columns[column], out_of_range(role, value[r]),
+      fail(row, fmt::format("column {}: {}{}", m.columns[column], out_of_range(role, value[r], map_.units.kind()),
                             read == value[r] ? std::string()
                                              : fmt::format(" (read {:g}, converted by {})", read, units_.description())));
   }

@@ -48,7 +48,7 @@ inline bool in_range(Role role, double v) {
     default: return true;
   }
 }
-std::string out_of_range(Role role, double v);
+std::string out_of_range(Role role, double v, const SensorKind& kind = sensor_kind(""));
 
 // "a, b, ''": column names for a message.
 std::string joined(const std::vector<std::string>& names);

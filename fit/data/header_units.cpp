@@ -135,17 +135,25 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
     columns.push_back({Quantity::temperature, &r.temp, &r.temp_from, temp2_column, "--temp-unit",
                        "temperature", "--temp-scale and --temp-offset", temp_scaled, !r.temp.empty(), r.temp_weak});
   // The measured column's name stating another sensor kind's unit (gyro_dph
-  // read as an accelerometer, accel_mps2 as a gyro): its numbers are that
-  // sensor's, whatever unit of this one they would be read in.
-  if (unit_in_header(r.kind().quantity, gyro_column).unit == nullptr)
+  // read as an accelerometer, accel_mps2 as a gyro), or naming another kind
+  // and not its own (AccX, BARO.Press read as a gyro; GyrX as an
+  // accelerometer): its numbers are that sensor's. A unit given as an option
+  // (--gyro-unit) overrides: the user states what the column holds.
+  const bool unit_typed = !r.gyro.empty() && !r.gyro_weak;
+  if (!unit_typed && unit_in_header(r.kind().quantity, gyro_column).unit == nullptr)
     for (const SensorKind* other : sensor_kinds()) {
-      const HeaderUnit h = other == &r.kind() ? HeaderUnit{} : unit_in_header(other->quantity, gyro_column);
-      if (h.unit != nullptr && h.said.size() > 1)  // (not a lone "g")
+      if (other == &r.kind()) continue;
+      const HeaderUnit h = unit_in_header(other->quantity, gyro_column);
+      const bool by_unit = h.unit != nullptr && h.said.size() > 1;  // (not a lone "g" or "t")
+      const bool by_name = names_sensor(gyro_column, *other) && !names_sensor(gyro_column, r.kind());
+      if (by_unit || by_name)
         throw InputError(fmt::format(
-            "column '{}' states {} ({}), a unit of the {}, but it is read as the {}'s (--sensor {}): give --sensor "
-            "{}, or name the {}'s column with --gyro-col",
-            gyro_column, h.unit->name, h.unit->meaning, other->noun, r.kind().noun, r.kind().name, other->name,
-            r.kind().noun));
+            "column '{}' {}, but it is read as the {}'s (--sensor {}): give --sensor {}, or name the {}'s column "
+            "with --gyro-col (or give --gyro-unit if the column is the {}'s after all)",
+            gyro_column,
+            by_unit ? fmt::format("states {} ({}), a unit of the {}", h.unit->name, h.unit->meaning, other->noun)
+                    : fmt::format("is named as the {}'s", other->noun),
+            r.kind().noun, r.kind().name, other->name, r.kind().noun, r.kind().noun));
     }
   std::vector<const std::string*> header_set;  // units a header set in this loop
   for (const Column& c : columns) {

@@ -16,6 +16,32 @@ constexpr double kNoisiestArw = 200.0;
 constexpr double kLongestSpanS = 30.0 * 86400.0;
 constexpr double kColdestC = -100.0, kHottestC = 200.0;
 
+// What another sensor reads at most, in its base unit, beyond which the
+// numbers are in a smaller unit than read (or below which a larger one), and
+// the unit they then look like.
+struct SensorLimits {
+  double low_from, low_to;  // a largest reading in [low_from, low_to): a larger unit read as the base?
+  double largest;           // above: a smaller unit read as the base?
+  const char* low_looks;    // what a low largest reading looks like
+  const char* high_looks;
+};
+const SensorLimits* sensor_limits(const SensorKind& kind) {
+  // An accelerometer: up to a few hundred g on a shock sensor (2000 m/s²).
+  static constexpr SensorLimits kAccel{0.0, 0.0, 2000.0, "", "mg or ug read as m/s²"};
+  // A barometer: 110 kPa at sea level, 200 kPa in a pressure chamber; an
+  // atmosphere written in hPa (300..1100) read as Pa looks like a partial
+  // vacuum (a chamber's vacuum, below 300 Pa, is left alone).
+  static constexpr SensorLimits kBaro{300.0, 1200.0, 2e5, "an atmosphere written in hPa or mbar read as Pa",
+                                      "a smaller unit read as Pa"};
+  // A magnetometer near the Earth: 0.25..0.65 gauss, a board's own field
+  // more; none reads above 20 gauss, or only below 1e-3 gauss.
+  static constexpr SensorLimits kMag{0.0, 1e-3, 20.0, "tesla read as gauss", "milligauss, uT or nT read as gauss"};
+  if (kind.quantity == Quantity::accel) return &kAccel;
+  if (kind.quantity == Quantity::pressure) return &kBaro;
+  if (kind.quantity == Quantity::magnetic) return &kMag;
+  return nullptr;
+}
+
 }  // namespace
 
 void ReadProbe::add(double time_s, double temp_c, double gyro_dph) {
@@ -58,6 +84,12 @@ std::vector<UnitCaution> unit_cautions(const Units& u, const ReadSummary& r) {
       caution(CautionKind::gyro_turning, gyro, u.gyro_from);
     else if (n > kNoisiestArw)
       caution(CautionKind::gyro_too_noisy, gyro, u.gyro_from);
+  } else if (const SensorLimits* limits = sensor_limits(u.kind());
+             limits != nullptr && r.largest_rate_dph > 0.0 &&
+             (r.largest_rate_dph > limits->largest ||
+              (r.largest_rate_dph >= limits->low_from && r.largest_rate_dph < limits->low_to))) {
+    caution(CautionKind::reading_outside, gyro, u.gyro_from);
+    out.back().sensor = &u.kind();
   }
   if (r.span_s > kLongestSpanS) caution(CautionKind::span_too_long, u.time_unit().name, u.time_from);
   if (r.temp_max_c < kColdestC || r.temp_min_c > kHottestC)
@@ -123,6 +155,17 @@ std::string caution_text(const UnitCaution& c) {
           "--temp-offset: temperature = A x column + B){}",
           r.temp_max_c < kColdestC ? "below -100 °C" : "above 200 °C", r.temp_min_c, r.temp_max_c, read_in, unit,
           guessed ? "" : "?");
+    }
+    case CautionKind::reading_outside: {
+      if (c.sensor == nullptr) return {};
+      const SensorLimits& limits = *sensor_limits(*c.sensor);
+      const bool above = r.largest_rate_dph > limits.largest;
+      return fmt::format("the {}'s largest reading is {:.4g} {}, {} ({}): {}? give --gyro-unit", c.sensor->noun,
+                         r.largest_rate_dph, c.sensor->unit,
+                         above ? fmt::format("more than any {} reads ({:g} {})", c.sensor->noun, limits.largest,
+                                             c.sensor->unit)
+                               : fmt::format("under {:g} {}", limits.low_to, c.sensor->unit),
+                         read_in, above ? limits.high_looks : limits.low_looks);
     }
   }
   return {};

@@ -61,7 +61,8 @@ enum class CautionKind {
   gyro_turning,        // large rates on many samples: it turned, or a smaller unit
   gyro_too_noisy,      // white noise above any MEMS gyro: °/h read as °/s?
   span_too_long,       // a record of more than 30 days: ms or µs read as s?
-  temperature_outside  // every temperature below −100 °C or above 200 °C: K, or raw counts?
+  temperature_outside,  // every temperature below −100 °C or above 200 °C: K, or raw counts?
+  reading_outside       // another sensor's reading outside what it reads (hPa read as Pa, µT as gauss?)
 };
 struct UnitCaution {
   CautionKind kind = CautionKind::gyro_too_quiet;
@@ -69,6 +70,7 @@ struct UnitCaution {
   // The column's unit as read, and what chose it (Units::*_from; empty: the default).
   std::string unit, unit_source;
   bool unit_from_log_format = false;  // the unit is the one a log format states
+  const SensorKind* sensor = nullptr;  // reading_outside: whose reading
   bool operator==(const UnitCaution&) const = default;
 };
 std::string caution_text(const UnitCaution& caution);

@@ -22,6 +22,10 @@ namespace {
 //   change with temperature is the sensor's offset; outside one, the weather
 //   moves it too (a fit cannot tell the two apart). White noise as a density
 //   (Pa·√s = √q_w); random walk in Pa/√h.
+// mag: a magnetometer's flux density in gauss (PX4's unit). The field it
+//   reads is the Earth's and the vehicle's as well as its own offset: a fit
+//   sees the offset's change with temperature only where those hold still.
+//   White noise as a density (gauss·√s); random walk in gauss/√h.
 // clang-format off
 const SensorKind kKinds[] = {
   {"gyro", "gyro", Quantity::gyro, "°/h", "gyro_dph", "gyr omega",
@@ -30,10 +34,12 @@ const SensorKind kKinds[] = {
    {{{"vrw", "m/s/sqrt(h)", 60.0}, {"bias_instability", "m/s^2", 1.0}, {"gauss_markov", "m/s^2", 1.0}, {"accel_random_walk", "m/s^2/sqrt(h)", 60.0}}}, false},
   {"baro", "barometer", Quantity::pressure, "Pa", "baro_pa", "baro press",
    {{{"white_noise", "Pa*sqrt(s)", 1.0}, {"bias_instability", "Pa", 1.0}, {"gauss_markov", "Pa", 1.0}, {"pressure_random_walk", "Pa/sqrt(h)", 60.0}}}, false},
+  {"mag", "magnetometer", Quantity::magnetic, "gauss", "mag_gauss", "mag",
+   {{{"white_noise", "gauss*sqrt(s)", 1.0}, {"bias_instability", "gauss", 1.0}, {"gauss_markov", "gauss", 1.0}, {"field_random_walk", "gauss/sqrt(h)", 60.0}}}, false},
 };
 // clang-format on
 
-const SensorKind* const kKindList[] = {&kKinds[0], &kKinds[1], &kKinds[2]};
+const SensorKind* const kKindList[] = {&kKinds[0], &kKinds[1], &kKinds[2], &kKinds[3]};
 static_assert(std::size(kKindList) == std::size(kKinds));
 
 }  // namespace

@@ -1,7 +1,7 @@
 #pragma once
 // The kinds of sensor whose bias a record's measured channel holds: a gyro
-// (a rate, °/h), an accelerometer (a specific force, m/s²) or a barometer (a
-// pressure, Pa). The thermal model, the fit and its intervals are the same
+// (a rate, °/h), an accelerometer (a specific force, m/s²), a barometer (a
+// pressure, Pa) or a magnetometer (a flux density, gauss). The thermal model, the fit and its intervals are the same
 // for each; what differs is the quantity and its units, the default column,
 // the names the noise components go by (a gyro's white noise is an angle
 // random walk in °/√h, an accelerometer's a velocity random walk in m/s/√h),
@@ -31,7 +31,7 @@ struct NoiseName {
 };
 
 struct SensorKind {
-  std::string_view name;     // as --sensor takes it: gyro, accel, baro
+  std::string_view name;     // as --sensor takes it: gyro, accel, baro, mag
   std::string_view noun;     // "gyro", "accelerometer", "barometer"
   Quantity quantity;         // its units in fit/data/units.cpp
   std::string_view unit;     // the base unit as reports write it: "°/h", "m/s²", "Pa"

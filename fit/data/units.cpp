@@ -42,6 +42,12 @@ constexpr Unit kUnits[] = {
   {Q::pressure, "hPa", "hectopascals", 100.0, nullptr, "hpa hectopascal hectopascals"},
   {Q::pressure, "mbar", "millibars", 100.0, nullptr, "mbar millibar millibars mb"},
   {Q::pressure, "kPa", "kilopascals", 1000.0, nullptr, "kpa kilopascal kilopascals"},
+  {Q::magnetic, "gauss", "gauss", 1.0, nullptr, "gauss ga g"},
+  {Q::magnetic, "mgauss", "milligauss", 1e-3, nullptr, "mgauss milligauss mga mg"},
+  {Q::magnetic, "T", "tesla (10⁴ gauss)", 1e4, nullptr, "t tesla"},
+  {Q::magnetic, "mT", "millitesla", 10.0, nullptr, "mt millitesla"},
+  {Q::magnetic, "uT", "microtesla", 1e-2, nullptr, "ut microtesla"},
+  {Q::magnetic, "nT", "nanotesla", 1e-5, nullptr, "nt nanotesla"},
 };
 // clang-format on
 

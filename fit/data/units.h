@@ -17,9 +17,10 @@
 namespace gyrotherm::fit {
 
 // gyro: a rate (°/h); accel: a specific force (m/s²); pressure: a
-// barometer's (Pa). The sensor kinds (fit/data/sensor_kind.h) name which one
-// a record's measured channel is.
-enum class Quantity { time, gyro, temperature, accel, pressure };
+// barometer's (Pa); magnetic: a magnetometer's flux density (gauss, as PX4
+// keeps it). The sensor kinds (fit/data/sensor_kind.h) name which one a
+// record's measured channel is.
+enum class Quantity { time, gyro, temperature, accel, pressure, magnetic };
 
 struct Unit {
   Quantity quantity;

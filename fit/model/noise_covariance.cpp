@@ -278,6 +278,8 @@ std::string shown_unit(const std::string& unit) {
   if (unit == "m/s^2/sqrt(h)") return "m/s²/√h";
   if (unit == "Pa*sqrt(s)") return "Pa·√s";
   if (unit == "Pa/sqrt(h)") return "Pa/√h";
+  if (unit == "gauss*sqrt(s)") return "gauss·√s";
+  if (unit == "gauss/sqrt(h)") return "gauss/√h";
   return unit;
 }
 

@@ -145,6 +145,12 @@ class NoiseModelReader {
   const Json& locate(const Json& root) {
     if (!root.is_object())
       refuse(fmt::format("expected a JSON object (found {})", shown(root)));
+    const Json* first = root.contains("channels") && root["channels"].is_array() && !root["channels"].empty()
+                            ? &root["channels"][0]
+                            : &root;
+    if (first->contains("sensor") && (*first)["sensor"] != "gyro")
+      refuse(fmt::format("the fit of a sensor of kind {} (its \"sensor\"): plan designs a gyro's test only, so far",
+                         (*first)["sensor"].dump()));
     if (root.contains("channels")) {
       const Json& channels = root["channels"];
       std::string names;
