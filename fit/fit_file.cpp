@@ -381,10 +381,6 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
   }
   // The units read are the fit's: said so where a report says where a unit
   // came from, before where it came from when fitting.
-  if (j.contains("sensor") && j["sensor"] != "gyro" && !j["pipeline"]["columns"].contains("units"))
-    throw InputError(fmt::format("{}: the fit of a sensor of kind {} (its \"sensor\"): compensate, check, export, "
-                                 "report and allan --fit take a gyro's fit only, so far",
-                                 file.string(), j["sensor"].dump()));
   if (j["pipeline"]["columns"].contains("units")) {
     Units& units = s.pipeline.columns.units;
     units.set_from_fit(file.string());
@@ -393,11 +389,17 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: pipeline.columns.units: {}", file.string(), e.what()));
     }
-    if (!units.kind().is_gyro || (j.contains("sensor") && j["sensor"] != "gyro"))
-      throw InputError(fmt::format("{}: pipeline.columns.units.sensor is {} (the {}'s fit): compensate, check, "
-                                   "export, report and allan --fit take a gyro's fit only, so far",
-                                   file.string(), units.kind().name, units.kind().noun));
   }
+  // Another sensor's fit, by its units (a gyro's when it has none) or by its
+  // top-level "sensor": not applied as a gyro's.
+  if (const SensorKind& kind = s.pipeline.columns.units.kind(); !kind.is_gyro)
+    throw InputError(fmt::format("{}: pipeline.columns.units.sensor is {} (the {}'s fit): compensate, check, "
+                                 "export, report and allan --fit take a gyro's fit only, so far",
+                                 file.string(), kind.name, kind.noun));
+  if (j.contains("sensor") && j["sensor"] != "gyro")
+    throw InputError(fmt::format("{}: the fit of a sensor of kind {} (its \"sensor\"): compensate, check, export, "
+                                 "report and allan --fit take a gyro's fit only, so far",
+                                 file.string(), j["sensor"].dump()));
   return s;
 }
 }  // namespace

@@ -27,14 +27,14 @@ using testing::ScratchDir;
 
 TEST(SensorKind, EachKindIsNamedOnceWithABaseUnitItsDefaultColumnStates) {
   std::set<std::string_view> names;
-  for (const SensorKind* k : sensor_kinds()) {
-    EXPECT_TRUE(names.insert(k->name).second) << k->name;
-    const std::string_view base = base_unit(k->quantity);
-    ASSERT_FALSE(base.empty()) << k->name;
-    const HeaderUnit stated = unit_in_header(k->quantity, k->column);
-    ASSERT_NE(stated.unit, nullptr) << k->column;
-    EXPECT_EQ(stated.unit->name, base) << k->column;
-    EXPECT_TRUE(names_sensor(k->column, *k) || stated.unit != nullptr);
+  for (const SensorKind& k : sensor_kinds()) {
+    EXPECT_TRUE(names.insert(k.name).second) << k.name;
+    const std::string_view base = base_unit(k.quantity);
+    ASSERT_FALSE(base.empty()) << k.name;
+    const HeaderUnit stated = unit_in_header(k.quantity, k.column);
+    ASSERT_NE(stated.unit, nullptr) << k.column;
+    EXPECT_EQ(stated.unit->name, base) << k.column;
+    EXPECT_TRUE(names_sensor(k.column, k)) << k.column;
   }
   EXPECT_EQ(&sensor_kind(""), &sensor_kind("gyro"));
   EXPECT_EQ(&sensor_kind("accel"), &sensor_kind("accel"));
@@ -59,7 +59,7 @@ TEST(SensorKind, NoiseFactorsTurnTheAmplitudesIntoTheNamedUnits) {
   EXPECT_EQ(sensor_kind("accel").noise[0].name, "vrw");
   EXPECT_EQ(sensor_kind("accel").noise[0].unit, "m/s/sqrt(h)");
   EXPECT_DOUBLE_EQ(sensor_kind("baro").noise[0].factor, 1.0);
-  for (const SensorKind* k : sensor_kinds()) EXPECT_DOUBLE_EQ(k->noise[3].factor, per_sqrt_h) << k->name;
+  for (const SensorKind& k : sensor_kinds()) EXPECT_DOUBLE_EQ(k.noise[3].factor, per_sqrt_h) << k.name;
 }
 
 TEST(SensorKind, ColumnNamesStateAccelerometerAndPressureUnits) {
@@ -216,6 +216,12 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
   expect_refused(dir, "plan --noise a_fit.json --model T", "plan designs a gyro's test only, so far");
   expect_refused(dir, "compensate a.csv --fit a_fit.json -o out.csv",
                  "pipeline.columns.units.sensor is accel (the accelerometer's fit)");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+  // A fit file whose units were edited away still names its sensor at the top.
+  ASSERT_EQ(run_cli(dir, "fit g.csv --gyro-col rate_dph --model T -o g_fit.json").exit_code, 0);
+  ASSERT_EQ(run_shell(dir, "sed -i '1s/^{/{\"sensor\": \"accel\",/' g_fit.json").exit_code, 0);
+  expect_refused(dir, "compensate g.csv --fit g_fit.json -o out.csv",
+                 "the fit of a sensor of kind \"accel\" (its \"sensor\"): compensate, check, export");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
 }
 

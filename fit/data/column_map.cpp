@@ -95,13 +95,12 @@ bool Units::from_fit() const { return gyro_from.starts_with(kFromFitFile) || gyr
 void Units::validate() const {
   // A unit of another sensor kind (--gyro-unit mps2 for a gyro): said so.
   if (!gyro.empty())
-    for (const SensorKind* other : sensor_kinds())
+    for (const SensorKind& other : sensor_kinds())
       for (const Unit& u : unit_table())
-        if (other != &kind() && u.quantity == other->quantity && u.name == gyro &&
-            u.quantity != kind().quantity)
+        if (&other != &kind() && u.quantity == other.quantity && u.name == gyro)
           throw InputError(fmt::format("--gyro-unit {}: {}, a unit of the {}, but the column is read as the {}'s "
                                        "(--sensor {}); give --sensor {}, or one of {}",
-                                       gyro, u.meaning, other->noun, kind().noun, kind().name, other->name,
+                                       gyro, u.meaning, other.noun, kind().noun, kind().name, other.name,
                                        unit_names(kind().quantity, " or ")));
   time_unit();
   gyro_unit();

@@ -44,8 +44,8 @@ std::string sensor_columns_hint(const std::vector<std::string>& names, const Sen
   // press (hPa)): the measured column(s) the user may have meant.
   std::string out;
   std::vector<const SensorKind*> kinds{&wanted};  // its own first, then the others
-  for (const SensorKind* k : sensor_kinds())
-    if (k != &wanted) kinds.push_back(k);
+  for (const SensorKind& k : sensor_kinds())
+    if (&k != &wanted) kinds.push_back(&k);
   for (const SensorKind* k : kinds) {
     std::vector<std::string> found;
     for (const std::string& n : names)

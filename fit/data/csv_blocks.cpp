@@ -13,13 +13,13 @@
 #include <sys/mman.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <new>
 #include <condition_variable>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <string_view>
 #include <thread>
 #include <vector>
@@ -41,7 +41,6 @@ std::string_view next_line(std::string_view text, std::size_t& at) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   return line;
 }
-
 
 }  // namespace
 

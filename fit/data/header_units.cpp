@@ -141,19 +141,19 @@ Units resolve_units(const Units& requested, const std::string& time_column, cons
   // (--gyro-unit) overrides: the user states what the column holds.
   const bool unit_typed = !r.gyro.empty() && !r.gyro_weak;
   if (!unit_typed && unit_in_header(r.kind().quantity, gyro_column).unit == nullptr)
-    for (const SensorKind* other : sensor_kinds()) {
-      if (other == &r.kind()) continue;
-      const HeaderUnit h = unit_in_header(other->quantity, gyro_column);
+    for (const SensorKind& other : sensor_kinds()) {
+      if (&other == &r.kind()) continue;
+      const HeaderUnit h = unit_in_header(other.quantity, gyro_column);
       const bool by_unit = h.unit != nullptr && h.said.size() > 1;  // (not a lone "g" or "t")
-      const bool by_name = names_sensor(gyro_column, *other) && !names_sensor(gyro_column, r.kind());
+      const bool by_name = names_sensor(gyro_column, other) && !names_sensor(gyro_column, r.kind());
       if (by_unit || by_name)
         throw InputError(fmt::format(
             "column '{}' {}, but it is read as the {}'s (--sensor {}): give --sensor {}, or name the {}'s column "
             "with --gyro-col (or give --gyro-unit if the column is the {}'s after all)",
             gyro_column,
-            by_unit ? fmt::format("states {} ({}), a unit of the {}", h.unit->name, h.unit->meaning, other->noun)
-                    : fmt::format("is named as the {}'s", other->noun),
-            r.kind().noun, r.kind().name, other->name, r.kind().noun, r.kind().noun));
+            by_unit ? fmt::format("states {} ({}), a unit of the {}", h.unit->name, h.unit->meaning, other.noun)
+                    : fmt::format("is named as the {}'s", other.noun),
+            r.kind().noun, r.kind().name, other.name, r.kind().noun, r.kind().noun));
     }
   std::vector<const std::string*> header_set;  // units a header set in this loop
   for (const Column& c : columns) {

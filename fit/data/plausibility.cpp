@@ -72,7 +72,7 @@ ReadSummary ReadProbe::summary() const {
 std::vector<UnitCaution> unit_cautions(const Units& u, const ReadSummary& r) {
   std::vector<UnitCaution> out;
   const auto caution = [&](CautionKind kind, std::string_view unit, const std::string& source) {
-    out.push_back(UnitCaution{kind, r, std::string(unit), source, stated_by_log_format(source)});
+    out.push_back(UnitCaution{kind, r, std::string(unit), source, stated_by_log_format(source), &u.kind()});
   };
   const double n = r.arw_deg_per_sqrt_h;
   const std::string_view gyro = u.gyro_unit().name;
@@ -89,7 +89,6 @@ std::vector<UnitCaution> unit_cautions(const Units& u, const ReadSummary& r) {
              (r.largest_rate_dph > limits->largest ||
               (r.largest_rate_dph >= limits->low_from && r.largest_rate_dph < limits->low_to))) {
     caution(CautionKind::reading_outside, gyro, u.gyro_from);
-    out.back().sensor = &u.kind();
   }
   if (r.span_s > kLongestSpanS) caution(CautionKind::span_too_long, u.time_unit().name, u.time_from);
   if (r.temp_max_c < kColdestC || r.temp_min_c > kHottestC)
@@ -157,8 +156,9 @@ std::string caution_text(const UnitCaution& c) {
           guessed ? "" : "?");
     }
     case CautionKind::reading_outside: {
-      if (c.sensor == nullptr) return {};
-      const SensorLimits& limits = *sensor_limits(*c.sensor);
+      const SensorLimits* found = c.sensor != nullptr ? sensor_limits(*c.sensor) : nullptr;
+      if (found == nullptr) return {};
+      const SensorLimits& limits = *found;
       const bool above = r.largest_rate_dph > limits.largest;
       return fmt::format("the {}'s largest reading is {:.4g} {}, {} ({}): {}? give --gyro-unit", c.sensor->noun,
                          r.largest_rate_dph, c.sensor->unit,

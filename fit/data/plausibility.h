@@ -70,7 +70,7 @@ struct UnitCaution {
   // The column's unit as read, and what chose it (Units::*_from; empty: the default).
   std::string unit, unit_source;
   bool unit_from_log_format = false;  // the unit is the one a log format states
-  const SensorKind* sensor = nullptr;  // reading_outside: whose reading
+  const SensorKind* sensor = nullptr;  // the measured column's kind (reading_outside: whose reading)
   bool operator==(const UnitCaution&) const = default;
 };
 std::string caution_text(const UnitCaution& caution);

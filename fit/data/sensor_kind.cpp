@@ -39,17 +39,14 @@ const SensorKind kKinds[] = {
 };
 // clang-format on
 
-const SensorKind* const kKindList[] = {&kKinds[0], &kKinds[1], &kKinds[2], &kKinds[3]};
-static_assert(std::size(kKindList) == std::size(kKinds));
-
 }  // namespace
 
-std::span<const SensorKind* const> sensor_kinds() { return kKindList; }
+std::span<const SensorKind> sensor_kinds() { return kKinds; }
 
 std::string sensor_kind_names() {
   std::string out;
-  for (std::size_t k = 0; k < std::size(kKindList); ++k)
-    out += std::string(k == 0 ? "" : k + 1 == std::size(kKindList) ? " or " : ", ") + std::string(kKindList[k]->name);
+  for (std::size_t k = 0; k < std::size(kKinds); ++k)
+    out += std::string(k == 0 ? "" : k + 1 == std::size(kKinds) ? " or " : ", ") + std::string(kKinds[k].name);
   return out;
 }
 
@@ -70,8 +67,8 @@ bool names_sensor(std::string_view name, const SensorKind& kind) {
 
 const SensorKind& sensor_kind(std::string_view name) {
   if (name.empty()) return kKinds[0];
-  for (const SensorKind* k : kKindList)
-    if (k->name == name) return *k;
+  for (const SensorKind& k : kKinds)
+    if (k.name == name) return k;
   throw InputError(fmt::format("--sensor '{}': must be {}", name, sensor_kind_names()));
 }
 

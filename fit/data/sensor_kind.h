@@ -45,7 +45,7 @@ struct SensorKind {
 };
 
 // Every kind, in the registry's order (gyro first).
-std::span<const SensorKind* const> sensor_kinds();
+std::span<const SensorKind> sensor_kinds();
 // The kind named `name` (empty: the gyro); throws InputError naming
 // --sensor and the known names.
 const SensorKind& sensor_kind(std::string_view name);

@@ -175,11 +175,14 @@ std::vector<NoiseModel> plausible_models(const NoiseModel& model, const WindowGr
 std::vector<NoiseParameter> NoiseModel::parameters() const {
   std::vector<NoiseParameter> out;
   const double z = kZ95;
-  // value = factor · amplitude^power, an interval from the log-amplitude's sd.
-  auto add = [&](std::string_view name, std::string_view unit, int k, int p, double factor, double power) {
+  // value = factor · amplitude^½ under the sensor's name and unit, an
+  // interval from the log-amplitude's sd.
+  constexpr double power = 0.5;
+  const std::array<NoiseName, 4>& names = (sensor != nullptr ? *sensor : sensor_kind("")).noise;
+  auto add = [&](int k, int p, double factor) {
     NoiseParameter q;
-    q.name = std::string(name);
-    q.unit = std::string(unit);
+    q.name = std::string(names[static_cast<std::size_t>(k)].name);
+    q.unit = std::string(names[static_cast<std::size_t>(k)].unit);
     const double v = amplitude[static_cast<std::size_t>(k)];
     q.value = v > 0.0 ? factor * std::pow(v, power) : 0.0;
     q.identified = identified[static_cast<std::size_t>(k)];
@@ -193,13 +196,9 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
     }
     out.push_back(q);
   };
-  const std::array<NoiseName, 4>& names = (sensor != nullptr ? *sensor : sensor_kind("")).noise;
-  const auto named = [&](const NoiseName& n, int k, int p, double factor) {
-    add(n.name, n.unit, k, p, factor, 0.5);
-  };
-  named(names[kWhite], kWhite, 0, names[kWhite].factor);
-  named(names[kFlicker], kFlicker, 1, flicker_floor_per_s);
-  named(names[kGaussMarkov], kGaussMarkov, 2, 1.0);
+  add(kWhite, 0, names[kWhite].factor);
+  add(kFlicker, 1, flicker_floor_per_s);
+  add(kGaussMarkov, 2, 1.0);
   if (present[kGaussMarkov]) {
     NoiseParameter q{"gauss_markov_tau", "s", gm_tau_s, 0, 0, identified[kGaussMarkov]};
     const double sd = std::sqrt(std::max(0.0, covariance(3, 3)));
@@ -207,7 +206,7 @@ std::vector<NoiseParameter> NoiseModel::parameters() const {
     q.upper = gm_tau_s * std::exp(z * sd);
     out.push_back(q);
   }
-  named(names[kRandomWalk], kRandomWalk, 4, names[kRandomWalk].factor);
+  add(kRandomWalk, 4, names[kRandomWalk].factor);
   return out;
 }
 
@@ -270,17 +269,13 @@ namespace {
 // A parameter's unit as the text reports write units (°/√h), from the ASCII
 // form its JSON `unit` field keeps (deg/sqrt(h)).
 std::string shown_unit(const std::string& unit) {
-  if (unit == "deg/sqrt(h)") return "°/√h";
-  if (unit == "deg/h") return "°/h";
-  if (unit == "deg/h/sqrt(h)") return "°/h/√h";
-  if (unit == "m/s/sqrt(h)") return "m/s/√h";
-  if (unit == "m/s^2") return "m/s²";
-  if (unit == "m/s^2/sqrt(h)") return "m/s²/√h";
-  if (unit == "Pa*sqrt(s)") return "Pa·√s";
-  if (unit == "Pa/sqrt(h)") return "Pa/√h";
-  if (unit == "gauss*sqrt(s)") return "gauss·√s";
-  if (unit == "gauss/sqrt(h)") return "gauss/√h";
-  return unit;
+  static constexpr std::pair<std::string_view, std::string_view> kShown[] = {
+      {"deg", "°"}, {"sqrt(h)", "√h"}, {"sqrt(s)", "√s"}, {"^2", "²"}, {"*", "·"}};
+  std::string out = unit;
+  for (const auto& [ascii, shown] : kShown)
+    for (std::size_t at = out.find(ascii); at != std::string::npos; at = out.find(ascii, at + shown.size()))
+      out.replace(at, ascii.size(), shown);
+  return out;
 }
 
 }  // namespace
