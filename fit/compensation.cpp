@@ -73,14 +73,20 @@ double model_at(const AveragedSeries& s, const std::vector<double>& model, doubl
   return model[p] + f * (model[p + 1] - model[p]);
 }
 
+// The unit part of a kind's default column ("dph", "mps2", "pa", "gauss"):
+// the suffix of the output's model and compensated columns.
+std::string_view column_suffix(const SensorKind& kind) { return kind.column.substr(kind.column.find('_') + 1); }
+
 std::string csv_head(const Compensation& c) {
   // The figure is the prepared windows', which leave the glitches out; a
   // user averaging the compensated column would keep them unless told.
   const std::size_t removed = c.data.outliers.removed;
+  const SensorKind& kind = c.data.units.kind();
+  const std::string_view suffix = column_suffix(kind);
   return fmt::format(
-      "# gyrotherm compensate: compensated_dph = gyro_dph - model_dph; instability "
-      "{:.6g} -> {:.6g} deg/h{}\ntime_s,temp_c,gyro_dph,model_dph,compensated_dph,outlier\n",
-      c.before_dph, c.after_dph,
+      "# gyrotherm compensate: compensated_{1} = {0} - model_{1}; instability "
+      "{2:.6g} -> {3:.6g} {4}{5}\ntime_s,temp_c,{0},model_{1},compensated_{1},outlier\n",
+      kind.column, suffix, c.before_dph, c.after_dph, kind.noise[1].unit,
       removed == 0 ? std::string()
                    : fmt::format(" (window averages without {} glitch{}; the outlier column marks the samples flagged)",
                                  removed, removed == 1 ? "" : "es"));
@@ -253,11 +259,12 @@ void write_compensated_csv(const std::filesystem::path& file, const Compensation
 namespace {
 
 // The columns' name for a channel: the channel's own, but without a unit it
-// states that is not °/h ("gyrox rad/s" -> "gyrox_dph"): the file holds °/h,
-// and a name saying rad/s would be read back as rad/s.
-std::pair<std::string, std::string> channel_columns(const std::string& name) {
-  const HeaderUnit stated = unit_in_header(Quantity::gyro, name);
-  if (stated.said.empty() || (stated.unit != nullptr && stated.unit->name == "dph"))
+// states that is not the base unit ("gyrox rad/s" -> "gyrox_dph"): the file
+// holds °/h (another sensor's base unit), and a name saying rad/s would be
+// read back as rad/s.
+std::pair<std::string, std::string> channel_columns(const std::string& name, const SensorKind& kind) {
+  const HeaderUnit stated = unit_in_header(kind.quantity, name);
+  if (stated.said.empty() || (stated.unit != nullptr && stated.unit->name == base_unit(kind.quantity)))
     return {name, name};
   // The unit as the name writes it: "rad/s", or "rad_s" where the name joins with underscores.
   std::string written = stated.said;
@@ -268,8 +275,8 @@ std::pair<std::string, std::string> channel_columns(const std::string& name) {
   }
   std::string base = name.substr(0, at);
   while (!base.empty() && std::string_view(" _([").find(base.back()) != std::string_view::npos) base.pop_back();
-  if (base.empty()) base = "gyro";
-  return {base + "_dph", base};
+  if (base.empty()) base = std::string(kind.name);
+  return {fmt::format("{}_{}", base, column_suffix(kind)), base};
 }
 
 }  // namespace
@@ -277,13 +284,16 @@ std::pair<std::string, std::string> channel_columns(const std::string& name) {
 void write_compensated_csv(const std::filesystem::path& file,
                            const std::vector<std::pair<std::string, Compensation>>& channels) {
   fmt::memory_buffer out;
+  const SensorKind& kind = channels.front().second.data.units.kind();
+  const std::string_view suffix = column_suffix(kind);
   fmt::format_to(std::back_inserter(out),
-                 "# gyrotherm compensate: NAME_compensated_dph = NAME - NAME_model_dph, per channel, all in deg/h "
-                 "(a channel named with another unit is written as its name without it, _dph)\n");
+                 "# gyrotherm compensate: NAME_compensated_{0} = NAME - NAME_model_{0}, per channel, all in {1} "
+                 "(a channel named with another unit is written as its name without it, _{0})\n",
+                 suffix, kind.noise[1].unit);
   fmt::format_to(std::back_inserter(out), "time_s,temp_c");
   for (const auto& [name, c] : channels) {
-    const auto [raw, stem] = channel_columns(name);
-    fmt::format_to(std::back_inserter(out), ",{0},{1}_model_dph,{1}_compensated_dph,{1}_outlier", raw, stem);
+    const auto [raw, stem] = channel_columns(name, kind);
+    fmt::format_to(std::back_inserter(out), ",{0},{1}_model_{2},{1}_compensated_{2},{1}_outlier", raw, stem, suffix);
   }
   fmt::format_to(std::back_inserter(out), "\n");
   const Compensation& first = channels.front().second;
@@ -306,6 +316,11 @@ nlohmann::ordered_json compensation_json(const Compensation& c, const SavedFit& 
   j["model"] = formula_text(fit.terms);
   j["engine"] = fit.engine;
   j["derivative"] = to_string(pipeline.derivative);
+  if (const SensorKind& kind = c.data.units.kind(); !kind.is_gyro) {
+    // Another sensor's: the *_dph fields in its base unit (as its fit's).
+    j["sensor"] = kind.name;
+    j["unit"] = kind.unit;
+  }
   j["instability_before_dph"] = c.before_dph;
   j["instability_after_dph"] = c.after_dph;
   j["ratio"] = c.ratio();

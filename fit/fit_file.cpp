@@ -365,7 +365,7 @@ void read_record(const nlohmann::json& j, SavedFit& s) {
   }
 }
 
-SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::json& j) {
+SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::json& j, FitKinds kinds) {
   SavedFit s;
   s.file = file;
   try {
@@ -391,29 +391,40 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     }
   }
   // Another sensor's fit, by its units (a gyro's when it has none) or by its
-  // top-level "sensor": not applied as a gyro's.
-  if (const SensorKind& kind = s.pipeline.columns.units.kind(); !kind.is_gyro)
+  // top-level "sensor": not applied as a gyro's, and the two must agree.
+  const SensorKind& kind = s.pipeline.columns.units.kind();
+  if (kinds == FitKinds::any) {
+    const std::string top = j.contains("sensor") && j["sensor"].is_string() ? j["sensor"].get<std::string>() : "gyro";
+    if (top != kind.name)
+      throw InputError(fmt::format("{}: its \"sensor\" is \"{}\" but pipeline.columns.units.sensor is {}: the fit "
+                                   "file was edited; fit again",
+                                   file.string(), top, kind.name));
+    return s;
+  }
+  if (!kind.is_gyro)
     throw InputError(fmt::format("{}: pipeline.columns.units.sensor is {} (the {}'s fit): compensate, check, "
-                                 "export, report and allan --fit take a gyro's fit only, so far",
+                                 "report and allan --fit take a gyro's fit only, so far (export takes it)",
                                  file.string(), kind.name, kind.noun));
   if (j.contains("sensor") && j["sensor"] != "gyro")
-    throw InputError(fmt::format("{}: the fit of a sensor of kind {} (its \"sensor\"): compensate, check, export, "
-                                 "report and allan --fit take a gyro's fit only, so far",
+    throw InputError(fmt::format("{}: the fit of a sensor of kind {} (its \"sensor\"): compensate, check, "
+                                 "report and allan --fit take a gyro's fit only, so far (export takes it)",
                                  file.string(), j["sensor"].dump()));
   return s;
 }
 }  // namespace
 
-std::vector<SavedFit> load_fits(const std::filesystem::path& file) { return load_fits_json(read_json(file), file); }
+std::vector<SavedFit> load_fits(const std::filesystem::path& file, FitKinds kinds) {
+  return load_fits_json(read_json(file), file, kinds);
+}
 
-std::vector<SavedFit> load_fits_json(const nlohmann::json& j, const std::filesystem::path& file) {
+std::vector<SavedFit> load_fits_json(const nlohmann::json& j, const std::filesystem::path& file, FitKinds kinds) {
   try {
-    if (!j.is_object() || !j.contains("channels")) return {load_fit_unchecked(file, j)};
+    if (!j.is_object() || !j.contains("channels")) return {load_fit_unchecked(file, j, kinds)};
     if (!j["channels"].is_array() || j["channels"].empty())
       throw InputError(fmt::format("{}: channels: expected a list of fits", file.string()));
     std::vector<SavedFit> fits;
     for (const nlohmann::json& c : j["channels"]) {
-      SavedFit s = load_fit_unchecked(file, c);
+      SavedFit s = load_fit_unchecked(file, c, kinds);
       s.channel = c.contains("channel") && c["channel"].is_string() ? c["channel"].get<std::string>()
                                                                    : s.pipeline.columns.gyro;
       fits.push_back(std::move(s));

@@ -83,14 +83,21 @@ struct SavedFit {
   std::optional<bool> bursts;
 };
 
-// Throws InputError naming the file and the field for anything missing or malformed.
+// Which sensors' fits a reader takes (fit/data/sensor_kind.h): a gyro's
+// only (compensate, check, report, allan --fit: refused with a message
+// naming the fit's kind), or any (export).
+enum class FitKinds { gyro, any };
+
+// Throws InputError naming the file and the field for anything missing or
+// malformed, and for a fit whose top-level "sensor" contradicts its units'.
 SavedFit load_fit(const std::filesystem::path& file);
 // Every channel of a fit file: one for a single-channel file.
-std::vector<SavedFit> load_fits(const std::filesystem::path& file);
+std::vector<SavedFit> load_fits(const std::filesystem::path& file, FitKinds kinds = FitKinds::gyro);
 // The same, of a fit file's JSON already parsed (a Python FitResult's); `file`
 // names it in messages and as SavedFit::file: kFitInMemory (fit/data/
 // measurement.h) for a fit that was never a file (the units then come "from
 // the fit given in memory").
-std::vector<SavedFit> load_fits_json(const nlohmann::json& fit, const std::filesystem::path& file);
+std::vector<SavedFit> load_fits_json(const nlohmann::json& fit, const std::filesystem::path& file,
+                                     FitKinds kinds = FitKinds::gyro);
 
 }  // namespace gyrotherm::fit

@@ -34,8 +34,8 @@ inline std::ostream& operator<<(std::ostream& os, const LogSample& s) {
 }
 
 // A reader: fit::read_ulog or fit::read_dataflash.
-using LogReaderFn = fit::LogContents (*)(const std::filesystem::path& file, int instance,
-                                         const fit::GyroSampleSink& sink);
+using LogReaderFn = fit::AutopilotReader;
+inline const fit::SensorKind& gyro_kind() { return fit::sensor_kinds().front(); }
 
 // Every sample of gyro `instance` (-1: the default one) in file order, and
 // the contents in *contents when it is given.
@@ -43,7 +43,8 @@ inline std::vector<LogSample> read_samples(LogReaderFn read, const std::filesyst
                                            fit::LogContents* contents = nullptr) {
   std::vector<LogSample> out;
   const fit::LogContents c =
-      read(file, instance, [&](double t, double tc, double x, double y, double z) { out.push_back({t, tc, x, y, z}); });
+      read(file, instance, [&](double t, double tc, double x, double y, double z) { out.push_back({t, tc, x, y, z}); },
+           gyro_kind());
   if (contents != nullptr) *contents = c;
   return out;
 }
@@ -54,10 +55,13 @@ inline void expect_every_sample(LogReaderFn read, const std::filesystem::path& f
                                 const std::function<LogSample(int k)>& expected) {
   std::size_t count = 0;
   bool all_equal = true;
-  read(file, instance, [&](double t, double tc, double x, double y, double z) {
-    all_equal = all_equal && LogSample{t, tc, x, y, z} == expected(static_cast<int>(count));
-    ++count;
-  });
+  read(
+      file, instance,
+      [&](double t, double tc, double x, double y, double z) {
+        all_equal = all_equal && LogSample{t, tc, x, y, z} == expected(static_cast<int>(count));
+        ++count;
+      },
+      gyro_kind());
   EXPECT_EQ(count, n);
   EXPECT_TRUE(all_equal);
 }
@@ -81,7 +85,7 @@ template <class Writer>
 void expect_refused(LogReaderFn read, const std::filesystem::path& file, const Writer& log,
                     const std::vector<std::string>& words) {
   log.save(file);
-  expect_input_error([&] { read(file, -1, {}); }, words);
+  expect_input_error([&] { read(file, -1, {}, gyro_kind()); }, words);
 }
 
 // The choice of a gyro, the same for both formats (fit/data/autopilot_log.h):
@@ -97,12 +101,12 @@ void expect_gyro_choice(LogReaderFn read, const std::filesystem::path& file, con
   expect_input_error([&] { read_samples(read, file, absent); },
                      {file.filename().string(), "no gyro instance " + std::to_string(absent), "instances " + held});
   without.save(file);
-  const fit::LogContents c = read(file, -1, {});
+  const fit::LogContents c = read(file, -1, {}, gyro_kind());
   EXPECT_EQ(c.default_instance(), -1);
   EXPECT_EQ(c.describe(), format + ": no gyro samples");
   expect_input_error([&] { read_samples(read, file, -1); },
                      {"none is chosen by default", format + ": no gyro samples"});
-  expect_input_error([&] { read(file, 0, {}); }, {"no gyro instance 0", "it holds no gyro"});
+  expect_input_error([&] { read(file, 0, {}, gyro_kind()); }, {"no gyro instance 0", "it holds no gyro"});
 }
 
 }  // namespace gyrotherm::testing

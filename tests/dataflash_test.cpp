@@ -88,14 +88,14 @@ TEST(DataFlash, Copter4ImuWithTheInstanceField) {
   }
   const LogContents c = read_dataflash(file);
   EXPECT_EQ(c.format, "DataFlash");
-  ASSERT_EQ(c.gyros.size(), 2u);
-  EXPECT_EQ(c.gyros[0].instance, 0);
-  EXPECT_EQ(c.gyros[0].message, "IMU");
-  EXPECT_EQ(c.gyros[0].device_id, 0u);
-  EXPECT_EQ(c.gyros[1].samples_with_temperature, 5u);
-  EXPECT_EQ(c.gyros[1].temp_min_c, 44.25);
-  EXPECT_EQ(c.gyros[1].temp_max_c, 44.75);
-  EXPECT_EQ(c.gyros[1].first_time_s, 60.00001);
+  ASSERT_EQ(c.sensors.size(), 2u);
+  EXPECT_EQ(c.sensors[0].instance, 0);
+  EXPECT_EQ(c.sensors[0].message, "IMU");
+  EXPECT_EQ(c.sensors[0].device_id, 0u);
+  EXPECT_EQ(c.sensors[1].samples_with_temperature, 5u);
+  EXPECT_EQ(c.sensors[1].temp_min_c, 44.25);
+  EXPECT_EQ(c.sensors[1].temp_max_c, 44.75);
+  EXPECT_EQ(c.sensors[1].first_time_s, 60.00001);
   EXPECT_EQ(c.default_instance(), 1);
   EXPECT_EQ(c.describe(),
             "DataFlash: IMU instance 0: 5 samples, 60.000..60.010 s, temperature NaN throughout; "
@@ -127,9 +127,9 @@ TEST(DataFlash, Copter36ImuImu2Imu3) {
     const std::vector<Sample> got = read_samples(file, i, &c);
     ASSERT_EQ(got.size(), 3u);
     for (int k = 0; k < 3; ++k) EXPECT_EQ(got[k], expected(i, k));
-    ASSERT_EQ(c.gyros.size(), 3u);
-    EXPECT_EQ(c.gyros[i].message, i == 0 ? "IMU" : "IMU" + std::to_string(i + 1));
-    EXPECT_EQ(c.gyros[i].instance, i);
+    ASSERT_EQ(c.sensors.size(), 3u);
+    EXPECT_EQ(c.sensors[i].message, i == 0 ? "IMU" : "IMU" + std::to_string(i + 1));
+    EXPECT_EQ(c.sensors[i].instance, i);
     EXPECT_EQ(c.default_instance(), 0);
   }
 }
@@ -233,7 +233,7 @@ TEST(DataFlash, FormatsThatCannotBeRead) {
       .message(150, std::string(10, '\0'))
       .message(140, imu4(1, 2, 1.0f).bytes());
   fine.save(file);
-  EXPECT_EQ(read_dataflash(file).gyros.at(1).samples, 3u);
+  EXPECT_EQ(read_dataflash(file).sensors.at(1).samples, 3u);
   // A FMT that contradicts itself for a message the reader does not need (a
   // Copter 3.4 log's BAR3: 'QffcfI' adds up to 29 bytes, the FMT says 33): its
   // messages are skipped by the FMT's length, and the log's description says so.
@@ -243,7 +243,7 @@ TEST(DataFlash, FormatsThatCannotBeRead) {
       .message(140, imu4(1, 2, 1.0f).bytes());
   wild.save(file);
   const LogContents c = read_dataflash(file);
-  EXPECT_EQ(c.gyros.at(1).samples, 3u);
+  EXPECT_EQ(c.sensors.at(1).samples, 3u);
   ASSERT_EQ(c.skipped_types.size(), 1u);
   EXPECT_NE(c.describe().find("skipped (not read): FMT of type 199 'BAR3' (format 'QffcfI'): the format adds up to 29 "
                               "bytes with the header, the FMT says 33"),

@@ -93,12 +93,20 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, FirmwareExport,
                                            std::pair<std::string, std::string>{"warmup", "T + T^2"}));
 
 TEST(FirmwareExportMath, ReexpansionIsExact) {
-  CubicModel m;
-  m.c = {1.5, -0.25, 3e-3, -2e-5};
-  for (const double r : {-10.0, 0.0, 22.5, 35.0}) {
-    const auto a = reexpand(m, r);
-    for (const double d : {-30.0, -1.0, 0.0, 2.5, 40.0})
-      EXPECT_NEAR(a[0] + d * (a[1] + d * (a[2] + d * a[3])), m.evaluate(r + d), 1e-12 * (1.0 + std::abs(m.evaluate(r + d))));
+  // A cubic (every firmware's gyro) and a quintic (PX4's barometer).
+  for (const std::array<double, 6>& c : {std::array<double, 6>{1.5, -0.25, 3e-3, -2e-5, 0.0, 0.0},
+                                         std::array<double, 6>{1.5, -0.25, 3e-3, -2e-5, 4e-7, -3e-9}}) {
+    PolynomialModel m;
+    m.c = c;
+    for (const double r : {-10.0, 0.0, 22.5, 35.0}) {
+      const auto a = reexpand(m, r);
+      if (c[5] == 0.0) {
+        EXPECT_EQ(a[4], 0.0);
+      }
+      for (const double d : {-30.0, -1.0, 0.0, 2.5, 40.0})
+        EXPECT_NEAR(a[0] + d * (a[1] + d * (a[2] + d * (a[3] + d * (a[4] + d * a[5])))), m.evaluate(r + d),
+                    1e-12 * (1.0 + std::abs(m.evaluate(r + d))));
+    }
   }
 }
 

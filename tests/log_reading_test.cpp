@@ -121,10 +121,10 @@ TEST(LogReading, EachRegisteredFormatIsKnownByItsFirstBytes) {
     const fit::LogFormat* format = fit::log_format_of(dir / file);
     ASSERT_NE(format, nullptr) << file;
     EXPECT_EQ(format->name, name);
-    const fit::LogContents contents = format->read(dir / file, -1, {});
+    const fit::LogContents contents = format->read(dir / file, -1, {}, fit::sensor_kind("gyro"));
     EXPECT_EQ(contents.format, title);
     EXPECT_TRUE(fit::stated_by_log_format(contents.format + " sensor_gyro instance 1"));
-    EXPECT_EQ(contents.gyros.back().samples, samples.size()) << file;
+    EXPECT_EQ(contents.sensors.back().samples, samples.size()) << file;
   }
   EXPECT_FALSE(fit::stated_by_log_format("the header of column gyro_x"));
 }

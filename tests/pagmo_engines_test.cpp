@@ -30,12 +30,12 @@
 namespace gyrotherm::fit {
 namespace {
 
-struct Synthetic {
+struct PagmoSynthetic {
   LinearProblem problem;
   double optimum;  // σ*
 };
 
-Synthetic make_synthetic() {
+PagmoSynthetic make_synthetic() {
   constexpr int l = 300;
   constexpr double dt_s = 100.0;
   constexpr double period_s = l * dt_s / 2.0;
@@ -61,8 +61,8 @@ Synthetic make_synthetic() {
   return {LinearProblem(x, y, {"T", "T^2", "dT/dt"}), optimum};
 }
 
-const Synthetic& synthetic() {
-  static const Synthetic s = make_synthetic();
+const PagmoSynthetic& synthetic() {
+  static const PagmoSynthetic s = make_synthetic();
   return s;
 }
 

@@ -57,23 +57,34 @@ inline std::map<std::string, float> read_ap(const std::string& text) {
   });
 }
 
-// PX4's calc_thermal_offsets_3D for one axis, in float as the firmware does.
-inline float px4_offset(const std::map<std::string, float>& p, int axis, float temp) {
-  const float tmax = p.at("TC_G0_TMAX"), tmin = p.at("TC_G0_TMIN"), tref = p.at("TC_G0_TREF");
+// PX4's calc_thermal_offsets_3D (order 3; `suffix` "_0".."_2" the axis) or
+// _1D (a barometer's: order 5, no suffix) of the parameters `stem` (TC_G0,
+// TC_A0, TC_B0), in float as the firmware does: the temperature clipped to
+// [TMIN, TMAX], offset = x0 + x1 d + x2 d² + ..., each power the last times d.
+inline float px4_offset_of(const std::map<std::string, float>& p, const std::string& stem, const std::string& suffix,
+                           int order, float temp) {
+  const float tmax = p.at(stem + "_TMAX"), tmin = p.at(stem + "_TMIN"), tref = p.at(stem + "_TREF");
   float delta_temp;
   if (temp > tmax) delta_temp = tmax - tref;
   else if (temp < tmin) delta_temp = tmin - tref;
   else delta_temp = temp - tref;
-  const float delta_temp_2 = delta_temp * delta_temp;
-  const float delta_temp_3 = delta_temp_2 * delta_temp;
-  const auto x = [&](int k) { return p.at("TC_G0_X" + std::to_string(k) + "_" + std::to_string(axis)); };
-  return x(0) + x(1) * delta_temp + x(2) * delta_temp_2 + x(3) * delta_temp_3;
+  const auto x = [&](int k) { return p.at(stem + "_X" + std::to_string(k) + suffix); };
+  float power = delta_temp, offset = x(0);
+  for (int k = 1; k <= order; ++k, power *= delta_temp) offset += x(k) * power;
+  return offset;
 }
 
-// ArduPilot's correct_sensor for one axis: what it subtracts from the gyro.
-inline float ardupilot_subtracted(const std::map<std::string, float>& p, char axis, float temp, float cal_temp) {
+// The gyro's (TC_G0) for one axis.
+inline float px4_offset(const std::map<std::string, float>& p, int axis, float temp) {
+  return px4_offset_of(p, "TC_G0", "_" + std::to_string(axis), 3, temp);
+}
+
+// ArduPilot's correct_sensor for one axis: what it subtracts from the gyro
+// (`group` GYR) or the accelerometer (ACC).
+inline float ardupilot_subtracted(const std::map<std::string, float>& p, char axis, float temp, float cal_temp,
+                                  const std::string& group = "GYR") {
   const float tmin = p.at("INS_TCAL1_TMIN"), tmax = p.at("INS_TCAL1_TMAX");
-  const auto g = [&](int k) { return p.at("INS_TCAL1_GYR" + std::to_string(k) + "_" + axis); };
+  const auto g = [&](int k) { return p.at("INS_TCAL1_" + group + std::to_string(k) + "_" + axis); };
   const auto poly = [&](float tdiff) { return (g(1) + (g(2) + g(3) * tdiff) * tdiff) * tdiff * 1.0e-6f; };
   temp = std::clamp(temp, tmin, tmax);
   cal_temp = std::clamp(cal_temp, tmin, tmax);
@@ -91,22 +102,30 @@ inline double instability(const fit::Measurement& m, const std::vector<double>& 
   return std::sqrt(ss / static_cast<double>(w.size() - 1));
 }
 
-// What PX4 subtracts from each sample of `m` (°/h) with the parameters `p`:
-// the module runs once a second and publishes the offsets of the temperature
-// it sees when that has moved more than 1 °C since the last published.
-inline std::vector<double> px4_as_applied(const fit::Measurement& m, const std::map<std::string, float>& p, int axis) {
+// What PX4 subtracts from each sample of `m`, in its base unit, given the
+// firmware's offset at a temperature (`offset`, in the firmware's unit, that
+// many per base unit: `per_base`): the module runs once a second and
+// publishes the offsets of the temperature it sees when that has moved more
+// than 1 °C since the last published.
+template <class Offset>
+std::vector<double> px4_as_applied(const fit::Measurement& m, Offset offset, double per_base) {
   std::vector<double> applied(m.size());
   double held = 0.0, next_run = m.time_s[0];
   float last = -1e9f;
   for (std::size_t i = 0; i < m.size(); ++i) {
     if (m.time_s[i] >= next_run) {
       const auto temp = static_cast<float>(m.temp_c[i]);
-      if (std::fabs(temp - last) > 1.0f) held = px4_offset(p, axis, last = temp) / kDphToRadS;
+      if (std::fabs(temp - last) > 1.0f) held = offset(last = temp) / per_base;
       while (next_run <= m.time_s[i]) next_run += 1.0;
     }
     applied[i] = held;
   }
   return applied;
+}
+
+// The gyro's (°/h), of axis `axis` of TC_G0.
+inline std::vector<double> px4_as_applied(const fit::Measurement& m, const std::map<std::string, float>& p, int axis) {
+  return px4_as_applied(m, [&](float t) { return px4_offset(p, axis, t); }, kDphToRadS);
 }
 
 }  // namespace gyrotherm::testing

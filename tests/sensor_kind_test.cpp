@@ -206,23 +206,60 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
                  "accel_x_mps2 may be the accelerometer's: to fit it, give --sensor accel --gyro-col 'accel_x_mps2'");
   expect_refused(dir, "fit a.csv --sensor accel", "accel_x_mps2 may be the accelerometer's: give --gyro-col");
   // The other commands read a gyro only, so far.
-  for (const char* command : {"diagnose", "allan", "compensate", "check"})
+  for (const char* command : {"diagnose", "allan", "check"})
     expect_refused(dir, std::string(command) + " a.csv --sensor accel --gyro-col accel_x_mps2" +
-                            (std::string(command) == "compensate" ? " --fit x.json" : "") +
                             (std::string(command) == "check" ? " --params x.params" : ""),
                    std::string("--sensor accel: ") + command + " reads a gyro only, so far");
   // An accelerometer's fit file is not applied as a gyro's, nor its noise planned with.
   ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --gyro-col accel_x_mps2 --model T -o a_fit.json").exit_code, 0);
   expect_refused(dir, "plan --noise a_fit.json --model T", "plan designs a gyro's test only, so far");
-  expect_refused(dir, "compensate a.csv --fit a_fit.json -o out.csv",
+  expect_refused(dir, "check a.csv --params a_fit.json",
                  "pipeline.columns.units.sensor is accel (the accelerometer's fit)");
+  expect_refused(dir, "compensate a.csv --fit a_fit.json --sensor gyro -o out.csv",
+                 "--sensor gyro: a_fit.json is the accelerometer's fit (--sensor accel)");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
   // A fit file whose units were edited away still names its sensor at the top.
   ASSERT_EQ(run_cli(dir, "fit g.csv --gyro-col rate_dph --model T -o g_fit.json").exit_code, 0);
   ASSERT_EQ(run_shell(dir, "sed -i '1s/^{/{\"sensor\": \"accel\",/' g_fit.json").exit_code, 0);
+  expect_refused(dir, "check g.csv --params g_fit.json",
+                 "the fit of a sensor of kind \"accel\" (its \"sensor\"): compensate, check, report");
   expect_refused(dir, "compensate g.csv --fit g_fit.json -o out.csv",
-                 "the fit of a sensor of kind \"accel\" (its \"sensor\"): compensate, check, export");
+                 "its \"sensor\" is \"accel\" but pipeline.columns.units.sensor is gyro");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+}
+
+// compensate applies an accelerometer's fit in m/s², its columns named so.
+TEST(CliSensor, AnAccelerometersFitIsAppliedInItsUnits) {
+  ScratchDir dir;
+  write_accel_log(dir, "a.csv", "ax [g]", 9.80665);
+  ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --gyro-col 'ax [g]' --model T -o fit.json").exit_code, 0);
+  const CliResult r = run_cli(dir, "compensate a.csv --fit fit.json -o out.csv --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["sensor"], "accel");
+  EXPECT_EQ(j["unit"], "m/s²");
+  EXPECT_LT(j["instability_after_dph"].get<double>(), 0.1 * j["instability_before_dph"].get<double>());
+  const std::string out = testing::slurp(dir / "out.csv");
+  EXPECT_NE(out.find("time_s,temp_c,accel_mps2,model_mps2,compensated_mps2,outlier\n"), std::string::npos) << out.substr(0, 300);
+  EXPECT_NE(out.find("m/s^2"), std::string::npos);
+  // The compensated column: the raw in m/s² (0.3 + 0.002 T) less the model, flat about the constant.
+  const CliResult last = run_shell(dir, "tail -1 out.csv");
+  double t = 0, temp = 0, raw = 0, model = 0, compensated = 0;
+  ASSERT_EQ(std::sscanf(last.out.c_str(), "%lf,%lf,%lf,%lf,%lf", &t, &temp, &raw, &model, &compensated), 5);
+  EXPECT_NEAR(model, 0.3 + 0.002 * temp, 0.005);
+  EXPECT_NEAR(raw, 0.3 + 0.002 * temp, 0.1);  // m/s², not g
+  const CliResult text = run_cli(dir, "compensate a.csv --fit fit.json");
+  EXPECT_NE(text.out.find(" m/s² ("), std::string::npos) << text.out;
+  // Several channels: each named with its unit, the columns say m/s².
+  ASSERT_EQ(run_shell(dir, "awk -F, 'NR == 1 { print \"time_s,temp_c,acc_x (g),acc_y (g)\"; next } "
+                          "{ print $1 \",\" $2 \",\" $3 \",\" (-$3) }' a.csv | tee two.csv")
+                .exit_code,
+            0);
+  ASSERT_EQ(run_cli(dir, "fit two.csv --sensor accel --gyro-col 'acc_x (g),acc_y (g)' --model T -o two.json").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "compensate two.csv --fit two.json -o two_out.csv").exit_code, 0);
+  EXPECT_NE(testing::slurp(dir / "two_out.csv").find("acc_x_mps2,acc_x_model_mps2,acc_x_compensated_mps2"),
+            std::string::npos)
+      << testing::slurp(dir / "two_out.csv").substr(0, 400);
 }
 
 // Numbers that look like another unit than they are read in get a caution:

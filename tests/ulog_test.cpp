@@ -88,17 +88,17 @@ TEST(Ulog, CurrentLayoutGivesTheValuesWrittenForEachInstance) {
     EXPECT_FALSE(c.truncated);
   }
   const LogContents c = read_ulog(file);
-  ASSERT_EQ(c.gyros.size(), 3u);
-  EXPECT_EQ(c.gyros[0].instance, 0);
-  EXPECT_EQ(c.gyros[0].device_id, 2621450u);
-  EXPECT_EQ(c.gyros[0].samples, 4u);
-  EXPECT_EQ(c.gyros[0].samples_with_temperature, 0u);
-  EXPECT_TRUE(std::isnan(c.gyros[0].temp_min_c));
-  EXPECT_EQ(c.gyros[2].device_id, 3211274u);
-  EXPECT_EQ(c.gyros[2].first_time_s, 2.000002);
-  EXPECT_EQ(c.gyros[2].last_time_s, 2.750002);
-  EXPECT_EQ(c.gyros[2].temp_min_c, 32.0);
-  EXPECT_EQ(c.gyros[2].temp_max_c, 33.5);
+  ASSERT_EQ(c.sensors.size(), 3u);
+  EXPECT_EQ(c.sensors[0].instance, 0);
+  EXPECT_EQ(c.sensors[0].device_id, 2621450u);
+  EXPECT_EQ(c.sensors[0].samples, 4u);
+  EXPECT_EQ(c.sensors[0].samples_with_temperature, 0u);
+  EXPECT_TRUE(std::isnan(c.sensors[0].temp_min_c));
+  EXPECT_EQ(c.sensors[2].device_id, 3211274u);
+  EXPECT_EQ(c.sensors[2].first_time_s, 2.000002);
+  EXPECT_EQ(c.sensors[2].last_time_s, 2.750002);
+  EXPECT_EQ(c.sensors[2].temp_min_c, 32.0);
+  EXPECT_EQ(c.sensors[2].temp_max_c, 33.5);
   EXPECT_EQ(c.default_instance(), 1);  // instance 0 has no temperature
   EXPECT_EQ(c.describe(),
             "ULog v1: sensor_gyro instance 0 (device 2621450): 4 samples, 2.000..2.750 s, temperature NaN "
@@ -132,7 +132,7 @@ TEST(Ulog, ParametersAndTheAccelerometerAreKeptAndAnOddAccelFormatIsPassedOver) 
   odd.save(dir / "odd.ulg");
   const LogContents o = read_ulog(dir / "odd.ulg");
   EXPECT_EQ(o.accel(1), nullptr);
-  EXPECT_EQ(o.gyros.size(), 3u);
+  EXPECT_EQ(o.sensors.size(), 3u);
 }
 
 TEST(Ulog, ASinkWithoutAnInstanceTakesTheDefault) {
@@ -169,8 +169,8 @@ TEST(Ulog, OlderLayoutWithDeviceIdAfterTheTemperature) {
   const std::vector<Sample> got = read_samples(file, 0, &c);
   ASSERT_EQ(got.size(), 3u);
   for (int k = 0; k < 3; ++k) EXPECT_EQ(got[k], expected(0, k, false));
-  ASSERT_EQ(c.gyros.size(), 1u);
-  EXPECT_EQ(c.gyros[0].device_id, 1311244u);
+  ASSERT_EQ(c.sensors.size(), 1u);
+  EXPECT_EQ(c.sensors[0].device_id, 1311244u);
   EXPECT_EQ(c.default_instance(), 0);
 }
 
@@ -195,9 +195,9 @@ TEST(Ulog, NestedTypePaddingAndNoDeviceId) {
   ASSERT_EQ(got.size(), 2u);
   for (int k = 0; k < 2; ++k) EXPECT_EQ(got[k], expected(3, k, false, false));
   EXPECT_EQ(c.format, "ULog v2");
-  ASSERT_EQ(c.gyros.size(), 1u);
-  EXPECT_EQ(c.gyros[0].device_id, 0u);
-  EXPECT_EQ(c.gyros[0].samples_with_temperature, 0u);
+  ASSERT_EQ(c.sensors.size(), 1u);
+  EXPECT_EQ(c.sensors[0].device_id, 0u);
+  EXPECT_EQ(c.sensors[0].samples_with_temperature, 0u);
   EXPECT_EQ(c.default_instance(), -1);
   EXPECT_EQ(c.describe(), "ULog v2: sensor_gyro instance 3: 2 samples, 2.000..2.250 s, temperature NaN throughout");
   expect_input_error([&] { read_samples(file, -1); }, {"nested.ulg", "none is chosen by default"});
@@ -337,15 +337,15 @@ TEST(UlogRealLogs, SampleLogSmallHoldsThreeGyros) {
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "absent: " << file;
   EXPECT_EQ(autopilot_log_format(file), "ulog");
   const LogContents c = read_ulog(file);
-  ASSERT_EQ(c.gyros.size(), 3u) << c.describe();
+  ASSERT_EQ(c.sensors.size(), 3u) << c.describe();
   const double low[3] = {40.03, 28.25, 29.43}, high[3] = {40.36, 28.37, 29.72};
   for (int i = 0; i < 3; ++i) {
-    EXPECT_EQ(c.gyros[i].instance, i);
-    EXPECT_EQ(c.gyros[i].samples, 6u);
-    EXPECT_EQ(c.gyros[i].samples_with_temperature, 6u);
-    EXPECT_NEAR(c.gyros[i].temp_min_c, low[i], 0.005);
-    EXPECT_NEAR(c.gyros[i].temp_max_c, high[i], 0.005);
-    EXPECT_NE(c.gyros[i].device_id, 0u);
+    EXPECT_EQ(c.sensors[i].instance, i);
+    EXPECT_EQ(c.sensors[i].samples, 6u);
+    EXPECT_EQ(c.sensors[i].samples_with_temperature, 6u);
+    EXPECT_NEAR(c.sensors[i].temp_min_c, low[i], 0.005);
+    EXPECT_NEAR(c.sensors[i].temp_max_c, high[i], 0.005);
+    EXPECT_NE(c.sensors[i].device_id, 0u);
   }
   EXPECT_EQ(c.default_instance(), 0);
   EXPECT_FALSE(c.truncated);
@@ -359,13 +359,13 @@ TEST(UlogRealLogs, QuadrotorLocalDefaultsToTheGyroWithATemperature) {
   const auto file = real_log("quadrotor_local.ulg");
   if (!std::filesystem::exists(file)) GTEST_SKIP() << "absent: " << file;
   const LogContents c = read_ulog(file);
-  ASSERT_EQ(c.gyros.size(), 2u) << c.describe();
-  EXPECT_EQ(c.gyros[0].samples, 92u);
-  EXPECT_EQ(c.gyros[0].samples_with_temperature, 0u);
-  EXPECT_EQ(c.gyros[1].samples, 92u);
-  EXPECT_EQ(c.gyros[1].samples_with_temperature, 92u);
-  EXPECT_NEAR(c.gyros[1].temp_min_c, 23.95, 0.005);
-  EXPECT_NEAR(c.gyros[1].temp_max_c, 25.73, 0.005);
+  ASSERT_EQ(c.sensors.size(), 2u) << c.describe();
+  EXPECT_EQ(c.sensors[0].samples, 92u);
+  EXPECT_EQ(c.sensors[0].samples_with_temperature, 0u);
+  EXPECT_EQ(c.sensors[1].samples, 92u);
+  EXPECT_EQ(c.sensors[1].samples_with_temperature, 92u);
+  EXPECT_NEAR(c.sensors[1].temp_min_c, 23.95, 0.005);
+  EXPECT_NEAR(c.sensors[1].temp_max_c, 25.73, 0.005);
   EXPECT_EQ(c.default_instance(), 1);
   EXPECT_NE(c.describe().find("sensor_gyro instance 0"), std::string::npos);
   EXPECT_NE(c.describe().find("temperature NaN throughout"), std::string::npos);

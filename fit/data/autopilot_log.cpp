@@ -1,5 +1,5 @@
 // What the two binary log readers share (fit/data/binary_file.h) and the
-// summary of a log's gyros (fit/data/autopilot_log.h).
+// summary of a log's sensors of one kind (fit/data/autopilot_log.h).
 
 #include "fit/data/autopilot_log.h"
 
@@ -132,33 +132,34 @@ std::string hex_bytes(const std::uint8_t* p, std::size_t n) {
   return out;
 }
 
-void tally(LogGyro& gyro, double time_s, double temp_c) {
-  if (gyro.samples == 0) gyro.first_time_s = time_s;
-  gyro.last_time_s = time_s;
-  ++gyro.samples;
+void tally(LogSensor& sensor, double time_s, double temp_c) {
+  if (sensor.samples == 0) sensor.first_time_s = time_s;
+  sensor.last_time_s = time_s;
+  ++sensor.samples;
   if (std::isfinite(temp_c)) {
-    gyro.temp_min_c = gyro.samples_with_temperature == 0 ? temp_c : std::min(gyro.temp_min_c, temp_c);
-    gyro.temp_max_c = gyro.samples_with_temperature == 0 ? temp_c : std::max(gyro.temp_max_c, temp_c);
-    ++gyro.samples_with_temperature;
+    sensor.temp_min_c = sensor.samples_with_temperature == 0 ? temp_c : std::min(sensor.temp_min_c, temp_c);
+    sensor.temp_max_c = sensor.samples_with_temperature == 0 ? temp_c : std::max(sensor.temp_max_c, temp_c);
+    ++sensor.samples_with_temperature;
   }
 }
 
-std::size_t LogReader::gyro_of(int instance, std::string_view message) {
-  std::vector<LogGyro>& gyros = contents_.gyros;
-  const auto same = std::find_if(gyros.begin(), gyros.end(), [&](const LogGyro& g) { return g.instance == instance; });
-  if (same != gyros.end()) return static_cast<std::size_t>(same - gyros.begin());
-  LogGyro added;
+std::size_t LogReader::sensor_of(int instance, std::string_view message) {
+  std::vector<LogSensor>& sensors = contents_.sensors;
+  const auto same = std::find_if(sensors.begin(), sensors.end(), [&](const LogSensor& g) { return g.instance == instance; });
+  if (same != sensors.end()) return static_cast<std::size_t>(same - sensors.begin());
+  LogSensor added;
   added.instance = instance;
   added.message = std::string(message);
-  gyros.push_back(added);
-  return gyros.size() - 1;
+  sensors.push_back(added);
+  return sensors.size() - 1;
 }
 
-void LogReader::take_sample(LogGyro& gyro, double time_s, const Field& temperature, const Field& x, const Field& y,
+void LogReader::take_sample(LogSensor& sensor, double time_s, const Field& temperature, const Field& x, const Field& y,
                             const Field& z, const std::uint8_t* payload) {
   const double temp_c = temperature.present ? temperature.read(payload) : NAN;
-  tally(gyro, time_s, temp_c);
-  if (sink_ && gyro.instance == instance_) sink_(time_s, temp_c, x.read(payload), y.read(payload), z.read(payload));
+  tally(sensor, time_s, temp_c);
+  if (sink_ && sensor.instance == instance_)
+    sink_(time_s, temp_c, x.read(payload), y.present ? y.read(payload) : NAN, z.present ? z.read(payload) : NAN);
 }
 
 void LogReader::take_accel(int instance, double x, double y, double z) {
@@ -183,43 +184,45 @@ void LogReader::take_accel(int instance, double x, double y, double z) {
 }
 
 LogContents LogReader::finish() {
-  std::stable_sort(contents_.gyros.begin(), contents_.gyros.end(),
-                   [](const LogGyro& a, const LogGyro& b) { return a.instance < b.instance; });
+  std::stable_sort(contents_.sensors.begin(), contents_.sensors.end(),
+                   [](const LogSensor& a, const LogSensor& b) { return a.instance < b.instance; });
   std::stable_sort(contents_.accels.begin(), contents_.accels.end(),
                    [](const LogAccel& a, const LogAccel& b) { return a.instance < b.instance; });
   return std::move(contents_);
 }
 
-LogContents read_choosing(const std::filesystem::path& file, int instance, const GyroSampleSink& sink,
+LogContents read_choosing(const std::filesystem::path& file, int instance, const SampleSink& sink,
                           const OnePass& pass) {
   if (sink && instance < 0) {
     const LogContents contents = pass(file, -1, {});
     instance = contents.default_instance();
     if (instance < 0)
       throw InputError(located(file.string(), 0,
-                               fmt::format("no gyro has 2 samples with a temperature, so none is chosen by "
+                               fmt::format("no {} has 2 samples with a temperature, so none is chosen by "
                                            "default; the file holds: {}",
-                                           contents.describe())));
+                                           contents.kind->noun, contents.describe())));
   }
   LogContents contents = pass(file, instance, sink);
-  if (instance >= 0 && std::none_of(contents.gyros.begin(), contents.gyros.end(),
-                                    [&](const LogGyro& g) { return g.instance == instance; }))
+  if (instance >= 0 && std::none_of(contents.sensors.begin(), contents.sensors.end(),
+                                    [&](const LogSensor& g) { return g.instance == instance; }))
     throw InputError(located(file.string(), 0,
-                             contents.gyros.empty()
-                                 ? fmt::format("no gyro instance {} in the file; it holds no gyro", instance)
-                                 : fmt::format("no gyro instance {} in the file; it holds instance{} {}", instance,
-                                               contents.gyros.size() == 1 ? "" : "s", contents.instances())));
+                             contents.sensors.empty()
+                                 ? fmt::format("no {0} instance {1} in the file; it holds no {0}",
+                                               contents.kind->noun, instance)
+                                 : fmt::format("no {} instance {} in the file; it holds instance{} {}",
+                                               contents.kind->noun, instance, contents.sensors.size() == 1 ? "" : "s",
+                                               contents.instances())));
   return contents;
 }
 
 }  // namespace binary
 
 std::string LogContents::instances() const {
-  if (gyros.empty()) return "none";
+  if (sensors.empty()) return "none";
   std::string out;
-  for (std::size_t i = 0; i < gyros.size(); ++i) {
-    if (i > 0) out += i + 1 == gyros.size() ? " and " : ", ";
-    out += std::to_string(gyros[i].instance);
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    if (i > 0) out += i + 1 == sensors.size() ? " and " : ", ";
+    out += std::to_string(sensors[i].instance);
   }
   return out;
 }
@@ -232,9 +235,9 @@ const LogAccel* LogContents::accel(int instance) const {
 
 std::string LogContents::describe() const {
   std::string out = format + ":";
-  if (gyros.empty()) out += " no gyro samples";
-  for (std::size_t i = 0; i < gyros.size(); ++i) {
-    const LogGyro& g = gyros[i];
+  if (sensors.empty()) out += fmt::format(" no {} samples", kind == nullptr ? "gyro" : kind->noun);
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    const LogSensor& g = sensors[i];
     out += fmt::format("{} {} instance {}", i == 0 ? "" : ";", g.message, g.instance);
     if (g.device_id != 0) out += fmt::format(" (device {})", g.device_id);
     out += fmt::format(": {} sample{}", g.samples, g.samples == 1 ? "" : "s");
@@ -246,6 +249,7 @@ std::string LogContents::describe() const {
     if (g.samples_with_temperature > 0 && g.samples_with_temperature < g.samples)
       out += fmt::format(" ({} of {} samples with a temperature)", g.samples_with_temperature, g.samples);
   }
+  if (!unit_from.empty()) out += fmt::format("; read in {} ({})", unit, unit_from);
   if (truncated)
     out += fmt::format("; the file ends inside the message at byte {} (a power cut?): read up to there",
                        truncated_at_byte);
@@ -257,7 +261,7 @@ std::string LogContents::describe() const {
 }
 
 int LogContents::default_instance() const {
-  for (const LogGyro& g : gyros)
+  for (const LogSensor& g : sensors)
     if (g.samples_with_temperature >= 2) return g.instance;
   return -1;
 }

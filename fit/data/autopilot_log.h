@@ -1,8 +1,10 @@
 #pragma once
-// Reading the gyros of an autopilot's binary flight log (docs/contracts.md,
-// "Autopilot logs (ULog, DataFlash)"): for each gyro (IMU instance) the log
-// holds, its samples — time, temperature and the three rates — read in one
-// pass over the file in blocks (memory: the format table and one message).
+// Reading the sensors of one kind (fit/data/sensor_kind.h: gyro,
+// accelerometer, barometer, magnetometer) from an autopilot's binary flight
+// log (docs/contracts.md, "Autopilot logs (ULog, DataFlash)"): for each
+// instance of that kind the log holds, its samples — time, temperature and
+// the three axes (the barometer: one, the pressure) — read in one pass over
+// the file in blocks (memory: the format table and one message).
 //
 // PX4 ULog (fit/data/ulog.cpp). Reference: PX4-Autopilot,
 // docs/en/dev_log/ulog_file_format.md ("ULog File Format").
@@ -15,11 +17,16 @@
 // integer types, float, double, bool, char, arrays "float[3]", other formats
 // nested; fields named _padding* are skipped and a trailing one may be left
 // out of a data message); 'A' subscribes a format as msg_id with a multi_id
-// (the instance); 'D' is msg_id and the packed fields. The gyros are the
-// subscriptions of `sensor_gyro`: fields read by name at the offsets the
-// file's own format gives (`timestamp` µs, `x` `y` `z` rad/s, `temperature`
-// °C when present, `device_id` when present), since PX4 versions differ in
-// the set, order and padding of the fields. 'B' flag bits: data appended after
+// (the instance); 'D' is msg_id and the packed fields. A kind's instances are
+// the subscriptions of its topic (`sensor_gyro`, `sensor_accel`,
+// `sensor_baro`, `sensor_mag`): fields read by name at the offsets the file's
+// own format gives (`timestamp` µs, `x` `y` `z` in rad/s, m/s² or gauss, or
+// `pressure`, `temperature` °C when present, `device_id` when present), since
+// PX4 versions differ in the set, order and padding of the fields. PX4 logs
+// `pressure` in Pa from v1.13 on and in mbar before (PX4 pull request 19284,
+// 2022): the information message `ver_sw_release` (0xAABBCCTT: major AA,
+// minor BB) tells which; a log without it is read by its values (an
+// atmosphere is about 1e5 Pa or 1e3 mbar) and LogContents::unit_from says so. 'B' flag bits: data appended after
 // a cut message (incompat bit 0) is read as the spec says; any other
 // incompatible bit is refused. Other message types are skipped, as the spec
 // asks of a parser.
@@ -33,10 +40,13 @@
 //   format characters: b B h H i I f d n N Z c C e E L M q Q a g (sizes 1 1 2 2
 //   4 4 4 8 4 16 64 2 2 4 4 4 1 8 8 64 2; c C ×0.01, e E ×0.01, L ×1e-7)
 //
-// The gyros are the IMU messages, fields read by label from the file's FMT:
-// Copter 4.x `IMU` with the instance in `I`; Copter 3.6 `IMU`, `IMU2`, `IMU3`
-// (instances 0, 1, 2); time `TimeUS` (µs; `TimeMS` in ms in logs before 3.3),
-// `GyrX` `GyrY` `GyrZ` rad/s, temperature `T` (`Temp` before 3.6) °C.
+// The gyros and accelerometers are the IMU messages, the barometers the
+// BARO messages, fields read by label from the file's FMT: Copter 4.x `IMU`
+// and `BARO` with the instance in `I`; Copter 3.6 `IMU`, `IMU2`, `IMU3` and
+// `BARO`, `BAR2`, `BAR3` (instances 0, 1, 2); time `TimeUS` (µs; `TimeMS` in
+// ms in logs before 3.3), `GyrX` `GyrY` `GyrZ` rad/s, `AccX` `AccY` `AccZ`
+// m/s², `Press` Pa, temperature `T` (`Temp` before 3.6, and in BARO) °C. The
+// MAG message has no temperature: a DataFlash magnetometer is refused.
 //
 // Bad input — a file that is not the format, a corrupt message, a format
 // that cannot be read, an instance the file does not hold — throws
@@ -54,13 +64,15 @@
 #include <string_view>
 #include <vector>
 
+#include "fit/data/sensor_kind.h"
+
 namespace gyrotherm::fit {
 
-// One gyro (IMU instance) the log holds.
-struct LogGyro {
-  int instance = 0;             // ULog multi_id of sensor_gyro; DataFlash the I field, or IMU/IMU2/IMU3 -> 0/1/2
-  std::string message;          // "sensor_gyro", "IMU", "IMU2", "IMU3"
-  std::uint32_t device_id = 0;  // ULog sensor_gyro.device_id (first sample) when present, else 0
+// One sensor instance of the kind read that the log holds.
+struct LogSensor {
+  int instance = 0;             // ULog multi_id of the topic; DataFlash the I field, or IMU/IMU2/IMU3 -> 0/1/2
+  std::string message;          // "sensor_gyro", "sensor_baro", "IMU", "IMU2", "BARO"
+  std::uint32_t device_id = 0;  // ULog device_id (first sample) when present, else 0
   std::size_t samples = 0;
   std::size_t samples_with_temperature = 0;  // a finite temperature
   double first_time_s = NAN, last_time_s = NAN, temp_min_c = NAN, temp_max_c = NAN;
@@ -85,7 +97,13 @@ struct LogAccel {
 
 struct LogContents {
   std::string format;                   // "ULog v1" / "DataFlash"
-  std::vector<LogGyro> gyros;           // by instance, lowest first
+  const SensorKind* kind = nullptr;     // the kind read (never null in a reader's result)
+  std::vector<LogSensor> sensors;       // of that kind, by instance, lowest first
+  // The unit the samples are in (a name in fit/data/units.cpp: "rad/s",
+  // "mps2", "Pa", "mbar", "gauss"), and, when the format does not fix it,
+  // how it was told ("ver_sw_release v1.11", "pressure 1003: an atmosphere
+  // in mbar").
+  std::string unit, unit_from;
   std::vector<LogAccel> accels;         // by instance, lowest first (none when the log has no accelerometer)
   // The autopilot's parameters as the log records them (ULog 'P' messages,
   // DataFlash PARM), each name's first value: what was active when it was
@@ -107,32 +125,37 @@ struct LogContents {
   // "ULog v1: sensor_gyro instance 0 (device 2621450): 6 samples, 12.5..17.5 s,
   // 40.03..40.36 °C; sensor_gyro instance 2 (...): ..., temperature NaN throughout"
   std::string describe() const;
-  // The default choice: the first gyro (lowest instance) with at least 2
+  // The default choice: the first instance (lowest) with at least 2
   // samples with a finite temperature; -1 if none.
   int default_instance() const;
   // "0, 1 and 2" (the instances held), or "none".
   std::string instances() const;
 };
 
-// One sample of the chosen gyro: time in s (the log's µs timestamp / 1e6),
-// temperature °C (NaN if the sample has none), x y z rad/s.
-using GyroSampleSink = std::function<void(double time_s, double temp_c, double x, double y, double z)>;
+// One sample of the chosen instance: time in s (the log's µs timestamp /
+// 1e6), temperature °C (NaN if the sample has none), x y z in
+// LogContents::unit (a barometer: x the pressure, y and z NaN).
+using SampleSink = std::function<void(double time_s, double temp_c, double x, double y, double z)>;
 
-// Reads the whole file once and returns what it holds. With a sink, every
-// sample of gyro `instance` goes to it in file order; with an empty sink only
-// the contents are gathered. A sink with instance -1 takes the default
-// instance (the file is then read twice: contents, then samples). Throws
-// InputError (file, byte offset, what was expected) on a file that is not that
-// format, a corrupt message, or an `instance` not held (listing those held).
-LogContents read_ulog(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
-LogContents read_dataflash(const std::filesystem::path& file, int instance = -1, const GyroSampleSink& sink = {});
+// Reads the whole file once and returns what it holds of `kind`. With a
+// sink, every sample of `instance` goes to it in file order; with an empty
+// sink only the contents are gathered. A sink with instance -1 takes the
+// default instance (the file is then read twice: contents, then samples).
+// Throws InputError (file, byte offset, what was expected) on a file that is
+// not that format, a corrupt message, an `instance` not held (listing those
+// held), or a kind the format cannot give with a temperature.
+LogContents read_ulog(const std::filesystem::path& file, int instance = -1, const SampleSink& sink = {},
+                      const SensorKind& kind = sensor_kinds().front());
+LogContents read_dataflash(const std::filesystem::path& file, int instance = -1, const SampleSink& sink = {},
+                           const SensorKind& kind = sensor_kinds().front());
 
 // The binary log formats, a registry as the effects and the exporters are:
 // a format is one file (its reader, defining `LogFormat NAME_log_format()`),
 // one line LOG_FORMAT(NAME) in fit/data/log_formats.def and one test. A file
 // is a format's when it starts with that format's magic bytes; a file that
 // starts with none of them is read as a text table (CSV).
-using AutopilotReader = LogContents (*)(const std::filesystem::path& file, int instance, const GyroSampleSink& sink);
+using AutopilotReader = LogContents (*)(const std::filesystem::path& file, int instance, const SampleSink& sink,
+                                        const SensorKind& kind);
 struct LogFormat {
   std::string_view name;   // "ulog": what autopilot_log_format gives
   std::string_view title;  // "ULog": how LogContents::format begins ("ULog v1")

@@ -2,8 +2,8 @@
 // Shared by the binary log readers (fit/data/autopilot_log.h), not a public
 // header: a file read forward in blocks with the byte offset kept for
 // messages, little-endian numbers of the C types both formats log, and what
-// a reader holds while it reads (LogReader: the gyros found, the samples
-// tallied and handed to the sink).
+// a reader holds while it reads (LogReader: the sensors of the kind read,
+// their samples tallied and handed to the sink).
 
 #include <bit>
 #include <cstddef>
@@ -92,25 +92,28 @@ std::string printable(std::string_view text, std::size_t max = 80);
 // "55 4c 6f 67": bytes as hex, for a message.
 std::string hex_bytes(const std::uint8_t* p, std::size_t n);
 
-// Counts a sample of a gyro into its summary.
-void tally(LogGyro& gyro, double time_s, double temp_c);
+// Counts a sample of a sensor into its summary.
+void tally(LogSensor& sensor, double time_s, double temp_c);
 
 // What a reader of either format holds during its one pass: the file, the
-// instance whose samples go to the sink (-1: none), and the contents so far.
+// kind read, the instance whose samples go to the sink (-1: none), and the
+// contents so far.
 class LogReader {
  public:
-  LogReader(const std::filesystem::path& file, int instance, const GyroSampleSink& sink)
-      : in_(file), instance_(instance), sink_(sink) {}
+  LogReader(const std::filesystem::path& file, int instance, const SampleSink& sink, const SensorKind& kind)
+      : in_(file), instance_(instance), sink_(sink) {
+    contents_.kind = &kind;
+  }
 
  protected:
 
-  // The index in contents_.gyros of the gyro of `instance`, added (logged
-  // as `message`) when it is not there yet.
-  std::size_t gyro_of(int instance, std::string_view message);
-  // One sample of `gyro` at time_s: its temperature (NaN when the format has
-  // none) and rates read from `payload`, tallied, and handed to the sink when
-  // the gyro is the instance asked for.
-  void take_sample(LogGyro& gyro, double time_s, const Field& temperature, const Field& x, const Field& y,
+  // The index in contents_.sensors of the sensor of `instance`, added
+  // (logged as `message`) when it is not there yet.
+  std::size_t sensor_of(int instance, std::string_view message);
+  // One sample of `sensor` at time_s: its temperature (NaN when the format
+  // has none) and axes read from `payload` (y and z NaN when not present),
+  // tallied, and handed to the sink when it is the instance asked for.
+  void take_sample(LogSensor& sensor, double time_s, const Field& temperature, const Field& x, const Field& y,
                    const Field& z, const std::uint8_t* payload);
   // One accelerometer sample (m/s²) of `instance`, tallied.
   void take_accel(int instance, double x, double y, double z);
@@ -121,27 +124,28 @@ class LogReader {
     contents_.truncated = true;
     contents_.truncated_at_byte = at;
   }
-  // The contents, gyros sorted by instance.
+  // The contents, sensors sorted by instance.
   LogContents finish();
 
   BinaryFile in_;
   int instance_;
-  const GyroSampleSink& sink_;
+  const SampleSink& sink_;
   LogContents contents_;
 };
 
 // A reader's one pass: fills `contents` and hands the samples of `instance`
 // (-1: none) to the sink.
-using OnePass = std::function<LogContents(const std::filesystem::path& file, int instance, const GyroSampleSink& sink)>;
+using OnePass = std::function<LogContents(const std::filesystem::path& file, int instance, const SampleSink& sink)>;
 // The public readers' contract on top of one pass: the default instance for
 // a sink with instance -1 (two passes), and an instance not held refused.
-LogContents read_choosing(const std::filesystem::path& file, int instance, const GyroSampleSink& sink,
+LogContents read_choosing(const std::filesystem::path& file, int instance, const SampleSink& sink,
                           const OnePass& pass);
-// read_choosing with the one pass of a Reader(file, instance, sink).read().
+// read_choosing with the one pass of a Reader(file, instance, sink, kind).read().
 template <class Reader>
-LogContents read_with(const std::filesystem::path& file, int instance, const GyroSampleSink& sink) {
-  return read_choosing(file, instance, sink, [](const std::filesystem::path& f, int i, const GyroSampleSink& s) {
-    return Reader(f, i, s).read();
+LogContents read_with(const std::filesystem::path& file, int instance, const SampleSink& sink,
+                      const SensorKind& kind) {
+  return read_choosing(file, instance, sink, [&kind](const std::filesystem::path& f, int i, const SampleSink& s) {
+    return Reader(f, i, s, kind).read();
   });
 }
 

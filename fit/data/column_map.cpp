@@ -36,12 +36,9 @@ const Unit& Units::gyro_unit() const { return unit_or_base(kind().quantity, gyro
 const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
 
 ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns) {
-  if (log_format_of(file) != nullptr && !columns.units.kind().is_gyro)
-    throw InputError(fmt::format("{}: --sensor {}: an autopilot log's {} is not read yet (its gyros are); give "
-                                 "the samples as a CSV",
-                                 file.string(), columns.units.kind().name, columns.units.kind().noun));
-  if (columns.gyro == ColumnMap{}.gyro && log_format_of(file) != nullptr) columns.gyro = "gyro_x,gyro_y,gyro_z";
-  else if (columns.gyro == ColumnMap{}.gyro) columns.gyro = std::string(columns.units.kind().column);
+  const bool log = log_format_of(file) != nullptr;
+  if (columns.gyro == ColumnMap{}.gyro)
+    columns.gyro = std::string(log ? columns.units.kind().log_columns : columns.units.kind().column);
   return columns;
 }
 

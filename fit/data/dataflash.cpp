@@ -1,11 +1,14 @@
-// ArduPilot DataFlash (.bin): the gyros of the IMU messages
+// ArduPilot DataFlash (.bin): the sensors of one kind, gyros and
+// accelerometers in the IMU messages and barometers in BARO
 // (fit/data/autopilot_log.h), written from ArduPilot's
-// libraries/AP_Logger/LogStructure.h (FMT, the format characters) and
-// libraries/AP_InertialSensor/LogStructure.h (IMU). One pass: a table of the
-// 256 message types the FMT messages define; an IMU type's field offsets are
+// libraries/AP_Logger/LogStructure.h (FMT, the format characters),
+// libraries/AP_InertialSensor/LogStructure.h (IMU) and
+// libraries/AP_Baro/LogStructure.h (BARO). One pass: a table of the 256
+// message types the FMT messages define; a read type's field offsets are
 // worked out from its format and labels when its FMT is read.
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -13,6 +16,7 @@
 #include <cstring>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "fit/data/autopilot_log.h"
 #include "fit/data/binary_file.h"
@@ -63,12 +67,33 @@ std::string text_field(const std::uint8_t* p, std::size_t bytes) {
   return std::string(s, strnlen(s, bytes));
 }
 
-// Where an IMU message's fields are.
-struct ImuLayout {
+// Where a read message's fields are: the axes of the kind read (x alone for
+// a barometer's Press) when it holds that kind, and an IMU's accelerometer
+// (ax ay az, for the motion check) whatever the kind.
+struct SensorLayout {
   Field time, instance, x, y, z, temperature, ax, ay, az;
   double time_units_per_s = 1e6;  // TimeUS; TimeMS (1e3) in older logs
-  int fixed_instance = 0;         // IMU2 -> 1, IMU3 -> 2, IMU without I -> 0
+  int fixed_instance = 0;         // IMU2 / BAR2 -> 1, IMU3 / BAR3 -> 2, IMU without I -> 0
+  bool holds_kind = false;        // a message of the kind read (else an IMU read for its accelerometer)
 };
+
+// The words of a space-separated list ("IMU IMU2 IMU3").
+std::vector<std::string_view> words_of(std::string_view list) {
+  std::vector<std::string_view> words;
+  while (!list.empty()) {
+    const std::size_t space = list.find(' ');
+    words.push_back(list.substr(0, space));
+    list = space == std::string_view::npos ? std::string_view() : list.substr(space + 1);
+  }
+  return words;
+}
+
+// The position of `name` in a space-separated list, or -1.
+int position_in(std::string_view list, std::string_view name) {
+  const std::vector<std::string_view> words = words_of(list);
+  const auto found = std::find(words.begin(), words.end(), name);
+  return found == words.end() ? -1 : static_cast<int>(found - words.begin());
+}
 
 // Where a PARM message's name (N, 16 chars) and value are.
 struct ParmLayout {
@@ -80,7 +105,7 @@ struct MessageType {
   bool defined = false;
   std::size_t length = 0;  // of the whole message, header included
   std::string name;
-  std::optional<ImuLayout> imu;
+  std::optional<SensorLayout> layout;
   std::optional<ParmLayout> parm;
 };
 
@@ -122,9 +147,9 @@ class DataFlashReader : binary::LogReader {
 
  private:
   void on_fmt(std::uint64_t at, const std::uint8_t* payload);
-  ImuLayout imu_layout(std::uint64_t at, const std::string& name, const std::string& format,
-                       const std::string& labels) const;
-  void on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name, const std::uint8_t* payload);
+  SensorLayout sensor_layout(std::uint64_t at, const std::string& name, const std::string& format,
+                             const std::string& labels, bool holds_kind) const;
+  void on_sensor(std::uint64_t at, const SensorLayout& layout, const std::string& name, const std::uint8_t* payload);
   std::string defined_types() const;
 
   std::array<MessageType, 256> types_{};
@@ -132,6 +157,12 @@ class DataFlashReader : binary::LogReader {
 
 LogContents DataFlashReader::read() {
   contents_.format = kDataflashTitle;
+  const SensorKind& kind = *contents_.kind;
+  contents_.unit = std::string(kind.dataflash.unit);
+  if (kind.dataflash.messages.empty())
+    in_.fail(0, fmt::format("--sensor {}: an ArduPilot log holds no {} temperature (its messages log none beside "
+                            "the {}), so it cannot be fitted against one",
+                            kind.name, kind.noun, kind.noun));
   for (;;) {
     const std::uint64_t at = in_.offset();
     const std::size_t head = in_.want(kDataflashHeaderBytes);
@@ -162,8 +193,8 @@ LogContents DataFlashReader::read() {
     const std::uint8_t* payload = in_.data() + kDataflashHeaderBytes;
     if (type == kFmtType)
       on_fmt(at, payload);
-    else if (known.imu)
-      on_imu(at, *known.imu, known.name, payload);
+    else if (known.layout)
+      on_sensor(at, *known.layout, known.name, payload);
     else if (known.parm)
       take_parameter(text_field(payload + known.parm->name_offset, 16), known.parm->value.read(payload));
     in_.advance(length);
@@ -200,30 +231,33 @@ void DataFlashReader::on_fmt(std::uint64_t at, const std::uint8_t* payload) {
     all_known = all_known && f != nullptr;
     if (f != nullptr) bytes += f->bytes;
   }
-  const bool imu = name == "IMU" || name == "IMU2" || name == "IMU3";
+  const bool holds_kind = position_in(contents_.kind->dataflash.messages, name) >= 0;
+  const bool imu = position_in("IMU IMU2 IMU3", name) >= 0;
   if (all_known && bytes != length) {
     // A message this reader needs must be read right; any other is skipped
     // by the FMT's length, as pymavlink skips it, and said.
-    if (imu)
+    if (holds_kind || imu)
       in_.fail(at,
                fmt::format("{}: the format adds up to {} bytes with the header, the FMT says {}", what, bytes, length));
     contents_.skipped_types.push_back({type, name, format, bytes, length});
   }
   MessageType& entry = types_[type];
   entry = MessageType{true, length, name, std::nullopt, std::nullopt};
-  if (imu) entry.imu = imu_layout(at, name, format, labels);
+  if (holds_kind || imu) entry.layout = sensor_layout(at, name, format, labels, holds_kind);
   if (name == "PARM" && bytes == length) entry.parm = parm_layout(format, labels);
 }
 
-ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name, const std::string& format,
-                                      const std::string& labels) const {
+SensorLayout DataFlashReader::sensor_layout(std::uint64_t at, const std::string& name, const std::string& format,
+                                            const std::string& labels, bool holds_kind) const {
   const std::vector<std::string> columns = split_labels(labels);
   const std::string what =
       fmt::format("FMT of '{}' (format '{}', labels '{}')", name, printable(format), printable(labels));
   if (columns.size() != format.size())
     in_.fail(at, fmt::format("{}: {} labels for {} format characters", what, columns.size(), format.size()));
-  ImuLayout layout;
-  layout.fixed_instance = name == "IMU2" ? 1 : name == "IMU3" ? 2 : 0;
+  const SensorKind::LogNaming& naming = contents_.kind->dataflash;
+  SensorLayout layout;
+  layout.holds_kind = holds_kind;
+  layout.fixed_instance = std::max(0, position_in(naming.messages, name));
   std::size_t offset = 0;
   Field time_ms;
   for (std::size_t i = 0; i < format.size(); ++i) {
@@ -232,17 +266,17 @@ ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name,
       in_.fail(at, fmt::format("{}: unknown format character '{}' (expected one of {})", what,
                                printable(std::string(1, format[i])), kFormatCharList));
     const std::string& label = columns[i];
-    Field* slot = label == "TimeUS"                 ? &layout.time
-                  : label == "TimeMS"               ? &time_ms
-                  : label == "I"                    ? &layout.instance
-                  : label == "GyrX"                 ? &layout.x
-                  : label == "GyrY"                 ? &layout.y
-                  : label == "GyrZ"                 ? &layout.z
-                  : label == "T" || label == "Temp" ? &layout.temperature
-                  : label == "AccX"                 ? &layout.ax
-                  : label == "AccY"                 ? &layout.ay
-                  : label == "AccZ"                 ? &layout.az
-                                                    : nullptr;
+    const int axis = holds_kind ? position_in(naming.fields, label) : -1;
+    Field* const axes[] = {&layout.x, &layout.y, &layout.z};
+    Field* slot = axis >= 0 && axis < 3              ? axes[axis]
+                  : label == "TimeUS"                ? &layout.time
+                  : label == "TimeMS"                ? &time_ms
+                  : label == "I"                     ? &layout.instance
+                  : label == "T" || label == "Temp"  ? &layout.temperature
+                  : label == "AccX"                  ? &layout.ax
+                  : label == "AccY"                  ? &layout.ay
+                  : label == "AccZ"                  ? &layout.az
+                                                     : nullptr;
     if (slot != nullptr) {
       if (!f->kind)
         in_.fail(at, fmt::format("{}: field '{}' is of format '{}', text, expected a number", what, label, f->c));
@@ -254,34 +288,39 @@ ImuLayout DataFlashReader::imu_layout(std::uint64_t at, const std::string& name,
     layout.time = time_ms;
     layout.time_units_per_s = 1e3;
   }
-  for (const auto& [label, field] :
-       {std::pair{"TimeUS", &layout.time}, {"GyrX", &layout.x}, {"GyrY", &layout.y}, {"GyrZ", &layout.z}})
-    if (!field->present)
-      in_.fail(at, fmt::format("{}: no field '{}' (expected TimeUS or TimeMS, GyrX, GyrY, GyrZ)", what, label));
-  if (layout.instance.present && name != "IMU")
-    in_.fail(at, fmt::format("{}: an instance field 'I' in {}, expected only in IMU", what, name));
+  const std::vector<std::string_view> wanted = words_of(holds_kind ? naming.fields : std::string_view());
+  const std::string expected = fmt::format("expected TimeUS or TimeMS{}{}", wanted.empty() ? "" : ", ",
+                                           fmt::join(wanted, ", "));
+  if (!layout.time.present) in_.fail(at, fmt::format("{}: no field 'TimeUS' ({})", what, expected));
+  for (std::size_t axis = 0; axis < wanted.size(); ++axis)
+    if (!(axis == 0 ? layout.x : axis == 1 ? layout.y : layout.z).present)
+      in_.fail(at, fmt::format("{}: no field '{}' ({})", what, wanted[axis], expected));
+  const std::string_view with_instance = naming.messages.substr(0, naming.messages.find(' '));
+  if (layout.instance.present && holds_kind && name != with_instance)
+    in_.fail(at, fmt::format("{}: an instance field 'I' in {}, expected only in {}", what, name, with_instance));
   return layout;
 }
 
-void DataFlashReader::on_imu(std::uint64_t at, const ImuLayout& layout, const std::string& name,
-                             const std::uint8_t* payload) {
+void DataFlashReader::on_sensor(std::uint64_t at, const SensorLayout& layout, const std::string& name,
+                                const std::uint8_t* payload) {
   int instance = layout.fixed_instance;
   if (layout.instance.present) {
     const double value = layout.instance.read(payload);
     if (!(value >= 0.0 && value <= 255.0 && value == std::floor(value)))
-      in_.fail(at, fmt::format("IMU message: instance I = {}, expected a whole number 0..255", value));
+      in_.fail(at, fmt::format("{} message: instance I = {}, expected a whole number 0..255", name, value));
     instance = static_cast<int>(value);
   }
-  take_sample(contents_.gyros[gyro_of(instance, name)], layout.time.read(payload) / layout.time_units_per_s,
-              layout.temperature, layout.x, layout.y, layout.z, payload);
+  if (layout.holds_kind)
+    take_sample(contents_.sensors[sensor_of(instance, name)], layout.time.read(payload) / layout.time_units_per_s,
+                layout.temperature, layout.x, layout.y, layout.z, payload);
   if (layout.ax.present && layout.ay.present && layout.az.present)
     take_accel(instance, layout.ax.read(payload), layout.ay.read(payload), layout.az.read(payload));
 }
 
 }  // namespace
 
-LogContents read_dataflash(const fs::path& file, int instance, const GyroSampleSink& sink) {
-  return binary::read_with<DataFlashReader>(file, instance, sink);
+LogContents read_dataflash(const fs::path& file, int instance, const SampleSink& sink, const SensorKind& kind) {
+  return binary::read_with<DataFlashReader>(file, instance, sink, kind);
 }
 
 // A message's two sync bytes begin the file.

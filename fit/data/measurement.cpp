@@ -86,64 +86,77 @@ std::string CsvParser::read_time(std::string_view field, Measurement& m, double&
 }
 
 void CsvParser::read_log(const fs::path& file, const LogFormat& format, Measurement& m) {
-  const LogContents contents = format.read(file, -1, {});
+  const SensorKind& kind = map_.units.kind();
+  const LogContents contents = format.read(file, -1, {}, kind);
   if (map_.imu && *map_.imu < 0)
-    throw InputError(fmt::format("{}: --imu {}: a gyro instance is a number from 0 (the log holds {})", name_,
-                                 *map_.imu, contents.instances()));
+    throw InputError(fmt::format("{}: --imu {}: a {} instance is a number from 0 (the log holds {})", name_,
+                                 *map_.imu, kind.noun, contents.instances()));
   const int instance = map_.imu.value_or(contents.default_instance());
   if (instance < 0)
-    throw InputError(fmt::format("{}: no gyro with a temperature to fit against ({})", name_, contents.describe()));
-  const auto gyro = std::find_if(contents.gyros.begin(), contents.gyros.end(),
-                                 [&](const LogGyro& g) { return g.instance == instance; });
-  if (gyro == contents.gyros.end())
-    throw InputError(fmt::format("{}: --imu {}: the log holds gyro instances {} ({})", name_, instance,
+    throw InputError(fmt::format("{}: no {} with a temperature to fit against ({})", name_, kind.noun,
+                                 contents.describe()));
+  const auto sensor = std::find_if(contents.sensors.begin(), contents.sensors.end(),
+                                   [&](const LogSensor& g) { return g.instance == instance; });
+  if (sensor == contents.sensors.end())
+    throw InputError(fmt::format("{}: --imu {}: the log holds {} instances {} ({})", name_, instance, kind.noun,
                                  contents.instances(), contents.describe()));
-  // The format states every unit: an option may only repeat it. Units and
-  // scales a fit file brings (of the CSV it was fitted on) do not apply; the
-  // CSV's form (delimiter, decimal comma, --rate) neither.
+  // The format states every unit: an option may only repeat it (a unit the
+  // reader told from the log's version or values, a ULog's pressure, may be
+  // stated otherwise). Units and scales a fit file brings (of the CSV it was
+  // fitted on) do not apply; the CSV's form (delimiter, decimal comma,
+  // --rate) neither.
   const bool from_fit_file = map_.units.from_fit();
-  const std::array<std::tuple<const std::string*, const char*, const char*>, 3> stated = {
-      std::tuple{&map_.units.time, "s", "--time-unit"}, {&map_.units.gyro, "rad/s", "--gyro-unit"},
-      {&map_.units.temp, "C", "--temp-unit"}};
+  const bool told = !contents.unit_from.empty();
+  const std::array<std::tuple<const std::string*, std::string, const char*>, 3> stated = {
+      std::tuple{&map_.units.time, std::string("s"), "--time-unit"},
+      {&map_.units.gyro, told ? std::string() : contents.unit, "--gyro-unit"},
+      {&map_.units.temp, std::string("C"), "--temp-unit"}};
   for (const auto& [given, unit, option] : stated)
-    if (!from_fit_file && !given->empty() && *given != unit)
-      throw InputError(fmt::format("{}: {} {}: the log is {}, whose units are fixed (time µs, gyro rad/s, "
+    if (!from_fit_file && !given->empty() && !unit.empty() && *given != unit)
+      throw InputError(fmt::format("{}: {} {}: the log is {}, whose units are fixed (time µs, {} {}, "
                                    "temperature °C); leave {} out",
-                                   name_, option, *given, contents.format, option));
+                                   name_, option, *given, contents.format, kind.name, contents.unit, option));
   const Units& scales = map_.units;
   if (!from_fit_file && (scales.gyro_scale != 1.0 || scales.temp_scale != 1.0 || scales.temp_offset != 0.0))
     throw InputError(fmt::format("{}: --gyro-scale, --temp-scale and --temp-offset are for raw counts; the log is {}, "
-                                 "in rad/s and °C",
-                                 name_, contents.format));
+                                 "in {} and °C",
+                                 name_, contents.format, contents.unit));
   csv_ = CsvDialect{};
-  parse_header("time_s,temp_c,gyro_x,gyro_y,gyro_z", 0, m);
-  log_gyro_ = fmt::format("{} instance {}", gyro->message, instance);
+  const std::size_t axes = std::count(kind.log_columns.begin(), kind.log_columns.end(), ',') + 1;
+  parse_header(fmt::format("time_s,temp_c,{}", kind.log_columns), 0, m);
+  log_gyro_ = fmt::format("{} instance {}", sensor->message, instance);
   naming_ = RowNaming::sample;
   Units u = units_;
   u.gyro_scale = u.temp_scale = 1.0;
   u.temp_offset = 0.0;
+  const bool stated_here = told && !map_.units.gyro.empty() && !from_fit_file;
   // Named strings, not literals: g++ 12 warns of a false overlap when a literal is assigned here.
-  static const std::string kSeconds = "s", kRadPerSecond = "rad/s", kCelsius = "C";
+  static const std::string kSeconds = "s", kCelsius = "C";
   u.time = kSeconds;
-  u.gyro = kRadPerSecond;
+  u.gyro = stated_here ? map_.units.gyro : contents.unit;
   u.temp = kCelsius;
   u.time_from = fmt::format("{} timestamps", contents.format);
-  u.gyro_from = u.temp_from = fmt::format("{} {}", contents.format, log_gyro_);
+  u.gyro_from = stated_here ? std::string("--gyro-unit") : fmt::format("{} {}", contents.format, log_gyro_);
+  u.temp_from = fmt::format("{} {}", contents.format, log_gyro_);
   u.layout = fmt::format("{}{} chosen; the log holds {}", log_gyro_,
-                         gyro->device_id != 0 ? fmt::format(" (device {})", gyro->device_id) : std::string(),
+                         sensor->device_id != 0 ? fmt::format(" (device {})", sensor->device_id) : std::string(),
                          contents.describe());
   use_units(u);
   m.units = units_;
   std::size_t sample = 0, without_temperature = 0;
-  format.read(file, instance, [&](double t, double temp, double x, double y, double z) {
-    ++sample;
-    if (!std::isfinite(temp)) {
-      ++without_temperature;
-      return;
-    }
-    values_ = {t, temp, x, y, z};
-    take_values(sample, m);
-  });
+  format.read(
+      file, instance,
+      [&](double t, double temp, double x, double y, double z) {
+        ++sample;
+        if (!std::isfinite(temp)) {
+          ++without_temperature;
+          return;
+        }
+        const double row[] = {t, temp, x, y, z};
+        values_.assign(row, row + 2 + axes);
+        take_values(sample, m);
+      },
+      kind);
   if (without_temperature > 0) {
     units_.layout += fmt::format("; {} of its {} samples have no temperature and are left out", without_temperature,
                                  sample);

@@ -26,16 +26,33 @@ namespace {
 //   reads is the Earth's and the vehicle's as well as its own offset: a fit
 //   sees the offset's change with temperature only where those hold still.
 //   White noise as a density (gauss·√s); random walk in gauss/√h.
+//
+// The logs (ULog: PX4's msg/SensorGyro.msg, SensorAccel.msg, SensorBaro.msg,
+// SensorMag.msg; DataFlash: ArduPilot's AP_InertialSensor/LogStructure.h IMU
+// and AP_Baro/LogStructure.h BARO): PX4 logs pressure in Pa since v1.13
+// (mbar before, which the ULog reader tells by the log's version); ArduPilot's
+// MAG message has no temperature, so a DataFlash log's magnetometer cannot be
+// fitted against one.
+//
+// The firmwares (PX4's src/modules/temperature_compensation: parameters
+// temp_comp_params_{gyro,accel,baro,mag}.yaml, TC_M from v1.15; ArduPilot's
+// AP_InertialSensor_tempcal.cpp, INS_TCALn_GYR* and _ACC*): PX4 corrects the
+// barometer with a quintic in Pa, the others with cubics; ArduPilot has no
+// polynomial for the barometer or the compass.
 // clang-format off
 const SensorKind kKinds[] = {
   {"gyro", "gyro", Quantity::gyro, "°/h", "gyro_dph", "gyr omega",
-   {{{"arw", "deg/sqrt(h)", 1.0 / 60.0}, {"bias_instability", "deg/h", 1.0}, {"gauss_markov", "deg/h", 1.0}, {"rrw", "deg/h/sqrt(h)", 60.0}}}, true},
+   {{{"arw", "deg/sqrt(h)", 1.0 / 60.0}, {"bias_instability", "deg/h", 1.0}, {"gauss_markov", "deg/h", 1.0}, {"rrw", "deg/h/sqrt(h)", 60.0}}}, true,
+   {"sensor_gyro", "x y z", "rad/s"}, {"IMU IMU2 IMU3", "GyrX GyrY GyrZ", "rad/s"}, "gyro_x,gyro_y,gyro_z", "TC_G", 3, "GYR"},
   {"accel", "accelerometer", Quantity::accel, "m/s²", "accel_mps2", "acc",
-   {{{"vrw", "m/s/sqrt(h)", 60.0}, {"bias_instability", "m/s^2", 1.0}, {"gauss_markov", "m/s^2", 1.0}, {"accel_random_walk", "m/s^2/sqrt(h)", 60.0}}}, false},
+   {{{"vrw", "m/s/sqrt(h)", 60.0}, {"bias_instability", "m/s^2", 1.0}, {"gauss_markov", "m/s^2", 1.0}, {"accel_random_walk", "m/s^2/sqrt(h)", 60.0}}}, false,
+   {"sensor_accel", "x y z", "mps2"}, {"IMU IMU2 IMU3", "AccX AccY AccZ", "mps2"}, "accel_x,accel_y,accel_z", "TC_A", 3, "ACC"},
   {"baro", "barometer", Quantity::pressure, "Pa", "baro_pa", "baro press",
-   {{{"white_noise", "Pa*sqrt(s)", 1.0}, {"bias_instability", "Pa", 1.0}, {"gauss_markov", "Pa", 1.0}, {"pressure_random_walk", "Pa/sqrt(h)", 60.0}}}, false},
+   {{{"white_noise", "Pa*sqrt(s)", 1.0}, {"bias_instability", "Pa", 1.0}, {"gauss_markov", "Pa", 1.0}, {"pressure_random_walk", "Pa/sqrt(h)", 60.0}}}, false,
+   {"sensor_baro", "pressure", "Pa"}, {"BARO BAR2 BAR3", "Press", "Pa"}, "pressure", "TC_B", 5, ""},
   {"mag", "magnetometer", Quantity::magnetic, "gauss", "mag_gauss", "mag",
-   {{{"white_noise", "gauss*sqrt(s)", 1.0}, {"bias_instability", "gauss", 1.0}, {"gauss_markov", "gauss", 1.0}, {"field_random_walk", "gauss/sqrt(h)", 60.0}}}, false},
+   {{{"white_noise", "gauss*sqrt(s)", 1.0}, {"bias_instability", "gauss", 1.0}, {"gauss_markov", "gauss", 1.0}, {"field_random_walk", "gauss/sqrt(h)", 60.0}}}, false,
+   {"sensor_mag", "x y z", "gauss"}, {"", "", ""}, "mag_x,mag_y,mag_z", "TC_M", 3, ""},
 };
 // clang-format on
 

@@ -42,6 +42,23 @@ struct SensorKind {
   // White noise, bias instability (flicker), Gauss–Markov, random walk.
   std::array<NoiseName, 4> noise;
   bool is_gyro = false;      // the rate checks (a rate at rest, an implausible angle random walk)
+  // How an autopilot log holds it (fit/data/autopilot_log.h): ULog, the topic
+  // (its multi_id the instance) and the fields; DataFlash, the messages (the
+  // first with the instance in `I`, or one per instance: IMU, IMU2, IMU3) and
+  // the labels, none where the format logs no temperature beside it; and the
+  // unit the fields are in.
+  struct LogNaming {
+    std::string_view messages, fields, unit;
+  };
+  LogNaming ulog, dataflash;
+  std::string_view log_columns;  // the columns a log's samples are read as: "gyro_x,gyro_y,gyro_z"
+  // What the autopilots store of its thermal compensation, in the unit
+  // their logs use (ulog.unit): PX4's parameter stem (TC_G, TC_A, TC_B,
+  // TC_M) and its polynomial's order (3; the barometer's 5); ArduPilot's
+  // INS_TCAL group (GYR, ACC), empty where ArduPilot has none.
+  std::string_view px4_stem;
+  int px4_order = 3;
+  std::string_view ardupilot_group;
 };
 
 // Every kind, in the registry's order (gyro first).

@@ -1,4 +1,5 @@
-// PX4 ULog: the gyros of `sensor_gyro` (fit/data/autopilot_log.h), written
+// PX4 ULog: the sensors of one kind, the instances of its topic
+// (`sensor_gyro`, `sensor_accel`, ...; fit/data/autopilot_log.h), written
 // from PX4-Autopilot's docs/en/dev_log/ulog_file_format.md. One pass: the
 // format definitions are kept as parsed field lists (a few hundred in a PX4
 // log); a format's size and a field's offset are worked out when a topic is
@@ -32,8 +33,13 @@ constexpr std::size_t kFileHeaderBytes = 16;
 constexpr std::string_view kULogTitle = "ULog";
 constexpr std::string_view kULogMagic("ULog\x01\x12\x35", 7);
 constexpr std::size_t kUlogMessageHeaderBytes = 3;  // uint16 size, uint8 type
-constexpr std::string_view kGyroTopic = "sensor_gyro";
 constexpr std::string_view kAccelTopic = "sensor_accel";
+// PX4 logs sensor_baro.pressure in Pa from v1.13 on (pull request 19284,
+// "sensor_baro.msg use SI"), in mbar before.
+constexpr int kPascalsFromMinor = 13;
+// Without the version, a largest pressure above this is in Pa (an
+// atmosphere is 1e5 Pa, 1e3 mbar; 2000 mbar is more than any weather).
+constexpr double kLargestMillibars = 2000.0;
 // Deeper nesting than any PX4 message (about 3 levels) means a broken file,
 // and bounds the recursion on one.
 constexpr int kMaxNesting = 32;
@@ -75,16 +81,17 @@ std::string_view trimmed(std::string_view s) {
   return s;
 }
 
-// Where sensor_gyro's fields are in a data message of one subscription.
-struct GyroLayout {
+// Where a sensor topic's fields are in a data message of one subscription:
+// the axes (x y z, or one: pressure as x), its temperature and device id.
+struct SensorLayout {
   Field timestamp, x, y, z, temperature, device_id;
   std::size_t needed_bytes = 0;  // the end of the last field read
 };
 
 struct Subscription {
-  int gyro = -1;   // index into LogContents::gyros, -1 for another topic
-  int accel = -1;  // sensor_accel's multi_id, -1 for another topic
-  GyroLayout accel_layout;  // sensor_accel's timestamp, x, y, z
+  int sensor = -1;  // index into LogContents::sensors, -1 for another topic
+  int accel = -1;   // sensor_accel's multi_id, -1 for another topic
+  SensorLayout accel_layout;  // sensor_accel's timestamp, x, y, z
 };
 
 class ULogReader : binary::LogReader {
@@ -101,18 +108,24 @@ class ULogReader : binary::LogReader {
   void on_unsubscription(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   void on_data(std::uint64_t at, const std::uint8_t* p, std::size_t size);
   void on_parameter(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  void on_information(std::uint64_t at, const std::uint8_t* p, std::size_t size);
+  void settle_unit();
   std::size_t size_of_type(const std::string& type, const std::string& within, int depth);
   std::size_t size_of_format(const std::string& name, int depth);
-  // `required`: a format without the fields (or with one not a number) is an
-  // error; else (sensor_accel, read only for a motion check) the fields it
-  // lacks are left not present.
-  GyroLayout gyro_layout(const std::string& name, std::uint64_t subscribed_at, bool required = true);
+  // The fields `axes` ("x y z", "pressure") of format `name`. `required`: a
+  // format without them (or with one not a number) is an error; else
+  // (sensor_accel, read only for a motion check) the fields it lacks are
+  // left not present.
+  SensorLayout sensor_layout(const std::string& name, std::string_view axes, std::uint64_t subscribed_at,
+                             bool required = true);
 
   std::map<std::string, FormatDef, std::less<>> formats_;
   std::unordered_map<std::string, std::size_t> format_bytes_;  // sizes worked out so far
   std::unordered_map<std::uint16_t, Subscription> subscriptions_;
-  std::vector<GyroLayout> layouts_;              // of each gyro's format, by index in contents_.gyros
+  std::vector<SensorLayout> layouts_;            // of each sensor's format, by index in contents_.sensors
   std::vector<std::uint64_t> appended_offsets_;  // where appended data starts, ascending
+  int version_major_ = -1, version_minor_ = -1;  // ver_sw_release, when the log has it
+  double largest_value_ = 0.0;                   // |x| of the kind read, over its samples
 };
 
 LogContents ULogReader::read() {
@@ -145,13 +158,34 @@ LogContents ULogReader::read() {
                                                              {'A', &ULogReader::on_subscription},
                                                              {'R', &ULogReader::on_unsubscription},
                                                              {'D', &ULogReader::on_data},
-                                                             {'P', &ULogReader::on_parameter}};
+                                                             {'P', &ULogReader::on_parameter},
+                                                             {'I', &ULogReader::on_information}};
     const char type = static_cast<char>(in_.data()[2]);
     for (const auto& [handled, handler] : kHandlers)
       if (type == handled) (this->*handler)(at, in_.data() + kUlogMessageHeaderBytes, size);
     in_.advance(whole);
   }
+  settle_unit();
   return finish();
+}
+
+void ULogReader::settle_unit() {
+  const SensorKind& kind = *contents_.kind;
+  contents_.unit = std::string(kind.ulog.unit);
+  if (kind.quantity != Quantity::pressure || contents_.sensors.empty()) return;
+  if (version_major_ >= 0) {
+    const bool pascals = version_major_ > 1 || version_minor_ >= kPascalsFromMinor;
+    contents_.unit = pascals ? "Pa" : "mbar";
+    contents_.unit_from = fmt::format("the log's ver_sw_release is v{}.{}; PX4 logs pressure in {} {} v1.{}",
+                                      version_major_, version_minor_, contents_.unit, pascals ? "from" : "before",
+                                      kPascalsFromMinor);
+    return;
+  }
+  const bool pascals = largest_value_ > kLargestMillibars;
+  contents_.unit = pascals ? "Pa" : "mbar";
+  contents_.unit_from = fmt::format("the log has no ver_sw_release; its largest pressure, {:g}, is {} {:g}, so {}",
+                                    largest_value_, pascals ? "above" : "at most", kLargestMillibars,
+                                    pascals ? "Pa (PX4 v1.13 on)" : "mbar (PX4 before v1.13)");
 }
 
 void ULogReader::read_header() {
@@ -267,16 +301,22 @@ std::size_t ULogReader::size_of_format(const std::string& name, int depth) {
   return bytes;
 }
 
-GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscribed_at, bool required) {
+SensorLayout ULogReader::sensor_layout(const std::string& name, std::string_view axes, std::uint64_t subscribed_at,
+                                       bool required) {
   const FormatDef& def = formats_.find(name)->second;
-  GyroLayout layout;
+  SensorLayout layout;
+  std::vector<std::pair<std::string_view, Field*>> wanted = {{"timestamp", &layout.timestamp}};
+  Field* const axis_slots[] = {&layout.x, &layout.y, &layout.z};
+  std::size_t n_axes = 0;
+  for (std::string_view rest = axes; !rest.empty() && n_axes < 3; ++n_axes) {
+    const std::size_t space = rest.find(' ');
+    wanted.emplace_back(rest.substr(0, space), axis_slots[n_axes]);
+    rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
+  }
+  const std::size_t n_required = wanted.size();
+  wanted.emplace_back("temperature", &layout.temperature);
+  wanted.emplace_back("device_id", &layout.device_id);
   std::size_t offset = 0;
-  const std::pair<std::string_view, Field*> wanted[] = {{"timestamp", &layout.timestamp},
-                                                        {"x", &layout.x},
-                                                        {"y", &layout.y},
-                                                        {"z", &layout.z},
-                                                        {"temperature", &layout.temperature},
-                                                        {"device_id", &layout.device_id}};
   for (const FieldDef& field : def.fields) {
     const std::size_t bytes = field.count * size_of_type(field.type, name, 0);
     for (const auto& [wanted_name, slot] : wanted) {
@@ -291,13 +331,14 @@ GyroLayout ULogReader::gyro_layout(const std::string& name, std::uint64_t subscr
     }
     offset += bytes;
   }
-  for (const auto& [wanted_name, slot] : wanted)
-    if (required && !slot->present && wanted_name != "temperature" && wanted_name != "device_id") {
+  for (std::size_t i = 0; i < n_required && required; ++i)
+    if (!wanted[i].second->present) {
       std::string fields;
       for (const FieldDef& field : def.fields) fields += (fields.empty() ? "" : ", ") + field.name;
-      in_.fail(subscribed_at, fmt::format("the subscribed format '{}' has no field '{}' (it has {}; expected "
-                                          "timestamp, x, y, z)",
-                                          name, wanted_name, printable(fields, 400)));
+      std::string expected = "timestamp";
+      for (std::size_t j = 1; j < n_required; ++j) expected += fmt::format(", {}", wanted[j].first);
+      in_.fail(subscribed_at, fmt::format("the subscribed format '{}' has no field '{}' (it has {}; expected {})",
+                                          name, wanted[i].first, printable(fields, 400), expected));
     }
   return layout;
 }
@@ -315,14 +356,16 @@ void ULogReader::on_subscription(std::uint64_t at, const std::uint8_t* p, std::s
                              printable(name), msg_id));
   size_of_format(name, 0);  // every type known, no cycle
   Subscription sub;
-  if (name == kGyroTopic) {
-    const std::size_t gyro = gyro_of(multi_id, kGyroTopic);
-    if (gyro == layouts_.size()) layouts_.push_back(gyro_layout(name, at));  // a new instance
-    sub.gyro = static_cast<int>(gyro);
-  } else if (name == kAccelTopic) {
-    sub.accel_layout = gyro_layout(name, at, /*required=*/false);
-    const GyroLayout& a = sub.accel_layout;
-    if (a.x.present && a.y.present && a.z.present) sub.accel = multi_id;  // else not read: a topic the gyros do not need
+  const SensorKind& kind = *contents_.kind;
+  if (name == kind.ulog.messages) {
+    const std::size_t sensor = sensor_of(multi_id, kind.ulog.messages);
+    if (sensor == layouts_.size()) layouts_.push_back(sensor_layout(name, kind.ulog.fields, at));  // a new instance
+    sub.sensor = static_cast<int>(sensor);
+  }
+  if (name == kAccelTopic) {
+    sub.accel_layout = sensor_layout(name, "x y z", at, /*required=*/false);
+    const SensorLayout& a = sub.accel_layout;
+    if (a.x.present && a.y.present && a.z.present) sub.accel = multi_id;  // else not read: only a motion check needs it
   }
   subscriptions_[msg_id] = sub;
 }
@@ -335,23 +378,37 @@ void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t si
     in_.fail(at,
              fmt::format("a data message ('D') for msg_id {}, which no subscription ('A') before it defines", msg_id));
   if (sub->second.accel >= 0) {
-    const GyroLayout& a = sub->second.accel_layout;
+    const SensorLayout& a = sub->second.accel_layout;
     if (size - 2 >= a.needed_bytes) take_accel(sub->second.accel, a.x.read(p + 2), a.y.read(p + 2), a.z.read(p + 2));
-    return;
   }
-  if (sub->second.gyro < 0) return;
-  const GyroLayout& layout = layouts_[static_cast<std::size_t>(sub->second.gyro)];
-  LogGyro& gyro = contents_.gyros[static_cast<std::size_t>(sub->second.gyro)];
+  if (sub->second.sensor < 0) return;
+  const SensorLayout& layout = layouts_[static_cast<std::size_t>(sub->second.sensor)];
+  LogSensor& sensor = contents_.sensors[static_cast<std::size_t>(sub->second.sensor)];
   const std::uint8_t* data = p + 2;
   if (size - 2 < layout.needed_bytes)
     in_.fail(at, fmt::format("a {} data message (instance {}) holds {} bytes, its format needs {} for the "
                              "fields read",
-                             kGyroTopic, gyro.instance, size - 2, layout.needed_bytes));
-  if (gyro.samples == 0 && layout.device_id.present) {
+                             sensor.message, sensor.instance, size - 2, layout.needed_bytes));
+  if (sensor.samples == 0 && layout.device_id.present) {
     const double id = layout.device_id.read(data);  // an integer type in every PX4 version
-    gyro.device_id = id >= 0.0 && id <= 4294967295.0 ? static_cast<std::uint32_t>(id) : 0;
+    sensor.device_id = id >= 0.0 && id <= 4294967295.0 ? static_cast<std::uint32_t>(id) : 0;
   }
-  take_sample(gyro, layout.timestamp.read(data) / 1e6, layout.temperature, layout.x, layout.y, layout.z, data);
+  if (const double x = std::abs(layout.x.read(data)); x > largest_value_) largest_value_ = x;
+  take_sample(sensor, layout.timestamp.read(data) / 1e6, layout.temperature, layout.x, layout.y, layout.z, data);
+}
+
+// Information ('I'): key length (uint8), key "type name", value. Only
+// "uint32_t ver_sw_release" is read: 0xAABBCCTT, major AA, minor BB (PX4's
+// ulog_file_format.md, "Information Message").
+void ULogReader::on_information(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
+  if (size < 1 || size < 1u + p[0])
+    in_.fail(at, fmt::format("an information message ('I') of {} bytes cannot hold its key of {} bytes", size,
+                             size < 1 ? 0 : p[0]));
+  const std::string_view key(reinterpret_cast<const char*>(p + 1), p[0]);
+  if (key != "uint32_t ver_sw_release" || size < 1u + p[0] + 4) return;
+  const std::uint32_t release = binary::load_u32(p + 1 + p[0]);
+  version_major_ = static_cast<int>(release >> 24);
+  version_minor_ = static_cast<int>((release >> 16) & 0xff);
 }
 
 // A parameter ('P'): key length (uint8), key "type name", the value (int32_t
@@ -374,8 +431,8 @@ void ULogReader::on_parameter(std::uint64_t at, const std::uint8_t* p, std::size
 
 }  // namespace
 
-LogContents read_ulog(const fs::path& file, int instance, const GyroSampleSink& sink) {
-  return binary::read_with<ULogReader>(file, instance, sink);
+LogContents read_ulog(const fs::path& file, int instance, const SampleSink& sink, const SensorKind& kind) {
+  return binary::read_with<ULogReader>(file, instance, sink, kind);
 }
 
 LogFormat ulog_log_format() { return {"ulog", kULogTitle, kULogMagic, read_ulog}; }

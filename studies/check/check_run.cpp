@@ -53,7 +53,7 @@ constexpr char kAxisNames[3] = {'X', 'Y', 'Z'};
 std::pair<int, std::size_t> pair_gyro(const CheckRequest& o, const fit::LogContents& contents,
                                       const std::vector<GyroCalibration>& cals) {
   for (std::size_t c = 0; c < cals.size(); ++c)
-    for (const fit::LogGyro& g : contents.gyros) {
+    for (const fit::LogSensor& g : contents.sensors) {
       const bool same = cals[c].format == ParameterFormat::px4
                             ? cals[c].device_id && g.device_id != 0 && *cals[c].device_id == static_cast<long long>(g.device_id)
                             : cals[c].instance == g.instance;
@@ -68,22 +68,24 @@ std::pair<int, std::size_t> pair_gyro(const CheckRequest& o, const fit::LogConte
 void read_autopilot(const CheckRequest& o, const fit::LogFormat& format, const std::vector<GyroCalibration>& cals,
                     Applied* a, CheckResult* r, std::size_t* cal) {
   const fit::AutopilotReader reader = format.read;
-  a->contents = reader(o.log, -1, {});
+  const fit::SensorKind& gyro = fit::sensor_kind("gyro");
+  a->contents = reader(o.log, -1, {}, gyro);
   const auto [instance, chosen] = pair_gyro(o, a->contents, cals);
   if (instance < 0)
     throw InputError(fmt::format("{}: no gyro has 2 samples with a temperature; the file holds: {}", o.log,
                                  a->contents.describe()));
   *cal = chosen;
   a->raw_dph.assign(3, {});
-  const fit::LogContents read = reader(o.log, instance, [&](double t, double temp, double x, double y, double z) {
+  const auto take = [&](double t, double temp, double x, double y, double z) {
     if (!std::isfinite(temp)) return;
     a->time_s.push_back(t);
     a->temp_c.push_back(temp);
     for (const auto& [k, rate] : {std::pair{0, x}, {1, y}, {2, z}}) a->raw_dph[k].push_back(rate / kRadPerSecPerDegPerHour);
-  });
+  };
+  const fit::LogContents read = reader(o.log, instance, take, gyro);
   r->log_format = read.format;
   r->log_instance = instance;
-  for (const fit::LogGyro& g : read.gyros)
+  for (const fit::LogSensor& g : read.sensors)
     if (g.instance == instance) r->log_device_id = g.device_id;
   for (int k = 0; k < 3; ++k) a->axis.push_back(std::string(1, kAxisNames[k]));
 }
@@ -169,7 +171,7 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
   r->calibration = p.file;
   r->log_format = "CSV";
   if (const fit::LogFormat* format = fit::log_format_of(o.log); format != nullptr) {
-    a.contents = format->read(o.log, -1, {});
+    a.contents = format->read(o.log, -1, {}, fit::sensor_kind("gyro"));
     r->log_format = a.contents.format;
   }
   bool first = true;
@@ -292,7 +294,7 @@ void add_device_finding(const Applied& a, CheckResult* r) {
   if (!cal->device_id || *cal->device_id == 0) return;
   std::vector<LogDevice> devices;
   if (cal->format == ParameterFormat::px4) {
-    for (const fit::LogGyro& g : a.contents.gyros)
+    for (const fit::LogSensor& g : a.contents.sensors)
       if (g.device_id != 0) devices.push_back({static_cast<long long>(g.device_id), g.instance, ""});
   } else {
     const std::string name = ardupilot_gyro_id_name(cal->instance);

@@ -340,6 +340,10 @@ ExporterInfo c_exporter() {
   return {"c", "a C99 header (the whole model, as compensate --causal runs it, sample by sample)",
           [](const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
             const fit::SavedFit& f = chosen_channel(r, fits);
+            if (const fit::SensorKind& kind = f.pipeline.columns.units.kind(); !kind.is_gyro)
+              throw InputError(fmt::format("{}: the {}'s fit: the C compensator is a gyro's (°/h), so far; export "
+                                           "it with --format px4",
+                                           r.fit_file, kind.noun));
             if (!f.sample_interval_s || !f.bursts || (f.pipeline.remove_outliers && !f.outlier_floor_dph))
               throw InputError(fmt::format("{}: the fit lacks data.sample_interval_s, data.bursts or "
                                            "data.outlier_floor_dph (written by an earlier gyrotherm); fit again to "

@@ -52,8 +52,9 @@ const ExporterInfo& find_exporter(std::string_view name) {
 std::string channel_name(const fit::SavedFit& f) { return f.channel.empty() ? f.pipeline.columns.gyro : f.channel; }
 
 ExportHeader export_header(const ExportRequest& r, const fit::SavedFit& f) {
-  return {r.fit_file, sha256_file_hex(r.fit_file), f.engine, fit::formula_text(f.terms), utc_now(), f.data_file,
-          f.data_sha256};
+  const fit::SensorKind& kind = f.pipeline.columns.units.kind();
+  return {r.fit_file,  sha256_file_hex(r.fit_file), f.engine, fit::formula_text(f.terms), utc_now(), f.data_file,
+          f.data_sha256, std::string(kind.noun), std::string(kind.unit)};
 }
 
 const fit::SavedFit& chosen_channel(const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
@@ -126,7 +127,9 @@ ExportOutput run_export(const ExportRequest& request) {
     throw InputError(fmt::format("--channel {}: a {} file holds every axis (choose and order them with --axes "
                                  "X,Y,Z, '-' for none); --channel picks the one channel of a C export",
                                  request.channel, request.format));
-  const std::vector<fit::SavedFit> fits = fit::load_fits(request.fit_file);
+  // Every sensor's fit: each format refuses the kinds its firmware has no
+  // compensation for.
+  const std::vector<fit::SavedFit> fits = fit::load_fits(request.fit_file, fit::FitKinds::any);
   // --data is the log the fit was made on (the outcome compares the two): where
   // the fit knows its data's bytes, another log is refused, not mixed in.
   if (!request.data.empty() && !fits.empty() && !fits.front().data_sha256.empty() &&

@@ -76,6 +76,8 @@ struct ExportHeader {
   // The log the fit was made on and its bytes' SHA-256 (empty where the fit
   // does not record it): check finds that log given again by it.
   std::string data_file, data_sha256;
+  // The sensor whose fit it is, and the base unit of its model: "gyro", "°/h".
+  std::string sensor = "gyro", unit = "°/h";
 };
 
 struct ExporterInfo {

@@ -7,6 +7,8 @@
 #include <fmt/ranges.h>
 
 #include "fit/compensation.h"
+#include "fit/data/sensor_kind.h"
+#include "fit/data/units.h"
 #include "fit/engines/engine.h"
 #include "fit/model/formula.h"
 #include "fit/pipeline.h"
@@ -35,7 +37,7 @@ std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data
 // With terms dropped: the instability of the fitted data with the whole
 // model, with the cubic alone (the same coefficients, not refitted), and
 // with the best polynomial the firmware can express refitted on that data.
-std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, const ExportRequest& o,
+std::string dropped_report(const fit::SavedFit& f, const PolynomialModel& cubic, const ExportRequest& o,
                            DroppedCost* cost_out) {
   const FittedData data = fitted_data(f, o.data, o.data_table);
   if (!data.here())
@@ -49,17 +51,18 @@ std::string dropped_report(const fit::SavedFit& f, const CubicModel& cubic, cons
   std::string names;
   for (const std::string& n : cubic.dropped) names += (names.empty() ? "" : ", ") + n;
   const auto [model, refitted] = refitted_polynomial(fit::prepare_data(m, pipeline));
+  const std::string_view unit = f.pipeline.columns.units.kind().unit;
   const std::string refit =
       model.empty() ? "no polynomial in T can be fitted on this record"
                     : fmt::format("the best the firmware can express, B = b0 + {} refitted on the same data, leaves "
-                                  "{:.6g} °/h{} ({}, then export that fit)",
-                                  model, refitted,
+                                  "{:.6g} {}{} ({}, then export that fit)",
+                                  model, refitted, unit,
                                   refitted < cost.without_dph ? "" : " (no better than these coefficients)",
                                   // Arrays have no file to name on a command line: a Python call.
                                   data.table != nullptr ? fmt::format("gyrotherm.fit(data, model=\"{}\")", model)
                                                         : fmt::format("gyrotherm fit {} --model '{}'", data.name, model));
-  return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} °/h ({:.2f}x); {}",
-                     channel_name(f), names, data.name, cost.with_dph, cost.without_dph,
+  return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} {} ({:.2f}x); {}",
+                     channel_name(f), names, data.name, cost.with_dph, cost.without_dph, unit,
                      cost.without_dph / cost.with_dph, refit);
 }
 
@@ -79,20 +82,38 @@ fit::Measurement FittedData::read(const fit::ColumnMap& columns) const {
   return table != nullptr ? fit::read_table(*table, fit::for_table(columns)) : fit::read_measurement_csv(name, columns);
 }
 
-std::array<float, 4> px4_coefficients(const AxisModel& axis, float tref) {
-  std::array<float, 4> x{};
+std::array<float, kQuintic + 1> px4_coefficients(const AxisModel& axis, float tref, const fit::SensorKind& kind) {
+  std::array<float, kQuintic + 1> x{};
   if (!axis.present) return x;
-  const std::array<double, 4> a = reexpand(axis.model, tref);  // about the float TREF the firmware uses
-  for (std::size_t k = 0; k < 4; ++k) x[k] = static_cast<float>(a[k] * kRadPerSecPerDegPerHour);
+  const double per_base = firmware_per_base(kind);
+  const std::array<double, kQuintic + 1> a = reexpand(axis.model, tref);  // about the float TREF the firmware uses
+  for (std::size_t k = kind.is_gyro ? 0 : 1; k < x.size(); ++k) x[k] = static_cast<float>(a[k] * per_base);
   return x;
 }
 
-std::array<float, 3> ardupilot_coefficients(const AxisModel& axis) {
+std::array<float, 3> ardupilot_coefficients(const AxisModel& axis, const fit::SensorKind& kind) {
   std::array<float, 3> g{};
   if (!axis.present) return g;
-  const std::array<double, 4> a = reexpand(axis.model, kArduPilotReferenceC);
-  for (std::size_t k = 1; k < 4; ++k) g[k - 1] = static_cast<float>(a[k] * kRadPerSecPerDegPerHour * 1e6);
+  const double per_base = firmware_per_base(kind);
+  const std::array<double, kQuintic + 1> a = reexpand(axis.model, kArduPilotReferenceC);
+  for (std::size_t k = 1; k < 4; ++k) g[k - 1] = static_cast<float>(a[k] * per_base * 1e6);
   return g;
+}
+
+bool single_channel(const fit::SensorKind& kind) { return kind.log_columns.find(',') == std::string_view::npos; }
+
+double firmware_per_base(const fit::SensorKind& kind) {
+  return kind.is_gyro ? kRadPerSecPerDegPerHour : 1.0 / fit::find_unit(kind.quantity, kind.ulog.unit, "").factor;
+}
+
+const fit::SensorKind& exported_kind(const std::vector<fit::SavedFit>& fits) {
+  const fit::SensorKind& kind = fits.front().pipeline.columns.units.kind();
+  for (const fit::SavedFit& f : fits)
+    if (&f.pipeline.columns.units.kind() != &kind)
+      throw InputError(fmt::format("{}: its channels are fits of different sensors ({} and {}); a firmware file "
+                                   "holds one sensor's",
+                                   f.file.string(), kind.name, f.pipeline.columns.units.kind().name));
+  return kind;
 }
 
 std::string ardupilot_prefix(int instance) {
@@ -125,10 +146,10 @@ std::string as_float(double v) { return fmt::format("{:.9g}", static_cast<float>
 
 std::string provenance(const ExportHeader& h, const char* comment) {
   std::string out = fmt::format(
-      "{0} gyrotherm export: gyro thermal compensation from {1}\n"
+      "{0} gyrotherm export: {6} thermal compensation from {1}\n"
       "{0}   fit file SHA-256 {2}\n"
-      "{0}   engine {3}, model B = b0 + {4} (°/h, T in °C), exported {5}\n",
-      comment, h.fit_file, h.fit_sha256, h.engine, h.model_text, h.date_utc);
+      "{0}   engine {3}, model B = b0 + {4} ({7}, T in °C), exported {5}\n",
+      comment, h.fit_file, h.fit_sha256, h.engine, h.model_text, h.date_utc, h.sensor, h.unit);
   if (!h.data_sha256.empty())
     out += fmt::format("{}   {}{}{}{}\n", comment, kFittedOn, h.data_file, kFittedSha, h.data_sha256);
   return out;
@@ -141,16 +162,18 @@ std::string axis_comment(const AxisModel& axis, std::string_view name, std::stri
                      fmt::join(axis.model.dropped, ", "), firmware, axis.model.dropped.size() == 1 ? "it" : "them");
 }
 
-double CubicModel::evaluate(double t) const { return c[0] + t * (c[1] + t * (c[2] + t * c[3])); }
+double PolynomialModel::evaluate(double t) const {
+  return c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
+}
 
-CubicModel cubic_of(const fit::SavedFit& fit, bool drop_unsupported, const std::string& format) {
-  CubicModel m;
+PolynomialModel polynomial_of(const fit::SavedFit& fit, bool drop_unsupported, const std::string& format, int order) {
+  PolynomialModel m;
   m.c[0] = fit.coefficients.intercept;
   std::vector<std::string> unsupported;
   for (std::size_t k = 0; k < fit.terms.size(); ++k) {
     const std::string name(fit.terms[k]->name);
     const int power = fit.terms[k]->temperature_power;  // 0: not a power of T
-    if (power < 1 || power > kCubic) {
+    if (power < 1 || power > order) {
       unsupported.push_back(name);
       continue;
     }
@@ -160,17 +183,18 @@ CubicModel cubic_of(const fit::SavedFit& fit, bool drop_unsupported, const std::
     std::string names;
     for (const std::string& n : unsupported) names += (names.empty() ? "" : ", ") + n;
     throw InputError(fmt::format(
-        "{}: the model has {} ({}), which {} cannot express: its gyro thermal compensation is a cubic in "
-        "temperature. Use --format c for the whole model, fit a polynomial (--model 'T + T^2 + T^3'), or pass "
+        "{}: the model has {} ({}), which {} cannot express: its {} thermal compensation is a {} in "
+        "temperature. Use --format c for the whole model, fit a polynomial (--model '{}'), or pass "
         "--drop-unsupported to leave {} out (export then prints how much the instability rises)",
         fit.file.string(), unsupported.size() == 1 ? "a term" : "terms", names, format,
-        unsupported.size() == 1 ? "it" : "them"));
+        fit.pipeline.columns.units.kind().noun, order == kCubic ? "cubic" : "quintic",
+        order == kCubic ? "T + T^2 + T^3" : "T + T^2 + T^3 + T^4 + T^5", unsupported.size() == 1 ? "it" : "them"));
   }
   m.dropped = unsupported;
   return m;
 }
 
-DroppedCost dropped_cost(const fit::SavedFit& fit, const CubicModel& cubic, const fit::Measurement& data) {
+DroppedCost dropped_cost(const fit::SavedFit& fit, const PolynomialModel& cubic, const fit::Measurement& data) {
   const fit::Compensation c = fit::compensate(data, fit, fit::reading_columns_of(fit.pipeline, fit.terms));
   std::vector<double> residual;
   for (std::size_t p = 0; p < c.data.series.size(); ++p)
@@ -178,9 +202,16 @@ DroppedCost dropped_cost(const fit::SavedFit& fit, const CubicModel& cubic, cons
   return {c.after_dph, fit::instability_of(residual)};
 }
 
-std::array<double, 4> reexpand(const CubicModel& m, double r) {
+std::array<double, kQuintic + 1> reexpand(const PolynomialModel& m, double r) {
+  // a_k = B⁽ᵏ⁾(r)/k!, each by Horner in r (a cubic's as before: the higher
+  // terms add exact zeros).
   const auto& c = m.c;
-  return {m.evaluate(r), c[1] + r * (2.0 * c[2] + 3.0 * c[3] * r), c[2] + 3.0 * c[3] * r, c[3]};
+  return {m.evaluate(r),
+          c[1] + r * (2.0 * c[2] + r * (3.0 * c[3] + r * (4.0 * c[4] + r * (5.0 * c[5])))),
+          c[2] + r * (3.0 * c[3] + r * (6.0 * c[4] + r * (10.0 * c[5]))),
+          c[3] + r * (4.0 * c[4] + r * (10.0 * c[5])),
+          c[4] + r * (5.0 * c[5]),
+          c[5]};
 }
 
 ExportRange export_range(const std::array<AxisModel, 3>& axes) {
@@ -202,6 +233,7 @@ ExportRange export_range(const std::array<AxisModel, 3>& axes) {
 
 std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector<fit::SavedFit>& fits,
                                        const std::string& format, ExportOutput* out) {
+  const int order = format == "PX4" ? exported_kind(fits).px4_order : kCubic;
   // Which fit serves which axis.
   std::array<const fit::SavedFit*, 3> chosen{};
   if (o.axes.empty()) {
@@ -237,7 +269,7 @@ std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector
     axes[i].present = true;
     axes[i].fit = &f;
     axes[i].channel = channel_name(f);
-    axes[i].model = cubic_of(f, o.drop_unsupported, format);
+    axes[i].model = polynomial_of(f, o.drop_unsupported, format, order);
     axes[i].temp_min_c = f.temp_range_c->first;
     axes[i].temp_max_c = f.temp_range_c->second;
     DroppedCost cost{f.instability_after_dph, f.instability_after_dph};
@@ -251,7 +283,12 @@ std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector
 
 FirmwareFile firmware_file(const ExportRequest& r, const std::vector<fit::SavedFit>& fits, const std::string& format) {
   FirmwareFile f;
+  f.kind = &exported_kind(fits);
   f.axes = firmware_axes(r, fits, format, &f.out);
+  if (single_channel(*f.kind) && (f.axes[1].present || f.axes[2].present || !f.axes[0].present))
+    throw InputError(fmt::format("{}: a {}'s thermal compensation holds one channel; give a fit of one (or --axes "
+                                 "NAME,-,-)",
+                                 r.fit_file, f.kind->noun));
   const auto first = std::find_if(f.axes.begin(), f.axes.end(), [](const AxisModel& a) { return a.present; });
   f.header = export_header(r, *first->fit);
   f.range = export_range(f.axes);
@@ -262,8 +299,9 @@ std::string firmware_wrote(const ExportRequest& r, const FirmwareFile& f, const 
   std::string used;
   for (std::size_t i = 0; i < 3; ++i)
     used += fmt::format("{}{}: {}", i ? ", " : "", "XYZ"[i], f.axes[i].present ? f.axes[i].channel : "-");
-  return fmt::format("wrote {}: {} gyro thermal compensation ({}); valid {:.2f} to {:.2f} °C", r.output, format, used,
-                     f.range.tmin_c, f.range.tmax_c);
+  if (single_channel(*f.kind)) used = f.axes[0].channel;  // one channel, no axes
+  return fmt::format("wrote {}: {} {} thermal compensation ({}); valid {:.2f} to {:.2f} °C", r.output, format,
+                     f.kind->noun, used, f.range.tmin_c, f.range.tmax_c);
 }
 
 }  // namespace gyrotherm::studies

@@ -1,7 +1,14 @@
 #pragma once
-// A saved fit as an autopilot's gyro thermal compensation parameters
+// A saved fit as an autopilot's thermal compensation parameters
 // (`gyrotherm export --format px4|ardupilot`): the parts both formats share
-// (studies/export/px4.cpp and ardupilot.cpp write the files).
+// (studies/export/px4.cpp and ardupilot.cpp write the files). Written for
+// the gyro below; the other sensors (fit/data/sensor_kind.h) follow the same
+// rules in their own units and parameter names: PX4's TC_A (accelerometer,
+// m/s², cubic), TC_B (barometer, Pa, quintic X0..X5, no axis suffix) and
+// TC_M (magnetometer, gauss, cubic); ArduPilot's INS_TCAL{n}_ACC{1,2,3}_*
+// (accelerometer, m/s² ×10⁶), relative to INS_ACC{n}_CALTEMP as the gyro's
+// are to INS_GYR{n}_CALTEMP (ArduPilot has no barometer or compass
+// polynomial).
 //
 // Both firmwares correct a gyro with a cubic in temperature, in rad/s, the
 // temperature clamped to the calibrated range:
@@ -51,23 +58,34 @@
 
 namespace gyrotherm::studies {
 
-// The highest power of T both firmwares store.
+// The highest power of T both firmwares store of a gyro (and of an
+// accelerometer and a magnetometer); PX4's barometer's.
 inline constexpr int kCubic = 3;
+inline constexpr int kQuintic = 5;
 
-// B(T) = Σ c[k]·T^k in °/h, T in °C.
-struct CubicModel {
-  std::array<double, 4> c{};
+// B(T) = Σ c[k]·T^k in the sensor's base unit (°/h for a gyro), T in °C;
+// c[k] = 0 above the firmware's order.
+struct PolynomialModel {
+  std::array<double, kQuintic + 1> c{};
   std::vector<std::string> dropped;  // terms left out (drop_unsupported)
   double evaluate(double temp_c) const;
 };
 
-// The fit's polynomial in T; throws InputError naming the terms a firmware
-// cannot express (and suggesting --format c or --drop-unsupported) unless
-// drop_unsupported.
-CubicModel cubic_of(const fit::SavedFit& fit, bool drop_unsupported, const std::string& format);
+// The fit's polynomial in T up to `order`; throws InputError naming the
+// terms a firmware cannot express (and suggesting --format c or
+// --drop-unsupported) unless drop_unsupported.
+PolynomialModel polynomial_of(const fit::SavedFit& fit, bool drop_unsupported, const std::string& format,
+                              int order = kCubic);
 
 // a[k] with B(t_ref + d) = Σ a[k]·d^k, exactly.
-std::array<double, 4> reexpand(const CubicModel& model, double t_ref_c);
+std::array<double, kQuintic + 1> reexpand(const PolynomialModel& model, double t_ref_c);
+
+// The firmware's unit per the sensor's base unit: rad/s per °/h for a gyro;
+// 1 for the others, whose base units (m/s², Pa, gauss) are the firmwares'.
+double firmware_per_base(const fit::SensorKind& kind);
+// The sensor kind of the fits exported (one for all of them; InputError
+// when they differ).
+const fit::SensorKind& exported_kind(const std::vector<fit::SavedFit>& fits);
 
 // ArduPilot's fixed reference temperature (TEMP_REFERENCE in AP_InertialSensor_tempcal.cpp).
 inline constexpr double kArduPilotReferenceC = 35.0;
@@ -79,25 +97,24 @@ struct AxisModel {
   bool present = false;
   const fit::SavedFit* fit = nullptr;  // the fit it came from
   std::string channel;
-  CubicModel model;
+  PolynomialModel model;
   double temp_min_c = 0.0, temp_max_c = 0.0;
 };
 
+struct FirmwareFile;
 // The QGroundControl parameter file (vehicle 1, component 1; tab-separated
 // "vehicle component name value type", type 9 a float, 6 an integer).
-std::string px4_parameters(const std::array<AxisModel, 3>& axes, int instance, long long device_id,
-                           const ExportHeader& header);
+std::string px4_parameters(const FirmwareFile& file, int instance, long long device_id);
 
 // A Mission Planner / MAVProxy parameter file ("NAME,VALUE" lines).
-std::string ardupilot_parameters(const std::array<AxisModel, 3>& axes, const std::string& prefix,
-                                 const ExportHeader& header);
+std::string ardupilot_parameters(const FirmwareFile& file, const std::string& prefix);
 
 // What dropping terms costs on the data the fit was made on: the instability
 // of the window means with the whole model and with the cubic alone.
 struct DroppedCost {
   double with_dph = 0.0, without_dph = 0.0;
 };
-DroppedCost dropped_cost(const fit::SavedFit& fit, const CubicModel& cubic, const fit::Measurement& data);
+DroppedCost dropped_cost(const fit::SavedFit& fit, const PolynomialModel& cubic, const fit::Measurement& data);
 
 // The TMIN/TMAX/TREF the exports use: the intersection of the axes' ranges.
 struct ExportRange {
@@ -120,9 +137,11 @@ inline constexpr double kArduPilotSpanMinimumC = 10.0;
 // requires …" for a range under it; nothing for one that is not.
 std::optional<std::string> ardupilot_span_caution(const ExportRange& r);
 
-// What both firmware formats write: the axes, the file's header (from the
-// first axis's fit), the range, and export's lines so far (dropped terms).
+// What both firmware formats write: the sensor kind, the axes, the file's
+// header (from the first axis's fit), the range, and export's lines so far
+// (dropped terms).
 struct FirmwareFile {
+  const fit::SensorKind* kind = nullptr;
   std::array<AxisModel, 3> axes;
   ExportHeader header;
   ExportRange range;
@@ -131,12 +150,21 @@ struct FirmwareFile {
 FirmwareFile firmware_file(const ExportRequest& request, const std::vector<fit::SavedFit>& fits,
                            const std::string& format);
 // "wrote FILE: PX4 gyro thermal compensation (X: gx, Y: -, Z: gz); valid A to B °C"
+// (a barometer: "(pressure)")
 std::string firmware_wrote(const ExportRequest& request, const FirmwareFile& file, const std::string& format);
 
 // The coefficients as each firmware stores them (32-bit floats): PX4's
-// X0..X3 in rad/s about `tref`; ArduPilot's GYR1..3 (×10⁶ rad/s) about 35 °C.
-std::array<float, 4> px4_coefficients(const AxisModel& axis, float tref);
-std::array<float, 3> ardupilot_coefficients(const AxisModel& axis);
+// X0..X3 (X0..X5 of a barometer; the rest 0) in the firmware's unit about
+// `tref`; ArduPilot's GYR1..3 or ACC1..3 (×10⁶) about 35 °C. A gyro's X0 is
+// its whole bias at TREF (PX4's gyro calibration then finds nothing left);
+// another sensor's is 0, as PX4's own calibrations set it: what it reads at
+// TREF holds gravity, the atmosphere or the Earth's field besides any bias,
+// which its offset calibration (CAL_ACCn_OFF*, CAL_BAROn_OFF, CAL_MAGn_OFF*)
+// takes out; the parameters then correct the change from TREF.
+std::array<float, kQuintic + 1> px4_coefficients(const AxisModel& axis, float tref, const fit::SensorKind& kind);
+std::array<float, 3> ardupilot_coefficients(const AxisModel& axis, const fit::SensorKind& kind);
+// Whether the sensor has one channel (a barometer), not three axes.
+bool single_channel(const fit::SensorKind& kind);
 
 // The parameter names' stem of ArduPilot's IMU `instance` (1..5): INS_TCAL1_
 // .. INS_TCAL3_, INS4_TCAL_, INS5_TCAL_; throws InputError for another.

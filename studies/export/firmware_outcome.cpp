@@ -25,11 +25,17 @@ constexpr float kArduPilotReference = 35.0f;
 
 float clamped(float t, float lo, float hi) { return std::min(std::max(t, lo), hi); }
 
-// What PX4's calc_thermal_offsets_3D gives for one axis at temperature t, in
-// °/h: float arithmetic in its order, t clamped to [tmin, tmax].
-double px4_offset_dph(const std::array<float, 4>& x, float tref, float tmin, float tmax, float t) {
+// What PX4's calc_thermal_offsets_3D (a barometer's _1D: X4, X5 too) gives
+// for one axis at temperature t, in the base unit: float arithmetic in its
+// order, t clamped to [tmin, tmax].
+double px4_offset_dph(std::span<const float> x, float tref, float tmin, float tmax, float t, double per_base) {
   const float d = clamped(t, tmin, tmax) - tref, d2 = d * d, d3 = d2 * d;
-  return static_cast<double>(x[0] + x[1] * d + x[2] * d2 + x[3] * d3) / kRadPerSecPerDegPerHour;
+  float offset = x[0] + x[1] * d + x[2] * d2 + x[3] * d3;
+  if (x.size() > 4) {
+    const float d4 = d3 * d, d5 = d4 * d;
+    offset = offset + x[4] * d4 + x[5] * d5;
+  }
+  return static_cast<double>(offset) / per_base;
 }
 
 // The instability (std of the window averages, the fit's preparation) of
@@ -44,7 +50,7 @@ double instability_less(const fit::Measurement& m, const std::vector<double>& su
 }  // namespace
 
 std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std::vector<double>& temp_c,
-                                    const std::array<float, 4>& x, float tref, float tmin, float tmax) {
+                                    std::span<const float> x, float tref, float tmin, float tmax, double per_base) {
   std::vector<double> out(time_s.size());
   if (time_s.empty()) return out;
   const double t0 = time_s.front();
@@ -57,7 +63,7 @@ std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std
     if (time_s[i] >= next_run) {
       const auto t = static_cast<float>(temp_c[i]);
       if (!published || std::fabs(t - last_published) > kPx4HysteresisC) {
-        applied = px4_offset_dph(x, tref, tmin, tmax, t);
+        applied = px4_offset_dph(x, tref, tmin, tmax, t, per_base);
         last_published = t;
         published = true;
       }
@@ -69,7 +75,8 @@ std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std
 }
 
 std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, const std::array<float, 3>& g,
-                                          float tmin, float tmax, float boot_c, double bias_at_boot_dph) {
+                                          float tmin, float tmax, float boot_c, double bias_at_boot_dph,
+                                          double per_base) {
   const auto p = [&](float t) {
     const float x = clamped(t, tmin, tmax) - kArduPilotReference;
     return (g[0] + (g[1] + g[2] * x) * x) * x * 1.0e-6f;
@@ -77,8 +84,7 @@ std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, con
   const float at_boot = p(boot_c);
   std::vector<double> out(temp_c.size());
   for (std::size_t i = 0; i < temp_c.size(); ++i)
-    out[i] = static_cast<double>(p(static_cast<float>(temp_c[i])) - at_boot) / kRadPerSecPerDegPerHour +
-             bias_at_boot_dph;
+    out[i] = static_cast<double>(p(static_cast<float>(temp_c[i])) - at_boot) / per_base + bias_at_boot_dph;
   return out;
 }
 
@@ -86,6 +92,9 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
                                  std::optional<double> boot_c, const fit::Table* data_table) {
   FirmwareOutcome o;
   o.firmware = firmware;
+  o.kind = file.kind;
+  const double per_base = firmware_per_base(*file.kind);
+  const std::size_t n_x = static_cast<std::size_t>(file.kind->px4_order) + 1;
   const ExportRange& r = file.range;
   const auto tmin = static_cast<float>(r.tmin_c), tmax = static_cast<float>(r.tmax_c);
   const auto tref = static_cast<float>(r.tref_c);
@@ -126,18 +135,21 @@ FirmwareOutcome firmware_outcome(Firmware firmware, const FirmwareFile& file, co
                         static_cast<double>(std::max<std::size_t>(m.size(), 1));
     std::vector<double> continuous(m.size()), unheld(m.size());  // the cubic held at the range's edge, and not
     if (firmware == Firmware::px4) {
-      const std::array<float, 4> x = px4_coefficients(a, tref);
+      const std::array<float, kQuintic + 1> stored = px4_coefficients(a, tref, *file.kind);
+      const std::span<const float> x(stored.data(), n_x);
       for (std::size_t k = 0; k < m.size(); ++k) {
-        continuous[k] = px4_offset_dph(x, tref, tmin, tmax, static_cast<float>(m.temp_c[k]));
-        unheld[k] = px4_offset_dph(x, tref, -1e9f, 1e9f, static_cast<float>(m.temp_c[k]));
+        continuous[k] = px4_offset_dph(x, tref, tmin, tmax, static_cast<float>(m.temp_c[k]), per_base);
+        unheld[k] = px4_offset_dph(x, tref, -1e9f, 1e9f, static_cast<float>(m.temp_c[k]), per_base);
       }
       out.exported_dph = instability_less(m, continuous, pipeline);
-      out.firmware_dph = instability_less(m, px4_applied_dph(m.time_s, m.temp_c, x, tref, tmin, tmax), pipeline);
+      out.firmware_dph =
+          instability_less(m, px4_applied_dph(m.time_s, m.temp_c, x, tref, tmin, tmax, per_base), pipeline);
     } else {
       const float boot = static_cast<float>(boot_c.value_or(m.temp_c.front()));
-      const std::array<float, 3> g = ardupilot_coefficients(a);
+      const std::array<float, 3> g = ardupilot_coefficients(a, *file.kind);
       const double bias_at_boot = a.model.evaluate(boot);  // what the boot offsets take out (the model's word)
-      const std::vector<double> applied = ardupilot_applied_dph(m.temp_c, g, tmin, tmax, boot, bias_at_boot);
+      const std::vector<double> applied =
+          ardupilot_applied_dph(m.temp_c, g, tmin, tmax, boot, bias_at_boot, per_base);
       for (std::size_t k = 0; k < m.size(); ++k) {
         continuous[k] = a.model.evaluate(std::clamp(m.temp_c[k], r.tmin_c, r.tmax_c));
         unheld[k] = a.model.evaluate(m.temp_c[k]);
@@ -172,10 +184,13 @@ void add_outcome(const FirmwareOutcome& outcome, ExportOutput* out) {
 namespace {
 
 // How the firmware applies the parameters, one line.
-const char* firmware_rule_text(Firmware firmware) {
-  return firmware == Firmware::px4 ? "PX4 recomputes the offsets once a second and applies them only when the "
-                                     "temperature has moved more than 1 °C since the last applied"
-                                   : "ArduPilot corrects every sample, relative to the gyro offsets taken at boot";
+std::string firmware_rule_text(Firmware firmware, const fit::SensorKind& kind) {
+  if (firmware == Firmware::px4)
+    return "PX4 recomputes the offsets once a second and applies them only when the temperature has moved more than "
+           "1 °C since the last applied";
+  return kind.is_gyro ? "ArduPilot corrects every sample, relative to the gyro offsets taken at boot"
+                      : fmt::format("ArduPilot corrects every sample, relative to the {} offsets of its calibration",
+                                    kind.noun);
 }
 
 }  // namespace
@@ -183,7 +198,7 @@ const char* firmware_rule_text(Firmware firmware) {
 nlohmann::ordered_json FirmwareOutcome::json() const {
   nlohmann::ordered_json j;
   j["data"] = data.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(data);
-  j["rule"] = firmware_rule_text(firmware);
+  j["rule"] = firmware_rule_text(firmware, *kind);
   j["axes"] = nlohmann::ordered_json::array();
   for (const AxisOutcome& a : axes)
     j["axes"].push_back({{"axis", std::string(1, a.axis)},
@@ -201,24 +216,25 @@ namespace {
 
 // Why the exported cubic itself costs: the terms it left out, the samples
 // held at the fitted range's edge, or (neither) the cubic's own shape.
-std::string cubic_cost_text(const AxisOutcome& a) {
+std::string cubic_cost_text(const AxisOutcome& a, std::string_view polynomial) {
   const bool dropped = !a.dropped.empty(), outside = a.outside_share > 0.0 && a.edge_costs;
   const std::string terms = fmt::format("{}", fmt::join(a.dropped, ", "));
   if (dropped && !outside)
-    return fmt::format("the exported cubic already leaves this much: the terms it leaves out ({}) carry it; "
+    return fmt::format("the exported {} already leaves this much: the terms it leaves out ({}) carry it; "
                        "--format c compensates with them at every sample",
-                       terms);
+                       polynomial, terms);
   if (outside && !dropped)
-    return fmt::format("the exported cubic already leaves this much: {:.0f} % of the samples lie outside the fitted "
+    return fmt::format("the exported {} already leaves this much: {:.0f} % of the samples lie outside the fitted "
                        "range, held at its edge; fit over the temperature range the vehicle will see",
-                       100.0 * a.outside_share);
+                       polynomial, 100.0 * a.outside_share);
   if (dropped)
-    return fmt::format("the exported cubic already leaves this much: the terms it leaves out ({}) and the {:.0f} % "
+    return fmt::format("the exported {} already leaves this much: the terms it leaves out ({}) and the {:.0f} % "
                        "of the samples outside the fitted range (held at its edge); --format c keeps the terms, a "
                        "fit over the range the vehicle will see the rest",
-                       terms, 100.0 * a.outside_share);
-  return "the exported cubic already leaves this much (a polynomial in T of at most third order cannot follow the "
-         "fitted model): --format c compensates with the model itself";
+                       polynomial, terms, 100.0 * a.outside_share);
+  return fmt::format("the exported {} already leaves this much (a polynomial in T of at most {} order cannot follow "
+                     "the fitted model): --format c compensates with the model itself",
+                     polynomial, polynomial == "cubic" ? "third" : "fifth");
 }
 
 }  // namespace
@@ -233,14 +249,15 @@ std::vector<std::string> FirmwareOutcome::notes() const {
   for (const AxisOutcome& a : axes) {
     if (a.cost == FirmwareCost::none) continue;
     const std::string help =
-        a.cost == FirmwareCost::exported_cubic ? cubic_cost_text(a)
+        a.cost == FirmwareCost::exported_cubic ? cubic_cost_text(a, polynomial())
         : a.cost == FirmwareCost::px4_step
             ? "the cost is PX4's 1 °C step, not the model: it grows with how fast the bias changes per °C; a "
               "compensation applied at every sample (--format c in your own code) avoids it"
             : "samples outside the fitted range are held at its edge: fit over the temperature range the vehicle "
               "will see";
-    out.push_back(fmt::format("{} ({}): as {} applies it {:.4g} °/h against the model's {:.4g} ({:.2f}x): {}", a.axis,
-                              a.channel, name, a.firmware_dph, a.model_dph, a.firmware_dph / a.model_dph, help));
+    out.push_back(fmt::format("{} ({}): as {} applies it {:.4g} {} against the model's {:.4g} ({:.2f}x): {}", a.axis,
+                              a.channel, name, a.firmware_dph, kind->unit, a.model_dph, a.firmware_dph / a.model_dph,
+                              help));
   }
   return out;
 }
@@ -253,10 +270,12 @@ std::vector<std::string> FirmwareOutcome::warnings() const {
     for (const AxisOutcome& a : axes)
       errors += fmt::format("{}{}: {:.4g}", errors.empty() ? "" : ", ", a.axis, a.boot_error_dph);
     out.push_back(fmt::format(
-        "--boot-temp {:g} °C is outside the fitted range [{:.2f}, {:.2f}] °C: ArduPilot clamps it, and a gyro "
-        "calibrated at boot there keeps a constant error all flight ({} °/h, by the model extrapolated); boot "
-        "within the range, or fit over the temperatures the vehicle boots at",
-        *boot_outside_c, tmin_c, tmax_c, errors));
+        "--boot-temp {:g} °C is outside the fitted range [{:.2f}, {:.2f}] °C: ArduPilot clamps it, and {} "
+        "there keeps a constant error all flight ({} {}, by the model extrapolated); {} within the range, or fit "
+        "over the temperatures the vehicle {} at",
+        *boot_outside_c, tmin_c, tmax_c,
+        kind->is_gyro ? std::string("a gyro calibrated at boot") : fmt::format("the {} calibrated", kind->noun),
+        errors, kind->unit, kind->is_gyro ? "boot" : "calibrate", kind->is_gyro ? "boots" : "is calibrated"));
   }
   return out;
 }
@@ -265,11 +284,13 @@ std::vector<std::string> FirmwareOutcome::lines() const {
   std::vector<std::string> out;
   if (!axes.empty()) {
     out.push_back(
-        fmt::format("on {} (instability of the window averages, °/h): {}", data, firmware_rule_text(firmware)));
+        fmt::format("on {} (instability of the window averages, {}): {}", data, kind->unit,
+                    firmware_rule_text(firmware, *kind)));
     for (const AxisOutcome& a : axes)
-      out.push_back(fmt::format("  {} ({}): raw {:.4g}, model {:.4g}, exported cubic {:.4g}, as the firmware applies it "
+      out.push_back(fmt::format("  {} ({}): raw {:.4g}, model {:.4g}, exported {} {:.4g}, as the firmware applies it "
                                 "{:.4g}",
-                                a.axis, a.channel, a.before_dph, a.model_dph, a.exported_dph, a.firmware_dph));
+                                a.axis, a.channel, a.before_dph, a.model_dph, polynomial(), a.exported_dph,
+                                a.firmware_dph));
   }
   for (const std::string& n : notes()) out.push_back(n);
   return out;

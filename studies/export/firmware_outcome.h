@@ -26,6 +26,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,19 +38,23 @@
 
 namespace gyrotherm::studies {
 
-// What PX4 subtracts from each sample (°/h): offsets (X0..X3 in rad/s, as
-// stored) recomputed once a second from the latest sample's temperature and
-// applied from the first update on, then only when the temperature has moved
-// more than 1 °C since the last applied one.
+// What PX4 subtracts from each sample, in the sensor's base unit (°/h for a
+// gyro): offsets (X0..X3, or a barometer's X0..X5, in the firmware's unit as
+// stored; `per_base`: firmware_per_base) recomputed once a second from the
+// latest sample's temperature and applied from the first update on, then only
+// when the temperature has moved more than 1 °C since the last applied one.
 std::vector<double> px4_applied_dph(const std::vector<double>& time_s, const std::vector<double>& temp_c,
-                                    const std::array<float, 4>& x, float tref, float tmin, float tmax);
+                                    std::span<const float> x, float tref, float tmin, float tmax,
+                                    double per_base = kRadPerSecPerDegPerHour);
 
-// What ArduPilot subtracts from each sample (°/h), GYR1..3 as stored (×1e6),
-// after gyro offsets taken at boot at boot_c: p(clamp(T) − 35) −
-// p(clamp(boot) − 35) + B_boot, where B_boot (°/h, the bias at boot) is what
-// the offsets remove.
+// What ArduPilot subtracts from each sample (in the base unit), GYR1..3 or
+// ACC1..3 as stored (×1e6), after offsets taken at boot_c (the gyro's boot
+// calibration, the accelerometer's calibration): p(clamp(T) − 35) −
+// p(clamp(boot) − 35) + B_boot, where B_boot (the bias there) is what the
+// offsets remove.
 std::vector<double> ardupilot_applied_dph(const std::vector<double>& temp_c, const std::array<float, 3>& g,
-                                          float tmin, float tmax, float boot_c, double bias_at_boot_dph);
+                                          float tmin, float tmax, float boot_c, double bias_at_boot_dph,
+                                          double per_base = kRadPerSecPerDegPerHour);
 
 enum class Firmware { px4, ardupilot };
 
@@ -84,6 +89,7 @@ struct RecordCaution {
 // The outcome as data; json(), lines() and warnings() word it.
 struct FirmwareOutcome {
   Firmware firmware = Firmware::px4;
+  const fit::SensorKind* kind = &fit::sensor_kinds().front();  // every number in its base unit (kind->unit)
   std::string data;                // the record it was computed on; empty: not here
   // Not here: the fit file and the data it names (the notes say to give it with --data).
   std::string fit_file, missing_data;
@@ -97,6 +103,10 @@ struct FirmwareOutcome {
   std::vector<std::string> lines() const;     // for the terminal
   std::vector<std::string> notes() const;     // where the rule costs more than 20 %, and what would help
   std::vector<std::string> warnings() const;  // for stderr
+  // "cubic", or "quintic" (PX4's barometer).
+  std::string_view polynomial() const {
+    return firmware == Firmware::px4 && kind->px4_order == kQuintic ? "quintic" : "cubic";
+  }
 };
 
 // The outcome of `file` applied by `firmware` on the data each axis's fit was

@@ -17,7 +17,7 @@ CompensateRun compensate_record(const CompensateRequest& o, const RecordSource& 
   CompensateRun run;
   run.request = o;
   run.request.data = source.name();
-  run.fits = o.fits.empty() ? fit::load_fits(o.fit_file) : o.fits;
+  run.fits = o.fits.empty() ? fit::load_fits(o.fit_file, fit::FitKinds::any) : o.fits;
   const std::vector<std::string> gyros = gyro_per_channel(o.columns.gyro, run.fits.size(), o.fit_file);
   bool streamed = false;
   std::size_t channel = 0;
@@ -25,6 +25,12 @@ CompensateRun compensate_record(const CompensateRequest& o, const RecordSource& 
     fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
     fit::ColumnMap given = o.columns;
     given.gyro = gyros[channel++];
+    // The sensor is the fit's: a --sensor given must name it.
+    if (const fit::SensorKind& kind = fit.pipeline.columns.units.kind();
+        !given.units.sensor.empty() && &fit::sensor_kind(given.units.sensor) != &kind)
+      throw InputError(fmt::format("--sensor {}: {} is the {}'s fit (--sensor {}); leave --sensor out, or give "
+                                   "that sensor's fit",
+                                   given.units.sensor, o.fit_file, kind.noun, kind.name));
     pipeline.columns = source.fit_columns(pipeline.columns).with(given);
     pipeline.columns.units.validate();
     if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
@@ -74,8 +80,9 @@ std::string compensate_text(const CompensateRun& run) {
     out += fmt::format("compensate {}{} with {} ({}: B = b0 + {}, {} derivatives)\n", run.request.data,
                        run.fits.size() > 1 ? ", channel " + fit.channel : "", run.request.fit_file, fit.engine,
                        fit::formula_text(fit.terms), run.channel_json[i]["derivative"].get<std::string>());
-    out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} °/h ({:.2f}x)\n",
-                       fit::averages_name(c.data, fit.pipeline), c.before_dph, c.after_dph, c.ratio());
+    out += fmt::format("instability (std of {}): {:.6g} -> {:.6g} {} ({:.2f}x)\n",
+                       fit::averages_name(c.data, fit.pipeline), c.before_dph, c.after_dph,
+                       fit.pipeline.columns.units.kind().unit, c.ratio());
     for (const fit::UnitCaution& caution : c.data.cautions) out += "caution: " + fit::caution_text(caution) + "\n";
     if (c.windows_outside > 0 && c.fit_range_c) {
       const auto [lo, hi] = std::minmax_element(c.data.derived.temp_c.begin(), c.data.derived.temp_c.end());

@@ -32,6 +32,7 @@ const OptionTable<CompensateCommandOptions>& compensate_option_table() {
   return table;
 }
 
-CompensateRequest compensate_request(const CompensateCommandOptions& o) { return gyro_only(o.request, "compensate"); }
+// Every sensor's fit: the sensor is the fit's (a --sensor given must say the same: compensate_run).
+CompensateRequest compensate_request(const CompensateCommandOptions& o) { return o.request; }
 
 }  // namespace gyrotherm::studies

@@ -78,7 +78,7 @@ std::vector<OptionRow<fit::ColumnMap>> column_option_rows(bool fit_defaults) {
            "auto"),
       note(nested_row("--decimal-comma", "Numbers are written with a decimal comma (20,5)", &C::csv,
                       &fit::CsvDialect::decimal_comma)),
-      note(field_row<C>("--imu", "The gyro instance of a PX4 ULog or ArduPilot DataFlash log", &C::imu),
+      note(field_row<C>("--imu", "The instance of the sensor (--sensor) in a PX4 ULog or ArduPilot DataFlash log", &C::imu),
            "the first with a temperature"),
       note(nested_row("--rate", "Sample rate in Hz of a log without a time column (row k at k / rate s)", &C::csv,
                       &fit::CsvDialect::rate_hz),

@@ -16,8 +16,8 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // The terms the firmwares cannot store (no power of T up to the third): what
-// export's cubic_of leaves out when asked to drop them.
-std::vector<std::string> not_expressible(const fit::SavedFit& fit) { return cubic_of(fit, true, "").dropped; }
+// export's polynomial_of leaves out when asked to drop them.
+std::vector<std::string> not_expressible(const fit::SavedFit& fit) { return polynomial_of(fit, true, "").dropped; }
 
 // The weights on θ = (b0, b_1..b_m) of the re-expanded coefficient a_k about
 // r (B(r + d) = Σ a_k d^k): a_k = Σ_n C(n, k)·r^(n−k)·c_n, c_n the sum of the
@@ -115,11 +115,12 @@ Json firmware_json(const fit::SavedFit& fit, double tref_c, const ChannelBand& b
     return {{"expressible", false}, {"not_expressible", others}, {"no_range", others.empty()}};
   AxisModel axis;
   axis.present = true;
-  axis.model = cubic_of(fit, false, "");
+  axis.model = polynomial_of(fit, false, "");
   const float tref = static_cast<float>(tref_c);  // as PX4 stores it
-  const std::array<float, 4> x = px4_coefficients(axis, tref);
-  const std::array<float, 3> g = ardupilot_coefficients(axis);
-  Json px4 = coefficient_block(fit, band, tref, 0, {x.begin(), x.end()}, kRadPerSecPerDegPerHour);
+  const fit::SensorKind& gyro = fit::sensor_kind("gyro");  // report reads a gyro's fit only
+  const std::array<float, kQuintic + 1> x = px4_coefficients(axis, tref, gyro);
+  const std::array<float, 3> g = ardupilot_coefficients(axis, gyro);
+  Json px4 = coefficient_block(fit, band, tref, 0, {x.begin(), x.begin() + kCubic + 1}, kRadPerSecPerDegPerHour);
   px4["tref_c"] = tref;
   px4["temp_range_c"] = {fit.temp_range_c->first, fit.temp_range_c->second};
   Json ardupilot = coefficient_block(fit, band, kArduPilotReferenceC, 1, {g.begin(), g.end()}, kRadPerSecPerDegPerHour * 1e6);
@@ -130,10 +131,10 @@ Json firmware_json(const fit::SavedFit& fit, double tref_c, const ChannelBand& b
 Json sensors_json(const std::string& log, const fit::SavedFit& fit) {
   const fit::LogFormat* format = fit::log_format_of(log);
   if (format == nullptr) return {{"format", "text table"}, {"gyros", Json::array()}};
-  const fit::LogContents contents = format->read(log, -1, {});
+  const fit::LogContents contents = format->read(log, -1, {}, fit::sensor_kind("gyro"));
   const int read = fit.pipeline.columns.imu.value_or(contents.default_instance());
   Json gyros = Json::array();
-  for (const fit::LogGyro& g : contents.gyros)
+  for (const fit::LogSensor& g : contents.sensors)
     gyros.push_back({{"instance", g.instance},
                      {"message", g.message},
                      {"device_id", g.device_id},

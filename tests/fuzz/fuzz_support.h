@@ -31,22 +31,24 @@ inline void write_input(const std::filesystem::path& file, const std::uint8_t* d
 
 // The body of an autopilot log reader's target (fit/data/autopilot_log.h;
 // `read` is fit::read_ulog or fit::read_dataflash): the input as a file is
-// sorted by autopilot_log_format and read; a file it reads must give, for
-// each gyro it lists, exactly that many samples to a sink (a difference
-// traps), and a description.
+// sorted by autopilot_log_format and read for every sensor kind; a file it
+// reads must give, for each instance it lists, exactly that many samples to
+// a sink (a difference traps), and a description.
 template <class Reader>
 int read_autopilot_log(const std::filesystem::path& file, Reader read, const std::uint8_t* data, std::size_t size) {
   write_input(file, data, size);
   (void)fit::autopilot_log_format(file);
-  try {
-    const auto contents = read(file, -1, {});
-    (void)contents.describe();
-    for (const auto& gyro : contents.gyros) {
-      std::size_t samples = 0;
-      read(file, gyro.instance, [&](double, double, double, double, double) { ++samples; });
-      if (samples != gyro.samples) __builtin_trap();
+  for (const fit::SensorKind& kind : fit::sensor_kinds()) {
+    try {
+      const auto contents = read(file, -1, {}, kind);
+      (void)contents.describe();
+      for (const auto& sensor : contents.sensors) {
+        std::size_t samples = 0;
+        read(file, sensor.instance, [&](double, double, double, double, double) { ++samples; }, kind);
+        if (samples != sensor.samples) __builtin_trap();
+      }
+    } catch (const InputError&) {
     }
-  } catch (const InputError&) {
   }
   return 0;
 }
