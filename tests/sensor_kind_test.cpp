@@ -206,13 +206,14 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
                  "accel_x_mps2 may be the accelerometer's: to fit it, give --sensor accel --gyro-col 'accel_x_mps2'");
   expect_refused(dir, "fit a.csv --sensor accel", "accel_x_mps2 may be the accelerometer's: give --gyro-col");
   // The other commands read a gyro only, so far.
-  for (const char* command : {"diagnose", "allan", "check"})
+  for (const char* command : {"diagnose", "check"})
     expect_refused(dir, std::string(command) + " a.csv --sensor accel --gyro-col accel_x_mps2" +
                             (std::string(command) == "check" ? " --params x.params" : ""),
                    std::string("--sensor accel: ") + command + " reads a gyro only, so far");
   // An accelerometer's fit file is not applied as a gyro's, nor its noise planned with.
   ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --gyro-col accel_x_mps2 --model T -o a_fit.json").exit_code, 0);
   expect_refused(dir, "plan --noise a_fit.json --model T", "plan designs a gyro's test only, so far");
+  expect_refused(dir, "report a.csv --fit a_fit.json -o r.html", "accel");
   expect_refused(dir, "check a.csv --params a_fit.json",
                  "pipeline.columns.units.sensor is accel (the accelerometer's fit)");
   expect_refused(dir, "compensate a.csv --fit a_fit.json --sensor gyro -o out.csv",
@@ -222,7 +223,7 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
   ASSERT_EQ(run_cli(dir, "fit g.csv --gyro-col rate_dph --model T -o g_fit.json").exit_code, 0);
   ASSERT_EQ(run_shell(dir, "sed -i '1s/^{/{\"sensor\": \"accel\",/' g_fit.json").exit_code, 0);
   expect_refused(dir, "check g.csv --params g_fit.json",
-                 "the fit of a sensor of kind \"accel\" (its \"sensor\"): compensate, check, report");
+                 "the fit of a sensor of kind \"accel\" (its \"sensor\"): check and report take");
   expect_refused(dir, "compensate g.csv --fit g_fit.json -o out.csv",
                  "its \"sensor\" is \"accel\" but pipeline.columns.units.sensor is gyro");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
@@ -260,6 +261,46 @@ TEST(CliSensor, AnAccelerometersFitIsAppliedInItsUnits) {
   EXPECT_NE(testing::slurp(dir / "two_out.csv").find("acc_x_mps2,acc_x_model_mps2,acc_x_compensated_mps2"),
             std::string::npos)
       << testing::slurp(dir / "two_out.csv").substr(0, 400);
+}
+
+// allan on an accelerometer's and a barometer's white noise: 0.01 m/s² at
+// 1 s is a velocity random walk of 0.01·√3600 = 0.6 m/s/√h; 2 Pa at 1 s a
+// white noise density of 2 Pa·√s. Named and united as each sensor's.
+TEST(CliSensor, AllanReportsEachSensorsNoiseInItsUnits) {
+  ScratchDir dir;
+  const auto write_white = [&](const std::string& file, const std::string& column, double level, double sigma) {
+    const CliResult r = run_shell(dir, "awk 'BEGIN { srand(11); print \"time_s,temp_c," + column +
+                                           "\"; for (k = 0; k < 40000; k++) { u = -6; for (i = 0; i < 12; i++) "
+                                           "u += rand(); printf \"%d,%.4f,%.9g\\n\", k, 20 + k / 2000, " +
+                                           std::to_string(level) + " + " + std::to_string(sigma) + " * u } }' | tee " +
+                                           file);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  };
+  write_white("a.csv", "accel_mps2", 0.3, 0.01);
+  write_white("b.csv", "baro_pa", 101325.0, 2.0);
+  const CliResult a = run_cli(dir, "allan a.csv --sensor accel --json");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const nlohmann::json ja = nlohmann::json::parse(a.out);
+  EXPECT_EQ(ja["sensor"], "accel");
+  const nlohmann::json& ka = ja["series"][0]["coefficients"];
+  ASSERT_TRUE(ka.contains("vrw") && ka.contains("accel_random_walk")) << ka.dump();
+  EXPECT_FALSE(ka.contains("arw_dpsh"));
+  EXPECT_NEAR(ka["vrw"]["value"].get<double>(), 0.6, 0.03);
+  EXPECT_LE(ka["vrw"]["lo"].get<double>(), ka["vrw"]["value"].get<double>());
+  const CliResult text = run_cli(dir, "allan a.csv --sensor accel");
+  EXPECT_NE(text.out.find("velocity random walk"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("m/s/√h"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("adev (m/s²)"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("°/h"), std::string::npos) << text.out;
+  const CliResult b = run_cli(dir, "allan b.csv --sensor baro --json");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const nlohmann::json kb = nlohmann::json::parse(b.out)["series"][0]["coefficients"];
+  ASSERT_TRUE(kb.contains("white_noise")) << kb.dump();
+  EXPECT_NEAR(kb["white_noise"]["value"].get<double>(), 2.0, 0.1);
+  // With a fit: the sensor is the fit's.
+  ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --model T -o fit.json").exit_code, 0);
+  EXPECT_EQ(run_cli(dir, "allan a.csv --fit fit.json").exit_code, 0);
+  expect_refused(dir, "allan a.csv --fit fit.json --sensor baro", "--sensor baro: fit.json is the accelerometer's fit");
 }
 
 // Numbers that look like another unit than they are read in get a caution:

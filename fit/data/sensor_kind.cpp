@@ -67,6 +67,16 @@ std::string sensor_kind_names() {
   return out;
 }
 
+std::string shown_unit(std::string_view ascii) {
+  static constexpr std::pair<std::string_view, std::string_view> kShown[] = {
+      {"deg", "°"}, {"sqrt(h)", "√h"}, {"sqrt(s)", "√s"}, {"^2", "²"}, {"*", "·"}};
+  std::string out(ascii);
+  for (const auto& [from, to] : kShown)
+    for (std::size_t at = out.find(from); at != std::string::npos; at = out.find(from, at + to.size()))
+      out.replace(at, from.size(), to);
+  return out;
+}
+
 bool names_sensor(std::string_view name, const SensorKind& kind) {
   bool named = false;
   for (const std::string& word : column_words(name)) {

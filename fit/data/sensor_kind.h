@@ -68,6 +68,9 @@ std::span<const SensorKind> sensor_kinds();
 const SensorKind& sensor_kind(std::string_view name);
 // "gyro, accel or baro".
 std::string sensor_kind_names();
+// A unit as the text reports write it (°/√h, m/s²·√s), from the ASCII form
+// the JSON keeps (deg/sqrt(h), m/s^2*sqrt(s)).
+std::string shown_unit(std::string_view ascii);
 // Whether column `name`'s words (fit/data/column_role.h) name `kind`: one
 // starts with one of kind.words, and none with "temp" (a sensor's
 // temperature column).

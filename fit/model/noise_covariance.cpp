@@ -264,21 +264,6 @@ double NoiseModel::allan_variance(double tau_s) const {
   return avar;
 }
 
-namespace {
-
-// A parameter's unit as the text reports write units (°/√h), from the ASCII
-// form its JSON `unit` field keeps (deg/sqrt(h)).
-std::string shown_unit(const std::string& unit) {
-  static constexpr std::pair<std::string_view, std::string_view> kShown[] = {
-      {"deg", "°"}, {"sqrt(h)", "√h"}, {"sqrt(s)", "√s"}, {"^2", "²"}, {"*", "·"}};
-  std::string out = unit;
-  for (const auto& [ascii, shown] : kShown)
-    for (std::size_t at = out.find(ascii); at != std::string::npos; at = out.find(ascii, at + shown.size()))
-      out.replace(at, ascii.size(), shown);
-  return out;
-}
-
-}  // namespace
 
 std::string NoiseModel::description(std::string_view skip) const {
   std::string out = alternatives.empty() ? std::string() : "best of several the record supports alike: ";

@@ -21,7 +21,9 @@
 namespace gyrotherm::studies {
 namespace {
 
-nlohmann::ordered_json coefficient_json(const NoiseCoefficient& k) {
+nlohmann::ordered_json coefficient_json(const NoiseCoefficient& read, const CoefficientLabel& label,
+                                        const CoefficientLabels& labels) {
+  const NoiseCoefficient k = reported(read, label);
   nlohmann::ordered_json j{{"shown", k.shown}, {"method", coefficient_method_name(k.method)}};
   if (k.shown) {
     j["value"] = k.value;
@@ -31,11 +33,11 @@ nlohmann::ordered_json coefficient_json(const NoiseCoefficient& k) {
     j["tau_read_s"] = k.tau_read_s;
   }
   j["upper_bound"] = k.upper_bound > 0.0 ? nlohmann::ordered_json(k.upper_bound) : nlohmann::ordered_json();
-  j["note"] = coefficient_note(k);
+  j["note"] = coefficient_note(read, labels);
   return j;
 }
 
-std::string coefficient_text(const NoiseCoefficient& k, const char* unit) {
+std::string coefficient_text(const NoiseCoefficient& k, const std::string& unit) {
   if (!k.shown) return k.upper_bound > 0.0 ? fmt::format("< {:.3g} {} (bound)", k.upper_bound, unit) : "—";
   return fmt::format("{:.4g} [{:.4g}, {:.4g}] {}", k.value, k.lo, k.hi, unit);
 }
@@ -43,11 +45,12 @@ std::string coefficient_text(const NoiseCoefficient& k, const char* unit) {
 }  // namespace
 
 AllanSeries allan_series(std::span<const double> time_s, std::span<const double> rate_dph, AllanOptions options,
-                         std::string name) {
+                         std::string name, const fit::SensorKind* sensor) {
   AllanSeries s;
   std::vector<double> steps(time_s.size() > 1 ? time_s.size() - 1 : 0);
   for (std::size_t i = 0; i < steps.size(); ++i) steps[i] = time_s[i + 1] - time_s[i];
   if (!steps.empty()) s.noise = identify_series_noise(time_s, rate_dph, fit::median_of(steps));
+  if (s.noise && sensor != nullptr && !sensor->is_gyro) s.noise->sensor = sensor;  // its names and units
   if (s.noise && !options.model_avar)
     options.model_avar = [model = *s.noise](double tau) { return model.allan_variance(tau); };
   s.curve = allan_curve(time_s, rate_dph, options, std::move(name));
@@ -70,7 +73,8 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
   s.data_file = m.file;
   s.units = m.units;
   s.cautions = fit::measurement_cautions(m);
-  s.series.push_back(allan_series(m.time_s, m.gyro_dph, options, "raw"));
+  const fit::SensorKind* sensor = &m.units.kind();
+  s.series.push_back(allan_series(m.time_s, m.gyro_dph, options, "raw", sensor));
   if (!m.temp_c.empty()) {
     const auto [lo, hi] = std::minmax_element(m.temp_c.begin(), m.temp_c.end());
     s.temp_span_c = *hi - *lo;
@@ -86,7 +90,7 @@ AllanStudy allan_study(const fit::Measurement& m, const fit::SavedFit* fit, cons
       compensated[i] = c.gyro_dph[i] - c.model_dph[i];
       s.outliers += c.outlier[i];
     }
-    s.series.push_back(allan_series(c.time_s, compensated, options, "compensated"));
+    s.series.push_back(allan_series(c.time_s, compensated, options, "compensated", sensor));
   }
   return s;
 }
@@ -95,7 +99,14 @@ bool AllanStudy::raw_holds_thermal_drift() const { return temp_span_c >= kTherma
 
 nlohmann::ordered_json allan_json(const AllanStudy& study) {
   nlohmann::ordered_json j;
+  const fit::SensorKind& kind = study.units.kind();
+  const CoefficientLabels labels = coefficient_labels(kind);
   j["data"] = study.data_file;
+  if (!kind.is_gyro) {
+    // Another sensor's: the *_dph fields in its base unit, the coefficients by its names.
+    j["sensor"] = kind.name;
+    j["unit"] = kind.unit;
+  }
   j["units"] = study.units.used();
   j["cautions"] = fit::caution_texts(study.cautions);
   j["fit"] = study.fit_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(study.fit_file);
@@ -132,10 +143,13 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
     js["noise_type_from"] = from;
     js["terms"] = terms;
     js["gap_terms"] = gap_terms;
-    js["coefficients"] = {{"arw_dpsh", coefficient_json(s.coefficients.arw_dpsh)},
-                          {"bias_instability_dph", coefficient_json(s.coefficients.bias_instability_dph)},
-                          {"rrw_dph_per_sqrt_h", coefficient_json(s.coefficients.rrw_dph_per_sqrt_h)},
-                          {"quantization_arcsec", coefficient_json(s.coefficients.quantization_arcsec)}};
+    const NoiseCoefficients& k = s.coefficients;
+    js["coefficients"] = {
+        {labels.white.json_key, coefficient_json(k.arw_dpsh, labels.white, labels)},
+        {labels.bias_instability.json_key,
+         coefficient_json(k.bias_instability_dph, labels.bias_instability, labels)},
+        {labels.random_walk.json_key, coefficient_json(k.rrw_dph_per_sqrt_h, labels.random_walk, labels)},
+        {labels.quantization.json_key, coefficient_json(k.quantization_arcsec, labels.quantization, labels)}};
     js["coefficient_fit_chi2_per_dof"] = s.coefficients.fit_chi2_per_dof;
     js["bias_instability_support"] = bias_support_name(s.bias_support);
     if (s.noise) {
@@ -155,6 +169,9 @@ nlohmann::ordered_json allan_json(const AllanStudy& study) {
 
 std::string allan_text(const AllanStudy& study) {
   const AllanCurve& first = study.series.front().curve;
+  const fit::SensorKind& kind = study.units.kind();
+  const CoefficientLabels labels = coefficient_labels(kind);
+  const std::string& unit = labels.adev_unit;
   std::string out = fmt::format(
       "allan {}{}: {} every {:.4g} s over {:.4g} h, {}; overlapping Allan deviation, "
       "{:.0f} % intervals (Greenhall's edf for the noise type at each τ)\n",
@@ -175,7 +192,8 @@ std::string allan_text(const AllanStudy& study) {
                        study.outliers ? fmt::format("; {} flagged, kept in both", counted(study.outliers, "glitch sample")) : "");
   for (const AllanSeries& s : study.series) {
     out += fmt::format("\n{}:\n  {:>10} {:>12} {:>25} {:>9}  {:<26} {:>9}\n", s.curve.name, "tau (s)",
-                       "adev (°/h)", "interval (°/h)", "edf", "noise type", "left out");
+                       fmt::format("adev ({})", unit), fmt::format("interval ({})", unit), "edf", "noise type",
+                       "left out");
     for (const AllanRow& r : s.curve.rows)
       out += fmt::format("  {:>10.4g} {:>12.5g} [{:>11.5g}, {:>11.5g}] {:>9.4g}  {:<26} {:>9}\n", r.tau_s,
                          r.adev_dph, r.lo_dph, r.hi_dph, r.edf,
@@ -185,26 +203,31 @@ std::string allan_text(const AllanStudy& study) {
   std::string header = fmt::format("  {:<22}", "");
   for (const AllanSeries& s : study.series) header += fmt::format(" {:<42}", s.curve.name);
   out += header + "\n";
-  const auto row = [&](const char* label, auto member, const char* unit) {
-    std::string line = fmt::format("  {:<22}", label);
-    for (const AllanSeries& s : study.series) line += fmt::format(" {:<42}", coefficient_text(s.coefficients.*member, unit));
+  const auto row = [&](const CoefficientLabel& label, auto member) {
+    std::string line = fmt::format("  {:<22}", label.name);
+    for (const AllanSeries& s : study.series)
+      line += fmt::format(" {:<42}", coefficient_text(reported(s.coefficients.*member, label), label.unit));
     out += line + "\n";
   };
-  row("angle random walk", &NoiseCoefficients::arw_dpsh, "°/√h");
-  row("bias instability", &NoiseCoefficients::bias_instability_dph, "°/h");
-  row("rate random walk", &NoiseCoefficients::rrw_dph_per_sqrt_h, "°/h/√h");
-  row("quantisation", &NoiseCoefficients::quantization_arcsec, "″");
+  row(labels.white, &NoiseCoefficients::arw_dpsh);
+  row(labels.bias_instability, &NoiseCoefficients::bias_instability_dph);
+  row(labels.random_walk, &NoiseCoefficients::rrw_dph_per_sqrt_h);
+  row(labels.quantization, &NoiseCoefficients::quantization_arcsec);
   out += "how each was read:\n";
   for (const AllanSeries& s : study.series) {
     const NoiseCoefficients& k = s.coefficients;
-    out += fmt::format("  {}: ARW: {}\n  {}: bias instability: {}\n  {}: RRW: {}\n", s.curve.name,
-                       coefficient_note(k.arw_dpsh), s.curve.name, coefficient_note(k.bias_instability_dph), s.curve.name,
-                       coefficient_note(k.rrw_dph_per_sqrt_h));
+    out += fmt::format("  {}: {}: {}\n  {}: bias instability: {}\n  {}: {}: {}\n", s.curve.name,
+                       labels.white.short_name, coefficient_note(k.arw_dpsh, labels), s.curve.name,
+                       coefficient_note(k.bias_instability_dph, labels), s.curve.name, labels.random_walk.short_name,
+                       coefficient_note(k.rrw_dph_per_sqrt_h, labels));
     if (k.quantization_arcsec.shown)
-      out += fmt::format("  {}: quantisation: {}\n", s.curve.name, coefficient_note(k.quantization_arcsec));
+      out += fmt::format("  {}: quantisation: {}\n", s.curve.name, coefficient_note(k.quantization_arcsec, labels));
   }
-  out += "  (ARW is the −½ line's value at τ = 1 h; RRW the +½ line's value at τ = 3 h; B = flat σ / 0.664, or the "
-         "noise model's flicker floor)\n";
+  out += fmt::format("  ({} is {}the −½ line's value at τ = 1 h; {} the +½ line's value at τ = 3 h; B = flat σ / 0.664, "
+                     "or the noise model's flicker floor)\n",
+                     labels.white.short_name,
+                     labels.white.scale == 1.0 ? std::string() : fmt::format("{:g} × ", labels.white.scale),
+                     labels.random_walk.short_name);
   // Bias instability is in the table above, once. Beside a compensated
   // series, the raw one still holds the thermal drift the fit removes: its
   // model reads that drift as slow noise, so it is no model of the gyro's noise;
@@ -212,13 +235,14 @@ std::string allan_text(const AllanStudy& study) {
   const bool compensated = study.series.size() > 1;
   const auto raw_caveat = [&] {
     if (compensated)
-      return std::string(" (the raw series holds the thermal drift the fit removes, read here as slow noise: "
-                         "the compensated series' model is the gyro's)");
+      return fmt::format(" (the raw series holds the thermal drift the fit removes, read here as slow noise: "
+                         "the compensated series' model is the {}'s)",
+                         kind.noun);
     if (study.raw_holds_thermal_drift())
-      return fmt::format(" (the temperature moved {:.1f} °C on this record: the raw series holds the gyro's thermal "
+      return fmt::format(" (the temperature moved {:.1f} °C on this record: the raw series holds the {}'s thermal "
                          "drift, read here as slow noise, and the white part may be understated; --fit FILE gives the "
                          "noise a compensation leaves)",
-                         study.temp_span_c);
+                         study.temp_span_c, kind.noun);
     return std::string();
   };
   for (const AllanSeries& s : study.series)
@@ -233,6 +257,11 @@ std::string allan_text(const AllanStudy& study) {
 
 void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study) {
   GnuplotFigure fig(png, 1200, 850);
+  const CoefficientLabels labels_of_kind = coefficient_labels(study.units.kind());
+  const auto value_text = [](const std::string& name, const NoiseCoefficient& c, const CoefficientLabel& label) {
+    const NoiseCoefficient k = reported(c, label);
+    return fmt::format("{} {:.3g} {} [{:.3g}, {:.3g}]", name, k.value, label.unit, k.lo, k.hi);
+  };
   static const char* kColours[] = {"#444444", "#d62728"};
   static const char* kBands[] = {"#cccccc", "#f4a582"};
   std::string plot = "plot ";
@@ -264,32 +293,32 @@ void write_allan_plot(const std::filesystem::path& png, const AllanStudy& study)
                             label_y, colour);
       label_y -= 0.04;
     };
+    const CoefficientLabels& l = labels_of_kind;
     line(k.arw_dpsh, fmt::format("{:.8g}/sqrt(x/3600.0)", k.arw_dpsh.value),
-         fmt::format("ARW {:.3g} °/√h [{:.3g}, {:.3g}]", k.arw_dpsh.value, k.arw_dpsh.lo, k.arw_dpsh.hi));
+         value_text(l.white.short_name, k.arw_dpsh, l.white));
     line(k.bias_instability_dph, fmt::format("{:.8g}+0*x", kFlickerFloor * k.bias_instability_dph.value),
-         fmt::format("bias instability {:.3g} °/h [{:.3g}, {:.3g}] ({})", k.bias_instability_dph.value,
-                     k.bias_instability_dph.lo, k.bias_instability_dph.hi,
+         fmt::format("{} ({})", value_text("bias instability", k.bias_instability_dph, l.bias_instability),
                      k.bias_instability_dph.method == CoefficientMethod::noise_model ? "the noise model floor"
                                                                                     : "the flat part"));
     line(k.rrw_dph_per_sqrt_h, fmt::format("{:.8g}*sqrt(x/3600.0/3.0)", k.rrw_dph_per_sqrt_h.value),
-         fmt::format("RRW {:.3g} °/h/√h [{:.3g}, {:.3g}]", k.rrw_dph_per_sqrt_h.value, k.rrw_dph_per_sqrt_h.lo,
-                     k.rrw_dph_per_sqrt_h.hi));
+         value_text(l.random_walk.short_name, k.rrw_dph_per_sqrt_h, l.random_walk));
     if (!k.bias_instability_dph.shown && k.bias_instability_dph.upper_bound > 0.0) {
-      labels += fmt::format("set label '{}: bias instability < {:.3g} °/h (a bound)' at graph "
+      labels += fmt::format("set label '{}: bias instability < {:.3g} {} (a bound)' at graph "
                             "0.02, graph {:.3f} tc rgb '{}'\n",
-                            s.curve.name, k.bias_instability_dph.upper_bound, label_y, colour);
+                            s.curve.name, k.bias_instability_dph.upper_bound, l.adev_unit, label_y, colour);
       label_y -= 0.04;
     }
     line(k.quantization_arcsec, fmt::format("{:.8g}*sqrt(3.0)/x", k.quantization_arcsec.value),
-         fmt::format("quantisation {:.3g}″", k.quantization_arcsec.value));
+         fmt::format("quantisation {:.3g}{}{}", k.quantization_arcsec.value, l.quantization.unit == "″" ? "" : " ",
+                     l.quantization.unit));
   }
   plot.resize(plot.size() - 2);
   fig.commands(fmt::format(
       "set title 'Overlapping Allan deviation, {:.0f} % intervals; dashed: the noise coefficients read'\n"
       "set logscale xy\nset xlabel 'averaging time τ (s)'\n"
-      "set ylabel 'Allan deviation (°/h)'\nset grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
+      "set ylabel 'Allan deviation ({})'\nset grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
       "set key top right\n{}{}\n",
-      100.0 * study.series.front().curve.confidence, labels, plot));
+      100.0 * study.series.front().curve.confidence, labels_of_kind.adev_unit, labels, plot));
   fig.render();
 }
 
@@ -299,13 +328,19 @@ std::vector<AllanStudy> allan_record(const AllanRequest& r, const RecordSource& 
   std::vector<AllanStudy> studies;
   if (!r.fit_file.empty()) {
     // Every channel the fit holds, read with the fit's own columns and units.
-    const std::vector<fit::SavedFit> fits = r.fits.empty() ? fit::load_fits(r.fit_file) : r.fits;
+    const std::vector<fit::SavedFit> fits = r.fits.empty() ? fit::load_fits(r.fit_file, fit::FitKinds::any) : r.fits;
     const std::vector<std::string> gyros = gyro_per_channel(r.fit_columns.gyro, fits.size(), r.fit_file);
     for (std::size_t k = 0; k < fits.size(); ++k) {
       const fit::SavedFit& fit = fits[k];
       fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
       fit::ColumnMap given = r.fit_columns;
       given.gyro = gyros[k];
+      // The sensor is the fit's: a --sensor given must name it.
+      if (const fit::SensorKind& kind = fit.pipeline.columns.units.kind();
+          !given.units.sensor.empty() && &fit::sensor_kind(given.units.sensor) != &kind)
+        throw InputError(fmt::format("--sensor {}: {} is the {}'s fit (--sensor {}); leave --sensor out, or give "
+                                     "that sensor's fit",
+                                     given.units.sensor, r.fit_file, kind.noun, kind.name));
       pipeline.columns = source.fit_columns(pipeline.columns).with(given);
       try {
         pipeline.columns.units.validate();

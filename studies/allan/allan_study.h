@@ -35,8 +35,9 @@ struct AllanSeries {
 
 // The Allan curve and coefficients of one series, its noise model identified
 // first and used for the noise type at long τ.
+// `sensor`: whose series it is (null: a gyro), for the noise model's names.
 AllanSeries allan_series(std::span<const double> time_s, std::span<const double> rate_dph,
-                         AllanOptions options, std::string name);
+                         AllanOptions options, std::string name, const fit::SensorKind* sensor = nullptr);
 
 // A record whose temperature moves this much or more carries the gyro's
 // thermal drift in its raw rate (°C).

@@ -298,10 +298,46 @@ NoiseCoefficient bias_instability(const AllanCurve& c, const CurveFit& f) {
 
 }  // namespace
 
-std::string coefficient_note(const NoiseCoefficient& k) {
-  const char* what = k.kind == CoefficientKind::arw   ? "angle random walk (−½ slope)"
-                     : k.kind == CoefficientKind::rrw ? "rate random walk (+½ slope)"
-                                                      : "quantisation (−1 slope)";
+CoefficientLabels coefficient_labels(const fit::SensorKind& kind) {
+  if (kind.is_gyro)
+    return {{"angle random walk", "ARW", "°/√h", "arw_dpsh", 1.0},
+            {"bias instability", "bias instability", "°/h", "bias_instability_dph", 1.0},
+            {"rate random walk", "RRW", "°/h/√h", "rrw_dph_per_sqrt_h", 1.0},
+            {"quantisation", "quantisation", "″", "quantization_arcsec", 1.0},
+            "°/h"};
+  const fit::NoiseName& white = kind.noise[0];
+  const fit::NoiseName& walk = kind.noise[3];
+  const bool velocity = white.name == "vrw";
+  std::string walk_name(walk.name);
+  std::replace(walk_name.begin(), walk_name.end(), '_', ' ');
+  // N (base unit at τ = 1 h) is √q_w/60: the white noise reported is factor·√q_w = 60·factor·N.
+  return {{velocity ? "velocity random walk" : "white noise", velocity ? "VRW" : "white noise",
+           fit::shown_unit(white.unit), std::string(white.name), 60.0 * white.factor},
+          {"bias instability", "bias instability", std::string(kind.unit), "bias_instability", 1.0},
+          {walk_name, walk_name, fit::shown_unit(walk.unit), std::string(walk.name), 1.0},
+          {"quantisation", "quantisation", fmt::format("{}·s", kind.unit), "quantization", 1.0},
+          std::string(kind.unit)};
+}
+
+NoiseCoefficient reported(NoiseCoefficient k, const CoefficientLabel& label) {
+  k.value *= label.scale;
+  k.lo *= label.scale;
+  k.hi *= label.scale;
+  k.upper_bound *= label.scale;
+  return k;
+}
+
+std::string coefficient_note(const NoiseCoefficient& read, const CoefficientLabels& labels) {
+  const CoefficientLabel& label = read.kind == CoefficientKind::arw   ? labels.white
+                                  : read.kind == CoefficientKind::rrw ? labels.random_walk
+                                  : read.kind == CoefficientKind::quantization ? labels.quantization
+                                                                               : labels.bias_instability;
+  const NoiseCoefficient k = reported(read, label);
+  const std::string what = fmt::format("{} ({} slope)", label.name,
+                                       read.kind == CoefficientKind::arw   ? "−½"
+                                       : read.kind == CoefficientKind::rrw ? "+½"
+                                                                           : "−1");
+  const std::string& b_unit = labels.bias_instability.unit;
   const std::string fit_text = fmt::format("weighted fit of the standard terms to σ² at {} τ (χ²/dof {:.2g})",
                                            k.fit_taus, k.fit_chi2_per_dof);
   const std::string span = fmt::format("τ = {:.3g}–{:.3g} s", k.tau_from_s, k.tau_to_s);
@@ -325,13 +361,13 @@ std::string coefficient_note(const NoiseCoefficient& k) {
       break;
     case Reading::still_falling:
       note = fmt::format("a bound only: the curve still falls at its longest usable τ ({:.3g} s), so the flat "
-                         "part is beyond the record; B ≤ {:.3g} °/h (the flicker floor lies under every point)",
-                         k.tau_read_s, k.upper_bound);
+                         "part is beyond the record; B ≤ {:.3g} {} (the flicker floor lies under every point)",
+                         k.tau_read_s, k.upper_bound, b_unit);
       break;
     case Reading::no_flat_part:
       note = fmt::format("not shown: no flat part above what the fitted white noise gives; "
-                         "B ≤ {:.3g} °/h (the curve's lowest point, τ = {:.3g} s)",
-                         k.upper_bound, k.tau_read_s);
+                         "B ≤ {:.3g} {} (the curve's lowest point, τ = {:.3g} s)",
+                         k.upper_bound, b_unit, k.tau_read_s);
       break;
     case Reading::noise_model:
       note = fmt::format("the series' noise model (REML): its flicker floor, separated from the white noise (slow "
@@ -340,11 +376,11 @@ std::string coefficient_note(const NoiseCoefficient& k) {
       break;
     case Reading::unexplained_flat:
       note = fmt::format("a bound only: the curve flattens at {}, but {}; the flat part is what "
-                         "the fit's model leaves on a compensated series, or noise no model names; B ≤ {:.3g} °/h",
+                         "the fit's model leaves on a compensated series, or noise no model names; B ≤ {:.3g} {}",
                          span,
                          k.has_noise_model ? "the series' noise model finds no flicker or Gauss–Markov process there"
                                            : "the series is too short for a noise model to say what it is",
-                         k.upper_bound);
+                         k.upper_bound, b_unit);
       break;
   }
   if (k.gauss_markov_tau_s > 0.0)

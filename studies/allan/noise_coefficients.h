@@ -37,6 +37,7 @@
 #include <string>
 
 #include "studies/allan/allan_curve.h"
+#include "studies/allan/coefficient_labels.h"
 
 namespace gyrotherm::studies {
 
@@ -82,8 +83,9 @@ struct NoiseCoefficient {
 
 // How it was read, or why it is not shown, in words: "weighted fit of the
 // standard terms to σ² at 12 τ (χ²/dof 1.1); angle random walk (−½ slope)
-// dominates τ = 1–64 s".
-std::string coefficient_note(const NoiseCoefficient& k);
+// dominates τ = 1–64 s" (the numbers in the units of `labels`, k as read).
+std::string coefficient_note(const NoiseCoefficient& k,
+                             const CoefficientLabels& labels = coefficient_labels(fit::sensor_kind("gyro")));
 
 struct NoiseCoefficients {
   NoiseCoefficient arw_dpsh;             // °/√h

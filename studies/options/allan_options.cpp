@@ -42,7 +42,6 @@ AllanRequest allan_request(const AllanCommandOptions& o) {
   static const std::map<std::string, TauSpacing> kSpacing = {
       {"octave", TauSpacing::octave}, {"decade", TauSpacing::decade}, {"all", TauSpacing::all}};
   check_rules(allan_option_table(), o);  // --taus, --tau-max, --ci
-  require_gyro(o.data_options.pipeline.columns, "allan");
   AllanRequest request = o.request;
   AllanOptions& options = request.options;
   options.spacing = kSpacing.at(o.taus);
