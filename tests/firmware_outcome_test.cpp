@@ -120,7 +120,7 @@ TEST(CliExport, OnlyParametersTheFirmwareHas) {
   write_ramp_log(dir / "d.csv", "gyro_dph", {3.0}, 3.0, 10.0, 40.0, 7);
   ASSERT_EQ(run_cli(dir, "fit d.csv --model 'T + T^2' -o fit.json").exit_code, 0);
   for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
-           {"px4 --instance 4 -o p.params", "PX4 has the gyro thermal compensation sets TC_G0 to TC_G3"},
+           {"px4 --instance 4 -o p.params", "PX4 has the thermal compensation sets 0 to 3 of each sensor (TC_G0 to TC_G3"},
            {"px4 --instance -1 -o p.params", "--instance -1"},
            {"px4 --device-id 4294967296 -o p.params", "a 32-bit number"},
            {"px4 --boot-temp 20 -o p.params", "--boot-temp is ArduPilot's"},

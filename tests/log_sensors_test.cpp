@@ -52,7 +52,7 @@ constexpr double kMag0 = 0.2, kMagSlope = 5e-4;
 // One ULog holding a gyro, an accelerometer, a barometer and a magnetometer
 // (PX4 v1.14's layouts), the pressure in Pa or, `millibars`, in mbar;
 // `version` the ver_sw_release to write (0: none).
-ULogWriter imu_ulog(bool millibars, std::uint32_t version) {
+ULogWriter imu_ulog(bool millibars, std::uint32_t version, double pressure_scale = 1.0) {
   ULogWriter w;
   if (version != 0) w.info("uint32_t ver_sw_release", Packer().put(version).bytes());
   w.format("sensor_gyro:uint64_t timestamp;uint32_t device_id;float x;float y;float z;float temperature;");
@@ -70,7 +70,7 @@ ULogWriter imu_ulog(bool millibars, std::uint32_t version) {
     w.data(2, Packer().put(stamp_us(k)).put(stamp_us(k)).put<std::uint32_t>(2)
                   .put(static_cast<float>(biased(kAccelX0, kAccelSlope, k))).put(0.1f).put(-9.8f).put(t)
                   .put<std::uint32_t>(0).zeros(3).put<std::uint8_t>(1));
-    const double pa = biased(kPressure0, kPressureSlope, k);
+    const double pa = pressure_scale * biased(kPressure0, kPressureSlope, k);
     w.data(3, Packer().put(stamp_us(k)).put(stamp_us(k)).put<std::uint32_t>(3)
                   .put(static_cast<float>(millibars ? pa / 100.0 : pa)).put(t).put<std::uint32_t>(0));
     w.data(4, Packer().put(stamp_us(k)).put(stamp_us(k)).put<std::uint32_t>(4)
@@ -80,8 +80,8 @@ ULogWriter imu_ulog(bool millibars, std::uint32_t version) {
   return w;
 }
 
-// ver_sw_release 0xAABBCCTT: v1.14.0 and v1.11.2 releases.
-constexpr std::uint32_t kV1_14 = 0x010E00FF, kV1_11 = 0x010B0200;
+// ver_sw_release 0xAABBCCTT: v1.14.0 and v1.11.2 releases, and v0.0 (a build without tags).
+constexpr std::uint32_t kV1_14 = 0x010E00FF, kV1_11 = 0x010B0200, kV0 = 0x00000000;
 
 nlohmann::json fitted_t(const ScratchDir& dir, const std::string& args) {
   const CliResult r = run_cli(dir, "fit " + args + " --model T --json");
@@ -127,11 +127,26 @@ TEST(LogSensors, AULogsPressureUnitComesFromItsVersionOrElseItsValues) {
   };
   EXPECT_EQ(unit(true, kV1_11), "mbar");
   EXPECT_EQ(unit(false, kV1_14), "Pa");
-  EXPECT_EQ(unit(true, 0), "mbar");
+  EXPECT_EQ(unit(true, 0), "mbar");  // no version message at all
   EXPECT_EQ(unit(false, 0), "Pa");
-  // The version rules over the values: v1.11 numbers near 1e5 are still mbar
-  // (the reading caution then says they look like Pa).
-  EXPECT_EQ(unit(false, kV1_11), "mbar");
+  // Values no weather gives in mbar are Pa whatever the version says (a
+  // development build of v1.11's numbering, a build without tags: v0.0).
+  EXPECT_EQ(unit(false, kV1_11), "Pa");
+  EXPECT_EQ(unit(true, kV0), "mbar");
+  EXPECT_EQ(unit(false, kV0), "Pa");
+  // A vacuum (10 mbar, or 1000 Pa?) without a usable version: not told.
+  imu_ulog(true, kV0, 0.01).save(dir / "vacuum.ulg");
+  const LogContents vacuum = read_ulog(dir / "vacuum.ulg", -1, {}, sensor_kind("baro"));
+  EXPECT_EQ(vacuum.unit, "");
+  EXPECT_NE(vacuum.unit_from.find("fits a vacuum in Pa as well as mbar"), std::string::npos) << vacuum.unit_from;
+  expect_refused(dir, "fit vacuum.ulg --sensor baro --model T", "give --gyro-unit Pa or --gyro-unit mbar");
+  EXPECT_NEAR(slope_of(fitted_t(dir, "vacuum.ulg --sensor baro --gyro-unit mbar")), 0.01 * kPressureSlope, 3e-3);
+  // A malformed information message leaves the version unknown; a gyro never reads it.
+  ULogWriter odd;
+  odd.message('I', std::string("\x30short", 6)).format("sensor_gyro:uint64_t timestamp;float x;float y;float z;float temperature;");
+  odd.subscribe(0, 1, "sensor_gyro").data(1, Packer().put(stamp_us(0)).put(0.f).put(0.f).put(0.f).put(20.f));
+  odd.save(dir / "odd.ulg");
+  EXPECT_EQ(read_ulog(dir / "odd.ulg").sensors.at(0).samples, 1u);
 }
 
 // `fit --sensor` on each: the truth's slope, in the base unit, whatever the log held.
@@ -155,6 +170,12 @@ TEST(LogSensors, FitRecoversEachSensorsSlopeFromAULog) {
   EXPECT_NE(text.out.find("PX4 logs pressure in mbar before v1.13"), std::string::npos) << text.out;
   // A stated unit overrides what the reader told from the version; a gyro's stays fixed.
   EXPECT_NEAR(slope_of(fitted_t(dir, "mbar.ulg --sensor baro --gyro-unit Pa")), kPressureSlope / 100.0, 0.001);
+  // A fit that read the log in another unit than the reader tells is not applied in either.
+  ASSERT_EQ(run_cli(dir, "fit mbar.ulg --sensor baro --gyro-unit Pa --model T -o pa_fit.json").exit_code, 0);
+  expect_refused(dir, "compensate mbar.ulg --fit pa_fit.json -o out.csv",
+                 "the fit read this barometer's values in Pa, but the log's ver_sw_release is v1.11");
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
+  EXPECT_EQ(run_cli(dir, "compensate mbar.ulg --fit pa_fit.json --gyro-unit Pa -o out.csv").exit_code, 0);
   expect_refused(dir, "fit pa.ulg --sensor accel --gyro-col accel_x --gyro-unit g",
                  "--gyro-unit g: the log is ULog v1, whose units are fixed (time µs, accel mps2");
 }

@@ -120,6 +120,8 @@ TEST(SensorExport, AnAccelerometersFitBecomesPX4sTCAAndArduPilotsACC) {
   bool said_unit = false;
   for (const auto& line : out["lines"]) said_unit = said_unit || line.get<std::string>().find("m/s²") != std::string::npos;
   EXPECT_TRUE(said_unit) << out["lines"].dump();
+  EXPECT_EQ(px4.out.find("°/h"), std::string::npos) << px4.out;
+  EXPECT_EQ(px4.err.find("°/h"), std::string::npos) << px4.err;
 
   // ArduPilot: the change from the calibration temperature, ×1e6 in m/s².
   const CliResult ap = run_cli(dir, "export fit.json --format ardupilot -o a.param");
@@ -162,6 +164,20 @@ TEST(SensorExport, ABarometersFitBecomesPX4sQuinticTCB) {
                  "ArduPilot has no temperature calibration of a barometer");
   expect_refused(dir, "export fit.json --format c -o b.h", "the C compensator is a gyro's");
   EXPECT_FALSE(std::filesystem::exists(dir / "b.param") || std::filesystem::exists(dir / "b.h"));
+  // A term PX4 cannot express, dropped: the best polynomial it can is refitted up to the quintic, and the
+  // command to fit it names the sensor and its column. (Temperature up, then down, so that t is not T.)
+  ASSERT_EQ(run_shell(dir, "awk -F, 'NR == 1 || NR % 2 == 0 { print } NR > 1 && NR % 2 == 1 { n[++m] = $0 } "
+                           "END { for (i = m; i > 0; i--) { split(n[i], f, \",\"); print 10800 + m - i \",\" f[2] "
+                           "\",\" f[3] } }' b.csv | tee b2.csv")
+                .exit_code,
+            0);
+  ASSERT_EQ(run_cli(dir, "fit b2.csv --sensor baro --model 'T + T^2 + t' -o t_fit.json").exit_code, 0);
+  const CliResult dropped = run_cli(dir, "export t_fit.json --format px4 --drop-unsupported -o t.params");
+  ASSERT_EQ(dropped.exit_code, 0) << dropped.err;
+  EXPECT_NE(dropped.out.find("B = b0 + T + T^2 + T^3 + T^4"), std::string::npos) << dropped.out;
+  EXPECT_NE(dropped.out.find("gyrotherm fit b2.csv --sensor baro --gyro-col 'baro_pa' --model"), std::string::npos)
+      << dropped.out;
+  EXPECT_EQ(dropped.out.find("--format c"), std::string::npos) << dropped.out;
 }
 
 TEST(SensorExport, AMagnetometersFitBecomesPX4sTCMAndAGyrosIsAsItWas) {

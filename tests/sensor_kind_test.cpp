@@ -299,7 +299,13 @@ TEST(CliSensor, AllanReportsEachSensorsNoiseInItsUnits) {
   EXPECT_NEAR(kb["white_noise"]["value"].get<double>(), 2.0, 0.1);
   // With a fit: the sensor is the fit's.
   ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --model T -o fit.json").exit_code, 0);
-  EXPECT_EQ(run_cli(dir, "allan a.csv --fit fit.json").exit_code, 0);
+  const CliResult with_fit = run_cli(dir, "allan a.csv --fit fit.json --json");
+  ASSERT_EQ(with_fit.exit_code, 0) << with_fit.err;
+  const nlohmann::json jf = nlohmann::json::parse(with_fit.out);
+  EXPECT_EQ(jf["sensor"], "accel");
+  ASSERT_EQ(jf["series"].size(), 2u);
+  EXPECT_EQ(jf["series"][1]["name"], "compensated");
+  EXPECT_NEAR(jf["series"][1]["coefficients"]["vrw"]["value"].get<double>(), 0.6, 0.03);
   expect_refused(dir, "allan a.csv --fit fit.json --sensor baro", "--sensor baro: fit.json is the accelerometer's fit");
 }
 

@@ -257,7 +257,7 @@ SensorLayout DataFlashReader::sensor_layout(std::uint64_t at, const std::string&
   const SensorKind::LogNaming& naming = contents_.kind->dataflash;
   SensorLayout layout;
   layout.holds_kind = holds_kind;
-  layout.fixed_instance = std::max(0, position_in(naming.messages, name));
+  layout.fixed_instance = std::max(0, position_in(holds_kind ? naming.messages : "IMU IMU2 IMU3", name));
   std::size_t offset = 0;
   Field time_ms;
   for (std::size_t i = 0; i < format.size(); ++i) {

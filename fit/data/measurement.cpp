@@ -116,6 +116,17 @@ void CsvParser::read_log(const fs::path& file, const LogFormat& format, Measurem
       throw InputError(fmt::format("{}: {} {}: the log is {}, whose units are fixed (time µs, {} {}, "
                                    "temperature °C); leave {} out",
                                    name_, option, *given, contents.format, kind.name, contents.unit, option));
+  // A unit the reader told that the fit read otherwise (the user stated it
+  // then): not silently one or the other.
+  if (told && from_fit_file && !map_.units.gyro.empty() && map_.units.gyro != contents.unit)
+    throw InputError(fmt::format("{}: the fit read this {}'s values in {}, but {}{}: give --gyro-unit {} to read "
+                                 "them as the fit did, or --gyro-unit {}",
+                                 name_, kind.noun, map_.units.gyro, contents.unit_from,
+                                 contents.unit.empty() ? "" : fmt::format(" ({})", contents.unit), map_.units.gyro,
+                                 contents.unit.empty() ? "Pa or mbar" : contents.unit));
+  if (told && contents.unit.empty() && (map_.units.gyro.empty() || from_fit_file))
+    throw InputError(fmt::format("{}: the {}'s unit cannot be told: {}; give --gyro-unit Pa or --gyro-unit mbar",
+                                 name_, kind.noun, contents.unit_from));
   const Units& scales = map_.units;
   if (!from_fit_file && (scales.gyro_scale != 1.0 || scales.temp_scale != 1.0 || scales.temp_offset != 0.0))
     throw InputError(fmt::format("{}: --gyro-scale, --temp-scale and --temp-offset are for raw counts; the log is {}, "

@@ -37,9 +37,11 @@ constexpr std::string_view kAccelTopic = "sensor_accel";
 // PX4 logs sensor_baro.pressure in Pa from v1.13 on (pull request 19284,
 // "sensor_baro.msg use SI"), in mbar before.
 constexpr int kPascalsFromMinor = 13;
-// Without the version, a largest pressure above this is in Pa (an
-// atmosphere is 1e5 Pa, 1e3 mbar; 2000 mbar is more than any weather).
+// A largest pressure above this is in Pa (an atmosphere is 1e5 Pa, 1e3
+// mbar; 2000 mbar is more than any weather); without the version, one from
+// 300 up to it is an atmosphere in mbar (below, a vacuum: either unit).
 constexpr double kLargestMillibars = 2000.0;
+constexpr double kSmallestMillibarAtmosphere = 300.0;
 // Deeper nesting than any PX4 message (about 3 levels) means a broken file,
 // and bounds the recursion on one.
 constexpr int kMaxNesting = 32;
@@ -173,19 +175,38 @@ void ULogReader::settle_unit() {
   const SensorKind& kind = *contents_.kind;
   contents_.unit = std::string(kind.ulog.unit);
   if (kind.quantity != Quantity::pressure || contents_.sensors.empty()) return;
-  if (version_major_ >= 0) {
-    const bool pascals = version_major_ > 1 || version_minor_ >= kPascalsFromMinor;
-    contents_.unit = pascals ? "Pa" : "mbar";
-    contents_.unit_from = fmt::format("the log's ver_sw_release is v{}.{}; PX4 logs pressure in {} {} v1.{}",
-                                      version_major_, version_minor_, contents_.unit, pascals ? "from" : "before",
-                                      kPascalsFromMinor);
+  // The values first: no weather gives 2000 mbar, so a larger pressure is in
+  // Pa whatever the version says (a build without tags logs v0.0; a v1.13
+  // development build may predate the change).
+  const bool version_known = version_major_ >= 1;
+  const std::string version = fmt::format("v{}.{}", version_major_, version_minor_);
+  if (largest_value_ > kLargestMillibars) {
+    contents_.unit = "Pa";
+    const bool version_says_mbar = version_known && version_major_ == 1 && version_minor_ < kPascalsFromMinor;
+    contents_.unit_from = fmt::format(
+        "its largest pressure, {:g}, is above {:g}, so Pa{}", largest_value_, kLargestMillibars,
+        !version_known      ? std::string()
+        : version_says_mbar ? fmt::format(" (though its ver_sw_release, {}, is from before PX4 logged Pa)", version)
+                            : fmt::format(", as its ver_sw_release, {}, says", version));
     return;
   }
-  const bool pascals = largest_value_ > kLargestMillibars;
-  contents_.unit = pascals ? "Pa" : "mbar";
-  contents_.unit_from = fmt::format("the log has no ver_sw_release; its largest pressure, {:g}, is {} {:g}, so {}",
-                                    largest_value_, pascals ? "above" : "at most", kLargestMillibars,
-                                    pascals ? "Pa (PX4 v1.13 on)" : "mbar (PX4 before v1.13)");
+  if (version_known) {
+    const bool pascals = version_major_ > 1 || version_minor_ >= kPascalsFromMinor;
+    contents_.unit = pascals ? "Pa" : "mbar";
+    contents_.unit_from = fmt::format("the log's ver_sw_release is {}; PX4 logs pressure in {} {} v1.{}", version,
+                                      contents_.unit, pascals ? "from" : "before", kPascalsFromMinor);
+    return;
+  }
+  // No version, and at most 2000: an atmosphere in mbar, or a vacuum in Pa.
+  contents_.unit = largest_value_ >= kSmallestMillibarAtmosphere ? "mbar" : "";
+  contents_.unit_from =
+      contents_.unit.empty()
+          ? fmt::format("the log has no usable ver_sw_release and its largest pressure, {:g}, fits a vacuum in Pa as "
+                        "well as mbar",
+                        largest_value_)
+          : fmt::format("the log has no usable ver_sw_release; its largest pressure, {:g}, is an atmosphere in mbar "
+                        "(PX4 before v1.13)",
+                        largest_value_);
 }
 
 void ULogReader::read_header() {
@@ -400,10 +421,9 @@ void ULogReader::on_data(std::uint64_t at, const std::uint8_t* p, std::size_t si
 // Information ('I'): key length (uint8), key "type name", value. Only
 // "uint32_t ver_sw_release" is read: 0xAABBCCTT, major AA, minor BB (PX4's
 // ulog_file_format.md, "Information Message").
-void ULogReader::on_information(std::uint64_t at, const std::uint8_t* p, std::size_t size) {
-  if (size < 1 || size < 1u + p[0])
-    in_.fail(at, fmt::format("an information message ('I') of {} bytes cannot hold its key of {} bytes", size,
-                             size < 1 ? 0 : p[0]));
+void ULogReader::on_information(std::uint64_t, const std::uint8_t* p, std::size_t size) {
+  // Read for a barometer's unit only; one that cannot hold its key leaves the version unknown.
+  if (contents_.kind->quantity != Quantity::pressure || size < 1 || size < 1u + p[0]) return;
   const std::string_view key(reinterpret_cast<const char*>(p + 1), p[0]);
   if (key != "uint32_t ver_sw_release" || size < 1u + p[0] + 4) return;
   const std::uint32_t release = binary::load_u32(p + 1 + p[0]);

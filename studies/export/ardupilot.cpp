@@ -63,7 +63,7 @@ ExporterInfo ardupilot_exporter() {
           "accelerometer)",
           [](const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
             const std::string prefix = ardupilot_prefix(r.instance.value_or(1));
-            if (r.device_id != 0) throw InputError("--device-id is PX4's (TC_G{n}_ID); ArduPilot has none");
+            if (r.device_id != 0) throw InputError("--device-id is PX4's (TC_G{n}_ID, TC_A{n}_ID, ...); ArduPilot has none");
             if (const fit::SensorKind& kind = exported_kind(fits); kind.ardupilot_group.empty())
               throw InputError(fmt::format("{}: the fit of a {}: ArduPilot has no temperature calibration of a {} "
                                            "(its INS_TCAL parameters are the gyros' and accelerometers'); export "

@@ -77,11 +77,13 @@ void warn_if_little_compensation(const fit::SavedFit& f, double after_dph, Expor
   if (!f.instability_before_dph || !(*f.instability_before_dph > 0.0)) return;
   const double before = *f.instability_before_dph;
   if (after_dph <= kLittleCompensation * before) return;
+  const fit::SensorKind& kind = f.pipeline.columns.units.kind();
   out->warnings.push_back(fmt::format(
       "{}: the exported model takes the instability of the data it was fitted on ({}) only from {:.3g} to {:.3g} "
-      "°/h ({:.0f} % off): it compensates little; 'gyrotherm diagnose' on that data shows what the bias follows",
-      channel_name(f), f.data_file.empty() ? std::string("unnamed") : f.data_file, before, after_dph,
-      100.0 * (1.0 - after_dph / before)));
+      "{} ({:.0f} % off): it compensates little{}",
+      channel_name(f), f.data_file.empty() ? std::string("unnamed") : f.data_file, before, after_dph, kind.unit,
+      100.0 * (1.0 - after_dph / before),
+      kind.is_gyro ? "; 'gyrotherm diagnose' on that data shows what the bias follows" : ""));
 }
 
 std::string exporter_descriptions() {

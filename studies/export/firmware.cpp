@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -18,11 +19,14 @@
 namespace gyrotherm::studies {
 namespace {
 
-// The best polynomial the firmware can express, refitted by least squares
-// on the same windows: the cubic, else (collinear on this record) the
-// quadratic, else the line; its instability, or NaN when none can be fitted.
-std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data) {
-  for (const char* model : {"T + T^2 + T^3", "T + T^2", "T"}) {
+// The best polynomial the firmware can express (up to `order`), refitted by
+// least squares on the same windows: the highest power first, else
+// (collinear on this record) one lower, down to the line; its instability, or
+// NaN when none can be fitted.
+std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data, int order) {
+  static const char* const kModels[] = {"T + T^2 + T^3 + T^4 + T^5", "T + T^2 + T^3 + T^4", "T + T^2 + T^3",
+                                        "T + T^2", "T"};
+  for (const char* model : std::span(kModels).subspan(static_cast<std::size_t>(kQuintic - std::min(order, kQuintic)))) {
     try {
       fit::EngineSettings settings;
       settings.options["intervals"] = "model";  // only the σ is wanted
@@ -50,8 +54,12 @@ std::string dropped_report(const fit::SavedFit& f, const PolynomialModel& cubic,
   *cost_out = cost;
   std::string names;
   for (const std::string& n : cubic.dropped) names += (names.empty() ? "" : ", ") + n;
-  const auto [model, refitted] = refitted_polynomial(fit::prepare_data(m, pipeline));
-  const std::string_view unit = f.pipeline.columns.units.kind().unit;
+  const fit::SensorKind& kind = f.pipeline.columns.units.kind();
+  const auto [model, refitted] = refitted_polynomial(fit::prepare_data(m, pipeline), o.format == "px4" ? kind.px4_order : kCubic);
+  const std::string_view unit = kind.unit;
+  // Another sensor's fit names its sensor and column again (a gyro's are the defaults).
+  const std::string sensor_options =
+      kind.is_gyro ? std::string() : fmt::format(" --sensor {} --gyro-col '{}'", kind.name, channel_name(f));
   const std::string refit =
       model.empty() ? "no polynomial in T can be fitted on this record"
                     : fmt::format("the best the firmware can express, B = b0 + {} refitted on the same data, leaves "
@@ -59,8 +67,9 @@ std::string dropped_report(const fit::SavedFit& f, const PolynomialModel& cubic,
                                   model, refitted, unit,
                                   refitted < cost.without_dph ? "" : " (no better than these coefficients)",
                                   // Arrays have no file to name on a command line: a Python call.
-                                  data.table != nullptr ? fmt::format("gyrotherm.fit(data, model=\"{}\")", model)
-                                                        : fmt::format("gyrotherm fit {} --model '{}'", data.name, model));
+                                  data.table != nullptr && kind.is_gyro
+                                      ? fmt::format("gyrotherm.fit(data, model=\"{}\")", model)
+                                      : fmt::format("gyrotherm fit {}{} --model '{}'", data.name, sensor_options, model));
   return fmt::format("{}: dropped {}: the instability on {} rises from {:.6g} to {:.6g} {} ({:.2f}x); {}",
                      channel_name(f), names, data.name, cost.with_dph, cost.without_dph, unit,
                      cost.without_dph / cost.with_dph, refit);
@@ -127,8 +136,8 @@ std::string ardupilot_prefix(int instance) {
 int px4_instance(const std::optional<int>& instance) {
   const int n = instance.value_or(0);
   if (n < 0 || n > 3)
-    throw InputError(fmt::format("--instance {}: PX4 has the gyro thermal compensation sets TC_G0 to TC_G3 "
-                                 "(instances 0 to 3)",
+    throw InputError(fmt::format("--instance {}: PX4 has the thermal compensation sets 0 to 3 of each sensor (TC_G0 "
+                                 "to TC_G3 of the gyros, TC_A, TC_B, TC_M of the others)",
                                  n));
   return n;
 }
@@ -137,7 +146,7 @@ long long px4_device_id(long long id) {
   // TC_G{n}_ID is an int32 parameter compared as uint32 with the device id.
   if (id < -2147483648LL || id > 4294967295LL)
     throw InputError(fmt::format("--device-id {}: a PX4 device id is a 32-bit number (0 to 4294967295, as "
-                                 "CAL_GYRO{{n}}_ID shows it)",
+                                 "CAL_GYRO{{n}}_ID, CAL_ACC{{n}}_ID, CAL_BARO{{n}}_ID or CAL_MAG{{n}}_ID shows it)",
                                  id));
   return id > 2147483647LL ? id - 4294967296LL : id;
 }
@@ -184,10 +193,12 @@ PolynomialModel polynomial_of(const fit::SavedFit& fit, bool drop_unsupported, c
     for (const std::string& n : unsupported) names += (names.empty() ? "" : ", ") + n;
     throw InputError(fmt::format(
         "{}: the model has {} ({}), which {} cannot express: its {} thermal compensation is a {} in "
-        "temperature. Use --format c for the whole model, fit a polynomial (--model '{}'), or pass "
+        "temperature. {}fit a polynomial (--model '{}'), or pass "
         "--drop-unsupported to leave {} out (export then prints how much the instability rises)",
         fit.file.string(), unsupported.size() == 1 ? "a term" : "terms", names, format,
         fit.pipeline.columns.units.kind().noun, order == kCubic ? "cubic" : "quintic",
+        fit.pipeline.columns.units.kind().is_gyro ? "Use --format c for the whole model, "
+                                                  : "Use 'gyrotherm compensate' for the whole model, ",
         order == kCubic ? "T + T^2 + T^3" : "T + T^2 + T^3 + T^4 + T^5", unsupported.size() == 1 ? "it" : "them"));
   }
   m.dropped = unsupported;

@@ -159,7 +159,7 @@ std::string firmware_wrote(const ExportRequest& request, const FirmwareFile& fil
 // its whole bias at TREF (PX4's gyro calibration then finds nothing left);
 // another sensor's is 0, as PX4's own calibrations set it: what it reads at
 // TREF holds gravity, the atmosphere or the Earth's field besides any bias,
-// which its offset calibration (CAL_ACCn_OFF*, CAL_BAROn_OFF, CAL_MAGn_OFF*)
+// which its offset calibration (CAL_ACCn_XOFF.., CAL_BAROn_OFF, CAL_MAGn_XOFF..)
 // takes out; the parameters then correct the change from TREF.
 std::array<float, kQuintic + 1> px4_coefficients(const AxisModel& axis, float tref, const fit::SensorKind& kind);
 std::array<float, 3> ardupilot_coefficients(const AxisModel& axis, const fit::SensorKind& kind);

@@ -216,25 +216,27 @@ namespace {
 
 // Why the exported cubic itself costs: the terms it left out, the samples
 // held at the fitted range's edge, or (neither) the cubic's own shape.
-std::string cubic_cost_text(const AxisOutcome& a, std::string_view polynomial) {
+// `whole`: what applies the whole model at every sample ("--format c" for a
+// gyro; another sensor's is applied by 'gyrotherm compensate').
+std::string cubic_cost_text(const AxisOutcome& a, std::string_view polynomial, std::string_view whole) {
   const bool dropped = !a.dropped.empty(), outside = a.outside_share > 0.0 && a.edge_costs;
   const std::string terms = fmt::format("{}", fmt::join(a.dropped, ", "));
   if (dropped && !outside)
     return fmt::format("the exported {} already leaves this much: the terms it leaves out ({}) carry it; "
-                       "--format c compensates with them at every sample",
-                       polynomial, terms);
+                       "{} compensates with them at every sample",
+                       polynomial, terms, whole);
   if (outside && !dropped)
     return fmt::format("the exported {} already leaves this much: {:.0f} % of the samples lie outside the fitted "
                        "range, held at its edge; fit over the temperature range the vehicle will see",
                        polynomial, 100.0 * a.outside_share);
   if (dropped)
     return fmt::format("the exported {} already leaves this much: the terms it leaves out ({}) and the {:.0f} % "
-                       "of the samples outside the fitted range (held at its edge); --format c keeps the terms, a "
+                       "of the samples outside the fitted range (held at its edge); {} keeps the terms, a "
                        "fit over the range the vehicle will see the rest",
-                       polynomial, terms, 100.0 * a.outside_share);
+                       polynomial, terms, 100.0 * a.outside_share, whole);
   return fmt::format("the exported {} already leaves this much (a polynomial in T of at most {} order cannot follow "
-                     "the fitted model): --format c compensates with the model itself",
-                     polynomial, polynomial == "cubic" ? "third" : "fifth");
+                     "the fitted model): {} compensates with the model itself",
+                     polynomial, polynomial == "cubic" ? "third" : "fifth", whole);
 }
 
 }  // namespace
@@ -249,10 +251,12 @@ std::vector<std::string> FirmwareOutcome::notes() const {
   for (const AxisOutcome& a : axes) {
     if (a.cost == FirmwareCost::none) continue;
     const std::string help =
-        a.cost == FirmwareCost::exported_cubic ? cubic_cost_text(a, polynomial())
+        a.cost == FirmwareCost::exported_cubic
+            ? cubic_cost_text(a, polynomial(), kind->is_gyro ? "--format c" : "'gyrotherm compensate'")
         : a.cost == FirmwareCost::px4_step
-            ? "the cost is PX4's 1 °C step, not the model: it grows with how fast the bias changes per °C; a "
-              "compensation applied at every sample (--format c in your own code) avoids it"
+            ? fmt::format("the cost is PX4's 1 °C step, not the model: it grows with how fast the bias changes per "
+                          "°C; a compensation applied at every sample{} avoids it",
+                          kind->is_gyro ? " (--format c in your own code)" : "")
             : "samples outside the fitted range are held at its edge: fit over the temperature range the vehicle "
               "will see";
     out.push_back(fmt::format("{} ({}): as {} applies it {:.4g} {} against the model's {:.4g} ({:.2f}x): {}", a.axis,

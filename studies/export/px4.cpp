@@ -30,13 +30,14 @@ std::string other_sensor_comment(const fit::SensorKind& kind, int instance, long
       "#   offset = X0{2} ({3}), d = clamp(T, TMIN, TMAX) - TREF; corrected = raw - offset\n"
       "#   TMIN/TMAX: the window temperatures the model was fitted on. {4}{5}_ID must be your {0}'s device id\n"
       "#   ({6}{5}_ID){7}.\n"
-      "#   X0 is 0: what the {0} reads at TREF is left to its offset calibration ({6}{5}_OFF), as PX4's own\n"
+      "#   X0 is 0: what the {0} reads at TREF is left to its offset calibration ({6}{5}_{8}), as PX4's own\n"
       "#   thermal calibration leaves it; these parameters correct the change from TREF.\n"
       "#   Loading: PX4 lists the {4}* parameters only once {4}_ENABLE is 1 and the board rebooted: load this\n"
       "#   file, reboot, load it again. MAVProxy's param load skips a value within 1e-6 of the vehicle's: tiny\n"
       "#   coefficients never load that way (use QGroundControl, or param set each).\n",
       kind.noun, one ? "1D" : "3D", powers, kind.ulog.unit == "mps2" ? "m/s^2" : kind.ulog.unit, kind.px4_stem,
-      instance, px4_calibration(kind), device_id == 0 ? "; it is 0 here: set it, or pass --device-id" : "");
+      instance, px4_calibration(kind), device_id == 0 ? "; it is 0 here: set it, or pass --device-id" : "",
+      one ? "OFF" : "XOFF, _YOFF, _ZOFF");
 }
 
 }  // namespace
@@ -100,7 +101,8 @@ ExporterInfo px4_exporter() {
             const int instance = px4_instance(r.instance);
             const long long device_id = px4_device_id(r.device_id);
             if (r.boot_temp_c)
-              throw InputError("--boot-temp is ArduPilot's (the temperature of its boot gyro calibration); PX4 has none");
+              throw InputError("--boot-temp is ArduPilot's (the temperature of its boot gyro calibration, or of its "
+                               "accelerometer calibration); PX4 has none");
             FirmwareFile f = firmware_file(r, fits, "PX4");
             f.out.text = px4_parameters(f, instance, device_id);
             f.out.lines.push_back(firmware_wrote(r, f, "PX4") +
