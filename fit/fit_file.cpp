@@ -436,6 +436,14 @@ std::vector<SavedFit> load_fits_json(const nlohmann::json& j, const std::filesys
   }
 }
 
+void check_given_sensor(const SavedFit& fit, const std::string& given_sensor) {
+  const SensorKind& kind = fit.pipeline.columns.units.kind();
+  if (!given_sensor.empty() && &sensor_kind(given_sensor) != &kind)
+    throw InputError(fmt::format("--sensor {}: {} is the {}'s fit (--sensor {}); leave --sensor out, or give that "
+                                 "sensor's fit",
+                                 given_sensor, fit.file.string(), kind.noun, kind.name));
+}
+
 SavedFit load_fit(const std::filesystem::path& file) {
   std::vector<SavedFit> fits = load_fits(file);
   if (fits.size() != 1)

@@ -88,6 +88,10 @@ struct SavedFit {
 // naming the fit's kind), or any (export).
 enum class FitKinds { gyro, any };
 
+// The sensor is the fit's (compensate, allan --fit): a --sensor given with it
+// must name it; InputError otherwise, naming both.
+void check_given_sensor(const SavedFit& fit, const std::string& given_sensor);
+
 // Throws InputError naming the file and the field for anything missing or
 // malformed, and for a fit whose top-level "sensor" contradicts its units'.
 SavedFit load_fit(const std::filesystem::path& file);

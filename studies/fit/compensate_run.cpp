@@ -25,12 +25,7 @@ CompensateRun compensate_record(const CompensateRequest& o, const RecordSource& 
     fit::PipelineOptions pipeline = fit::reading_columns_of(fit.pipeline, fit.terms);
     fit::ColumnMap given = o.columns;
     given.gyro = gyros[channel++];
-    // The sensor is the fit's: a --sensor given must name it.
-    if (const fit::SensorKind& kind = fit.pipeline.columns.units.kind();
-        !given.units.sensor.empty() && &fit::sensor_kind(given.units.sensor) != &kind)
-      throw InputError(fmt::format("--sensor {}: {} is the {}'s fit (--sensor {}); leave --sensor out, or give "
-                                   "that sensor's fit",
-                                   given.units.sensor, o.fit_file, kind.noun, kind.name));
+    fit::check_given_sensor(fit, given.units.sensor);
     pipeline.columns = source.fit_columns(pipeline.columns).with(given);
     pipeline.columns.units.validate();
     if (o.causal) pipeline.derivative = fit::DerivativeMode::causal;
