@@ -309,6 +309,33 @@ TEST(CliSensor, AllanReportsEachSensorsNoiseInItsUnits) {
   expect_refused(dir, "allan a.csv --fit fit.json --sensor baro", "--sensor baro: fit.json is the accelerometer's fit");
 }
 
+// An accelerometer that moved: sample-to-sample changes no accelerometer's
+// noise makes (0.5 m/s² at 1 s is a velocity random walk of 30 m/s/√h), as
+// a flying vehicle's do; a still one (0.01 m/s², 0.6 m/s/√h) is not cautioned.
+TEST(CliSensor, AnAccelerometerThatMovedIsCautioned) {
+  ScratchDir dir;
+  for (const auto& [file, sigma] : {std::pair{"still.csv", 0.01}, {"shaken.csv", 0.5}}) {
+    const CliResult r = run_shell(dir, "awk 'BEGIN { srand(5); print \"time_s,temp_c,accel_mps2\"; for (k = 0; k < 7200; "
+                                       "k++) { u = -6; for (i = 0; i < 12; i++) u += rand(); printf \"%d,%.4f,%.9g\\n\", "
+                                       "k, 20 + k / 360, 0.3 + " + std::to_string(sigma) + " * u } }' | tee " + file);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const nlohmann::json still = fit_json(dir, "still.csv --sensor accel --model T");
+  EXPECT_TRUE(still["data"]["cautions"].empty()) << still["data"]["cautions"].dump();
+  const CliResult shaken = run_cli(dir, "fit shaken.csv --sensor accel --model T");
+  ASSERT_EQ(shaken.exit_code, 0) << shaken.err;
+  const std::size_t at = shaken.out.find("a velocity random walk of ");
+  ASSERT_NE(at, std::string::npos) << shaken.out;
+  EXPECT_NEAR(std::stod(shaken.out.substr(at + 26, 8)), 30.0, 2.0) << shaken.out;  // 0.5 · 60
+  EXPECT_NE(shaken.out.find("it moved or vibrated"), std::string::npos) << shaken.out;
+  // A real flight: PX4's quadrotor log, its accelerometer in the unit the format states.
+  const std::string log = testing::source_path("../shared/data/real/px4_ulog/quadrotor_local.ulg");
+  if (!std::filesystem::exists(log)) GTEST_SKIP() << "no real PX4 log at " << log;
+  const CliResult flight = run_cli(dir, "fit " + log + " --sensor accel --gyro-col accel_z --avg 5 --model T");
+  ASSERT_EQ(flight.exit_code, 0) << flight.err;
+  EXPECT_NE(flight.out.find("the vehicle moved or vibrated"), std::string::npos) << flight.out;
+}
+
 // Numbers that look like another unit than they are read in get a caution:
 // an atmosphere in hPa read as Pa, a field in µT read as gauss.
 TEST(CliSensor, ReadingsOutsideTheSensorsRangeAreCautioned) {

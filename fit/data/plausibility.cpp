@@ -13,6 +13,11 @@ namespace {
 constexpr double kPairWithinS = 60.0;
 constexpr double kQuietestArw = 2e-5;  // °/√h
 constexpr double kNoisiestArw = 200.0;
+// An accelerometer's white noise as a velocity random walk (m/s/√h, 3600 ×
+// the gyro-convention figure the probe computes): MEMS parts lie between
+// about 0.02 and 0.5 (20 to 400 µg/√Hz); above this, 20 times the noisiest,
+// the changes are motion or vibration (a flying vehicle: about 100).
+constexpr double kNoisiestVrw = 5.0;
 constexpr double kLongestSpanS = 30.0 * 86400.0;
 constexpr double kColdestC = -100.0, kHottestC = 200.0;
 
@@ -84,11 +89,14 @@ std::vector<UnitCaution> unit_cautions(const Units& u, const ReadSummary& r) {
       caution(CautionKind::gyro_turning, gyro, u.gyro_from);
     else if (n > kNoisiestArw)
       caution(CautionKind::gyro_too_noisy, gyro, u.gyro_from);
-  } else if (const SensorLimits* limits = sensor_limits(u.kind());
-             limits != nullptr && r.largest_rate_dph > 0.0 &&
-             (r.largest_rate_dph > limits->largest ||
-              (r.largest_rate_dph >= limits->low_from && r.largest_rate_dph < limits->low_to))) {
-    caution(CautionKind::reading_outside, gyro, u.gyro_from);
+  } else {
+    if (u.kind().quantity == Quantity::accel && 3600.0 * n > kNoisiestVrw)
+      caution(CautionKind::accel_moving, gyro, u.gyro_from);
+    if (const SensorLimits* limits = sensor_limits(u.kind());
+        limits != nullptr && r.largest_rate_dph > 0.0 &&
+        (r.largest_rate_dph > limits->largest ||
+         (r.largest_rate_dph >= limits->low_from && r.largest_rate_dph < limits->low_to)))
+      caution(CautionKind::reading_outside, gyro, u.gyro_from);
   }
   if (r.span_s > kLongestSpanS) caution(CautionKind::span_too_long, u.time_unit().name, u.time_from);
   if (r.temp_max_c < kColdestC || r.temp_min_c > kHottestC)
@@ -155,6 +163,14 @@ std::string caution_text(const UnitCaution& c) {
           r.temp_max_c < kColdestC ? "below -100 °C" : "above 200 °C", r.temp_min_c, r.temp_max_c, read_in, unit,
           guessed ? "" : "?");
     }
+    case CautionKind::accel_moving:
+      return fmt::format(
+          "the accelerometer's sample-to-sample changes are a velocity random walk of {:.3g} m/s/√h, more than any "
+          "MEMS accelerometer's noise (about 0.02 to 0.5), {}: {}; a thermal test holds the accelerometer still",
+          3600.0 * n, c.unit_from_log_format ? fmt::format("in the unit the log's format states ({})", c.unit_source) : read_in,
+          c.unit_from_log_format ? "the vehicle moved or vibrated, and its motion is read as bias"
+                                 : "it moved or vibrated (motion is read as bias), or its numbers are in a smaller "
+                                   "unit than that (mg read as m/s²?)");
     case CautionKind::reading_outside: {
       const SensorLimits* found = c.sensor != nullptr ? sensor_limits(*c.sensor) : nullptr;
       if (found == nullptr) return {};

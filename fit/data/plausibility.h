@@ -62,7 +62,8 @@ enum class CautionKind {
   gyro_too_noisy,      // white noise above any MEMS gyro: °/h read as °/s?
   span_too_long,       // a record of more than 30 days: ms or µs read as s?
   temperature_outside,  // every temperature below −100 °C or above 200 °C: K, or raw counts?
-  reading_outside       // another sensor's reading outside what it reads (hPa read as Pa, µT as gauss?)
+  reading_outside,      // another sensor's reading outside what it reads (hPa read as Pa, µT as gauss?)
+  accel_moving          // an accelerometer's sample-to-sample changes no accelerometer's noise makes: it moved
 };
 struct UnitCaution {
   CautionKind kind = CautionKind::gyro_too_quiet;
