@@ -77,20 +77,9 @@ struct SensorLayout {
   bool holds_kind = false;        // a message of the kind read (else an IMU read for its accelerometer)
 };
 
-// The words of a space-separated list ("IMU IMU2 IMU3").
-std::vector<std::string_view> words_of(std::string_view list) {
-  std::vector<std::string_view> words;
-  while (!list.empty()) {
-    const std::size_t space = list.find(' ');
-    words.push_back(list.substr(0, space));
-    list = space == std::string_view::npos ? std::string_view() : list.substr(space + 1);
-  }
-  return words;
-}
-
 // The position of `name` in a space-separated list, or -1.
 int position_in(std::string_view list, std::string_view name) {
-  const std::vector<std::string_view> words = words_of(list);
+  const std::vector<std::string_view> words = words_in(list);
   const auto found = std::find(words.begin(), words.end(), name);
   return found == words.end() ? -1 : static_cast<int>(found - words.begin());
 }
@@ -288,7 +277,7 @@ SensorLayout DataFlashReader::sensor_layout(std::uint64_t at, const std::string&
     layout.time = time_ms;
     layout.time_units_per_s = 1e3;
   }
-  const std::vector<std::string_view> wanted = words_of(holds_kind ? naming.fields : std::string_view());
+  const std::vector<std::string_view> wanted = words_in(holds_kind ? naming.fields : std::string_view());
   const std::string expected = fmt::format("expected TimeUS or TimeMS{}{}", wanted.empty() ? "" : ", ",
                                            fmt::join(wanted, ", "));
   if (!layout.time.present) in_.fail(at, fmt::format("{}: no field 'TimeUS' ({})", what, expected));

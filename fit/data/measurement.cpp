@@ -133,7 +133,6 @@ void CsvParser::read_log(const fs::path& file, const LogFormat& format, Measurem
                                  "in {} and °C",
                                  name_, contents.format, contents.unit));
   csv_ = CsvDialect{};
-  const std::size_t axes = std::count(kind.log_columns.begin(), kind.log_columns.end(), ',') + 1;
   parse_header(fmt::format("time_s,temp_c,{}", kind.log_columns), 0, m);
   log_gyro_ = fmt::format("{} instance {}", sensor->message, instance);
   naming_ = RowNaming::sample;
@@ -164,7 +163,7 @@ void CsvParser::read_log(const fs::path& file, const LogFormat& format, Measurem
           return;
         }
         const double row[] = {t, temp, x, y, z};
-        values_.assign(row, row + 2 + axes);
+        values_.assign(row, row + 2 + kind.axes());
         take_values(sample, m);
       },
       kind);

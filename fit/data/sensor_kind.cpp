@@ -77,17 +77,22 @@ std::string shown_unit(std::string_view ascii) {
   return out;
 }
 
+std::vector<std::string_view> words_in(std::string_view list) {
+  std::vector<std::string_view> words;
+  while (!list.empty()) {
+    const std::size_t space = list.find(' ');
+    words.push_back(list.substr(0, space));
+    list = space == std::string_view::npos ? std::string_view() : list.substr(space + 1);
+  }
+  return words;
+}
+
 bool names_sensor(std::string_view name, const SensorKind& kind) {
   bool named = false;
+  const std::vector<std::string_view> prefixes = words_in(kind.words);
   for (const std::string& word : column_words(name)) {
     if (word.starts_with("temp")) return false;
-    std::string_view prefixes = kind.words;
-    while (!prefixes.empty()) {
-      const std::size_t space = prefixes.find(' ');
-      if (word.starts_with(prefixes.substr(0, space))) named = true;
-      if (space == std::string_view::npos) break;
-      prefixes.remove_prefix(space + 1);
-    }
+    for (const std::string_view prefix : prefixes) named = named || word.starts_with(prefix);
   }
   return named;
 }

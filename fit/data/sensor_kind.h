@@ -11,10 +11,12 @@
 // fit/data/sensor_kind.cpp, as a unit is a line in units.cpp, and its test
 // in tests/sensor_kind_test.cpp.
 
+#include <algorithm>
 #include <array>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fit/data/units.h"
 
@@ -52,6 +54,8 @@ struct SensorKind {
   };
   LogNaming ulog, dataflash;
   std::string_view log_columns;  // the columns a log's samples are read as: "gyro_x,gyro_y,gyro_z"
+  // How many axes it has: 3, or 1 (a barometer: the pressure).
+  std::size_t axes() const { return static_cast<std::size_t>(std::count(log_columns.begin(), log_columns.end(), ',')) + 1; }
   // What the autopilots store of its thermal compensation, in the unit
   // their logs use (ulog.unit): PX4's parameter stem (TC_G, TC_A, TC_B,
   // TC_M) and its polynomial's order (3; the barometer's 5); ArduPilot's
@@ -68,6 +72,8 @@ std::span<const SensorKind> sensor_kinds();
 const SensorKind& sensor_kind(std::string_view name);
 // "gyro, accel or baro".
 std::string sensor_kind_names();
+// The words of one of the kinds' space-separated lists ("x y z", "IMU IMU2 IMU3").
+std::vector<std::string_view> words_in(std::string_view list);
 // A unit as the text reports write it (°/√h, m/s²·√s), from the ASCII form
 // the JSON keeps (deg/sqrt(h), m/s^2*sqrt(s)).
 std::string shown_unit(std::string_view ascii);

@@ -328,12 +328,9 @@ SensorLayout ULogReader::sensor_layout(const std::string& name, std::string_view
   SensorLayout layout;
   std::vector<std::pair<std::string_view, Field*>> wanted = {{"timestamp", &layout.timestamp}};
   Field* const axis_slots[] = {&layout.x, &layout.y, &layout.z};
-  std::size_t n_axes = 0;
-  for (std::string_view rest = axes; !rest.empty() && n_axes < 3; ++n_axes) {
-    const std::size_t space = rest.find(' ');
-    wanted.emplace_back(rest.substr(0, space), axis_slots[n_axes]);
-    rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
-  }
+  const std::vector<std::string_view> axis_names = words_in(axes);
+  for (std::size_t i = 0; i < std::min<std::size_t>(axis_names.size(), 3); ++i)
+    wanted.emplace_back(axis_names[i], axis_slots[i]);
   const std::size_t n_required = wanted.size();
   wanted.emplace_back("temperature", &layout.temperature);
   wanted.emplace_back("device_id", &layout.device_id);

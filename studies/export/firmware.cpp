@@ -40,8 +40,9 @@ std::pair<std::string, double> refitted_polynomial(const fit::PreparedData& data
 
 // With terms dropped: the instability of the fitted data with the whole
 // model, with the cubic alone (the same coefficients, not refitted), and
-// with the best polynomial the firmware can express refitted on that data.
-std::string dropped_report(const fit::SavedFit& f, const PolynomialModel& cubic, const ExportRequest& o,
+// with the best polynomial the firmware can express (up to `order`, the one
+// firmware_axes exports) refitted on that data.
+std::string dropped_report(const fit::SavedFit& f, const PolynomialModel& cubic, int order, const ExportRequest& o,
                            DroppedCost* cost_out) {
   const FittedData data = fitted_data(f, o.data, o.data_table);
   if (!data.here())
@@ -55,7 +56,7 @@ std::string dropped_report(const fit::SavedFit& f, const PolynomialModel& cubic,
   std::string names;
   for (const std::string& n : cubic.dropped) names += (names.empty() ? "" : ", ") + n;
   const fit::SensorKind& kind = f.pipeline.columns.units.kind();
-  const auto [model, refitted] = refitted_polynomial(fit::prepare_data(m, pipeline), o.format == "px4" ? kind.px4_order : kCubic);
+  const auto [model, refitted] = refitted_polynomial(fit::prepare_data(m, pipeline), order);
   const std::string_view unit = kind.unit;
   // Another sensor's fit names its sensor and column again (a gyro's are the defaults).
   const std::string sensor_options =
@@ -109,7 +110,7 @@ std::array<float, 3> ardupilot_coefficients(const AxisModel& axis, const fit::Se
   return g;
 }
 
-bool single_channel(const fit::SensorKind& kind) { return kind.log_columns.find(',') == std::string_view::npos; }
+bool single_channel(const fit::SensorKind& kind) { return kind.axes() == 1; }
 
 double firmware_per_base(const fit::SensorKind& kind) {
   return kind.is_gyro ? kRadPerSecPerDegPerHour : 1.0 / fit::find_unit(kind.quantity, kind.ulog.unit, "").factor;
@@ -284,7 +285,7 @@ std::array<AxisModel, 3> firmware_axes(const ExportRequest& o, const std::vector
     axes[i].temp_min_c = f.temp_range_c->first;
     axes[i].temp_max_c = f.temp_range_c->second;
     DroppedCost cost{f.instability_after_dph, f.instability_after_dph};
-    if (!axes[i].model.dropped.empty()) out->lines.push_back(dropped_report(f, axes[i].model, o, &cost));
+    if (!axes[i].model.dropped.empty()) out->lines.push_back(dropped_report(f, axes[i].model, order, o, &cost));
     warn_if_little_compensation(f, cost.without_dph, out);
   }
   if (std::none_of(axes.begin(), axes.end(), [](const AxisModel& a) { return a.present; }))
