@@ -178,6 +178,16 @@ TEST(SensorExport, ABarometersFitBecomesPX4sQuinticTCB) {
   EXPECT_NE(dropped.out.find("gyrotherm fit b2.csv --sensor baro --gyro-col 'baro_pa' --model"), std::string::npos)
       << dropped.out;
   EXPECT_EQ(dropped.out.find("--format c"), std::string::npos) << dropped.out;
+  // TC_B holds one channel: a fit of two pressure columns is refused, and nothing is written.
+  ASSERT_EQ(run_shell(dir, "awk -F, 'NR == 1 { print \"time_s,temp_c,p1_pa,p2_pa\"; next } "
+                           "{ print $1 \",\" $2 \",\" $3 \",\" $3 + 5 }' b.csv | tee two.csv")
+                .exit_code,
+            0);
+  ASSERT_EQ(run_cli(dir, "fit two.csv --sensor baro --gyro-col p1_pa,p2_pa --model T -o two.json").exit_code, 0);
+  expect_refused(dir, "export two.json --format px4 -o two.params",
+                 "a barometer's thermal compensation holds one channel; give a fit of one (or --axes NAME,-,-)");
+  EXPECT_FALSE(std::filesystem::exists(dir / "two.params"));
+  EXPECT_EQ(run_cli(dir, "export two.json --format px4 --axes p1_pa,-,- -o one.params").exit_code, 0);
 }
 
 TEST(SensorExport, AMagnetometersFitBecomesPX4sTCMAndAGyrosIsAsItWas) {
