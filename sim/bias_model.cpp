@@ -8,6 +8,12 @@ BiasModel::BiasModel(const GyroConfig& gyro) : b0_dph_(gyro.b0_dph) {
       active_.push_back({e, c, gyro.parameter_of(*e)});
 }
 
+BiasModel::BiasModel(const ChannelConfig& channel, const GyroConfig& gyro) : b0_dph_(channel.b0) {
+  for (const effects::Effect* e : effects::registry())
+    if (const auto c = channel.coefficient.find(std::string(e->name)); c != channel.coefficient.end() && c->second != 0.0)
+      active_.push_back({e, c->second, gyro.parameter_of(*e)});
+}
+
 std::vector<double> BiasModel::bias_dph(const effects::EffectSeries& truth) const {
   std::vector<double> b(truth.size(), b0_dph_);
   std::vector<double> r(truth.size());

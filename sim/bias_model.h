@@ -19,8 +19,11 @@ namespace gyrotherm::sim {
 class BiasModel {
  public:
   explicit BiasModel(const GyroConfig& gyro);
+  // A channel's (sim/channel.h): its b0 and coefficients, the gyro's
+  // effect parameters; values in the channel's unit.
+  BiasModel(const ChannelConfig& channel, const GyroConfig& gyro);
 
-  // B at every point of the true state.
+  // B at every point of the true state, in the gyro's (or channel's) unit.
   std::vector<double> bias_dph(const effects::EffectSeries& truth) const;
 
  private:

@@ -365,6 +365,50 @@ RigConfig load_rig(const std::filesystem::path& file) {
   return rig;
 }
 
+// [[channel]]: sensor, axis (none for a kind without axes), b0, white_noise
+// and [channel.terms] (coefficients by term name); sim/channel.h.
+std::vector<ChannelConfig> read_channels(TableReader& r) {
+  std::vector<ChannelConfig> channels;
+  const toml::node* list = r.find("channel");
+  if (list == nullptr) return channels;
+  if (!list->is_array_of_tables()) r.fail(*list, "channel: expected [[channel]] tables, found " + type_name(*list));
+  for (const toml::node& node : *list->as_array()) {
+    const std::string what = "channel " + std::to_string(channels.size() + 1);
+    TableReader c(*node.as_table(), r.file(), what);
+    ChannelConfig ch;
+    ch.line = static_cast<int>(node.source().begin.line);
+    std::string sensor, axis;
+    c.string("sensor", sensor);
+    ch.kind = find_channel_kind(sensor);
+    if (ch.kind == nullptr)
+      c.fail_here(what + ": sensor = \"" + sensor + "\": expected " + channel_kind_names());
+    c.string("axis", axis);
+    if (ch.kind->has_axes && (axis.size() != 1 || axis.find_first_of("xyz") != 0))
+      c.fail_here(what + ": a " + sensor + " channel needs axis = \"x\", \"y\" or \"z\"");
+    if (!ch.kind->has_axes && c.has("axis")) c.fail_here(what + ": a " + sensor + " has no axes; drop axis");
+    ch.axis = ch.kind->has_axes ? axis[0] : '\0';
+    if (ch.kind->name == "gyro" && ch.axis == 'x')
+      c.fail_here(what + ": the gyro's axis x is the file's [truth]; a gyro channel is axis y or z");
+    for (const ChannelConfig& other : channels)
+      if (other.kind == ch.kind && other.axis == ch.axis)
+        c.fail_here(what + ": " + ch.label() + " is simulated twice (line " + std::to_string(other.line) + ")");
+    c.number("b0", ch.b0);
+    c.number("white_noise", ch.white_noise, Rule::non_negative);
+    if (const toml::table* t = c.table("terms")) {
+      TableReader terms(*t, r.file(), what + ".terms");
+      for (const effects::Effect* e : effects::registry()) {
+        double coefficient = 0.0;
+        terms.number(e->name, coefficient);
+        if (coefficient != 0.0) ch.coefficient[std::string(e->name)] = coefficient;
+      }
+      terms.finish("the terms " + effects::names());
+    }
+    c.finish();
+    channels.push_back(std::move(ch));
+  }
+  return channels;
+}
+
 GyroConfig load_gyro(const std::filesystem::path& file) {
   const toml::table root = parse(file);
   TableReader r(root, file.string(), "");
@@ -412,6 +456,7 @@ GyroConfig load_gyro(const std::filesystem::path& file) {
     if (n.flicker_tau_min_s > n.flicker_tau_max_s)
       c.fail_here("noise.flicker_tau_min_s must not exceed noise.flicker_tau_max_s");
   });
+  gyro.channels = read_channels(r);
   r.finish();
   return gyro;
 }

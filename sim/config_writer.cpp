@@ -128,6 +128,16 @@ std::string gyro_toml(const GyroConfig& gyro, std::string_view header) {
   t.number("glitch_size_dph", n.glitch_size_dph);
   t.number("arw_temp_ref_c", n.arw_temp_ref_c);
   t.number("arw_temp_coeff_per_c2", n.arw_temp_coeff_per_c2, "white noise × (1 + k·(T − T_ref)²)");
+  for (const ChannelConfig& ch : gyro.channels) {
+    t.raw("\n[[channel]]\n");
+    t.string("sensor", ch.kind->name);
+    if (ch.kind->has_axes) t.string("axis", std::string(1, ch.axis));
+    t.number("b0", ch.b0, ch.kind->unit);
+    t.number("white_noise", ch.white_noise, fmt::format("{}·√s", ch.kind->unit));
+    if (ch.coefficient.empty()) continue;
+    t.raw("[channel.terms]\n");
+    for (const auto& [term, c] : ch.coefficient) t.number(term, c);
+  }
   return t.take();
 }
 

@@ -12,7 +12,9 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
+#include "sim/channel.h"
 #include "sim/effects/effect.h"
 
 namespace gyrotherm::sim {
@@ -41,6 +43,8 @@ struct GyroConfig {
   // effect's simulator_default.
   std::map<std::string, double> parameter;
   NoiseConfig noise;
+  // The channels beside the gyro's (sim/channel.h), in the file's order.
+  std::vector<ChannelConfig> channels;
 
   // c_k (0 when off) and θ_k of an effect.
   double coefficient_of(const effects::Effect& effect) const;

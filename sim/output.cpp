@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/record_format.h"
 #include "sim/util/atomic_file.h"
 #include "sim/util/fast_number.h"
 #include "sim/util/gnuplot.h"
@@ -36,19 +37,23 @@ std::string simulation_csv(const Simulator& simulator, const SimulationResult& r
                  sc.name, r.seed);
   fmt::format_to(std::back_inserter(out),
                  "# truth (noise-free bias, true coefficients) in the .truth.json beside this file\n");
-  fmt::format_to(std::back_inserter(out),
-                 "time_s,chamber_c,case_c,temp_c,temp2_c,gyro_dph,bias_true_dph\n");
+  fmt::format_to(std::back_inserter(out), "time_s,chamber_c,case_c,temp_c,temp2_c,gyro_dph,bias_true_dph");
+  for (const ChannelConfig& ch : simulator.gyro().channels)
+    fmt::format_to(std::back_inserter(out), ",{},{}", ch.column(), ch.truth_column());
+  fmt::format_to(std::back_inserter(out), "\n");
   // Each row formatted by hand into one buffer, the digits of
-  // "{:.10g},{:.5f},{:.5f},{:.5f},{:.5f},{:.6f},{:.9f}" (sim/util/fast_number.h).
+  // "{:.10g},{:.5f},{:.5f},{:.5f},{:.5f},{:.6f},{:.9f}" (sim/util/fast_number.h),
+  // then each channel's reading and true value to 10 significant digits.
   std::string text = fmt::to_string(out);
   const std::size_t head = text.size();
-  constexpr std::size_t kRowRoom = 7 * 350;  // the worst case of every field
-  text.resize(head + r.rows() * 96 + kRowRoom);
+  const std::size_t row = 96 + 36 * r.channels.size();
+  const std::size_t kRowRoom = (7 + 2 * r.channels.size()) * 350;  // the worst case of every field
+  text.resize(head + r.rows() * row + kRowRoom);
   char* p = text.data() + head;
   for (std::size_t k = 0; k < r.rows(); ++k) {
     if (static_cast<std::size_t>(text.data() + text.size() - p) < kRowRoom) {
       const std::size_t used = static_cast<std::size_t>(p - text.data());
-      text.resize(text.size() + (r.rows() - k) * 96 + kRowRoom);
+      text.resize(text.size() + (r.rows() - k) * row + kRowRoom);
       p = text.data() + used;
     }
     p = write_general(p, r.time_s[k], 10);
@@ -64,6 +69,12 @@ std::string simulation_csv(const Simulator& simulator, const SimulationResult& r
     p = write_fixed(p, r.gyro_dph[k], 6);
     *p++ = ',';
     p = write_fixed(p, r.bias_true_dph[k], 9);
+    for (const SimulationResult::Channel& ch : r.channels) {
+      *p++ = ',';
+      p = write_general(p, ch.value[k], 10);
+      *p++ = ',';
+      p = write_general(p, ch.truth[k], 10);
+    }
     *p++ = '\n';
   }
   text.resize(static_cast<std::size_t>(p - text.data()));
@@ -108,6 +119,20 @@ std::string truth_json(const Simulator& simulator, const SimulationResult& r) {
   }
   j["coefficients"] = coefficients;
   j["hidden"] = hidden;
+  if (!gyro.channels.empty()) {
+    nlohmann::ordered_json channels = nlohmann::ordered_json::array();
+    for (const ChannelConfig& ch : gyro.channels) {
+      nlohmann::ordered_json c = {{"sensor", std::string(ch.kind->name)}};
+      if (ch.kind->has_axes) c["axis"] = std::string(1, ch.axis);
+      c["column"] = ch.column();
+      c["truth_column"] = ch.truth_column();
+      c["unit"] = std::string(ch.kind->unit);
+      c["coefficients"] = ch.true_coefficients();
+      c["white_noise"] = ch.white_noise;
+      channels.push_back(c);
+    }
+    j["channels"] = channels;
+  }
   j["noise"] = {{"arw_deg_per_sqrt_h", nz.arw_deg_per_sqrt_h},
                 {"bias_instability_dph", nz.bias_instability_dph},
                 {"flicker_tau_min_s", nz.flicker_tau_min_s},
@@ -142,7 +167,7 @@ std::string truth_json(const Simulator& simulator, const SimulationResult& r) {
 void write_simulation(const std::filesystem::path& csv, const Simulator& simulator,
                       const SimulationResult& result) {
   // Render both first (this reads and hashes the input files), then write.
-  const std::string csv_text = simulation_csv(simulator, result);
+  const std::string csv_text = record_format_for(csv).render(simulator, result);
   const std::string json_text = truth_json(simulator, result);
   AtomicFile csv_file(csv);
   AtomicFile json_file(truth_path_for(csv));

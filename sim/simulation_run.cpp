@@ -1,6 +1,7 @@
 #include "sim/simulation_run.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -8,6 +9,7 @@
 
 #include "sim/config_loader.h"
 #include "sim/output.h"
+#include "sim/record_format.h"
 
 namespace gyrotherm::sim {
 
@@ -24,6 +26,12 @@ Simulation simulate(const SimulateRequest& o) {
   GyroConfig gyro = load_gyro(scenario.gyro_file);
   check_scenario_against_rig(scenario, rig, scenario.rig_file);
   for (const std::string& h : o.hidden) apply_hidden_option(gyro, h);
+  if (!o.output.empty()) {
+    const RecordFormat& format = record_format_for(o.output);
+    format.check(gyro, scenario.gyro_file);  // before the run, not after it
+    run.format = format.name;
+  }
+  for (const ChannelConfig& ch : gyro.channels) run.channels.push_back(ch.label());
 
   s.simulator = std::make_unique<Simulator>(scenario, rig, gyro);
   s.result = s.simulator->run();
@@ -71,6 +79,8 @@ nlohmann::ordered_json simulation_json(const SimulationRun& r) {
                  {"restarts", r.solver.restarts}};
   j["energy_residual_j"] = r.energy_residual_j;
   j["seconds"] = r.seconds;
+  if (r.format != "CSV") j["format"] = r.format;
+  if (!r.channels.empty()) j["channels"] = r.channels;
   return j;
 }
 
@@ -83,10 +93,12 @@ std::string simulation_text(const SimulationRun& r) {
   else
     out += fmt::format("  no chamber: the INS sits in a {:.1f} °C room\n", r.scenario.room_c);
   out += fmt::format("  hidden effects: {}\n", r.hidden.empty() ? "none" : r.hidden);
+  if (!r.channels.empty()) out += fmt::format("  channels beside the gyro: {}\n", fmt::join(r.channels, ", "));
   out += fmt::format(
       "  CVODE: {} steps, {} right-hand-side evaluations, {} restarts; energy balance residual {:.2g} J\n",
       r.solver.steps, r.solver.rhs_evaluations, r.solver.restarts, r.energy_residual_j);
-  out += fmt::format("wrote {} and {}{} in {:.2f} s\n", r.request.output, r.truth_file,
+  out += fmt::format("wrote {}{} and {}{} in {:.2f} s\n", r.request.output,
+                     r.format == "CSV" ? "" : " (" + r.format + ")", r.truth_file,
                      r.request.plot.empty() ? "" : " and " + r.request.plot, r.seconds);
   return out;
 }

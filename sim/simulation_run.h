@@ -35,6 +35,8 @@ struct SimulationRun {
   SolverStatistics solver;
   double energy_residual_j = 0.0;
   std::string hidden;  // "grad=0.02, T^3=1e-07", or "" for none
+  std::string format = "CSV";         // the record's (sim/record_format.h): "CSV", "PX4 ULog", ...
+  std::vector<std::string> channels;  // beside the gyro: "gyro y", "accel x", "baro"
   double seconds = 0.0;
 };
 
@@ -51,8 +53,10 @@ Simulation simulate(const SimulateRequest& request);
 // simulate(), then the CSV and its truth (and the figure) written.
 // Throws InputError (nothing written) on a bad file or option.
 SimulationRun simulate_to_files(const SimulateRequest& request);
-// simulate --json: csv, truth, scenario, seed, rows, duration_s, gyro_temp_min_c,
-// gyro_temp_max_c, soak_control_error_c, solver, energy_residual_j, seconds.
+// simulate --json: csv (the output, whatever its format), truth, scenario,
+// seed, rows, duration_s, gyro_temp_min_c, gyro_temp_max_c,
+// soak_control_error_c, solver, energy_residual_j, seconds; format when the
+// output is not a CSV, and channels when the gyro file has any.
 nlohmann::ordered_json simulation_json(const SimulationRun& run);
 std::string simulation_text(const SimulationRun& run);
 

@@ -28,6 +28,7 @@ double largest_rate(const RigDynamics& dynamics, double t, std::span<const doubl
 struct Simulator::NoiseSources {
   GyroNoise gyro;
   ReadingNoise chamber, case_, temp, temp2;
+  std::vector<ReadingNoise> channels;  // the white noise of each channel
   void draw_ahead(std::size_t samples) {
     gyro.draw_ahead(samples);
     for (ReadingNoise* r : {&chamber, &case_, &temp, &temp2}) r->draw_ahead(samples);
@@ -37,11 +38,17 @@ struct Simulator::NoiseSources {
 Simulator::NoiseSources Simulator::noise_sources() const {
   const SensorConfig& sensor = rig_.sensor;
   const std::uint64_t seed = scenario_.seed;
-  return NoiseSources{GyroNoise(gyro_.noise, 1.0 / scenario_.sample_rate_hz, seed),
-                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 0),
-                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 1),
-                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 2),
-                      ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 3)};
+  NoiseSources sources{GyroNoise(gyro_.noise, 1.0 / scenario_.sample_rate_hz, seed),
+                       ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 0),
+                       ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 1),
+                       ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 2),
+                       ReadingNoise(sensor.noise_c, sensor.resolution_c, seed, streams::reading_base + 3),
+                       {}};
+  // A density in unit·√s scatters a sample at rate f by density·√f.
+  for (std::size_t i = 0; i < gyro_.channels.size(); ++i)
+    sources.channels.emplace_back(gyro_.channels[i].white_noise * std::sqrt(scenario_.sample_rate_hz), 0.0, seed,
+                                  streams::channel_base + i);
+  return sources;
 }
 
 std::size_t Simulator::sample_count() const {
@@ -231,6 +238,13 @@ SimulationResult Simulator::record(ThermalTrace trace, NoiseSources& sources, bo
   result.bias_true_dph = BiasModel(gyro_).bias_dph(state);
   for (std::size_t k = 0; k < n; ++k)
     result.gyro_dph.push_back(noise.sample(result.bias_true_dph[k], state.temp_c[k]));
+  for (std::size_t i = 0; i < gyro_.channels.size(); ++i) {
+    SimulationResult::Channel channel;
+    channel.truth = BiasModel(gyro_.channels[i], gyro_).bias_dph(state);
+    channel.value.reserve(n);
+    for (const double v : channel.truth) channel.value.push_back(sources.channels[i].read(v));
+    result.channels.push_back(std::move(channel));
+  }
   if (parallel)
     reader.join();
   else

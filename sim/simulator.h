@@ -53,6 +53,12 @@ struct SimulationResult {
   ThermalTrace truth;
   // The record, as the CSV has it.
   std::vector<double> time_s, chamber_c, case_c, temp_c, temp2_c, gyro_dph, bias_true_dph;
+  // The gyro file's channels (sim/channel.h), in its order: the reading and
+  // the noise-free value, in the channel's unit.
+  struct Channel {
+    std::vector<double> value, truth;
+  };
+  std::vector<Channel> channels;
   SolverStatistics solver;
   EnergyBalance energy;
   std::uint64_t seed = 0;

@@ -21,8 +21,8 @@ fit::Measurement measurement_of(sim::SimulationResult record, std::string file) 
   return m;
 }
 
-std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
-  const std::filesystem::path file = sim::truth_path_for(csv);
+std::optional<Truth> load_truth_beside(const std::filesystem::path& record, std::string_view column) {
+  const std::filesystem::path file = sim::truth_path_for(record);
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) return std::nullopt;
   std::ifstream in(file);
@@ -32,7 +32,32 @@ std::optional<Truth> load_truth_beside(const std::filesystem::path& csv) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON: {}", file.string(), e.what()));
   }
-  return truth_from_json(j, file);
+  return channel_truth(j, file, column);
+}
+
+std::optional<Truth> channel_truth(const nlohmann::json& j, const std::filesystem::path& file,
+                                   std::string_view column) {
+  if (!j.is_object() || !j.contains("channels")) return truth_from_json(j, file);
+  if (column.empty() || column == "gyro_dph" || column == "gyro_x") {
+    Truth t = truth_from_json(j, file);
+    t.channel_matched = true;
+    return t;
+  }
+  if (!j["channels"].is_array()) throw InputError(fmt::format("{}: expected an array 'channels'", file.string()));
+  for (const nlohmann::json& ch : j["channels"]) {
+    if (!ch.is_object() || !ch.contains("sensor") || !ch.contains("column") || !ch.contains("coefficients"))
+      throw InputError(fmt::format("{}: each of 'channels' needs sensor, column and coefficients", file.string()));
+    // As an autopilot log's reader names it (fit/data/sensor_kind.h's log_columns).
+    const std::string sensor = ch["sensor"].get<std::string>();
+    const std::string log_column = sensor == "baro" ? "pressure" : sensor + "_" + ch.value("axis", std::string());
+    if (column != ch["column"].get<std::string>() && column != log_column) continue;
+    nlohmann::json gyro_like = j;  // the gyro's hidden parameters hold for every channel
+    gyro_like["coefficients"] = ch["coefficients"];
+    Truth t = truth_from_json(gyro_like, file);
+    t.channel_matched = true;
+    return t;
+  }
+  return std::nullopt;
 }
 
 Truth truth_from_json(const nlohmann::json& j, const std::filesystem::path& file) {

@@ -48,6 +48,8 @@ enum : std::uint64_t {
   // The simulator's noise (sim/noise.h), one per component; temperature
   // reading i uses stream reading_base + i.
   arw = 1, flicker = 2, rrw = 3, quantizer = 4, glitch = 5, reading_base = 16,
+  // The white noise of a gyro file's channel i (sim/channel.h): channel_base + i.
+  channel_base = 64,
   // The fish-swarm engines' own generators (fit/engines/afsa.h, iafsa.h).
   afsa = 0xAF5A, iafsa = 0x1AF5A,
   // The bootstrap of diagnose's likelihood test (studies/diagnose/likelihood_test.h).

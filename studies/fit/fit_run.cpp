@@ -89,10 +89,10 @@ std::string channel_text(const ChannelFit& c, const FitRun& run, bool units_said
   return out;
 }
 
-// Every channel of `source` fitted; truth() (with one channel only) the
-// simulator's truth to set the fit against.
+// Every channel of `source` fitted; truth(channel) the simulator's truth
+// of a channel to set its fit against.
 FitRun fit_record(const FitRequest& request, const RecordSource& source,
-                  const std::function<std::optional<Truth>()>& truth) {
+                  const std::function<std::optional<Truth>(const std::string&)>& truth) {
   FitRun run;
   run.request = request;
   run.request.data = source.name();
@@ -118,8 +118,10 @@ FitRun fit_record(const FitRequest& request, const RecordSource& source,
                                        channels.size() > 1 ? fmt::format(" ({})", channel) : std::string(), e.what()));
           }
         });
-        // The simulator's truth belongs to its one gyro column.
-        if (channels.size() == 1) c.truth = truth();
+        // The simulator's truth of this channel (a gyro file without
+        // channels: of its one gyro column).
+        if (const std::optional<Truth> t = truth(channel); t && (channels.size() == 1 || t->channel_matched))
+          c.truth = t;
         c.json = fit::fit_json(c.result, c.data, c.pipeline, request.settings);
         if (c.truth) add_truth(c.json, c.result, *c.truth);
         return c;
@@ -144,11 +146,12 @@ FitRun fit_record(const FitRequest& request, const RecordSource& source,
 }  // namespace
 
 FitRun run_fit(const FitRequest& request) {
-  return fit_record(request, RecordSource(request.data), [&] { return load_truth_beside(request.data); });
+  return fit_record(request, RecordSource(request.data),
+                    [&](const std::string& channel) { return load_truth_beside(request.data, channel); });
 }
 
 FitRun run_fit(const FitRequest& request, const fit::Table& table, std::optional<Truth> truth) {
-  return fit_record(request, RecordSource(table), [&] { return truth; });
+  return fit_record(request, RecordSource(table), [&](const std::string&) { return truth; });
 }
 
 std::string fit_text(const FitRun& run) {
