@@ -384,8 +384,8 @@ std::vector<ChannelConfig> read_channels(TableReader& r) {
       c.fail_here(what + ": sensor = \"" + sensor + "\": expected " + channel_kind_names());
     c.string("axis", axis);
     if (ch.kind->has_axes && (axis.size() != 1 || axis.find_first_of("xyz") != 0))
-      c.fail_here(what + ": a " + sensor + " channel needs axis = \"x\", \"y\" or \"z\"");
-    if (!ch.kind->has_axes && c.has("axis")) c.fail_here(what + ": a " + sensor + " has no axes; drop axis");
+      c.fail_here(what + ": sensor = \"" + sensor + "\" needs axis = \"x\", \"y\" or \"z\"");
+    if (!ch.kind->has_axes && c.has("axis")) c.fail_here(what + ": sensor = \"" + sensor + "\" has no axes; drop axis");
     ch.axis = ch.kind->has_axes ? axis[0] : '\0';
     if (ch.kind->name == "gyro" && ch.axis == 'x')
       c.fail_here(what + ": the gyro's axis x is the file's [truth]; a gyro channel is axis y or z");

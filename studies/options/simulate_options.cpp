@@ -15,7 +15,7 @@ const OptionTable<SimulateCommandOptions>& simulate_option_table() {
        nested_row("--seed", "Noise seed (overrides the scenario's)", &O::request, &R::seed),
        nested_row("--hidden", "Hidden effect TERM=COEF, repeatable; TERM one of " + effects::hidden_names(), &O::request,
                   &R::hidden),
-       nested_row("-o,--output", "Output CSV (a .truth.json goes beside it)", &O::request, &R::output, true),
+       nested_row("-o,--output", "The record: a CSV, or a PX4 ULog (.ulg) or an ArduPilot DataFlash log (.bin) (a .truth.json goes beside it)", &O::request, &R::output, true),
        nested_row("--plot", "Also draw temperatures and 100 s averages of the output into this PNG", &O::request,
                   &R::plot),
        field_row<O>("--json", "Print one JSON object instead of text", &O::json)}};
