@@ -50,27 +50,35 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
   const std::vector<double> t_h = in_hours(s.time_s, s.start_time_s);
   const std::vector<std::size_t> gaps = windows_after_gaps(data);  // the time plots' lines break there
   const std::string floor_text = fmt::format("{:.4g}", d.noise_floor_dph);
+  const std::string_view unit = d.sensor->unit;  // °/h for a gyro
+  // Gnuplot commands with the unit and the sensor's noun in place of {unit} and {noun}.
+  const auto in_unit = [&](std::string text) {
+    for (const auto& [key, value] : {std::pair{std::string_view("{unit}"), unit}, {"{noun}", d.sensor->noun}})
+      for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size()))
+        text.replace(at, key.size(), value);
+    return text;
+  };
 
   {  // 1. Measured and modelled bias with the temperature.
     GnuplotFigure fig(dir + "/bias_time.png", 1400, 700);
     fig.data("d", {"t_h", "measured", "model", "temp"}, {t_h, s.gyro_dph, d.model_dph(), s.temp_c}, gaps);
-    fig.commands(
-        "set title 'Measured and modelled bias (window means) with the gyro temperature'\n"
-        "set xlabel 'time since the start of the record (h)'\nset ylabel 'bias (°/h)'\nset y2label 'temperature (°C)'\n"
+    fig.commands(in_unit(
+        "set title 'Measured and modelled bias (window means) with the {noun} temperature'\n"
+        "set xlabel 'time since the start of the record (h)'\nset ylabel 'bias ({unit})'\nset y2label 'temperature (°C)'\n"
         "set y2tics\nset ytics nomirror\nset key outside right\n"
         "plot $d using 1:2 with points pt 7 ps 0.5 lc rgb '#444444' title 'measured', "
         "$d using 1:3 with lines lw 2 lc rgb '#d62728' title 'model', "
-        "$d using 1:4 axes x1y2 with lines lw 1 lc rgb '#1f77b4' title 'temperature'\n");
+        "$d using 1:4 axes x1y2 with lines lw 1 lc rgb '#1f77b4' title 'temperature'\n"));
     fig.render();
   }
   {  // 2. Residual with the segments shaded and the worst marked.
     GnuplotFigure fig(dir + "/residual_segments.png", 1400, 700);
     std::vector<double> floor_hi(s.size(), d.noise_floor_dph), floor_lo(s.size(), -d.noise_floor_dph);
     fig.data("r", {"t_h", "residual", "floor", "minus_floor"}, {t_h, d.residual_dph(), floor_hi, floor_lo}, gaps);
-    std::string cmds =
+    std::string cmds = in_unit(
         "set title 'Residual of the model; shading: turn-on (yellow), heating (red), cooling "
         "(blue), soak (grey); the three worst segments are labelled'\n"
-        "set xlabel 'time since the start of the record (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n";
+        "set xlabel 'time since the start of the record (h)'\nset ylabel 'residual ({unit})'\nset key outside right\n");
     for (std::size_t i = 0; i < d.segments.size(); ++i) {
       const SegmentReport& seg = d.segments[i];
       cmds += fmt::format(
@@ -95,24 +103,24 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     std::vector<double> rate_mk(s.size());
     for (std::size_t p = 0; p < s.size(); ++p) rate_mk[p] = data.derived.rate_c_per_s[p] * 60.0;
     fig.data("v", {"temp", "rate_c_per_min", "residual"}, {s.temp_c, rate_mk, d.residual_dph()});
-    fig.commands(
+    fig.commands(in_unit(
         "set multiplot layout 1,2 title 'Residual against temperature and temperature rate (a "
         "pattern here is a missing effect)'\n"
-        "set xlabel 'temperature (°C)'\nset ylabel 'residual (°/h)'\nunset key\n"
+        "set xlabel 'temperature (°C)'\nset ylabel 'residual ({unit})'\nunset key\n"
         "plot $v using 1:3 with points pt 7 ps 0.5 lc rgb '#1f77b4'\n"
         "set xlabel 'dT/dt (°C/min)'\n"
-        "plot $v using 2:3 with points pt 7 ps 0.5 lc rgb '#d62728'\nunset multiplot\n");
+        "plot $v using 2:3 with points pt 7 ps 0.5 lc rgb '#d62728'\nunset multiplot\n"));
     fig.render();
   }
   if (before != nullptr) {  // 4. Before and after the added effect.
     GnuplotFigure fig(dir + "/before_after.png", 1400, 700);
     fig.data("b", {"t_h", "before", "after"}, {t_h, before->residual_dph(), d.residual_dph()}, gaps);
     fig.commands(fmt::format(
-        "set title 'Residual before ({:.4g} °/h) and after ({:.4g} °/h) adding the effect; noise "
-        "floor {}'\nset xlabel 'time since the start of the record (h)'\nset ylabel 'residual (°/h)'\nset key outside right\n"
+        "set title 'Residual before ({0:.4g} {3}) and after ({1:.4g} {3}) adding the effect; noise "
+        "floor {2}'\nset xlabel 'time since the start of the record (h)'\nset ylabel 'residual ({3})'\nset key outside right\n"
         "plot $b using 1:2 with lines lw 1.5 lc rgb '#aaaaaa' title 'before', "
         "$b using 1:3 with lines lw 2 lc rgb '#d62728' title 'after'\n",
-        before->fit.instability_after_dph, d.fit.instability_after_dph, floor_text));
+        before->fit.instability_after_dph, d.fit.instability_after_dph, floor_text, unit));
     fig.render();
   }
   if (m.size() > 0) {  // 5. Allan deviation of the raw and the compensated output.
@@ -143,14 +151,14 @@ void write_diagnosis_plots(const std::string& dir, const fit::Measurement& m,
     fig.data("comp", {"tau", "adev", "lo", "hi"}, {tc, c, cl, cu});
     fig.commands(fmt::format(
         "set title 'Allan deviation of the raw and compensated output (68 % bands for the noise type at each τ)'\n"
-        "set logscale xy\nset xlabel 'averaging time τ (s)'\nset ylabel 'Allan deviation (°/h)'\n"
+        "set logscale xy\nset xlabel 'averaging time τ (s)'\nset ylabel 'Allan deviation ({3})'\n"
         "set key outside right\nset arrow from {0}, graph 0 to {0}, graph 1 nohead dt 3 lc rgb '#888888'\n"
         "set label 'floor {1}' at {0}, {2} point pt 9 ps 2 lc rgb '#2ca02c' offset 1,1\n"
         "plot $raw using 1:3:4 with filledcurves fc rgb '#cccccc' fs transparent solid 0.5 notitle, "
         "$raw using 1:2 with linespoints pt 7 ps 0.6 lc rgb '#444444' title 'raw', "
         "$comp using 1:3:4 with filledcurves fc rgb '#f4a582' fs transparent solid 0.5 notitle, "
         "$comp using 1:2 with linespoints pt 7 ps 0.6 lc rgb '#d62728' title 'compensated'\n",
-        data.series.window_s, floor_text, d.noise_floor_dph));  // a burst's length with bursts
+        data.series.window_s, floor_text, d.noise_floor_dph, unit));  // a burst's length with bursts
     fig.render();
   }
 }

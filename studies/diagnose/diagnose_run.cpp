@@ -35,14 +35,15 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
         "   (over {} MB: read in one pass without holding the samples; the log's other columns are not tried as "
         "candidates{})\n",
         fit::streaming_threshold_bytes() >> 20, channel.plots.empty() ? "" : ", and the full-rate Allan figure is left out");
-  out += fmt::format("1. compare: instability {} -> {} °/h; noise floor {} °/h ({}):\n"
+  const std::string_view unit = d.sensor->unit;
+  out += fmt::format("1. compare: instability {} -> {} {}; noise floor {} {} ({}):\n"
                      "   the model is {:.2f} times the floor\n",
-                     human(d.fit.instability_before_dph), human(d.fit.instability_after_dph), human(d.noise_floor_dph),
-                     floor_description(d.floor), d.excess_ratio());
+                     human(d.fit.instability_before_dph), human(d.fit.instability_after_dph), unit,
+                     human(d.noise_floor_dph), unit, floor_description(d.floor), d.excess_ratio());
   if (d.floor.method == FloorMethod::hadamard && d.floor.within_dph > 0.0 && d.floor.within_dph < 0.7 * d.floor.dph)
-    out += fmt::format("   (the scatter inside the windows alone gives {} °/h: the rest of the floor is noise "
+    out += fmt::format("   (the scatter inside the windows alone gives {} {}: the rest of the floor is noise "
                        "slower than a window, bias instability)\n",
-                       human(d.floor.within_dph));
+                       human(d.floor.within_dph), unit);
   out += "2. where it fails (residual RMS over the floor, worst first; hours since the record's start):\n";
   // Temperatures with the decimals that tell every segment's (every band's)
   // ends apart: a record spanning a few degrees has bands narrower than 1 °C.
@@ -71,7 +72,7 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
     out += fmt::format("   {} {:<12} {:>7}  p = {:<8} (< {:<7.2g}) {:<12} {} ({:.3g} {})\n", c.passed() ? "*" : " ",
                        c.term->name, share_cell(c.reduction_pct), p_text(c.p_value, c.level), c.level,
                        !c.passed() ? "" : c.confounded_with.empty() ? "significant" : "its group is",
-                       c.term->meaning, c.coefficient, c.term->coefficient_unit());
+                       c.term->meaning, c.coefficient, c.term->coefficient_unit(unit));
   if (!d.columns_tried.empty())
     out += fmt::format("   the log's columns tried as causes (each with its rate): {}\n", fmt::join(d.columns_tried, ", "));
   if (!d.skipped.empty()) out += fmt::format("   not tried: {}\n", fmt::join(skipped_texts(d.skipped), "; "));
@@ -79,9 +80,9 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
     out += fmt::format("   the record's noise with the effects found as fixed effects: {}\n",
                        d.noise->model.description());
   if (before) {
-    out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} °/h (floor {:.5f})\n",
-                       fmt::join(run.request.added, ", "),
-                       before->fit.instability_after_dph, d.fit.instability_after_dph, d.noise_floor_dph);
+    out += fmt::format("5. before/after adding {}: {:.5f} -> {:.5f} {} (floor {:.5f})\n",
+                       fmt::join(run.request.added, ", "), before->fit.instability_after_dph,
+                       d.fit.instability_after_dph, unit, d.noise_floor_dph);
     const auto rows = segment_rms(*before, before->residual_dph());
     for (std::size_t i = 0; i < rows.size() && i < d.segments.size(); ++i)
       out += fmt::format("   {:<8} {:>8} – {:<8} {:5.2f}x -> {:5.2f}x\n", to_string(rows[i].kind),
@@ -90,8 +91,8 @@ std::string channel_text(const DiagnoseRun& run, const ChannelDiagnosis& channel
   }
   for (const std::string& w : fit::fit_warnings(d.fit)) out += fmt::format("warning: {}\n", w);
   for (const StepEvent& e : d.events)
-    out += fmt::format("event: a bias step at {} of {:+.3g} °/h (95 % [{:.3g}, {:.3g}]){}\n", hours_text(e.time_s),
-                       e.size_dph, e.size_interval_dph.lower, e.size_interval_dph.upper,
+    out += fmt::format("event: a bias step at {} of {:+.3g} {} (95 % [{:.3g}, {:.3g}]){}\n", hours_text(e.time_s),
+                       e.size_dph, unit, e.size_interval_dph.lower, e.size_interval_dph.upper,
                        e.significant ? ", significant" : ", not significant against the other candidates");
   for (const ConfoundingGroup& g : d.confounded) out += fmt::format("cannot tell: {}\n", confounding_text(g));
   out += fmt::format("verdict: {}\n", verdict_text(d));
@@ -211,8 +212,9 @@ std::string diagnose_text(const DiagnoseRun& run) {
   }
   if (n < 2) return out;
   out += fmt::format("\nsummary ({} channels, model B = b0 + {}):\n", n, fit::formula_text(run.request.terms));
-  out += fmt::format("  {:<14} {:>12} {:>12} {:>8}  {}\n", "channel", "after °/h", "floor °/h", "x floor",
-                     "missing effect");
+  const std::string_view unit = run.channels.front().report.diagnosis.sensor->unit;
+  out += fmt::format("  {:<14} {:>12} {:>12} {:>8}  {}\n", "channel", fmt::format("after {}", unit),
+                     fmt::format("floor {}", unit), "x floor", "missing effect");
   for (const ChannelDiagnosis& c : run.channels) {
     const Diagnosis& d = c.report.diagnosis;
     // The top candidate, named as the answer only when it passed the test.

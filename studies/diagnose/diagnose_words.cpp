@@ -179,7 +179,7 @@ std::string verdict_text(const Diagnosis& d) {
       for (std::size_t i : v.found) {
         const CandidateReport& c = d.candidates[i];
         parts.push_back(fmt::format("{} ({}): {:.3g} {} (95 % [{:.3g}, {:.3g}]), removes {} (p = {})",
-                                    c.term->name, c.term->meaning, c.coefficient, c.term->coefficient_unit(),
+                                    c.term->name, c.term->meaning, c.coefficient, c.term->coefficient_unit(d.sensor->unit),
                                     c.coefficient_interval.lower, c.coefficient_interval.upper,
                                     excess_share_text(c.reduction_pct), p_text(c.p_value, c.level)));
       }

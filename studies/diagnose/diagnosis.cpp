@@ -180,6 +180,7 @@ Diagnosis diagnose(const fit::PreparedData& data, const std::vector<const fit::T
         "if the record's runs allow it)",
         data.file, counted(data.series.size(), "window"), kMinBlocks));
   Diagnosis d;
+  d.sensor = &data.units.kind();
   const auto stage = [&](const std::string& what) {
     if (options.stage) options.stage(what);
   };

@@ -74,6 +74,7 @@
 #include <vector>
 
 #include "fit/data/column_role.h"
+#include "fit/data/sensor_kind.h"
 #include "fit/pipeline.h"
 
 namespace gyrotherm::studies {
@@ -225,6 +226,7 @@ struct Remaining {
 };
 
 struct Diagnosis {
+  const fit::SensorKind* sensor = &fit::sensor_kinds().front();  // whose bias (its unit); the gyro's by default
   fit::ModelFit fit;                      // the model as given
   double noise_floor_dph = 0;
   NoiseFloor floor;                       // how noise_floor_dph was estimated

@@ -148,7 +148,8 @@ DiagnoseReport diagnose_record(const fit::PreparedData& data, const fit::ColumnM
   r.diagnosis = diagnose(data, terms, engine, settings, options);
   // Step 5: with --add, the model without the added terms is the "before".
   if (terms.size() > base_terms.size()) r.before = diagnose(data, base_terms, engine, settings, options);
-  r.plan = plan_suggestion(r.diagnosis, terms, data);
+  // plan designs a gyro's test only, so far: for another sensor none is suggested.
+  if (data.units.kind().is_gyro) r.plan = plan_suggestion(r.diagnosis, terms, data);
   return r;
 }
 
@@ -162,6 +163,10 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseReport& report) {
   const std::optional<Diagnosis>& before = report.before;
   const double start = report.start_time_s;
   nlohmann::ordered_json j;
+  if (!d.sensor->is_gyro) {  // (a gyro's is as it was; the *_dph fields are in this unit)
+    j["sensor"] = d.sensor->name;
+    j["unit"] = d.sensor->unit;
+  }
   j["model"] = fit::formula_text(report.terms);
   j["engine"] = report.engine;
   j["instability_dph"] = d.fit.instability_after_dph;

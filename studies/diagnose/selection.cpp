@@ -457,6 +457,7 @@ void rank_candidates(Diagnosis& d, const fit::PreparedData& data, const std::vec
     // parameter moved: identify it again on the model as it now stands.
     noise = noise_of(grid, r.x, y);
   }
+  noise.sensor = &data.units.kind();  // the components' names and units
   d.noise = std::make_shared<const fit::NoiseContext>(fit::NoiseContext{noise, grid});
   for (const auto& [name, why] : failed)
     d.skipped.push_back({.name = name, .reason = SkipReason::not_fitted, .error = why});

@@ -29,7 +29,6 @@ DiagnoseRequest diagnose_request(const DiagnoseCommandOptions& o) {
   request.engine = o.model.engine;
   request.settings = std::move(checked.settings);
   request.pipeline = std::move(checked.pipeline);
-  require_gyro(request.pipeline.columns, "diagnose");
   request.options.candidates = split_commas(o.candidates);
   request.plots = o.plots;
   return request;
