@@ -3,12 +3,18 @@
 // and ColumnMap's merging of option sets.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "fit/data/autopilot_log.h"
+#include "fit/data/column_role.h"
+#include "fit/data/csv_dialect.h"
+#include "fit/data/header_units.h"
+#include "fit/data/sensor_kind.h"
 #include "fit/data/measurement.h"
 #include "sim/util/input_error.h"
 
@@ -35,10 +41,74 @@ const SensorKind& Units::kind() const { return sensor_kind(sensor); }
 const Unit& Units::gyro_unit() const { return unit_or_base(kind().quantity, gyro, "--gyro-unit"); }
 const Unit& Units::temp_unit() const { return unit_or_base(Quantity::temperature, temp, "--temp-unit"); }
 
+namespace {
+
+// The names in a CSV's header line (after its '#' comments and blank
+// lines), or none when the file cannot be read so far: the reader then says
+// why.
+std::vector<std::string> csv_column_names(const std::filesystem::path& file, const CsvDialect& csv) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  for (int lines = 0; lines < 1000 && std::getline(in, line); ++lines) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (trim(line).empty() || line.front() == '#') continue;
+    try {
+      std::vector<std::string_view> fields;
+      if (!split_fields(line, csv.delimiter_for(line), fields).empty()) return {};
+      std::vector<std::string> names;
+      for (const std::string_view f : fields) names.push_back(std::string(trim(unquote_field(f))));
+      return names;
+    } catch (const InputError&) {
+      return {};
+    }
+  }
+  return {};
+}
+
+// The axis a column's name states: one of its words is x, y or z.
+char axis_of(std::string_view name) {
+  char axis = 0;
+  for (const std::string& w : column_words(name))
+    if (w == "x" || w == "y" || w == "z") axis = axis == 0 ? w[0] : '?';
+  return axis;
+}
+
+// The kind's measured column(s) in `names`, by role: the columns whose words
+// name the kind or whose name states one of its units, less the other roles'
+// and a model's, truth's or compensation's (model_mps2, accel_x_true_mps2):
+// the one such column, or three with the axes x, y and z ("x,y,z" in that
+// order); "" when they are none or ambiguous.
+std::string by_role(const std::vector<std::string>& names, const ColumnMap& columns, const SensorKind& kind) {
+  std::vector<std::string> found;
+  for (const std::string& n : names) {
+    if (n == columns.time || n == columns.temp || n == columns.temp2) continue;
+    const std::vector<std::string> words = column_words(n);
+    if (std::any_of(words.begin(), words.end(), [](const std::string& w) {
+          return w == "true" || w == "truth" || w == "model" || w == "compensated" || w == "residual";
+        }))
+      continue;
+    if (names_sensor(n, kind) || unit_in_header(kind.quantity, n).unit != nullptr) found.push_back(n);
+  }
+  if (found.size() == 1) return found.front();
+  if (found.size() != 3) return {};
+  std::string axes[3];
+  for (const std::string& n : found)
+    if (const char a = axis_of(n); a >= 'x' && a <= 'z' && axes[a - 'x'].empty()) axes[a - 'x'] = n;
+  if (axes[0].empty() || axes[1].empty() || axes[2].empty()) return {};
+  return axes[0] + "," + axes[1] + "," + axes[2];
+}
+
+}  // namespace
+
 ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns) {
   const bool log = log_format_of(file) != nullptr;
-  if (columns.gyro == ColumnMap{}.gyro)
-    columns.gyro = std::string(log ? columns.units.kind().log_columns : columns.units.kind().column);
+  if (columns.gyro != ColumnMap{}.gyro) return columns;
+  const SensorKind& kind = columns.units.kind();
+  columns.gyro = std::string(log ? kind.log_columns : kind.column);
+  if (log) return columns;
+  const std::vector<std::string> names = csv_column_names(file, columns.csv);
+  if (names.empty() || std::find(names.begin(), names.end(), columns.gyro) != names.end()) return columns;
+  if (std::string chosen = by_role(names, columns, kind); !chosen.empty()) columns.gyro = std::move(chosen);
   return columns;
 }
 

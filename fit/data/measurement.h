@@ -142,8 +142,15 @@ struct Measurement {
   std::size_t size() const { return time_s.size(); }
 };
 
-// The columns to read `file` with: for an autopilot log whose gyro column is
-// left at its default, its three axes gyro_x, gyro_y, gyro_z (one channel each).
+// The columns to read `file` with when the measured column is left at its
+// default: an autopilot log's three axes of the kind (gyro_x, gyro_y,
+// gyro_z; one channel each); a CSV's kind's default column (gyro_dph,
+// accel_mps2) when its header has it, else its columns by role: the one
+// column whose name names the kind or states one of its units (GyrX,
+// imu.acc.x, AccX, accel_x_mps2, press (hPa)), or three such with the axes
+// x, y and z, as "x,y,z" (a model's, a truth's or a compensation's column
+// left out). Anything else keeps the default, and the reader's error lists
+// the columns that may be meant.
 ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns);
 
 // The text without the spaces and tabs at either end (a field, a column's name).
