@@ -402,12 +402,12 @@ SavedFit load_fit_unchecked(const std::filesystem::path& file, const nlohmann::j
     return s;
   }
   if (!kind.is_gyro)
-    throw InputError(fmt::format("{}: pipeline.columns.units.sensor is {} (the {}'s fit): check and report "
-                                 "take a gyro's fit only, so far (compensate, allan --fit and export take it)",
+    throw InputError(fmt::format("{}: pipeline.columns.units.sensor is {} (the {}'s fit): report "
+                                 "takes a gyro's fit only, so far (compensate, check, allan --fit and export take it)",
                                  file.string(), kind.name, kind.noun));
   if (j.contains("sensor") && j["sensor"] != "gyro")
-    throw InputError(fmt::format("{}: the fit of a sensor of kind {} (its \"sensor\"): check and report "
-                                 "take a gyro's fit only, so far (compensate, allan --fit and export take it)",
+    throw InputError(fmt::format("{}: the fit of a sensor of kind {} (its \"sensor\"): report "
+                                 "takes a gyro's fit only, so far (compensate, check, allan --fit and export take it)",
                                  file.string(), j["sensor"].dump()));
   return s;
 }

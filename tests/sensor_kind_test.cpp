@@ -205,15 +205,12 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
   expect_refused(dir, "fit a.csv",
                  "accel_x_mps2 may be the accelerometer's: to fit it, give --sensor accel --gyro-col 'accel_x_mps2'");
   // (With --sensor accel its one column is read by its role: tests/column_by_role_test.cpp.)
-  // check reads a gyro only, so far.
-  expect_refused(dir, "check a.csv --sensor accel --gyro-col accel_x_mps2 --params x.params",
-                 "--sensor accel: check reads a gyro only, so far");
   // An accelerometer's fit file is not applied as a gyro's, nor its noise planned with.
   ASSERT_EQ(run_cli(dir, "fit a.csv --sensor accel --gyro-col accel_x_mps2 --model T -o a_fit.json").exit_code, 0);
   expect_refused(dir, "plan --noise a_fit.json --model T", "plan designs a gyro's test only, so far");
   expect_refused(dir, "report a.csv --fit a_fit.json -o r.html", "accel");
-  expect_refused(dir, "check a.csv --params a_fit.json",
-                 "pipeline.columns.units.sensor is accel (the accelerometer's fit)");
+  expect_refused(dir, "report a.csv --fit a_fit.json -o r.html",
+                 "pipeline.columns.units.sensor is accel (the accelerometer's fit): report takes a gyro's fit only");
   expect_refused(dir, "compensate a.csv --fit a_fit.json --sensor gyro -o out.csv",
                  "--sensor gyro: a_fit.json is the accelerometer's fit (--sensor accel)");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));
@@ -221,7 +218,9 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
   ASSERT_EQ(run_cli(dir, "fit g.csv --gyro-col rate_dph --model T -o g_fit.json").exit_code, 0);
   ASSERT_EQ(run_shell(dir, "sed -i '1s/^{/{\"sensor\": \"accel\",/' g_fit.json").exit_code, 0);
   expect_refused(dir, "check g.csv --params g_fit.json",
-                 "the fit of a sensor of kind \"accel\" (its \"sensor\"): check and report take");
+                 "its \"sensor\" is \"accel\" but pipeline.columns.units.sensor is gyro");
+  expect_refused(dir, "report g.csv --fit g_fit.json -o r.html",
+                 "the fit of a sensor of kind \"accel\" (its \"sensor\"): report takes");
   expect_refused(dir, "compensate g.csv --fit g_fit.json -o out.csv",
                  "its \"sensor\" is \"accel\" but pipeline.columns.units.sensor is gyro");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));

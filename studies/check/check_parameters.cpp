@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -90,60 +91,93 @@ double required(const ParameterFile& p, const std::string& name, const std::stri
 }
 
 std::optional<GyroCalibration> px4_calibration(const ParameterFile& p, int n) {
-  const std::string prefix = fmt::format("TC_G{}_", n);
+  const fit::SensorKind& kind = *p.kind;
+  const std::string prefix = fmt::format("{}{}_", kind.px4_stem, n);
   bool any = false;
   for (const auto& [name, value] : p.values) any = any || starts_with(name, prefix);
   if (!any) return std::nullopt;
   GyroCalibration c;
   c.format = ParameterFormat::px4;
+  c.kind = &kind;
   c.instance = n;
   c.prefix = prefix;
-  c.enable = p.value("TC_G_ENABLE");
+  c.enable = p.value(fmt::format("{}_ENABLE", kind.px4_stem));
   c.tmin_c = required(p, prefix + "TMIN", "the lowest temperature");
   c.tmax_c = required(p, prefix + "TMAX", "the highest temperature");
   c.tref_c = static_cast<float>(required(p, prefix + "TREF", "the reference temperature"));
   if (const auto id = p.value(prefix + "ID")) c.device_id = static_cast<long long>(*id);
-  for (int axis = 0; axis < 3; ++axis) {
-    c.axes[axis] = p.value(fmt::format("{}X0_{}", prefix, axis)).has_value();
+  c.px4_terms = kind.px4_order + 1;
+  // A one-axis sensor's coefficients have no axis suffix (TC_B0_X0).
+  const auto name = [&](int k, std::size_t axis) {
+    return kind.axes() == 1 ? fmt::format("{}X{}", prefix, k) : fmt::format("{}X{}_{}", prefix, k, axis);
+  };
+  for (std::size_t axis = 0; axis < kind.axes(); ++axis) {
+    c.axes[axis] = p.value(name(0, axis)).has_value();
     if (!c.axes[axis]) continue;
-    for (int k = 0; k < 4; ++k)
-      c.px4_x[axis][k] =
-          static_cast<float>(required(p, fmt::format("{}X{}_{}", prefix, k, axis), "a coefficient of an axis given"));
+    for (int k = 0; k < c.px4_terms; ++k)
+      c.px4_x[axis][static_cast<std::size_t>(k)] =
+          static_cast<float>(required(p, name(k, axis), "a coefficient of an axis given"));
   }
   return c;
 }
 
 std::optional<GyroCalibration> ardupilot_calibration(const ParameterFile& p, int instance) {
   const std::string prefix = ardupilot_prefix(instance + 1);
+  const std::string_view group = p.kind->ardupilot_group;
   bool any = false;
-  for (const auto& [name, value] : p.values) any = any || (starts_with(name, prefix) && name.find("GYR") != std::string::npos);
+  for (const auto& [name, value] : p.values)
+    any = any || (starts_with(name, prefix) && name.find(group) != std::string::npos);
   if (!any) return std::nullopt;
   GyroCalibration c;
   c.format = ParameterFormat::ardupilot;
+  c.kind = p.kind;
   c.instance = instance;
   c.prefix = prefix;
   c.enable = p.value(prefix + "ENABLE");
   c.tmin_c = required(p, prefix + "TMIN", "the lowest temperature");
   c.tmax_c = required(p, prefix + "TMAX", "the highest temperature");
   c.tref_c = 35.0f;
-  if (const auto id = p.value(ardupilot_gyro_id_name(instance))) c.device_id = static_cast<long long>(*id);
+  if (const auto id = p.value(ardupilot_gyro_id_name(instance, group))) c.device_id = static_cast<long long>(*id);
   static constexpr char kAxes[] = {'X', 'Y', 'Z'};
   for (int axis = 0; axis < 3; ++axis) {
-    c.axes[axis] = p.value(fmt::format("{}GYR1_{}", prefix, kAxes[axis])).has_value();
+    c.axes[axis] = p.value(fmt::format("{}{}1_{}", prefix, group, kAxes[axis])).has_value();
     if (!c.axes[axis]) continue;
     for (int k = 0; k < 3; ++k)
       c.ap_g[axis][k] = static_cast<float>(
-          required(p, fmt::format("{}GYR{}_{}", prefix, k + 1, kAxes[axis]), "a coefficient of an axis given"));
+          required(p, fmt::format("{}{}{}_{}", prefix, group, k + 1, kAxes[axis]), "a coefficient of an axis given"));
   }
   return c;
 }
 
+// Which kinds' thermal parameters `values` holds, for PX4 and for ArduPilot.
+struct KindsHeld {
+  std::vector<const fit::SensorKind*> px4, ardupilot;
+};
+KindsHeld kinds_held(const std::map<std::string, double, std::less<>>& values) {
+  KindsHeld held;
+  for (const fit::SensorKind& k : fit::sensor_kinds()) {
+    bool px4 = false, ardupilot = false;
+    for (const auto& [name, value] : values) {
+      px4 = px4 || (starts_with(name, k.px4_stem) && name.size() > k.px4_stem.size() &&
+                    (std::isdigit(static_cast<unsigned char>(name[k.px4_stem.size()])) != 0 ||
+                     name[k.px4_stem.size()] == '_'));
+      ardupilot = ardupilot || (!k.ardupilot_group.empty() &&
+                                (starts_with(name, "INS_TCAL") || starts_with(name, "INS4_TCAL") ||
+                                 starts_with(name, "INS5_TCAL")) &&
+                                name.find(fmt::format("_{}", k.ardupilot_group)) != std::string::npos);
+    }
+    if (px4) held.px4.push_back(&k);
+    if (ardupilot) held.ardupilot.push_back(&k);
+  }
+  return held;
+}
+
 }  // namespace
 
-std::string ardupilot_gyro_id_name(int instance) {
-  if (instance == 0) return "INS_GYR_ID";
-  if (instance < 3) return fmt::format("INS_GYR{}_ID", instance + 1);
-  return fmt::format("INS{}_GYR_ID", instance + 1);
+std::string ardupilot_gyro_id_name(int instance, std::string_view group) {
+  if (instance == 0) return fmt::format("INS_{}_ID", group);
+  if (instance < 3) return fmt::format("INS_{}{}_ID", group, instance + 1);
+  return fmt::format("INS{}_{}_ID", instance + 1, group);
 }
 
 std::string_view parameter_format_name(ParameterFormat format) {
@@ -157,7 +191,7 @@ std::optional<double> ParameterFile::value(std::string_view name) const {
   return it->second;
 }
 
-ParameterFile read_parameter_file(const std::string& file) {
+ParameterFile read_parameter_file(const std::string& file, std::string_view sensor) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open the parameter file", file));
   std::stringstream text;
@@ -167,7 +201,11 @@ ParameterFile read_parameter_file(const std::string& file) {
   p.file = file;
   if (const std::size_t first = all.find_first_not_of(" \t\r\n"); first != std::string::npos && all[first] == '{') {
     p.format = ParameterFormat::fit;
-    p.fits = fit::load_fits(file);
+    p.fits = fit::load_fits(file, fit::FitKinds::any);
+    p.kind = &p.fits.front().pipeline.columns.units.kind();
+    if (!sensor.empty() && p.kind != &fit::sensor_kind(sensor))
+      throw InputError(fmt::format("--sensor {}: {} is the {}'s fit (--sensor {})", sensor, file, p.kind->noun,
+                                   p.kind->name));
     for (const fit::SavedFit& f : p.fits)
       if (p.fitted_sha256.empty() && !f.data_sha256.empty()) {
         p.fitted_file = f.data_file;
@@ -197,18 +235,32 @@ ParameterFile read_parameter_file(const std::string& file) {
     const std::string_view trimmed = fit::trim(std::string_view(line).substr(0, line.find_last_not_of("\r") + 1));
     if (!trimmed.empty()) read_line(file, line_no, trimmed, &qgc, &p.values);
   }
-  bool px4 = false, ardupilot = false;
-  for (const auto& [name, value] : p.values) {
-    px4 = px4 || starts_with(name, "TC_G");
-    ardupilot = ardupilot || ((starts_with(name, "INS_TCAL") || starts_with(name, "INS4_TCAL") ||
-                               starts_with(name, "INS5_TCAL")) &&
-                              name.find("_GYR") != std::string::npos);
-  }
-  if (px4 == ardupilot)
+  const KindsHeld held = kinds_held(p.values);
+  std::vector<const fit::SensorKind*> any = held.px4;
+  for (const fit::SensorKind* k : held.ardupilot)
+    if (std::find(any.begin(), any.end(), k) == any.end()) any.push_back(k);
+  // The kind: --sensor's; not given, the one the file holds (the gyro among several).
+  p.kind = !sensor.empty() ? &fit::sensor_kind(sensor)
+           : any.size() == 1 ? any.front()
+                             : &fit::sensor_kinds().front();
+  const bool px4 = std::find(held.px4.begin(), held.px4.end(), p.kind) != held.px4.end();
+  const bool ardupilot = std::find(held.ardupilot.begin(), held.ardupilot.end(), p.kind) != held.ardupilot.end();
+  if (px4 == ardupilot) {
+    std::string others;
+    for (const fit::SensorKind* k : any)
+      others += fmt::format("{}the {}'s (--sensor {})", others.empty() ? "" : ", ", k->noun, k->name);
+    const std::string ap = p.kind->ardupilot_group.empty()
+                               ? std::string()
+                               : fmt::format(" or ArduPilot's INS_TCAL{{n}}_{}{{k}}_{{axis}}", p.kind->ardupilot_group);
     throw InputError(fmt::format(
-        "{}: {}; expected PX4's TC_G{{n}}_X{{k}}_{{axis}} or ArduPilot's INS_TCAL{{n}}_GYR{{k}}_{{axis}} parameters "
-        "(as `gyrotherm export` or the firmware's own calibration tools write them), or a fit file",
-        file, px4 ? "it holds both PX4 and ArduPilot gyro thermal parameters" : "it holds no gyro thermal parameters"));
+        "{}: {}; expected PX4's {}{{n}}_X{{k}}{}{} parameters (as `gyrotherm export` or the firmware's own "
+        "calibration tools write them), or a fit file",
+        file,
+        px4 ? fmt::format("it holds both PX4 and ArduPilot {} thermal parameters", p.kind->noun)
+            : fmt::format("it holds no {} thermal parameters{}", p.kind->noun,
+                          others.empty() ? "" : fmt::format(" (it holds {})", others)),
+        p.kind->px4_stem, p.kind->axes() == 1 ? "" : "_{axis}", ap));
+  }
   p.format = px4 ? ParameterFormat::px4 : ParameterFormat::ardupilot;
   return p;
 }

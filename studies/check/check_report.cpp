@@ -28,6 +28,10 @@ std::string rule_text(const CheckResult& r) {
   if (r.format == ParameterFormat::px4)
     return "PX4's rule: offsets recomputed once a second, re-applied after a change of more than 1 °C, the temperature "
            "held within TMIN..TMAX";
+  if (!r.sensor->is_gyro)  // its offsets are its calibration's, at INS_ACCn_CALTEMP: the log's start stands for it
+    return fmt::format("ArduPilot's rule: every sample, the temperature held within TMIN..TMAX, relative to the {}'s "
+                       "calibration temperature (taken as the log's first {:g} s, at {:.1f} °C)",
+                       r.sensor->noun, r.request.boot_s, r.boot_c);
   return fmt::format("ArduPilot's rule: every sample, the temperature held within TMIN..TMAX, gyro offsets taken at boot "
                      "(the log's first {:g} s, at {:.1f} °C)",
                      r.request.boot_s, r.boot_c);
@@ -64,30 +68,33 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
                          f.name, f.value);
     case CheckIssue::device_mismatch:
       if (f.value == 0.0)
-        return fmt::format("the calibration gives no device id ({} is 0 or absent): PX4 applies a set only to the gyro "
-                           "whose device id it names (export --device-id, the gyro's CAL_GYRO{{n}}_ID)",
-                           f.name);
-      return fmt::format("the calibration is for device id {:.0f}, which is no gyro of this log ({}): the firmware "
+        return fmt::format("the calibration gives no device id ({} is 0 or absent): PX4 applies a set only to the {} "
+                           "whose device id it names (export --device-id, the {}'s CAL_{}{{n}}_ID)",
+                           f.name, r.sensor->noun, r.sensor->noun,
+                           r.sensor->is_gyro ? "GYRO" : r.sensor->name == "accel" ? "ACC" : r.sensor->name == "baro" ? "BARO" : "MAG");
+      return fmt::format("the calibration is for device id {:.0f}, which is no {} of this log ({}): the firmware "
                          "would not apply it",
-                         f.value, devices_text(f.devices));
+                         f.value, r.sensor->noun, devices_text(f.devices));
     case CheckIssue::outside_range:
       return fmt::format("{:.1f} % of the samples lie outside the calibrated {:.1f}..{:.1f} °C, where the correction "
                          "is held at the edge",
                          100.0 * f.value, r.tmin_c, r.tmax_c);
     case CheckIssue::residual_over_limit:
-      return fmt::format("axis {}: the residual {:.4g} °/h exceeds the limit {:.4g} °/h", f.name, f.value, f.limit);
+      return fmt::format("axis {}: the residual {:.4g} {} exceeds the limit {:.4g} {}", f.name, f.value, r.sensor->unit,
+                         f.limit, r.sensor->unit);
     case CheckIssue::no_residual:
       return fmt::format("axis {}: no {:g} °C temperature bin holds the {:.0f} samples a residual needs: this log cannot "
                          "show the residual against temperature{}",
                          f.name, f.limit, f.value, r.limit_dph ? ", so it does not pass --max-residual" : "");
     case CheckIssue::made_worse:
       return fmt::format("axis {}: the calibration leaves the instability at {:.2f} times the uncompensated log's: it "
-                         "makes this log worse (another gyro's calibration, a sign or unit wrong?){}",
-                         f.name, f.value, r.limit_dph ? ", so it does not pass --max-residual" : "");
+                         "makes this log worse (another {}'s calibration, a sign or unit wrong?){}",
+                         f.name, f.value, r.sensor->noun, r.limit_dph ? ", so it does not pass --max-residual" : "");
     case CheckIssue::little_gain:
       return fmt::format("axis {}: the calibration takes only {:.0f} % off the instability on this log: the log has "
-                         "little thermal drift to remove (it spans {:.1f} °C), or the calibration does not fit this gyro",
-                         f.name, std::max(0.0, 100.0 * (1.0 - f.value)), r.log_temp_max_c - r.log_temp_min_c);
+                         "little thermal drift to remove (it spans {:.1f} °C), or the calibration does not fit this {}",
+                         f.name, std::max(0.0, 100.0 * (1.0 - f.value)), r.log_temp_max_c - r.log_temp_min_c,
+                         r.sensor->noun);
     case CheckIssue::calibration_caution:
       return fmt::format("the calibration file says: {}", f.name);
     case CheckIssue::fitted_log:
@@ -148,12 +155,16 @@ nlohmann::ordered_json check_json(const CheckResult& r) {
                                 {"cautions", fit::caution_texts(r.cautions)},
                                 {"max_residual_dph", r.limit_dph ? nlohmann::ordered_json(*r.limit_dph) : nullptr},
                                 {"passed", r.passed ? nlohmann::ordered_json(*r.passed) : nullptr}};
+  if (!r.sensor->is_gyro) {  // (a gyro's is as it was; the *_dph fields are in this unit)
+    out["sensor"] = r.sensor->name;
+    out["unit"] = r.sensor->unit;
+  }
   return out;
 }
 
 std::string check_text(const CheckResult& r) {
   std::string out = fmt::format("check {} ({}{}) with {} ({} {}, {:.1f}..{:.1f} °C)\n", r.request.log, r.log_format,
-                                r.log_instance >= 0 ? fmt::format(", gyro instance {}, device {}", r.log_instance, r.log_device_id) : "",
+                                r.log_instance >= 0 ? fmt::format(", {} instance {}, device {}", r.sensor->noun, r.log_instance, r.log_device_id) : "",
                                 r.request.parameters, parameter_format_name(r.format), r.calibration, r.tmin_c, r.tmax_c);
   out += "  applied by " + rule_text(r) + "\n";
   out += fmt::format("  log: {} samples over {:.0f} s, {:.1f}..{:.1f} °C; instability = std of {:g} s means{}\n",
@@ -163,8 +174,10 @@ std::string check_text(const CheckResult& r) {
                          : fmt::format(" of every sample, the {} the fit's glitch rule flags too (compensate's "
                                        "figure leaves {} out, as a firmware cannot)",
                                        r.glitches_flagged, r.glitches_flagged == 1 ? "it" : "them"));
-  out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11} {:>22} {:>9}\n", "axis", "raw °/h", "comp. °/h", "ratio",
-                     "offset °/h", "residual °/h (at °C)", "outside");
+  const std::string_view unit = r.sensor->unit;
+  out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11} {:>22} {:>9}\n", "axis", fmt::format("raw {}", unit),
+                     fmt::format("comp. {}", unit), "ratio", fmt::format("offset {}", unit),
+                     fmt::format("residual {} (at °C)", unit), "outside");
   const auto number = [](double v, const char* spec) { return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : "n/a"; };
   for (const AxisCheck& x : r.axes)
     out += fmt::format("  {:<8} {:>12} {:>12} {:>7} {:>11.4g} {:>13} ({:>5}) {:>8.1f}%\n", x.axis,
@@ -174,7 +187,7 @@ std::string check_text(const CheckResult& r) {
   if (!r.axes.empty() && !std::isfinite(r.axes.front().before_dph))
     out += fmt::format("  (n/a: fewer than 3 windows of {:g} s in this log; --avg sets the window)\n", r.window_s);
   if (!r.axes.empty() && !r.axes.front().bins.empty()) {
-    out += fmt::format("  residual against temperature (mean compensated − offset, °/h, {:g} °C bins):\n", r.bin_c);
+    out += fmt::format("  residual against temperature (mean compensated − offset, {}, {:g} °C bins):\n", unit, r.bin_c);
     for (std::size_t b = 0; b < r.axes.front().bins.size(); ++b) {
       const TemperatureBin& bin = r.axes.front().bins[b];
       out += fmt::format("    {:6.1f}..{:<6.1f}", bin.low_c, bin.high_c);
@@ -187,11 +200,11 @@ std::string check_text(const CheckResult& r) {
   for (const fit::UnitCaution& c : r.cautions) out += "caution: " + fit::caution_text(c) + "\n";
   for (const CheckFinding& f : r.findings) out += "finding: " + finding_text(f, r) + "\n";
   if (r.passed && *r.passed)
-    out += fmt::format("verdict: PASS (every axis's residual against temperature within {:.4g} °/h)\n", *r.limit_dph);
+    out += fmt::format("verdict: PASS (every axis's residual against temperature within {:.4g} {})\n", *r.limit_dph, unit);
   else if (r.passed)
-    out += fmt::format("verdict: FAIL (not every axis's residual against temperature is shown within {:.4g} °/h: the "
+    out += fmt::format("verdict: FAIL (not every axis's residual against temperature is shown within {:.4g} {}: the "
                        "findings say which, or why this log cannot show it)\n",
-                       *r.limit_dph);
+                       *r.limit_dph, unit);
   return out;
 }
 

@@ -66,39 +66,43 @@ std::pair<int, std::size_t> pair_gyro(const CheckRequest& o, const fit::LogConte
 }
 
 void read_autopilot(const CheckRequest& o, const fit::LogFormat& format, const std::vector<GyroCalibration>& cals,
-                    Applied* a, CheckResult* r, std::size_t* cal) {
+                    const fit::SensorKind& kind, Applied* a, CheckResult* r, std::size_t* cal) {
   const fit::AutopilotReader reader = format.read;
-  const fit::SensorKind& gyro = fit::sensor_kind("gyro");
-  a->contents = reader(o.log, -1, {}, gyro);
+  a->contents = reader(o.log, -1, {}, kind);
   const auto [instance, chosen] = pair_gyro(o, a->contents, cals);
   if (instance < 0)
-    throw InputError(fmt::format("{}: no gyro has 2 samples with a temperature; the file holds: {}", o.log,
+    throw InputError(fmt::format("{}: no {} has 2 samples with a temperature; the file holds: {}", o.log, kind.noun,
                                  a->contents.describe()));
   *cal = chosen;
-  a->raw_dph.assign(3, {});
+  // The log's unit to the base unit (rad/s to °/h; a ULog's pressure in Pa or mbar).
+  const double to_base = fit::find_unit(kind.quantity, a->contents.unit, "").factor;
+  a->raw_dph.assign(kind.axes(), {});
   const auto take = [&](double t, double temp, double x, double y, double z) {
     if (!std::isfinite(temp)) return;
     a->time_s.push_back(t);
     a->temp_c.push_back(temp);
-    for (const auto& [k, rate] : {std::pair{0, x}, {1, y}, {2, z}}) a->raw_dph[k].push_back(rate / kRadPerSecPerDegPerHour);
+    const double values[3] = {x, y, z};
+    for (std::size_t k = 0; k < a->raw_dph.size(); ++k) a->raw_dph[k].push_back(values[k] * to_base);
   };
-  const fit::LogContents read = reader(o.log, instance, take, gyro);
+  const fit::LogContents read = reader(o.log, instance, take, kind);
   r->log_format = read.format;
   r->log_instance = instance;
   for (const fit::LogSensor& g : read.sensors)
     if (g.instance == instance) r->log_device_id = g.device_id;
-  for (int k = 0; k < 3; ++k) a->axis.push_back(std::string(1, kAxisNames[k]));
+  for (std::size_t k = 0; k < kind.axes(); ++k) a->axis.push_back(std::string(1, kAxisNames[k]));
 }
 
-void read_csv(const CheckRequest& o, Applied* a, CheckResult* r) {
+void read_csv(const CheckRequest& o, const fit::SensorKind& kind, Applied* a, CheckResult* r) {
   fit::ColumnMap columns = fit::ColumnMap().with(o.columns);
   columns.imu.reset();
-  if (o.columns.gyro.empty()) columns.gyro = "gyro_x,gyro_y,gyro_z";
+  columns.units.sensor = kind.is_gyro ? std::string() : std::string(kind.name);
+  // The gyro's three axes by their usual names; another sensor's by role.
+  if (o.columns.gyro.empty()) columns.gyro = kind.is_gyro ? "gyro_x,gyro_y,gyro_z" : fit::columns_for(o.log, columns).gyro;
   const std::vector<std::string> gyros = fit::parse_channels(columns.gyro);
-  if (gyros.size() > 3)
-    throw InputError(fmt::format("--gyro-col {}: {} columns; a calibration corrects the X, Y and Z axes, name up "
-                                 "to three, in that order",
-                                 columns.gyro, gyros.size()));
+  if (gyros.size() > kind.axes())
+    throw InputError(fmt::format("--gyro-col {}: {} columns; a calibration corrects the {}, name up to {}, in that order",
+                                 columns.gyro, gyros.size(), kind.axes() == 1 ? "one channel" : "X, Y and Z axes",
+                                 kind.axes() == 1 ? "one" : "three"));
   for (std::size_t k = 0; k < gyros.size(); ++k) {
     fit::ColumnMap one = columns;
     one.gyro = gyros[k];
@@ -124,15 +128,19 @@ std::pair<double, double> boot_means(const Applied& a, std::size_t axis, double 
 
 Applied apply_firmware(const CheckRequest& o, const ParameterFile& p, CheckResult* r) {
   const std::vector<GyroCalibration> cals = gyro_calibrations(p);
+  const fit::SensorKind& kind = *p.kind;
   if (cals.empty())
-    throw InputError(fmt::format("{}: no gyro calibration set (only the enable switch?); expected {} parameters",
-                                 p.file, p.format == ParameterFormat::px4 ? "TC_G{n}_X{k}_{axis}" : "INS_TCAL{n}_GYR{k}_{axis}"));
+    throw InputError(fmt::format("{}: no {} calibration set (only the enable switch?); expected {} parameters", p.file,
+                                 kind.noun,
+                                 p.format == ParameterFormat::px4
+                                     ? fmt::format("{}{{n}}_X{{k}}{}", kind.px4_stem, kind.axes() == 1 ? "" : "_{axis}")
+                                     : fmt::format("INS_TCAL{{n}}_{}{{k}}_{{axis}}", kind.ardupilot_group)));
   Applied a;
   std::size_t cal = 0;
   if (const fit::LogFormat* format = fit::log_format_of(o.log); format != nullptr) {
-    read_autopilot(o, *format, cals, &a, r, &cal);
+    read_autopilot(o, *format, cals, kind, &a, r, &cal);
   } else {
-    read_csv(o, &a, r);
+    read_csv(o, kind, &a, r);
     if (o.columns.imu)
       for (std::size_t c = 0; c < cals.size(); ++c)
         if (cals[c].instance == *o.columns.imu) cal = c;
@@ -142,19 +150,22 @@ Applied apply_firmware(const CheckRequest& o, const ParameterFile& p, CheckResul
   r->tmin_c = c.tmin_c;
   r->tmax_c = c.tmax_c;
   a.subtracted_dph.resize(a.raw_dph.size());
+  const double per_base = firmware_per_base(kind);
   for (std::size_t k = 0; k < a.raw_dph.size(); ++k) {
     if (!c.axes[k]) {
       a.subtracted_dph[k].assign(a.time_s.size(), 0.0);
       continue;
     }
     if (c.format == ParameterFormat::px4) {
-      a.subtracted_dph[k] = px4_applied_dph(a.time_s, a.temp_c, c.px4_x[k], c.tref_c, static_cast<float>(c.tmin_c),
-                                            static_cast<float>(c.tmax_c));
+      const std::span<const float> x(c.px4_x[k].data(), static_cast<std::size_t>(c.px4_terms));
+      a.subtracted_dph[k] = px4_applied_dph(a.time_s, a.temp_c, x, c.tref_c, static_cast<float>(c.tmin_c),
+                                            static_cast<float>(c.tmax_c), per_base);
     } else {
       const auto [bias, boot_c] = boot_means(a, k, o.boot_s);
       r->boot_c = boot_c;
       a.subtracted_dph[k] = ardupilot_applied_dph(a.temp_c, c.ap_g[k], static_cast<float>(c.tmin_c),
-                                                  static_cast<float>(c.tmax_c), static_cast<float>(boot_c), bias);
+                                                  static_cast<float>(c.tmax_c), static_cast<float>(boot_c), bias,
+                                                  per_base);
     }
   }
   return a;
@@ -171,7 +182,7 @@ Applied apply_fit(const CheckRequest& o, const ParameterFile& p, CheckResult* r)
   r->calibration = p.file;
   r->log_format = "CSV";
   if (const fit::LogFormat* format = fit::log_format_of(o.log); format != nullptr) {
-    a.contents = format->read(o.log, -1, {}, fit::sensor_kind("gyro"));
+    a.contents = format->read(o.log, -1, {}, *p.kind);
     r->log_format = a.contents.format;
   }
   bool first = true;
@@ -268,7 +279,8 @@ std::string ardupilot_enable_name(int instance) { return ardupilot_prefix(instan
 void add_log_findings(const Applied& a, CheckResult* r) {
   const fit::LogContents& log = a.contents;
   if (r->format == ParameterFormat::px4) {
-    if (const auto on = log.parameters.find("TC_G_ENABLE"); on != log.parameters.end() && on->second == 1.0)
+    if (const auto on = log.parameters.find(fmt::format("{}_ENABLE", r->sensor->px4_stem));
+        on != log.parameters.end() && on->second == 1.0)
       r->findings.push_back({CheckIssue::already_enabled, on->second, 0.0, on->first});
   } else if (r->format == ParameterFormat::ardupilot && r->log_instance >= 0 && r->log_instance < 5) {
     if (const auto on = log.parameters.find(ardupilot_enable_name(r->log_instance));
@@ -277,7 +289,7 @@ void add_log_findings(const Applied& a, CheckResult* r) {
   }
   double accel_share = 0.0;
   if (const fit::LogAccel* acc = log.accel(r->log_instance)) accel_share = acc->moving_share();
-  const double gyro_share = moving_share(a);
+  const double gyro_share = r->sensor->is_gyro ? moving_share(a) : 0.0;  // a rate at rest is a gyro's
   if (gyro_share > fit::kMovingShare || accel_share > fit::kMovingShare)
     r->findings.push_back({CheckIssue::moving, std::max(gyro_share, accel_share), fit::kMovingShare,
                            gyro_share >= accel_share ? "gyro" : "accelerometer"});
@@ -297,7 +309,7 @@ void add_device_finding(const Applied& a, CheckResult* r) {
     for (const fit::LogSensor& g : a.contents.sensors)
       if (g.device_id != 0) devices.push_back({static_cast<long long>(g.device_id), g.instance, ""});
   } else {
-    const std::string name = ardupilot_gyro_id_name(cal->instance);
+    const std::string name = ardupilot_gyro_id_name(cal->instance, cal->kind->ardupilot_group);
     if (const auto id = a.contents.parameters.find(name); id != a.contents.parameters.end())
       devices.push_back({static_cast<long long>(id->second), -1, name});
   }
@@ -396,9 +408,15 @@ CheckResult run_check(const CheckRequest& o) {
   check_request(o);
   CheckResult r;
   r.request = o;
-  if (o.max_residual) r.limit_dph = fit::find_unit(fit::Quantity::gyro, o.residual_unit, "--residual-unit").to_base(*o.max_residual);
-  const ParameterFile p = read_parameter_file(o.parameters);
+  const ParameterFile p = read_parameter_file(o.parameters, o.columns.units.sensor);
   r.format = p.format;
+  r.sensor = p.kind;
+  if (o.max_residual) {
+    // Another sensor's limit in its base unit unless a unit of its own is given.
+    const std::string unit = !p.kind->is_gyro && o.residual_unit == "dph" ? std::string(fit::base_unit(p.kind->quantity))
+                                                                          : o.residual_unit;
+    r.limit_dph = fit::find_unit(p.kind->quantity, unit, "--residual-unit").to_base(*o.max_residual);
+  }
   const Applied a = p.format == ParameterFormat::fit ? apply_fit(o, p, &r) : apply_firmware(o, p, &r);
   if (a.time_s.size() < 2)
     throw InputError(fmt::format("{}: {} sample{} with a temperature; a check needs 2 or more", o.log, a.time_s.size(),

@@ -41,7 +41,7 @@ struct CheckRequest {
   double avg_s = 100.0;    // --avg: the instability's window (shortened to a tenth of a short log)
   double boot_s = 10.0;    // --boot: ArduPilot's boot gyro calibration, the log's first seconds
   std::optional<double> max_residual;  // --max-residual, in residual_unit
-  std::string residual_unit = "dph";   // --residual-unit (a gyro unit)
+  std::string residual_unit = "dph";   // --residual-unit (a gyro unit; for another sensor "dph" is its base unit)
   // Columns and units of a CSV log (unset: the defaults; a fit file's own for
   // a fit); `imu` (--imu) the log's gyro instance (default: the one the
   // calibration is for), of a CSV the calibration's instance.
@@ -116,6 +116,7 @@ struct AxisCheck {
 struct CheckResult {
   CheckRequest request;
   ParameterFormat format = ParameterFormat::fit;
+  const fit::SensorKind* sensor = &fit::sensor_kinds().front();  // whose calibration; the *_dph fields in its unit
   std::string log_format;       // "ULog v1", "DataFlash", "CSV"
   int log_instance = -1;        // the log's gyro checked (-1: a CSV)
   long long log_device_id = 0;  // its device id (0: unknown)
@@ -133,7 +134,7 @@ struct CheckResult {
   std::vector<CheckFinding> findings;
   // The log's units checked as fit checks them (a CSV's; a fit file's channels), each worded once.
   std::vector<fit::UnitCaution> cautions;
-  std::optional<double> limit_dph;  // --max-residual in °/h
+  std::optional<double> limit_dph;  // --max-residual in °/h (the sensor's base unit)
   // With a limit: whether every axis's residual is within it.
   std::optional<bool> passed;
   int exit_code() const { return passed.has_value() && !*passed ? 1 : 0; }
