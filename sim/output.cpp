@@ -81,7 +81,7 @@ std::string simulation_csv(const Simulator& simulator, const SimulationResult& r
   return text;
 }
 
-std::string truth_json(const Simulator& simulator, const SimulationResult& r) {
+std::string truth_json(const Simulator& simulator, const SimulationResult& r, const RecordIdentity& record) {
   const Scenario& sc = simulator.scenario();
   const GyroConfig& gyro = simulator.gyro();
   const NoiseConfig& nz = gyro.noise;
@@ -95,6 +95,7 @@ std::string truth_json(const Simulator& simulator, const SimulationResult& r) {
   }
   j["rig"] = file_entry(sc.rig_file);
   j["gyro"] = file_entry(sc.gyro_file);
+  if (!record.sha256.empty()) j["record"] = {{"file", record.file}, {"sha256", record.sha256}};
   j["sample_rate_hz"] = sc.sample_rate_hz;
   j["rows"] = r.rows();
   j["duration_s"] = r.rows() > 0 ? r.time_s.back() : 0.0;
@@ -168,7 +169,8 @@ void write_simulation(const std::filesystem::path& csv, const Simulator& simulat
                       const SimulationResult& result) {
   // Render both first (this reads and hashes the input files), then write.
   const std::string csv_text = record_format_for(csv).render(simulator, result);
-  const std::string json_text = truth_json(simulator, result);
+  const std::string json_text =
+      truth_json(simulator, result, {csv.filename().string(), sha256_hex(csv_text)});
   AtomicFile csv_file(csv);
   AtomicFile json_file(truth_path_for(csv));
   csv_file.stream() << csv_text;

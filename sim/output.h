@@ -23,7 +23,12 @@ namespace gyrotherm::sim {
 std::filesystem::path truth_path_for(const std::filesystem::path& csv);
 
 std::string simulation_csv(const Simulator& simulator, const SimulationResult& result);
-std::string truth_json(const Simulator& simulator, const SimulationResult& result);
+// With `record` (the file's name and the SHA-256 of its bytes), the truth
+// names the record it belongs to: a fit meets it only on that record.
+struct RecordIdentity {
+  std::string file, sha256;
+};
+std::string truth_json(const Simulator& simulator, const SimulationResult& result, const RecordIdentity& record = {});
 
 void write_simulation(const std::filesystem::path& csv, const Simulator& simulator,
                       const SimulationResult& result);

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+
 #include "sim/output.h"
 #include "sim/simulator.h"
 #include "sim/util/input_error.h"
@@ -22,7 +24,8 @@ const RecordFormat kFormats[] = {
 }  // namespace
 
 const RecordFormat& record_format_for(const std::filesystem::path& output) {
-  const std::string extension = output.extension().string();
+  std::string extension = output.extension().string();  // .ULG as .ulg
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   for (const RecordFormat& f : kFormats)
     if (f.extension == extension) return f;
   return kFormats[std::size(kFormats) - 1];

@@ -32,6 +32,11 @@ std::optional<Truth> load_truth_beside(const std::filesystem::path& record, std:
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON: {}", file.string(), e.what()));
   }
+  // The truth of another record written beside (imu.csv's, read beside imu.ulg: both imu.truth.json) is not
+  // this one's. (By name: a record edited in place keeps its truth.)
+  if (j.is_object() && j.contains("record") && j["record"].is_object() && j["record"].contains("file") &&
+      j["record"]["file"] != record.filename().string())
+    return std::nullopt;
   return channel_truth(j, file, column);
 }
 

@@ -34,7 +34,9 @@ struct Truth {
 // (a log's gyro_x), a channel's for its CSV column (accel_x_mps2) or its
 // log column (accel_x, pressure), none for any other column. A truth
 // without channels (a gyro file without [[channel]]s) is its gyro's, for
-// whichever one column is fitted; "" asks for the gyro's.
+// whichever one column is fitted; "" asks for the gyro's. A truth that
+// names another record (its "record" file: imu.csv's truth beside imu.ulg,
+// the two sharing imu.truth.json) is none.
 std::optional<Truth> load_truth_beside(const std::filesystem::path& record, std::string_view column = {});
 // The truth in a parsed truth JSON (sim/output.h's truth_json); `file` names it in messages.
 Truth truth_from_json(const nlohmann::json& truth, const std::filesystem::path& file);

@@ -52,6 +52,15 @@ TEST(DiagnoseSensor, AnAccelerometersMissingCubicIsFoundInItsUnits) {
   for (const char* png : {"bias_time.png", "residual_vs.png", "allan.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "figures" / png)) << png;
 
+  // A simulated CSV's truth columns are never tried as causes.
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/imu.toml") + " -o imu.csv").exit_code, 0);
+  const CliResult csv = run_cli(dir, "diagnose imu.csv --sensor accel --gyro-col accel_z_mps2 --model 'T + T^2 + T^3' --json");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  const nlohmann::json jc = nlohmann::json::parse(csv.out);
+  for (const auto& c : jc["columns_tried"]) EXPECT_EQ(c.get<std::string>().find("true"), std::string::npos) << c;
+  for (const auto& e : jc["missing_effects"]) EXPECT_EQ(e["term"].get<std::string>().find("true"), std::string::npos) << e["term"];
+  EXPECT_NE(jc["skipped"].dump().find("truth's or compensation's column"), std::string::npos) << jc["skipped"];
+
   // The y axis, whose truth is T + T², is given nothing to add.
   const CliResult y = run_cli(dir, "diagnose imu.ulg --sensor accel --gyro-col accel_y --model 'T + T^2' --json");
   ASSERT_EQ(y.exit_code, 0) << y.err;

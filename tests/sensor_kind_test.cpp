@@ -289,6 +289,9 @@ TEST(CliSensor, AllanReportsEachSensorsNoiseInItsUnits) {
   EXPECT_NE(text.out.find("m/s/√h"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("adev (m/s²)"), std::string::npos) << text.out;
   EXPECT_EQ(text.out.find("°/h"), std::string::npos) << text.out;
+  // The noise type of each τ by the sensor's words, not a gyro's angle random walk.
+  EXPECT_NE(text.out.find("velocity_random_walk"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("angle_random_walk"), std::string::npos) << text.out;
   const CliResult b = run_cli(dir, "allan b.csv --sensor baro --json");
   ASSERT_EQ(b.exit_code, 0) << b.err;
   const nlohmann::json kb = nlohmann::json::parse(b.out)["series"][0]["coefficients"];

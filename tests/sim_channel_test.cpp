@@ -155,6 +155,25 @@ TEST(SimChannel, AnAutopilotLogHoldsEverySampleAsItsFormatStoresIt) {
   EXPECT_EQ(truth["channels"][2]["truth_column"], "accel_x_true_mps2");
 }
 
+// imu.csv and imu.ulg share imu.truth.json: the truth names its record, and
+// a fit of the other meets none rather than another seed's.
+TEST(SimChannel, ATruthBelongsToTheRecordWrittenWithIt) {
+  ScratchDir dir;
+  const std::string imu = source_path("scenarios/imu.toml");
+  ASSERT_EQ(run_cli(dir, "simulate " + imu + " --seed 1 -o imu.csv").exit_code, 0);
+  ASSERT_EQ(run_cli(dir, "simulate " + imu + " --seed 2 -o imu.ulg").exit_code, 0);
+  const nlohmann::json truth = nlohmann::json::parse(testing::slurp(dir / "imu.truth.json"));
+  EXPECT_EQ(truth["record"]["file"], "imu.ulg");
+  EXPECT_EQ(truth["record"]["sha256"].get<std::string>().size(), 64u);
+  const auto has_truth = [&](const std::string& args) {
+    const CliResult r = run_cli(dir, "fit " + args + " --model T --json");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.exit_code == 0 && nlohmann::json::parse(r.out).contains("truth");
+  };
+  EXPECT_TRUE(has_truth("imu.ulg --sensor baro"));
+  EXPECT_FALSE(has_truth("imu.csv --sensor baro"));
+}
+
 TEST(SimChannel, AGyroFileThatCannotMakeTheLogAskedForIsRefused) {
   ScratchDir dir;
   const std::string gyro = "\n[truth]\nb0_dph = 1.0\n";
@@ -178,6 +197,9 @@ TEST(SimChannel, AGyroFileThatCannotMakeTheLogAskedForIsRefused) {
           "out.ulg", "simulates no accel x, accel y");
   refused("[[channel]]\nsensor = \"gyro\"\naxis = \"y\"\n[[channel]]\nsensor = \"gyro\"\naxis = \"z\"\n", "out.bin",
           "a DataFlash IMU message holds the accel's axes x, y and z");
+  // The extension in any case.
+  ASSERT_EQ(run_cli(dir, "simulate " + source_path("scenarios/imu.toml") + " -o UPPER.ULG").exit_code, 0);
+  EXPECT_EQ(fit::read_ulog(dir / "UPPER.ULG", -1, {}, fit::sensor_kind("accel")).default_instance(), 0);
   // A gyro with its other axes and no accelerometer is a ULog of gyros alone.
   testing::write_text(dir / "g.toml", gyro + "[[channel]]\nsensor = \"gyro\"\naxis = \"y\"\n[[channel]]\nsensor = "
                                              "\"gyro\"\naxis = \"z\"\n");

@@ -83,11 +83,7 @@ std::string by_role(const std::vector<std::string>& names, const ColumnMap& colu
   std::vector<std::string> found;
   for (const std::string& n : names) {
     if (n == columns.time || n == columns.temp || n == columns.temp2) continue;
-    const std::vector<std::string> words = column_words(n);
-    if (std::any_of(words.begin(), words.end(), [](const std::string& w) {
-          return w == "true" || w == "truth" || w == "model" || w == "compensated" || w == "residual";
-        }))
-      continue;
+    if (role_by_name(n) == ColumnRole::derived) continue;
     if (names_sensor(n, kind) || unit_in_header(kind.quantity, n).unit != nullptr) found.push_back(n);
   }
   if (found.size() == 1) return found.front();

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <utility>
 
+#include "fit/data/column_role.h"
 #include "fit/data/header_units.h"
 #include "sim/util/input_error.h"
 
@@ -49,7 +50,8 @@ std::string sensor_columns_hint(const std::vector<std::string>& names, const Sen
   for (const SensorKind* k : kinds) {
     std::vector<std::string> found;
     for (const std::string& n : names)
-      if (unit_in_header(k->quantity, n).unit != nullptr || names_sensor(n, *k)) found.push_back(n);
+      if (role_by_name(n) != ColumnRole::derived && (unit_in_header(k->quantity, n).unit != nullptr || names_sensor(n, *k)))
+        found.push_back(n);
     if (found.empty()) continue;
     const std::string list = joined(found), quoted = fmt::format("'{}'", fmt::join(found, ","));
     if (k == &wanted)

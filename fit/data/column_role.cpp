@@ -50,6 +50,7 @@ const char* to_string(ColumnRole role) {
     case ColumnRole::status: return "a status word";
     case ColumnRole::counter: return "a counter";
     case ColumnRole::constant: return "constant";
+    case ColumnRole::derived: return "a model's, truth's or compensation's column";
   }
   return "";
 }
@@ -79,8 +80,10 @@ std::vector<std::string> column_words(std::string_view name) {
 }
 
 ColumnRole role_by_name(std::string_view name) {
-  if (unit_in_header(Quantity::gyro, name).unit != nullptr) return ColumnRole::motion_sensor;
   const std::vector<std::string> words = column_words(name);
+  for (const std::string& w : words)
+    if (one_of(w, {"true", "truth", "model", "compensated", "residual"})) return ColumnRole::derived;
+  if (unit_in_header(Quantity::gyro, name).unit != nullptr) return ColumnRole::motion_sensor;
   for (const std::string& w : words) {
     if (starts_with_any(w, {"gyr", "acc", "mag", "omega"}) || one_of(w, {"xgyro", "ygyro", "zgyro", "xacc", "yacc", "zacc",
                                                                          "xmag", "ymag", "zmag"}) ||

@@ -26,8 +26,12 @@
 
 namespace gyrotherm::fit {
 
-enum class ColumnRole { cause, motion_sensor, status, counter, constant };
-// "a possible cause", "another motion sensor's channel", "a status word", "a counter", "constant"
+// derived: a model's, a truth's or a compensation's column (a word true,
+// truth, model, compensated or residual: bias_true_dph, accel_x_true_mps2,
+// model_dph), never a reading nor a cause.
+enum class ColumnRole { cause, motion_sensor, status, counter, constant, derived };
+// "a possible cause", "another motion sensor's channel", "a status word", "a counter", "constant",
+// "a model's, truth's or compensation's column"
 const char* to_string(ColumnRole role);
 
 // The name's words, lower case (as above).

@@ -172,6 +172,14 @@ std::string allan_text(const AllanStudy& study) {
   const fit::SensorKind& kind = study.units.kind();
   const CoefficientLabels labels = coefficient_labels(kind);
   const std::string& unit = labels.adev_unit;
+  // The noise type by the sensor's words (a gyro's as the JSON's noise_type;
+  // another's white noise and random walk by their names, "velocity_random_walk").
+  const auto noise_type_text = [&](int alpha) {
+    if (kind.is_gyro || (alpha != 0 && alpha != -2)) return noise_type_name(alpha);
+    std::string name = alpha == 0 ? labels.white.name : labels.random_walk.name;
+    for (char& c : name) c = c == ' ' ? '_' : c;
+    return name;
+  };
   std::string out = fmt::format(
       "allan {}{}: {} every {:.4g} s over {:.4g} h, {}; overlapping Allan deviation, "
       "{:.0f} % intervals (Greenhall's edf for the noise type at each τ)\n",
@@ -197,7 +205,7 @@ std::string allan_text(const AllanStudy& study) {
     for (const AllanRow& r : s.curve.rows)
       out += fmt::format("  {:>10.4g} {:>12.5g} [{:>11.5g}, {:>11.5g}] {:>9.4g}  {:<26} {:>9}\n", r.tau_s,
                          r.adev_dph, r.lo_dph, r.hi_dph, r.edf,
-                         noise_type_name(r.alpha) + (r.alpha_from_acf ? "" : r.alpha_from_model ? " (model)" : " (slope)"), r.gap_terms);
+                         noise_type_text(r.alpha) + (r.alpha_from_acf ? "" : r.alpha_from_model ? " (model)" : " (slope)"), r.gap_terms);
   }
   out += "\nnoise coefficients (value [interval]):\n";
   std::string header = fmt::format("  {:<22}", "");

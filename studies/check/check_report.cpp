@@ -59,9 +59,10 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
       return "the log's temperature is in whole degrees (as some Bosch parts report it): a calibration from it, or "
              "PX4's 1 °C hysteresis on it, corrects in steps";
     case CheckIssue::moving:
-      return fmt::format("the vehicle moved: {:.1f} % of the samples show it ({}; a thermal check needs the gyro at "
-                         "rest), so the rates include the motion",
-                         100.0 * f.value, f.name == "gyro" ? "rates above 10 °/s" : "the accelerometer's magnitude or direction changing");
+      return fmt::format("the vehicle moved: {:.1f} % of the samples show it ({}; a thermal check needs the {} at "
+                         "rest), so the {} include the motion",
+                         100.0 * f.value, f.name == "gyro" ? "rates above 10 °/s" : "the accelerometer's magnitude or direction changing",
+                         r.sensor->noun, r.sensor->is_gyro ? "rates" : "readings");
     case CheckIssue::already_enabled:
       return fmt::format("the log was written with {} = {:g}: its rates are already corrected, and applying the "
                          "calibration again corrects twice",
@@ -76,8 +77,8 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
                          "would not apply it",
                          f.value, r.sensor->noun, devices_text(f.devices));
     case CheckIssue::outside_range:
-      return fmt::format("{:.1f} % of the samples lie outside the calibrated {:.1f}..{:.1f} °C, where the correction "
-                         "is held at the edge",
+      return fmt::format("{:.1f} % of the samples lie more than 0.1 °C outside the calibrated {:.1f}..{:.1f} °C, where "
+                         "the correction is held at the edge",
                          100.0 * f.value, r.tmin_c, r.tmax_c);
     case CheckIssue::residual_over_limit:
       return fmt::format("axis {}: the residual {:.4g} {} exceeds the limit {:.4g} {}", f.name, f.value, r.sensor->unit,

@@ -35,6 +35,11 @@ constexpr double kSpanMinimumC = kArduPilotSpanMinimumC;  // ArduPilot's minimum
 constexpr double kSpanAdviceC = 25.0;   // and its advice
 constexpr std::size_t kBinSamples = 10; // a temperature bin needs this many samples to be shown
 constexpr int kMaxBins = 20;
+// A sample counts as outside TMIN..TMAX beyond this: the range's ends are
+// window means, and a soak at an end reads on both sides of its mean by the
+// sensor's noise, where the edge's correction differs from the curve's by a
+// negligible slope × 0.1 °C.
+constexpr double kOutsideMarginC = 0.1;
 
 // The log as applied: one time and temperature, and per axis the rate and
 // what the calibration subtracts (°/h).
@@ -47,6 +52,10 @@ struct Applied {
 };
 
 constexpr char kAxisNames[3] = {'X', 'Y', 'Z'};
+// X, Y, Z; a one-channel sensor's as its log names it (a barometer's "pressure").
+std::string axis_name(const fit::SensorKind& kind, std::size_t k) {
+  return kind.axes() == 1 ? std::string(kind.log_columns) : std::string(1, kAxisNames[k]);
+}
 
 // The log's gyro to check and the calibration for it, as the firmware pairs
 // them: PX4 by device id, ArduPilot by instance; --imu overrides the log's side.
@@ -89,7 +98,7 @@ void read_autopilot(const CheckRequest& o, const fit::LogFormat& format, const s
   r->log_instance = instance;
   for (const fit::LogSensor& g : read.sensors)
     if (g.instance == instance) r->log_device_id = g.device_id;
-  for (std::size_t k = 0; k < kind.axes(); ++k) a->axis.push_back(std::string(1, kAxisNames[k]));
+  for (std::size_t k = 0; k < kind.axes(); ++k) a->axis.push_back(axis_name(kind, k));
 }
 
 void read_csv(const CheckRequest& o, const fit::SensorKind& kind, Applied* a, CheckResult* r) {
@@ -110,7 +119,7 @@ void read_csv(const CheckRequest& o, const fit::SensorKind& kind, Applied* a, Ch
     for (const fit::UnitCaution& c : fit::measurement_cautions(m)) add_caution(*r, c);
     if (k == 0) a->time_s = m.time_s, a->temp_c = m.temp_c;
     a->raw_dph.push_back(m.gyro_dph);
-    a->axis.push_back(std::string(1, kAxisNames[k]));
+    a->axis.push_back(axis_name(kind, k));
   }
   r->log_format = "CSV";
 }
@@ -161,8 +170,11 @@ Applied apply_firmware(const CheckRequest& o, const ParameterFile& p, CheckResul
       a.subtracted_dph[k] = px4_applied_dph(a.time_s, a.temp_c, x, c.tref_c, static_cast<float>(c.tmin_c),
                                             static_cast<float>(c.tmax_c), per_base);
     } else {
-      const auto [bias, boot_c] = boot_means(a, k, o.boot_s);
+      auto [bias, boot_c] = boot_means(a, k, o.boot_s);
       r->boot_c = boot_c;
+      // A gyro's offsets are taken at every boot; an accelerometer's are its
+      // calibration's (INS_ACCOFFS, not in this file), and gravity stays in.
+      if (!kind.is_gyro) bias = 0.0;
       a.subtracted_dph[k] = ardupilot_applied_dph(a.temp_c, c.ap_g[k], static_cast<float>(c.tmin_c),
                                                   static_cast<float>(c.tmax_c), static_cast<float>(boot_c), bias,
                                                   per_base);
@@ -258,7 +270,7 @@ AxisCheck judge_axis(const Applied& a, std::size_t k, const CheckResult& r) {
   for (std::size_t i = 0; i < comp.size(); ++i) {
     const auto b = std::min(bins - 1, static_cast<std::size_t>(std::floor((a.temp_c[i] - low) / r.bin_c)));
     sum[b] += comp[i], ++count[b];
-    outside += a.temp_c[i] < r.tmin_c || a.temp_c[i] > r.tmax_c ? 1 : 0;
+    outside += a.temp_c[i] < r.tmin_c - kOutsideMarginC || a.temp_c[i] > r.tmax_c + kOutsideMarginC ? 1 : 0;
   }
   for (std::size_t b = 0; b < bins; ++b) {
     if (count[b] < kBinSamples) continue;
@@ -412,9 +424,8 @@ CheckResult run_check(const CheckRequest& o) {
   r.format = p.format;
   r.sensor = p.kind;
   if (o.max_residual) {
-    // Another sensor's limit in its base unit unless a unit of its own is given.
-    const std::string unit = !p.kind->is_gyro && o.residual_unit == "dph" ? std::string(fit::base_unit(p.kind->quantity))
-                                                                          : o.residual_unit;
+    // In the sensor's base unit unless a unit of its own is given (a gyro's for a gyro only).
+    const std::string unit = o.residual_unit.empty() ? std::string(fit::base_unit(p.kind->quantity)) : o.residual_unit;
     r.limit_dph = fit::find_unit(p.kind->quantity, unit, "--residual-unit").to_base(*o.max_residual);
   }
   const Applied a = p.format == ParameterFormat::fit ? apply_fit(o, p, &r) : apply_firmware(o, p, &r);

@@ -41,7 +41,7 @@ struct CheckRequest {
   double avg_s = 100.0;    // --avg: the instability's window (shortened to a tenth of a short log)
   double boot_s = 10.0;    // --boot: ArduPilot's boot gyro calibration, the log's first seconds
   std::optional<double> max_residual;  // --max-residual, in residual_unit
-  std::string residual_unit = "dph";   // --residual-unit (a gyro unit; for another sensor "dph" is its base unit)
+  std::string residual_unit;  // --residual-unit: one of the sensor's units ("": its base unit, dph for a gyro)
   // Columns and units of a CSV log (unset: the defaults; a fit file's own for
   // a fit); `imu` (--imu) the log's gyro instance (default: the one the
   // calibration is for), of a CSV the calibration's instance.

@@ -143,10 +143,11 @@ std::vector<std::string> skipped_texts(const std::vector<Skipped>& skipped) {
     const std::string what = role == fit::ColumnRole::motion_sensor ? "another motion sensor's channel"
                              : role == fit::ColumnRole::status      ? "a status word"
                              : role == fit::ColumnRole::counter     ? "a counter"
+                             : role == fit::ColumnRole::derived     ? "a model's, truth's or compensation's column"
                                                                     : "constant";
     out.push_back(fmt::format("column{} {} ({}{}, not a cause of the bias; name one in --candidates +NAME to try it)",
                               many ? "s" : "", fmt::join(names, ", "), what,
-                              many && role != fit::ColumnRole::constant ? "s" : ""));
+                              many && role != fit::ColumnRole::constant && role != fit::ColumnRole::derived ? "s" : ""));
   }
   return out;
 }

@@ -20,7 +20,7 @@ std::vector<OptionRow<O>> check_rows() {
       nested_row("--max-residual",
           "Fail (exit 1) when an axis's residual against temperature exceeds this (in --residual-unit)",
           &O::request, &R::max_residual),
-      nested_row("--residual-unit", "Unit of --max-residual: dph, dps, rad/s or mrad/s (another sensor's: its base unit unless given, e.g. mps2, mg, Pa)", &O::request, &R::residual_unit),
+      nested_row("--residual-unit", "Unit of --max-residual: dph, dps, rad/s or mrad/s (another sensor's: one of its own, e.g. mps2, mg, Pa)", &O::request, &R::residual_unit),
       nested_row("--avg", "Window of the instability, s (a tenth of a log shorter than 10 windows)", &O::request, &R::avg_s),
       nested_row("--boot", "ArduPilot: the boot gyro calibration, the log's first seconds", &O::request, &R::boot_s),
       field_row<O>("--json", "Print one JSON object", &O::json)};
@@ -28,6 +28,7 @@ std::vector<OptionRow<O>> check_rows() {
   add_fit_file_defaults(rows, "with a fit file as --params");
   for (OptionRow<O>& r : rows) {
     if (r.names == "--imu") r.default_note = "the one the calibration is for";
+    if (r.names == "--residual-unit") r.default_note = "dph (another sensor's: its base unit)";
     // A CSV log checked against a PX4 or ArduPilot file is read as three axes (check_run.cpp's read_csv).
     if (r.names == "--gyro-col") r.default_note = "gyro_x,gyro_y,gyro_z (another sensor's: by role); with a fit file as --params: the fit's";
   }
