@@ -356,6 +356,16 @@ TEST(CliSensor, ReadingsOutsideTheSensorsRangeAreCautioned) {
   ASSERT_EQ(ut["data"]["cautions"].size(), 1u);
   EXPECT_NE(ut["data"]["cautions"][0].get<std::string>().find("milligauss, uT or nT read as gauss?"), std::string::npos);
   EXPECT_TRUE(fit_json(dir, "p.csv --sensor mag --gyro-col field --gyro-unit uT --model T")["data"]["cautions"].empty());
+  // The numbers in a smaller unit than the one the user gave: said as such, not as "read as Pa".
+  const nlohmann::json mpa = fit_json(dir, "p.csv --sensor baro --gyro-col pressure --gyro-unit mbar --model T");
+  EXPECT_TRUE(mpa["data"]["cautions"].empty());
+  const CliResult shell = run_shell(dir, "awk -F, 'NR == 1 { print; next } { $3 = $3 * 100; print }' OFS=, p.csv | tee pa.csv");
+  ASSERT_EQ(shell.exit_code, 0);
+  const nlohmann::json pa_as_hpa = fit_json(dir, "pa.csv --sensor baro --gyro-col pressure --gyro-unit hPa --model T");
+  ASSERT_EQ(pa_as_hpa["data"]["cautions"].size(), 1u) << pa_as_hpa["data"]["cautions"].dump();
+  EXPECT_NE(pa_as_hpa["data"]["cautions"][0].get<std::string>().find("numbers in a smaller unit than hPa?"),
+            std::string::npos)
+      << pa_as_hpa["data"]["cautions"][0];
 }
 
 // A real magnetometer (the PAN cubesat's, in a thermal-vacuum chamber, its

@@ -176,12 +176,16 @@ std::string caution_text(const UnitCaution& c) {
       if (found == nullptr) return {};
       const SensorLimits& limits = *found;
       const bool above = r.largest_rate_dph > limits.largest;
-      return fmt::format("the {}'s largest reading is {:.4g} {}, {} ({}): {}? give --gyro-unit", c.sensor->noun,
-                         r.largest_rate_dph, c.sensor->unit,
+      // Read in another unit than the base one: the numbers are in a smaller (larger) unit than that one.
+      const bool base = c.unit == base_unit(c.sensor->quantity);
+      const std::string looks = base ? std::string(above ? limits.high_looks : limits.low_looks)
+                                     : fmt::format("numbers in a {} unit than {}", above ? "smaller" : "larger", c.unit);
+      return fmt::format("the {}'s largest reading is {:.4g} {}, {} ({}): {}? give the --gyro-unit they are in",
+                         c.sensor->noun, r.largest_rate_dph, c.sensor->unit,
                          above ? fmt::format("more than any {} reads ({:g} {})", c.sensor->noun, limits.largest,
                                              c.sensor->unit)
                                : fmt::format("under {:g} {}", limits.low_to, c.sensor->unit),
-                         read_in, above ? limits.high_looks : limits.low_looks);
+                         read_in, looks);
     }
   }
   return {};

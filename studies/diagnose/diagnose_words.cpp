@@ -168,11 +168,20 @@ std::string verdict_text(const Diagnosis& d) {
       break;
     case VerdictKind::group: {
       const CandidateReport& c = d.candidates.front();
-      std::vector<std::string> members = {std::string(c.term->name)};
-      for (const std::string& m : c.confounded_with) members.push_back(m);
-      verdict = fmt::format("one of {} is missing, and this record cannot tell which: {} ({}) removes {} (p = {})",
-                            member_list(members, " or "), c.term->name, c.term->meaning,
-                            excess_share_text(c.reduction_pct), p_text(c.p_value, c.level));
+      // A term of the model is not missing: it is named apart, as what the missing one cannot be told from.
+      std::vector<std::string> members = {std::string(c.term->name)}, in_model;
+      for (const std::string& m : c.confounded_with) {
+        const bool modelled = std::any_of(d.fit.terms.begin(), d.fit.terms.end(),
+                                          [&](const fit::Term* t) { return t->name == m; });
+        (modelled ? in_model : members).push_back(m);
+      }
+      verdict = fmt::format("{} is missing, and this record cannot tell {}: {} ({}) removes {} (p = {})",
+                            members.size() == 1 ? members.front() : "one of " + member_list(members, " or "),
+                            members.size() == 1 ? fmt::format("it from {}, in the model", member_list(in_model))
+                            : in_model.empty()  ? std::string("which")
+                                                : fmt::format("which, nor them from {}, in the model", member_list(in_model)),
+                            c.term->name, c.term->meaning, excess_share_text(c.reduction_pct),
+                            p_text(c.p_value, c.level));
       break;
     }
     case VerdictKind::found: {
