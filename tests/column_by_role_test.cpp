@@ -65,6 +65,29 @@ TEST(ColumnsByRole, AGyrosAndAnAccelerometersAxesAreReadByTheirNamesAndUnits) {
   expect_refused(dir, "fit acc.csv", "may be the accelerometer's: to fit them, give --sensor accel");
 }
 
+// An accelerometer at rest in g, its names stating no unit: read as m/s²
+// its three axes make 1, not gravity's 9.81, and that is cautioned with the
+// unit that fits; given --gyro-unit g, nothing is; export stops at it.
+TEST(ColumnsByRole, AnAccelerometerInGReadAsMetresPerSecondSquaredIsCautioned) {
+  ScratchDir dir;
+  testing::write_ramp_log(dir / "g.csv", "AccX,AccY,AccZ", {0.001, -0.001, 0.002}, 2.0, 10.0, 40.0, 9);
+  // z holds gravity, -1 g, as a board lying flat reads it.
+  ASSERT_EQ(testing::run_shell(dir, "awk -F, -v OFS=, 'NR > 1 { $5 = $5 / 100 - 1; $3 = $3 / 100; $4 = $4 / 100 } "
+                                    "{ print }' g.csv | tee flat.csv").exit_code, 0);
+  const CliResult r = run_cli(dir, "fit flat.csv --sensor accel --model T -o fit.json --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["channels"].size(), 3u);
+  const nlohmann::json& cautions = j["channels"][2]["data"]["cautions"];
+  ASSERT_EQ(cautions.size(), 1u) << cautions.dump();
+  EXPECT_NE(cautions[0].get<std::string>().find("are its numbers in g (standard gravities"), std::string::npos)
+      << cautions[0];
+  expect_refused(dir, "export fit.json --format px4 -o a.params", "--accept-caution");
+  const CliResult in_g = run_cli(dir, "fit flat.csv --sensor accel --gyro-unit g --model T --json");
+  ASSERT_EQ(in_g.exit_code, 0) << in_g.err;
+  EXPECT_TRUE(nlohmann::json::parse(in_g.out)["channels"][2]["data"]["cautions"].empty());
+}
+
 TEST(ColumnsByRole, ASimulatedIMUsCSVIsReadBySensorEachAxisMeetingItsTruth) {
   ScratchDir dir;
   ASSERT_EQ(run_cli(dir, "simulate " + testing::source_path("scenarios/imu.toml") + " -o imu.csv").exit_code, 0);

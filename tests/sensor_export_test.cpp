@@ -27,17 +27,18 @@ using testing::CliResult, testing::expect_refused, testing::run_cli, testing::ru
 
 // A 1 Hz, 3 h ramp 5 → 45 °C: column `column` holds `at_zero` + `slope`·T +
 // `curve`·T² + a little noise, three times over for three axes when `axes`
-// (the second axis 2·slope, the third −slope).
+// (the second axis 2·slope, the third −slope, less `down`: an
+// accelerometer's gravity on z, which its three axes' magnitude must show).
 void write_sensor_log(const ScratchDir& dir, const std::string& file, const std::string& column, double at_zero,
-                      double slope, double curve, bool axes) {
+                      double slope, double curve, bool axes, double down = 0.0) {
   const std::string header = axes ? "time_s,temp_c," + column + "_x," + column + "_y," + column + "_z"
                                   : "time_s,temp_c," + column;
   const std::string values =
       axes ? "printf \"%d,%.6f,%.9g,%.9g,%.9g\\n\", k, t, b + s * t + c * t * t + n * u, b + 2 * s * t + n * u, "
-             "-b - s * t + n * u"
+             "-b - s * t + n * u - g"
            : "printf \"%d,%.6f,%.9g\\n\", k, t, b + s * t + c * t * t + n * u";
   const CliResult r = run_shell(
-      dir, "awk -v b=" + std::to_string(at_zero) + " -v s=" + std::to_string(slope) + " -v c=" +
+      dir, "awk -v g=" + std::to_string(down) + " -v b=" + std::to_string(at_zero) + " -v s=" + std::to_string(slope) + " -v c=" +
                std::to_string(curve) + " -v n=" + std::to_string(1e-3 * std::abs(slope) * 40.0) +
                " 'BEGIN { srand(3); print \"" + header +
                "\"; for (k = 0; k < 10800; k++) { t = 5 + 40 * k / 10800; u = rand() + rand() - 1; " + values +
@@ -85,7 +86,7 @@ void expect_px4_gives_the_change(const std::map<std::string, float>& p, const st
 
 TEST(SensorExport, AnAccelerometersFitBecomesPX4sTCAAndArduPilotsACC) {
   ScratchDir dir;
-  write_sensor_log(dir, "a.csv", "accel", 0.3, 0.002, -1.5e-5, true);
+  write_sensor_log(dir, "a.csv", "accel", 0.3, 0.002, -1.5e-5, true, 9.80665);
   const CliResult fitted = run_cli(dir, "fit a.csv --sensor accel --gyro-col accel_x,accel_y,accel_z --model 'T + T^2' "
                                         "-o fit.json");
   ASSERT_EQ(fitted.exit_code, 0) << fitted.err;
@@ -94,6 +95,8 @@ TEST(SensorExport, AnAccelerometersFitBecomesPX4sTCAAndArduPilotsACC) {
   for (std::size_t i = 0; i < 3; ++i) fits.push_back(polynomial_in(channel_json(j, i)));
   EXPECT_NEAR(fits[0].c[1], 0.002, 1e-4);  // the truth, m/s² per °C
 
+  // The C compensator is a gyro's: refused at once, not after asking which of the three channels.
+  expect_refused(dir, "export fit.json --format c -o a.h", "the C compensator is a gyro's");
   const CliResult px4 = run_cli(dir, "export fit.json --format px4 --device-id 1311004 --json -o a.params");
   ASSERT_EQ(px4.exit_code, 0) << px4.err;
   const std::string text = testing::slurp(dir / "a.params");

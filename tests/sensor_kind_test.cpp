@@ -211,6 +211,8 @@ TEST(CliSensor, EveryMismatchOfSensorColumnAndUnitIsRefused) {
   expect_refused(dir, "report a.csv --fit a_fit.json -o r.html", "accel");
   expect_refused(dir, "report a.csv --fit a_fit.json -o r.html",
                  "pipeline.columns.units.sensor is accel (the accelerometer's fit): report takes a gyro's fit only");
+  EXPECT_EQ(run_cli(dir, "report a.csv --fit a_fit.json -o r.html").err.find("fitting"), std::string::npos)
+      << "refused before any work";
   expect_refused(dir, "compensate a.csv --fit a_fit.json --sensor gyro -o out.csv",
                  "--sensor gyro: a_fit.json is the accelerometer's fit (--sensor accel)");
   EXPECT_FALSE(std::filesystem::exists(dir / "out.csv"));

@@ -104,6 +104,20 @@ std::vector<UnitCaution> unit_cautions(const Units& u, const ReadSummary& r) {
   return out;
 }
 
+std::optional<UnitCaution> gravity_caution(const Units& u, const std::vector<std::vector<double>>& axes) {
+  if (u.kind().quantity != Quantity::accel || axes.size() != 3 || stated_by_log_format(u.gyro_from)) return std::nullopt;
+  const std::size_t n = axes[0].size();
+  if (n == 0 || axes[1].size() != n || axes[2].size() != n) return std::nullopt;
+  std::vector<double> magnitude(n);
+  for (std::size_t i = 0; i < n; ++i) magnitude[i] = std::hypot(axes[0][i], axes[1][i], axes[2][i]);
+  std::nth_element(magnitude.begin(), magnitude.begin() + static_cast<std::ptrdiff_t>(n / 2), magnitude.end());
+  const double median = magnitude[n / 2];
+  if (median >= 0.5 * kStandardGravity && median <= 2.0 * kStandardGravity) return std::nullopt;
+  ReadSummary r;
+  r.gravity_mps2 = median;
+  return UnitCaution{CautionKind::accel_magnitude, r, std::string(u.gyro_unit().name), u.gyro_from, false, &u.kind()};
+}
+
 std::string caution_text(const UnitCaution& c) {
   const ReadSummary& r = c.read;
   const double n = r.arw_deg_per_sqrt_h;
@@ -171,6 +185,23 @@ std::string caution_text(const UnitCaution& c) {
           c.unit_from_log_format ? "the vehicle moved or vibrated, and its motion is read as bias"
                                  : "it moved or vibrated (motion is read as bias), or its numbers are in a smaller "
                                    "unit than that (mg read as m/s²?)");
+    case CautionKind::accel_magnitude: {
+      // The accelerometer unit that would put the magnitude nearest gravity's.
+      const Unit& read_unit = find_unit(Quantity::accel, c.unit, "");
+      const Unit* best = &read_unit;
+      for (const Unit& unit : unit_table())
+        if (unit.quantity == Quantity::accel &&
+            std::abs(std::log(r.gravity_mps2 / read_unit.factor * unit.factor / kStandardGravity)) <
+                std::abs(std::log(r.gravity_mps2 / read_unit.factor * best->factor / kStandardGravity)))
+          best = &unit;
+      return fmt::format(
+          "the accelerometer's three axes have a median magnitude of {:.3g} m/s² ({}), where gravity alone is 9.81: "
+          "at rest or in flight they read gravity on average{}",
+          r.gravity_mps2, read_in,
+          best != &read_unit ? fmt::format("; are its numbers in {} ({})? give --gyro-unit {}", best->name,
+                                           best->meaning, best->name)
+                             : std::string("; is the unit or the scale right?"));
+    }
     case CautionKind::reading_outside: {
       const SensorLimits* found = c.sensor != nullptr ? sensor_limits(*c.sensor) : nullptr;
       if (found == nullptr) return {};

@@ -18,6 +18,7 @@
 //          (−253 °C) or raw counts.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@ struct ReadSummary {
   double temp_min_c = 0, temp_max_c = 0;  // of the temperature as read
   double moving_share = 0;                // samples whose |gyro| exceeds a rest rate (10 °/s)
   double largest_rate_dph = 0;            // the largest |gyro| read
+  double gravity_mps2 = 0;                // accel_magnitude: the three axes' median magnitude, m/s² as read
   bool operator==(const ReadSummary&) const = default;
 };
 
@@ -63,7 +65,8 @@ enum class CautionKind {
   span_too_long,       // a record of more than 30 days: ms or µs read as s?
   temperature_outside,  // every temperature below −100 °C or above 200 °C: K, or raw counts?
   reading_outside,      // another sensor's reading outside what it reads (hPa read as Pa, µT as gauss?)
-  accel_moving          // an accelerometer's sample-to-sample changes no accelerometer's noise makes: it moved
+  accel_moving,         // an accelerometer's sample-to-sample changes no accelerometer's noise makes: it moved
+  accel_magnitude       // an accelerometer's three axes make no gravity (|a| far from 9.81 m/s²): g read as m/s²?
 };
 struct UnitCaution {
   CautionKind kind = CautionKind::gyro_too_quiet;
@@ -79,6 +82,14 @@ std::vector<std::string> caution_texts(const std::vector<UnitCaution>& cautions)
 
 // The cautions for a record read in `units` (empty when all looks right).
 std::vector<UnitCaution> unit_cautions(const Units& units, const ReadSummary& read);
+
+// An accelerometer's three axes read in `units` (each its window means, m/s²,
+// as many of each): at rest or in flight their magnitude is gravity's on
+// average. A median magnitude under half or over twice 9.81 m/s² is a unit
+// misread (g or mg read as m/s², m/s² read as g), cautioned as
+// accel_magnitude; none when a log's format states the unit, or the axes'
+// windows differ in number.
+std::optional<UnitCaution> gravity_caution(const Units& units, const std::vector<std::vector<double>>& axes);
 
 // "time ms (header 'time (ms)'), …; converted: …": the units read and what chose them.
 std::string units_read(const Units& units);

@@ -339,11 +339,12 @@ std::string c_header(const fit::SavedFit& fit, const fit::CausalSettings& settin
 ExporterInfo c_exporter() {
   return {"c", "a C99 header (the whole model, as compensate --causal runs it, sample by sample)",
           [](const ExportRequest& r, const std::vector<fit::SavedFit>& fits) {
-            const fit::SavedFit& f = chosen_channel(r, fits);
-            if (const fit::SensorKind& kind = f.pipeline.columns.units.kind(); !kind.is_gyro)
+            // Another sensor's fit is refused before a channel is asked for: none of its channels would do.
+            if (const fit::SensorKind& kind = fits.front().pipeline.columns.units.kind(); !kind.is_gyro)
               throw InputError(fmt::format("{}: the {}'s fit: the C compensator is a gyro's (°/h), so far; export "
                                            "it with --format px4",
                                            r.fit_file, kind.noun));
+            const fit::SavedFit& f = chosen_channel(r, fits);
             if (!f.sample_interval_s || !f.bursts || (f.pipeline.remove_outliers && !f.outlier_floor_dph))
               throw InputError(fmt::format("{}: the fit lacks data.sample_interval_s, data.bursts or "
                                            "data.outlier_floor_dph (written by an earlier gyrotherm); fit again to "

@@ -126,6 +126,16 @@ FitRun fit_record(const FitRequest& request, const RecordSource& source,
         if (c.truth) add_truth(c.json, c.result, *c.truth);
         return c;
       });
+  // An accelerometer's three axes together: their magnitude is gravity's, or a unit was misread.
+  if (run.channels.size() == 3) {
+    std::vector<std::vector<double>> axes;
+    for (const ChannelFit& c : run.channels) axes.push_back(c.data.series.gyro_dph);
+    if (const auto caution = fit::gravity_caution(run.channels.front().data.units, axes))
+      for (ChannelFit& c : run.channels) {
+        c.data.cautions.push_back(*caution);
+        c.json["data"]["cautions"].push_back(fit::caution_text(*caution));
+      }
+  }
   // The bytes fitted, hashed once for every channel (a table has no file).
   if (std::error_code ec; request.hash_data && !run.channels.empty() &&
                           std::filesystem::is_regular_file(run.channels.front().data.file, ec)) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "fit/fit_file.h"
 #include "sim/util/input_error.h"
 #include "studies/options/pipeline_options.h"
 #include "studies/report/report.h"
@@ -65,6 +66,7 @@ ReportRequest report_request(const ReportCommandOptions& options) {
                                      "(its JSON twin is the page's name with .json)",
                                      r.output, written, input, option));
   }
+  if (!r.fit_file.empty()) fit::load_fits(r.fit_file);  // its errors (another sensor's fit) before any work
   return r;
 }
 
