@@ -83,6 +83,11 @@ TEST(ColumnsByRole, AnAccelerometerInGReadAsMetresPerSecondSquaredIsCautioned) {
   EXPECT_NE(cautions[0].get<std::string>().find("are its numbers in g (standard gravities"), std::string::npos)
       << cautions[0];
   expect_refused(dir, "export fit.json --format px4 -o a.params", "--accept-caution");
+  // A fact of the three axes together: said once in the text.
+  const std::string text = run_cli(dir, "fit flat.csv --sensor accel --model T").out;
+  const std::size_t first = text.find("median magnitude");
+  EXPECT_NE(first, std::string::npos) << text;
+  EXPECT_EQ(text.find("median magnitude", first + 1), std::string::npos) << text;
   const CliResult in_g = run_cli(dir, "fit flat.csv --sensor accel --gyro-unit g --model T --json");
   ASSERT_EQ(in_g.exit_code, 0) << in_g.err;
   EXPECT_TRUE(nlohmann::json::parse(in_g.out)["channels"][2]["data"]["cautions"].empty());

@@ -130,11 +130,9 @@ FitRun fit_record(const FitRequest& request, const RecordSource& source,
   if (run.channels.size() == 3) {
     std::vector<std::vector<double>> axes;
     for (const ChannelFit& c : run.channels) axes.push_back(c.data.series.gyro_dph);
-    if (const auto caution = fit::gravity_caution(run.channels.front().data.units, axes))
-      for (ChannelFit& c : run.channels) {
-        c.data.cautions.push_back(*caution);
-        c.json["data"]["cautions"].push_back(fit::caution_text(*caution));
-      }
+    run.gravity = fit::gravity_caution(run.channels.front().data.units, axes);
+    if (run.gravity)
+      for (ChannelFit& c : run.channels) c.json["data"]["cautions"].push_back(fit::caution_text(*run.gravity));
   }
   // The bytes fitted, hashed once for every channel (a table has no file).
   if (std::error_code ec; request.hash_data && !run.channels.empty() &&
@@ -169,6 +167,7 @@ std::string fit_text(const FitRun& run) {
   const std::size_t n = run.channels.size();
   out += fit::shared_units_text(run.channels, [](const ChannelFit& c) -> const fit::Units& { return c.data.units; });
   const bool units_said = !out.empty();
+  if (run.gravity) out += "caution (the three axes): " + fit::caution_text(*run.gravity) + "\n";
   for (const ChannelFit& c : run.channels) {
     if (n > 1) out += fmt::format("== channel {} ==\n", c.channel);
     out += channel_text(c, run, units_said);

@@ -44,6 +44,9 @@ struct FitRun {
   FitRequest request;
   const fit::EngineInfo* engine = nullptr;
   std::vector<ChannelFit> channels;
+  // An accelerometer's three axes that make no gravity (accel_magnitude): a
+  // fact of the three together, said once; each channel's JSON carries it.
+  std::optional<fit::UnitCaution> gravity;
   std::string json;  // what -o saved and --json prints (one object, or {"channels": [...]})
 };
 
