@@ -140,11 +140,7 @@ std::vector<std::string> skipped_texts(const std::vector<Skipped>& skipped) {
   }
   for (const auto& [role, names] : by_role) {
     const bool many = names.size() > 1;
-    const std::string what = role == fit::ColumnRole::motion_sensor ? "another motion sensor's channel"
-                             : role == fit::ColumnRole::status      ? "a status word"
-                             : role == fit::ColumnRole::counter     ? "a counter"
-                             : role == fit::ColumnRole::derived     ? "a model's, truth's or compensation's column"
-                                                                    : "constant";
+    const std::string what = fit::to_string(role);  // the role's words, as fit/data/column_role.h has them
     out.push_back(fmt::format("column{} {} ({}{}, not a cause of the bias; name one in --candidates +NAME to try it)",
                               many ? "s" : "", fmt::join(names, ", "), what,
                               many && role != fit::ColumnRole::constant && role != fit::ColumnRole::derived ? "s" : ""));
