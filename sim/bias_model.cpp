@@ -2,15 +2,15 @@
 
 namespace gyrotherm::sim {
 
-BiasModel::BiasModel(const GyroConfig& gyro) : b0_dph_(gyro.b0_dph) {
-  for (const effects::Effect* e : effects::registry())
-    if (const double c = gyro.coefficient_of(*e); c != 0.0)
-      active_.push_back({e, c, gyro.parameter_of(*e)});
-}
+BiasModel::BiasModel(const GyroConfig& gyro) : BiasModel(gyro.b0_dph, gyro.coefficient, gyro) {}
 
-BiasModel::BiasModel(const ChannelConfig& channel, const GyroConfig& gyro) : b0_dph_(channel.b0) {
+BiasModel::BiasModel(const ChannelConfig& channel, const GyroConfig& gyro)
+    : BiasModel(channel.b0, channel.coefficient, gyro) {}
+
+BiasModel::BiasModel(double b0, const std::map<std::string, double>& coefficient, const GyroConfig& gyro)
+    : b0_dph_(b0) {
   for (const effects::Effect* e : effects::registry())
-    if (const auto c = channel.coefficient.find(std::string(e->name)); c != channel.coefficient.end() && c->second != 0.0)
+    if (const auto c = coefficient.find(std::string(e->name)); c != coefficient.end() && c->second != 0.0)
       active_.push_back({e, c->second, gyro.parameter_of(*e)});
 }
 

@@ -27,6 +27,8 @@ class BiasModel {
   std::vector<double> bias_dph(const effects::EffectSeries& truth) const;
 
  private:
+  // b0 and the coefficients by term name; the effects' parameters the gyro's.
+  BiasModel(double b0, const std::map<std::string, double>& coefficient, const GyroConfig& gyro);
   struct Active {
     const effects::Effect* effect;
     double coefficient;

@@ -13,8 +13,6 @@ constexpr ChannelKind kKinds[] = {
 
 }  // namespace
 
-std::span<const ChannelKind> channel_kinds() { return kKinds; }
-
 const ChannelKind* find_channel_kind(std::string_view name) {
   for (const ChannelKind& k : kKinds)
     if (k.name == name) return &k;
@@ -39,13 +37,13 @@ std::string ChannelConfig::label() const {
   return kind->has_axes ? std::string(kind->name) + " " + axis : std::string(kind->name);
 }
 
-std::string ChannelConfig::column() const {
-  return std::string(kind->name) + (kind->has_axes ? std::string("_") + axis : "") + "_" + std::string(kind->suffix);
+// accel_x, baro: the kind and its axis, before the unit's suffix.
+std::string ChannelConfig::stem() const {
+  return std::string(kind->name) + (kind->has_axes ? std::string("_") + axis : "");
 }
 
-std::string ChannelConfig::truth_column() const {
-  return std::string(kind->name) + (kind->has_axes ? std::string("_") + axis : "") + "_true_" +
-         std::string(kind->suffix);
-}
+std::string ChannelConfig::column() const { return stem() + "_" + std::string(kind->suffix); }
+
+std::string ChannelConfig::truth_column() const { return stem() + "_true_" + std::string(kind->suffix); }
 
 }  // namespace gyrotherm::sim

@@ -32,7 +32,6 @@ struct ChannelKind {
   std::string_view suffix;  // dph, mps2, pa
   bool has_axes = true;
 };
-std::span<const ChannelKind> channel_kinds();
 // nullptr when `name` is none of them.
 const ChannelKind* find_channel_kind(std::string_view name);
 // "gyro, accel or baro".
@@ -50,6 +49,7 @@ struct ChannelConfig {
   // accel_x_mps2 / accel_x_true_mps2, baro_pa / baro_true_pa.
   std::string column() const;
   std::string truth_column() const;
+  std::string stem() const;  // accel_x, baro
   // "accel x", "baro".
   std::string label() const;
   // The true coefficients by term name, b0 under "1", every term that is on.

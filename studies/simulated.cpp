@@ -6,6 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "fit/channels.h"
+#include "fit/data/sensor_kind.h"
 #include "sim/output.h"
 #include "sim/util/input_error.h"
 
@@ -52,9 +54,11 @@ std::optional<Truth> channel_truth(const nlohmann::json& j, const std::filesyste
   for (const nlohmann::json& ch : j["channels"]) {
     if (!ch.is_object() || !ch.contains("sensor") || !ch.contains("column") || !ch.contains("coefficients"))
       throw InputError(fmt::format("{}: each of 'channels' needs sensor, column and coefficients", file.string()));
-    // As an autopilot log's reader names it (fit/data/sensor_kind.h's log_columns).
-    const std::string sensor = ch["sensor"].get<std::string>();
-    const std::string log_column = sensor == "baro" ? "pressure" : sensor + "_" + ch.value("axis", std::string());
+    // As an autopilot log's reader names it (the kind's log_columns: accel_x, pressure).
+    const fit::SensorKind& kind = fit::sensor_kind(ch["sensor"].get<std::string>());
+    std::string log_column;
+    for (const std::string& c : fit::parse_channels(std::string(kind.log_columns)))
+      if (kind.axes() == 1 || c.ends_with("_" + ch.value("axis", std::string()))) log_column = c;
     if (column != ch["column"].get<std::string>() && column != log_column) continue;
     nlohmann::json gyro_like = j;  // the gyro's hidden parameters hold for every channel
     gyro_like["coefficients"] = ch["coefficients"];

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -106,14 +105,8 @@ ColumnMap columns_for(const std::filesystem::path& file, ColumnMap columns) {
   const std::vector<std::string> names = csv_column_names(file, columns.csv);
   if (names.empty() || std::find(names.begin(), names.end(), columns.gyro) != names.end()) return columns;
   // The default written otherwise (GYRO_DPH, Gyro-DPH): the reader's "did you mean" says which.
-  const auto folded = [](std::string_view v) {
-    std::string out;
-    for (const char c : v)
-      if (std::isalnum(static_cast<unsigned char>(c)) != 0) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return out;
-  };
   for (const std::string& n : names)
-    if (folded(n) == folded(columns.gyro)) return columns;
+    if (folded_name(n) == folded_name(columns.gyro)) return columns;
   if (std::string chosen = by_role(names, columns, kind); !chosen.empty()) columns.gyro = std::move(chosen);
   return columns;
 }

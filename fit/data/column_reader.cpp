@@ -138,15 +138,9 @@ void ColumnReader::resolve_columns(std::vector<std::string> names_given, std::si
       if (optional && !explicit_temp2) continue;
       // A column that differs only in case or separators ("Temp C" for
       // temp_c): said first, as the likely one.
-      const auto folded = [](std::string_view v) {
-        std::string out;
-        for (const char c : v)
-          if (std::isalnum(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        return out;
-      };
       std::string near;
       for (const std::string& n : names)
-        if (!n.empty() && folded(n) == folded(name)) near = fmt::format(" (did you mean '{}'?)", n);
+        if (!n.empty() && folded_name(n) == folded_name(name)) near = fmt::format(" (did you mean '{}'?)", n);
       const SensorKind& kind = map_.units.kind();
       fail_names(fmt::format("no column '{}'{} ({} has: {}); name the {} column with {}{}", name, near, holder,
                              joined(names), role == kGyro ? std::string(kind.noun) : std::string(kWhatOf[role]),

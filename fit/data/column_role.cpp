@@ -79,6 +79,13 @@ std::vector<std::string> column_words(std::string_view name) {
   return words;
 }
 
+std::string folded_name(std::string_view name) {
+  std::string out;
+  for (const char c : name)
+    if (alnum(c)) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
 ColumnRole role_by_name(std::string_view name) {
   const std::vector<std::string> words = column_words(name);
   for (const std::string& w : words)

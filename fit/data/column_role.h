@@ -36,6 +36,9 @@ const char* to_string(ColumnRole role);
 
 // The name's words, lower case (as above).
 std::vector<std::string> column_words(std::string_view name);
+// The name's letters and digits, lower case: names alike but for case and
+// separators ("Temp-C", "temp_c") fold alike.
+std::string folded_name(std::string_view name);
 
 // By the name alone.
 ColumnRole role_by_name(std::string_view name);

@@ -43,16 +43,16 @@ namespace {
 const SensorKind kKinds[] = {
   {"gyro", "gyro", Quantity::gyro, "°/h", "gyro_dph", "gyr omega",
    {{{"arw", "deg/sqrt(h)", 1.0 / 60.0}, {"bias_instability", "deg/h", 1.0}, {"gauss_markov", "deg/h", 1.0}, {"rrw", "deg/h/sqrt(h)", 60.0}}}, true,
-   {"sensor_gyro", "x y z", "rad/s"}, {"IMU IMU2 IMU3", "GyrX GyrY GyrZ", "rad/s"}, "gyro_x,gyro_y,gyro_z", "TC_G", 3, "GYR"},
+   {"sensor_gyro", "x y z", "rad/s"}, {"IMU IMU2 IMU3", "GyrX GyrY GyrZ", "rad/s"}, "gyro_x,gyro_y,gyro_z", "TC_G", 3, "GYR", "CAL_GYRO"},
   {"accel", "accelerometer", Quantity::accel, "m/s²", "accel_mps2", "acc",
    {{{"vrw", "m/s/sqrt(h)", 60.0}, {"bias_instability", "m/s^2", 1.0}, {"gauss_markov", "m/s^2", 1.0}, {"accel_random_walk", "m/s^2/sqrt(h)", 60.0}}}, false,
-   {"sensor_accel", "x y z", "mps2"}, {"IMU IMU2 IMU3", "AccX AccY AccZ", "mps2"}, "accel_x,accel_y,accel_z", "TC_A", 3, "ACC"},
+   {"sensor_accel", "x y z", "mps2"}, {"IMU IMU2 IMU3", "AccX AccY AccZ", "mps2"}, "accel_x,accel_y,accel_z", "TC_A", 3, "ACC", "CAL_ACC"},
   {"baro", "barometer", Quantity::pressure, "Pa", "baro_pa", "baro press",
    {{{"white_noise", "Pa*sqrt(s)", 1.0}, {"bias_instability", "Pa", 1.0}, {"gauss_markov", "Pa", 1.0}, {"pressure_random_walk", "Pa/sqrt(h)", 60.0}}}, false,
-   {"sensor_baro", "pressure", "Pa"}, {"BARO BAR2 BAR3", "Press", "Pa"}, "pressure", "TC_B", 5, ""},
+   {"sensor_baro", "pressure", "Pa"}, {"BARO BAR2 BAR3", "Press", "Pa"}, "pressure", "TC_B", 5, "", "CAL_BARO"},
   {"mag", "magnetometer", Quantity::magnetic, "gauss", "mag_gauss", "mag",
    {{{"white_noise", "gauss*sqrt(s)", 1.0}, {"bias_instability", "gauss", 1.0}, {"gauss_markov", "gauss", 1.0}, {"field_random_walk", "gauss/sqrt(h)", 60.0}}}, false,
-   {"sensor_mag", "x y z", "gauss"}, {"", "", ""}, "mag_x,mag_y,mag_z", "TC_M", 3, ""},
+   {"sensor_mag", "x y z", "gauss"}, {"", "", ""}, "mag_x,mag_y,mag_z", "TC_M", 3, "", "CAL_MAG"},
 };
 // clang-format on
 

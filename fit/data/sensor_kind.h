@@ -63,6 +63,8 @@ struct SensorKind {
   std::string_view px4_stem;
   int px4_order = 3;
   std::string_view ardupilot_group;
+  // PX4's calibration parameters' stem: CAL_GYRO (CAL_GYRO0_ID), CAL_ACC, CAL_BARO, CAL_MAG.
+  std::string_view px4_calibration;
 };
 
 // Every kind, in the registry's order (gyro first).

@@ -98,7 +98,6 @@ std::optional<GyroCalibration> px4_calibration(const ParameterFile& p, int n) {
   if (!any) return std::nullopt;
   GyroCalibration c;
   c.format = ParameterFormat::px4;
-  c.kind = &kind;
   c.instance = n;
   c.prefix = prefix;
   c.enable = p.value(fmt::format("{}_ENABLE", kind.px4_stem));
@@ -106,7 +105,6 @@ std::optional<GyroCalibration> px4_calibration(const ParameterFile& p, int n) {
   c.tmax_c = required(p, prefix + "TMAX", "the highest temperature");
   c.tref_c = static_cast<float>(required(p, prefix + "TREF", "the reference temperature"));
   if (const auto id = p.value(prefix + "ID")) c.device_id = static_cast<long long>(*id);
-  c.px4_terms = kind.px4_order + 1;
   // A one-axis sensor's coefficients have no axis suffix (TC_B0_X0).
   const auto name = [&](int k, std::size_t axis) {
     return kind.axes() == 1 ? fmt::format("{}X{}", prefix, k) : fmt::format("{}X{}_{}", prefix, k, axis);
@@ -114,7 +112,7 @@ std::optional<GyroCalibration> px4_calibration(const ParameterFile& p, int n) {
   for (std::size_t axis = 0; axis < kind.axes(); ++axis) {
     c.axes[axis] = p.value(name(0, axis)).has_value();
     if (!c.axes[axis]) continue;
-    for (int k = 0; k < c.px4_terms; ++k)
+    for (int k = 0; k <= kind.px4_order; ++k)
       c.px4_x[axis][static_cast<std::size_t>(k)] =
           static_cast<float>(required(p, name(k, axis), "a coefficient of an axis given"));
   }
@@ -130,7 +128,6 @@ std::optional<GyroCalibration> ardupilot_calibration(const ParameterFile& p, int
   if (!any) return std::nullopt;
   GyroCalibration c;
   c.format = ParameterFormat::ardupilot;
-  c.kind = p.kind;
   c.instance = instance;
   c.prefix = prefix;
   c.enable = p.value(prefix + "ENABLE");

@@ -61,10 +61,10 @@ struct ParameterFile {
 // is refused naming what it holds.
 ParameterFile read_parameter_file(const std::string& file, std::string_view sensor = {});
 
-// One sensor's thermal calibration from a PX4 or ArduPilot parameter file.
+// One sensor's thermal calibration from a PX4 or ArduPilot parameter file
+// (of the file's kind).
 struct GyroCalibration {
   ParameterFormat format = ParameterFormat::px4;
-  const fit::SensorKind* kind = &fit::sensor_kinds().front();
   int instance = 0;    // PX4: n of TC_G{n}_; ArduPilot: the IMU instance (INS_TCAL1_ is 0)
   std::string prefix;  // "TC_G0_", "TC_A1_", "INS_TCAL1_", "INS4_TCAL_"
   std::optional<double> enable;  // TC_G_ENABLE / INS_TCAL{n}_ENABLE as the file sets it
@@ -72,8 +72,9 @@ struct GyroCalibration {
   float tref_c = 0.0f;                   // PX4's TREF; ArduPilot's fixed 35 °C
   std::optional<long long> device_id;    // PX4's TC_G{n}_ID; ArduPilot's INS_GYR{,2,3}_ID when the file has it
   std::array<bool, 3> axes{};            // X, Y, Z given (a barometer: X alone, its pressure)
-  int px4_terms = 4;                     // X0..X3, or a barometer's X0..X5
-  std::array<std::array<float, 6>, 3> px4_x{};  // X0.. per axis, in the log's unit (rad/s for a gyro)
+  // X0.. per axis, in the log's unit (rad/s for a gyro): X0..X3, a barometer's
+  // X0..X5 (the file's kind's px4_order).
+  std::array<std::array<float, 6>, 3> px4_x{};
   std::array<std::array<float, 3>, 3> ap_g{};   // GYR1..3 or ACC1..3 per axis (×1e6 rad/s, m/s²)
 };
 

@@ -70,9 +70,8 @@ std::string finding_text(const CheckFinding& f, const CheckResult& r) {
     case CheckIssue::device_mismatch:
       if (f.value == 0.0)
         return fmt::format("the calibration gives no device id ({} is 0 or absent): PX4 applies a set only to the {} "
-                           "whose device id it names (export --device-id, the {}'s CAL_{}{{n}}_ID)",
-                           f.name, r.sensor->noun, r.sensor->noun,
-                           r.sensor->is_gyro ? "GYRO" : r.sensor->name == "accel" ? "ACC" : r.sensor->name == "baro" ? "BARO" : "MAG");
+                           "whose device id it names (export --device-id, the {}'s {}{{n}}_ID)",
+                           f.name, r.sensor->noun, r.sensor->noun, r.sensor->px4_calibration);
       return fmt::format("the calibration is for device id {:.0f}, which is no {} of this log ({}): the firmware "
                          "would not apply it",
                          f.value, r.sensor->noun, devices_text(f.devices));

@@ -166,7 +166,7 @@ Applied apply_firmware(const CheckRequest& o, const ParameterFile& p, CheckResul
       continue;
     }
     if (c.format == ParameterFormat::px4) {
-      const std::span<const float> x(c.px4_x[k].data(), static_cast<std::size_t>(c.px4_terms));
+      const std::span<const float> x(c.px4_x[k].data(), static_cast<std::size_t>(kind.px4_order + 1));
       a.subtracted_dph[k] = px4_applied_dph(a.time_s, a.temp_c, x, c.tref_c, static_cast<float>(c.tmin_c),
                                             static_cast<float>(c.tmax_c), per_base);
     } else {
@@ -321,7 +321,7 @@ void add_device_finding(const Applied& a, CheckResult* r) {
     for (const fit::LogSensor& g : a.contents.sensors)
       if (g.device_id != 0) devices.push_back({static_cast<long long>(g.device_id), g.instance, ""});
   } else {
-    const std::string name = ardupilot_gyro_id_name(cal->instance, cal->kind->ardupilot_group);
+    const std::string name = ardupilot_gyro_id_name(cal->instance, r->sensor->ardupilot_group);
     if (const auto id = a.contents.parameters.find(name); id != a.contents.parameters.end())
       devices.push_back({static_cast<long long>(id->second), -1, name});
   }

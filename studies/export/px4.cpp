@@ -11,14 +11,6 @@
 namespace gyrotherm::studies {
 namespace {
 
-// The sensor's calibration parameters' stem in PX4 (CAL_GYRO0_ID, CAL_ACC0_OFF, ...).
-std::string_view px4_calibration(const fit::SensorKind& kind) {
-  if (kind.px4_stem == "TC_A") return "CAL_ACC";
-  if (kind.px4_stem == "TC_B") return "CAL_BARO";
-  if (kind.px4_stem == "TC_M") return "CAL_MAG";
-  return "CAL_GYRO";
-}
-
 // What the file's comment says of a sensor other than the gyro: the rule,
 // and that X0 is 0 (firmware.h: px4_coefficients).
 std::string other_sensor_comment(const fit::SensorKind& kind, int instance, long long device_id) {
@@ -36,7 +28,7 @@ std::string other_sensor_comment(const fit::SensorKind& kind, int instance, long
       "#   file, reboot, load it again. MAVProxy's param load skips a value within 1e-6 of the vehicle's: tiny\n"
       "#   coefficients never load that way (use QGroundControl, or param set each).\n",
       kind.noun, one ? "1D" : "3D", powers, kind.ulog.unit == "mps2" ? "m/s^2" : kind.ulog.unit, kind.px4_stem,
-      instance, px4_calibration(kind), device_id == 0 ? "; it is 0 here: set it, or pass --device-id" : "",
+      instance, kind.px4_calibration, device_id == 0 ? "; it is 0 here: set it, or pass --device-id" : "",
       one ? "OFF" : "XOFF, _YOFF, _ZOFF");
 }
 
@@ -109,7 +101,7 @@ ExporterInfo px4_exporter() {
                                   fmt::format(", TREF {:.2f} °C", static_cast<float>(f.range.tref_c)));
             if (r.device_id == 0)
               f.out.lines.push_back(fmt::format("set {}{}_ID to your {}'s device id ({}{}_ID), or pass --device-id",
-                                                f.kind->px4_stem, instance, f.kind->noun, px4_calibration(*f.kind),
+                                                f.kind->px4_stem, instance, f.kind->noun, f.kind->px4_calibration,
                                                 instance));
             add_outcome(firmware_outcome(Firmware::px4, f, r.data, std::nullopt, r.data_table), &f.out);
             return f.out;

@@ -30,12 +30,6 @@ struct DataOptions {
 // Refuses a sensor other than a gyro (--sensor) for `command`: only `fit`
 // reads an accelerometer's or a barometer's channel so far.
 void require_gyro(const fit::ColumnMap& columns, std::string_view command);
-// The request, once its columns are a gyro's.
-template <class Request>
-Request gyro_only(const Request& request, std::string_view command) {
-  require_gyro(request.columns, command);
-  return request;
-}
 
 // --avg (with_avg), --deriv-span, --causal, --keep-outliers,
 // --outlier-threshold and the column options.
